@@ -1,0 +1,32 @@
+# Writes build_info.cpp only when its content changes, so a rebuild relinks only when
+# the revision or the configuration did.
+execute_process(COMMAND git -C ${SOURCE_DIR} rev-parse --short=12 HEAD
+                OUTPUT_VARIABLE REV OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0 OR REV STREQUAL "")
+  set(REV "unknown")
+else()
+  execute_process(COMMAND git -C ${SOURCE_DIR} status --porcelain --untracked-files=no
+                  OUTPUT_VARIABLE DIRTY OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+  if(NOT DIRTY STREQUAL "")
+    set(REV "${REV}-dirty")
+  endif()
+endif()
+if(SANITIZE)
+  set(BUILD_TYPE "${BUILD_TYPE}+asan+ubsan")
+endif()
+set(CONTENT "#include \"core/build_info.hpp\"
+namespace nsb {
+const BuildInfo& build_info() {
+  static const BuildInfo info{\"${REV}\", \"${BUILD_TYPE}\", \"${COMPILER}\"};
+  return info;
+}
+}  // namespace nsb
+")
+if(EXISTS ${OUTPUT})
+  file(READ ${OUTPUT} OLD)
+else()
+  set(OLD "")
+endif()
+if(NOT OLD STREQUAL CONTENT)
+  file(WRITE ${OUTPUT} "${CONTENT}")
+endif()

@@ -1,0 +1,169 @@
+#include "core/parameters.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+namespace nsb {
+
+ParamSpec ParamSpec::real(std::string name, double default_value, double lower, double upper,
+                          std::string description, bool lower_open, bool upper_open) {
+  ParamSpec s;
+  s.name = std::move(name);
+  s.description = std::move(description);
+  s.kind = Kind::Real;
+  s.default_value = fmt::format("{}", default_value);
+  s.lower = lower;
+  s.upper = upper;
+  s.lower_open = lower_open;
+  s.upper_open = upper_open;
+  return s;
+}
+
+ParamSpec ParamSpec::integer(std::string name, long default_value, long lower, long upper,
+                             std::string description) {
+  ParamSpec s;
+  s.name = std::move(name);
+  s.description = std::move(description);
+  s.kind = Kind::Integer;
+  s.default_value = fmt::format("{}", default_value);
+  s.lower = static_cast<double>(lower);
+  s.upper = static_cast<double>(upper);
+  return s;
+}
+
+ParamSpec ParamSpec::choice(std::string name, std::string default_value,
+                            std::vector<std::string> choices, std::string description) {
+  ParamSpec s;
+  s.name = std::move(name);
+  s.description = std::move(description);
+  s.kind = Kind::Choice;
+  s.default_value = std::move(default_value);
+  s.choices = std::move(choices);
+  return s;
+}
+
+static std::string bound_text(double v) {
+  if (v <= -1e308) return "-inf";
+  if (v >= 1e308) return "inf";
+  return fmt::format("{}", v);
+}
+
+std::string ParamSpec::range_text() const {
+  if (kind == Kind::Choice) return fmt::format("{{{}}}", fmt::join(choices, ", "));
+  const bool lo_open = lower_open || lower <= -1e308;
+  const bool hi_open = upper_open || upper >= 1e308;
+  std::string r = fmt::format("{}{}, {}{}", lo_open ? "(" : "[", bound_text(lower),
+                              bound_text(upper), hi_open ? ")" : "]");
+  return kind == Kind::Integer ? "integer in " + r : r;
+}
+
+double parse_real(const std::string& text, const std::string& what) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(begin, &end);
+  if (text.empty() || end != begin + text.size() || errno == ERANGE || !std::isfinite(v))
+    throw InputError(fmt::format("{}: '{}' is not a finite number", what, text));
+  return v;
+}
+
+void ParamSpec::validate(const std::string& text) const {
+  if (kind == Kind::Choice) {
+    for (const auto& c : choices)
+      if (c == text) return;
+    throw InputError(fmt::format("parameter '{}' = '{}' is not one of {}", name, text, range_text()));
+  }
+  const double v = parse_real(text, fmt::format("parameter '{}'", name));
+  if (kind == Kind::Integer && v != std::floor(v))
+    throw InputError(fmt::format("parameter '{}' = {} is not an integer; valid: {}", name, text,
+                                 range_text()));
+  const bool below = lower_open ? !(v > lower) : !(v >= lower);
+  const bool above = upper_open ? !(v < upper) : !(v <= upper);
+  if (below || above)
+    throw InputError(fmt::format("parameter '{}' = {} is outside its valid range {}", name, text,
+                                 range_text()));
+}
+
+Params::Params(const ParamSpecs& specs, const std::map<std::string, std::string>& overrides) {
+  for (const auto& s : specs) values_[s.name] = s.default_value;
+  for (const auto& [key, value] : overrides) {
+    const ParamSpec* spec = nullptr;
+    for (const auto& s : specs)
+      if (s.name == key) spec = &s;
+    if (!spec) {
+      std::vector<std::string> names;
+      for (const auto& s : specs) names.push_back(s.name);
+      throw InputError(fmt::format("unknown parameter '{}' (valid: {})", key,
+                                   names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
+    }
+    spec->validate(value);
+    values_[key] = value;
+  }
+}
+
+const std::string& Params::text(const std::string& name) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) throw std::logic_error("undeclared parameter read: " + name);
+  return it->second;
+}
+
+double Params::real(const std::string& name) const { return parse_real(text(name), name); }
+
+long Params::integer(const std::string& name) const {
+  return static_cast<long>(parse_real(text(name), name));
+}
+
+const std::string& Params::choice(const std::string& name) const { return text(name); }
+
+std::pair<std::string, std::string> split_assignment(const std::string& item) {
+  const auto eq = item.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
+    throw InputError(fmt::format("--set '{}': expected key=value", item));
+  return {item.substr(0, eq), item.substr(eq + 1)};
+}
+
+}  // namespace nsb
+
+namespace nsb {
+
+static bool declares(const ParamSpecs& specs, const std::string& key) {
+  for (const auto& s : specs)
+    if (s.name == key) return true;
+  return false;
+}
+
+static std::string names_of(const ParamSpecs& specs) {
+  std::vector<std::string> names;
+  for (const auto& s : specs) names.push_back(s.name);
+  return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+}
+
+RoutedOverrides route_overrides(const std::vector<std::string>& items, const ParamSpecs& problem,
+                                const ParamSpecs& integrator) {
+  RoutedOverrides routed;
+  for (const auto& item : items) {
+    auto [key, value] = split_assignment(item);
+    if (key.rfind("problem.", 0) == 0) {
+      routed.problem[key.substr(8)] = value;  // validated when the problem is built
+      continue;
+    }
+    if (key.rfind("integrator.", 0) == 0) {
+      routed.integrator[key.substr(11)] = value;
+      continue;
+    }
+    const bool p = declares(problem, key), i = declares(integrator, key);
+    if (p && i)
+      throw InputError(fmt::format("--set {}: both the problem and the integrator take '{}'; write problem.{} or integrator.{}",
+                                   item, key, key, key));
+    if (!p && !i)
+      throw InputError(fmt::format("--set {}: unknown parameter '{}' (problem takes: {}; integrator takes: {})",
+                                   item, key, names_of(problem), names_of(integrator)));
+    (p ? routed.problem : routed.integrator)[key] = value;
+  }
+  return routed;
+}
+
+}  // namespace nsb

@@ -1,0 +1,69 @@
+#pragma once
+// Time integrator interface. An integrator is bound to one Problem by init() and then
+// advanced by step(). As in MFEM's ODESolver::Step, step() may take another step than the
+// one requested (an adaptive scheme chooses its own) and reports the step it took.
+#include <map>
+#include <string>
+
+#include "problems/problem.hpp"
+
+namespace nsb {
+
+struct StepInfo {
+  double dt = 0.0;         // the step actually taken
+  long iterations = 0;     // inner iterations of this step (LCP, energy equation, Newton)
+  bool converged = true;   // inner solvers met their tolerance
+};
+
+// Work done so far, for work-precision studies.
+struct WorkCounters {
+  long steps = 0;
+  long force_evaluations = 0;    // F_int evaluations
+  long tangent_evaluations = 0;  // tangent stiffness assemblies
+  long factorizations = 0;
+  long linear_solves = 0;
+  long lcp_iterations = 0;
+  long lcp_unconverged = 0;      // steps whose LCP did not meet its tolerance
+  std::map<std::string, double> extra;  // integrator-specific counters
+};
+
+struct Energy {
+  double kinetic = 0.0;
+  double potential = 0.0;
+  double total() const { return kinetic + potential; }
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+
+  virtual std::string name() const = 0;
+  // Binds the integrator to `problem` (which must outlive it) and sets the initial state.
+  // Throws InputError when the problem is outside what the scheme handles.
+  virtual void init(const Problem& problem, const State& initial) = 0;
+  // Advances from state().t by (about) dt_requested; returns the step taken.
+  virtual StepInfo step(double dt_requested) = 0;
+  // The energy the scheme's own balance is written for; the default is
+  // v^T M v / 2 + V(u) at the current state.
+  virtual Energy energy() const;
+
+  const State& state() const { return state_; }
+  // Contact impulses Lambda (size p) applied during the last step; >= 0.
+  const Vec& impulses() const { return impulses_; }
+  const WorkCounters& work() const { return work_; }
+  const Params& parameters() const { return params_; }
+
+ protected:
+  explicit Integrator(Params params) : params_(std::move(params)) {}
+  // Common part of init(): stores the problem and state, sizes the impulses.
+  void bind(const Problem& problem, const State& initial);
+
+  const Problem* problem_ = nullptr;
+  SpMat mass_;
+  State state_;
+  Vec impulses_;
+  WorkCounters work_;
+  Params params_;
+};
+
+}  // namespace nsb

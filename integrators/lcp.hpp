@@ -1,0 +1,35 @@
+#pragma once
+// Linear complementarity problem of a contact step:
+//
+//     0 <= x  _|_  w = D x + q >= 0
+//
+// D is a Delassus operator L W^{-1} L^T (symmetric, positive diagonal). A diagonal D is
+// solved in closed form, x_i = max(0, -q_i / D_ii). Otherwise projected Gauss-Seidel
+// (Jean & Moreau 1992; Acary & Brogliato 2008, sec. 12.4), warm-started from x, stopped on
+// the natural-map residual
+//
+//     r = max_i |min(D_ii x_i, w_i)| / max(max_i |q_i|, tiny)     (velocity units, relative)
+//
+// being below the tolerance.
+#include <Eigen/Core>
+
+namespace nsb {
+
+struct LcpOptions {
+  double tolerance = 1e-12;
+  long max_iterations = 10000;
+};
+
+struct LcpResult {
+  long iterations = 0;
+  double residual = 0.0;
+  bool converged = true;
+};
+
+LcpResult solve_lcp(const Eigen::MatrixXd& D, const Eigen::VectorXd& q, Eigen::VectorXd& x,
+                    const LcpOptions& options);
+
+// The relative natural-map residual above, for checks and reports.
+double lcp_residual(const Eigen::MatrixXd& D, const Eigen::VectorXd& q, const Eigen::VectorXd& x);
+
+}  // namespace nsb

@@ -1,0 +1,26 @@
+#pragma once
+// Explicit list of the integrators, by name (integrators/registry.cpp, one line each).
+// Adding an integrator: one .hpp/.cpp pair and one line there.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/integrator.hpp"
+
+namespace nsb {
+
+struct IntegratorEntry {
+  std::string name;
+  std::string description;
+  ParamSpecs (*parameters)();
+  std::unique_ptr<Integrator> (*make)(const Params&);
+};
+
+const std::vector<IntegratorEntry>& integrator_registry();
+// Throws InputError listing the valid names when `name` is unknown.
+const IntegratorEntry& find_integrator(const std::string& name);
+std::unique_ptr<Integrator> make_integrator(const std::string& name,
+                                            const std::map<std::string, std::string>& overrides = {});
+
+}  // namespace nsb

@@ -1,0 +1,202 @@
+#include "integrators/run.hpp"
+
+#include <fmt/format.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace nsb {
+
+namespace {
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+const std::vector<std::string> kGenericColumns = {
+    "t", "dt", "kinetic", "potential", "total_energy", "min_gap", "impulse", "active_contacts"};
+
+}  // namespace
+
+std::size_t Series::column(const std::string& name) const {
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    if (columns[i] == name) return i;
+  throw std::out_of_range("no column '" + name + "' in series");
+}
+
+double relative_error(double value, double reference) {
+  return std::abs(value - reference) / std::max(std::abs(reference), 1e-300);
+}
+
+RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& options,
+              const StepObserver& observer) {
+  if (!(options.dt > 0.0) || !std::isfinite(options.dt))
+    throw InputError(fmt::format("--dt {}: must be a finite number > 0", options.dt));
+  if (!(options.t_end > 0.0) || !std::isfinite(options.t_end))
+    throw InputError(fmt::format("--t-end {}: must be a finite number > 0", options.t_end));
+  if (options.sample_every < 1)
+    throw InputError(fmt::format("sample_every {}: must be >= 1", options.sample_every));
+  if (options.t_end / options.dt > static_cast<double>(options.max_steps))
+    throw InputError(fmt::format("--dt {} with --t-end {} needs more than {} steps; valid: t_end/dt <= {}",
+                                 options.dt, options.t_end, options.max_steps, options.max_steps));
+
+  RunResult result;
+  const auto extra = problem.observable_names();
+  if (options.record_series) {
+    result.series.columns = kGenericColumns;
+    result.series.columns.insert(result.series.columns.end(), extra.begin(), extra.end());
+  }
+  const SpMat& L = problem.gap_operator();
+  const Vec& g0 = problem.gap_offset();
+  Vec gap(L.rows());
+  std::vector<double> row(kGenericColumns.size() + extra.size());
+
+  const auto min_gap = [&]() {
+    gap.noalias() = L * integrator.state().u;
+    gap += g0;
+    return gap.size() ? gap.minCoeff() : std::numeric_limits<double>::infinity();
+  };
+  const auto sample = [&](double dt) {
+    const State& s = integrator.state();
+    const Energy E = integrator.energy();
+    const Vec& lambda = integrator.impulses();
+    const double E_total = E.total();
+    result.max_energy_error = std::max(result.max_energy_error, relative_error(E_total, result.initial_energy));
+    if (!options.record_series) return;
+    row[0] = s.t;
+    row[1] = dt;
+    row[2] = E.kinetic;
+    row[3] = E.potential;
+    row[4] = E_total;
+    row[5] = min_gap();
+    row[6] = lambda.sum();
+    row[7] = static_cast<double>((lambda.array() > 0.0).count());
+    problem.observe(s, std::span<double>(row).subspan(kGenericColumns.size()));
+    result.series.values.insert(result.series.values.end(), row.begin(), row.end());
+  };
+  const auto finite = [&]() {
+    const State& s = integrator.state();
+    return s.u.allFinite() && s.v.allFinite() && std::isfinite(integrator.energy().total());
+  };
+
+  result.initial_energy = integrator.energy().total();
+  sample(0.0);
+  const double cpu_start = thread_cpu_seconds();
+  StepInfo info;
+  try {
+    while (integrator.state().t < options.t_end * (1.0 - 1e-12)) {
+      info = integrator.step(options.dt);
+      ++result.steps;
+      result.max_penetration = std::max(result.max_penetration, -min_gap());
+      if (observer) observer(integrator, info);
+      const bool last = integrator.state().t >= options.t_end * (1.0 - 1e-12);
+      if (result.steps % options.sample_every == 0 || last) {
+        if (!finite()) {
+          result.status = RunStatus::Diverged;
+          result.message = fmt::format("non-finite state at t = {}", integrator.state().t);
+          break;
+        }
+        sample(info.dt);
+      }
+      if (result.steps >= options.max_steps) {
+        result.status = RunStatus::Diverged;
+        result.message = fmt::format("step limit {} reached at t = {}", options.max_steps, integrator.state().t);
+        break;
+      }
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& ex) {
+    result.status = RunStatus::Diverged;
+    result.message = ex.what();
+  }
+  result.cpu_seconds = thread_cpu_seconds() - cpu_start;
+  result.t_final = integrator.state().t;
+  result.final_energy = integrator.energy().total();
+  result.work = integrator.work();
+  if (result.status == RunStatus::Ok && !finite()) {
+    result.status = RunStatus::Diverged;
+    result.message = fmt::format("non-finite state at t = {}", result.t_final);
+  }
+  return result;
+}
+
+}  // namespace nsb
+
+namespace nsb {
+
+std::string series_to_csv(const Series& series) {
+  std::string out = fmt::format("{}\n", fmt::join(series.columns, ","));
+  const std::size_t ncol = series.columns.size();
+  for (std::size_t r = 0; r < series.rows(); ++r) {
+    for (std::size_t c = 0; c < ncol; ++c) {
+      out += fmt::format("{}", series.at(r, c));
+      out += (c + 1 == ncol) ? '\n' : ',';
+    }
+  }
+  return out;
+}
+
+}  // namespace nsb
+
+#include <nlohmann/json.hpp>
+
+#include "core/build_info.hpp"
+
+namespace nsb {
+
+std::string summary_to_json(const Problem& problem, const Integrator& integrator,
+                            const RunOptions& options, const RunResult& result) {
+  using nlohmann::json;
+  const auto params = [](const Params& p) {
+    json j = json::object();
+    for (const auto& [k, v] : p.values()) {
+      char* end = nullptr;
+      const double x = std::strtod(v.c_str(), &end);
+      if (end != v.c_str() + v.size() || v.empty())
+        j[k] = v;
+      else if (x == std::floor(x) && std::abs(x) < 1e15)
+        j[k] = static_cast<long long>(x);
+      else
+        j[k] = x;
+    }
+    return j;
+  };
+  json work = {{"steps", result.work.steps},
+               {"force_evaluations", result.work.force_evaluations},
+               {"tangent_evaluations", result.work.tangent_evaluations},
+               {"factorizations", result.work.factorizations},
+               {"linear_solves", result.work.linear_solves},
+               {"lcp_iterations", result.work.lcp_iterations},
+               {"lcp_unconverged", result.work.lcp_unconverged}};
+  for (const auto& [k, v] : result.work.extra) work[k] = v;
+  const BuildInfo& b = build_info();
+  json j = {
+      {"problem", problem.name()},
+      {"problem_parameters", params(problem.parameters())},
+      {"integrator", integrator.name()},
+      {"integrator_parameters", params(integrator.parameters())},
+      {"dt", options.dt},
+      {"t_end", options.t_end},
+      {"sample_every", options.sample_every},
+      {"status", result.status == RunStatus::Ok ? "ok" : "diverged"},
+      {"message", result.message},
+      {"steps", result.steps},
+      {"t_final", result.t_final},
+      {"cpu_seconds", result.cpu_seconds},
+      {"initial_energy", result.initial_energy},
+      {"final_energy", result.final_energy},
+      {"final_energy_error", relative_error(result.final_energy, result.initial_energy)},
+      {"max_energy_error", result.max_energy_error},
+      {"max_penetration", result.max_penetration},
+      {"work", work},
+      {"build", {{"git_revision", b.git_revision}, {"build_type", b.build_type}, {"compiler", b.compiler}}},
+  };
+  return j.dump(2) + "\n";
+}
+
+}  // namespace nsb

@@ -1,0 +1,73 @@
+#pragma once
+// The run driver: advances an integrator on a problem to t_end, samples observables into
+// a series (columns below, then the problem's own) and gathers the run's figures.
+//
+// Generic columns: t, dt, kinetic, potential, total_energy, min_gap, impulse (sum of the
+// contact impulses of the step), active_contacts (contacts with a positive impulse).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "integrators/integrator.hpp"
+
+namespace nsb {
+
+struct RunOptions {
+  double dt = 0.0;          // requested step (> 0)
+  double t_end = 0.0;       // the run stops at the first step reaching t_end
+  long sample_every = 1;    // record every k-th step (and the first and last)
+  bool record_series = true;
+  long max_steps = 200'000'000;
+};
+
+// Samples in row-major order.
+struct Series {
+  std::vector<std::string> columns;
+  std::vector<double> values;
+  std::size_t rows() const { return columns.empty() ? 0 : values.size() / columns.size(); }
+  double at(std::size_t row, std::size_t col) const { return values[row * columns.size() + col]; }
+  // Column index by name; throws std::out_of_range when absent.
+  std::size_t column(const std::string& name) const;
+};
+
+enum class RunStatus { Ok, Diverged };
+
+struct RunResult {
+  RunStatus status = RunStatus::Ok;
+  std::string message;      // why a run diverged
+  Series series;
+  long steps = 0;
+  double t_final = 0.0;
+  double cpu_seconds = 0.0;      // thread CPU time of the stepping loop (sampling included)
+  double initial_energy = 0.0;
+  double final_energy = 0.0;
+  double max_energy_error = 0.0;  // max |E - E0| / |E0| over the samples
+  double max_penetration = 0.0;   // max over steps of max(0, -g)
+  WorkCounters work;
+};
+
+// Called after every step (impact detection and the like in studies).
+using StepObserver = std::function<void(const Integrator&, const StepInfo&)>;
+
+// Throws InputError for a bad dt or t_end; a non-finite state or a solver failure ends the
+// run with status Diverged and the reason in message.
+RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& options,
+              const StepObserver& observer = {});
+
+// Relative energy error with a floor on the scale, so a zero initial energy gives an
+// absolute error instead of a division by zero.
+double relative_error(double value, double reference);
+
+}  // namespace nsb
+
+namespace nsb {
+// The series as CSV: a header row, then one row per sample (shortest round-trip numbers).
+std::string series_to_csv(const Series& series);
+}  // namespace nsb
+
+namespace nsb {
+// summary.json of a run: problem, integrator, every parameter, the run's figures, the work
+// counters and the build stamp.
+std::string summary_to_json(const Problem& problem, const Integrator& integrator,
+                            const RunOptions& options, const RunResult& result);
+}  // namespace nsb

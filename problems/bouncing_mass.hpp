@@ -1,0 +1,63 @@
+#pragma once
+// Bouncing mass: a point mass on a rigid floor under gravity, Newton restitution e.
+//
+//     m q'' = -m g + lambda,     g(q) = q >= 0,     0 <= q  _|_  lambda >= 0
+//     impact:  q'(+) = -e q'(-)
+//
+// Parameters: m > 0 (mass), g > 0 (gravity), e in [0, 1] (restitution), h0 >= 0 (initial
+// height), v0 (initial velocity, positive upwards).
+//
+// Exact solution (DESIGN.md section 3). First impact t1 solves h0 + v0 t - g t^2/2 = 0:
+//     t1 = (v0 + w1) / g,   w1 = sqrt(v0^2 + 2 g h0) = |q'(t1-)|
+// Flight i (after impact i >= 1) starts at t_i with speed e^i w1 and lasts 2 e^i w1 / g:
+//     t_{i+1} = t_i + 2 e^i w1 / g,    q(t) = e^i w1 s - g s^2/2,  s = t - t_i
+// Impacts accumulate (Zeno) at t_inf = t1 + 2 e w1 / (g (1 - e)) for e < 1; the mass then
+// rests on the floor. Energy (from the floor) after impact i: E0 e^{2i}, E0 = m w1^2 / 2.
+//
+// Unknown: U = q (height), so L = [1], g0 = 0.
+#include "problems/problem.hpp"
+
+namespace nsb {
+
+class BouncingMass final : public Problem {
+ public:
+  explicit BouncingMass(const Params& params);
+  static ParamSpecs parameters_spec();
+
+  std::string name() const override { return "bouncing-mass"; }
+  const Params& parameters() const override { return params_; }
+  Index ndof() const override { return 1; }
+  SpMat mass_matrix() const override;
+  void internal_force(ConstVecRef u, VecRef f) const override;
+  void tangent_stiffness(ConstVecRef u, SpMat& K) const override;
+  bool is_linear() const override { return true; }
+  void external_force(double t, VecRef f) const override;
+  double strain_energy(ConstVecRef) const override { return 0.0; }
+  double load_potential(ConstVecRef u) const override { return m_ * g_ * u[0]; }
+  const SpMat& gap_operator() const override { return L_; }
+  const Vec& gap_offset() const override { return g0_; }
+  double restitution() const override { return e_; }
+  State initial_state() const override;
+  double stable_step() const override;  // no stiffness: unbounded
+  std::vector<std::string> observable_names() const override;
+  void observe(const State& s, std::span<double> out) const override;
+  std::optional<State> exact_state(double t) const override;
+
+  // Exact impact sequence.
+  double initial_energy() const { return 0.5 * m_ * w1_ * w1_; }
+  double first_impact_speed() const { return w1_; }
+  // Time of impact i >= 1 (t_1 is the first); equals zeno_time() in the limit.
+  double impact_time(int i) const;
+  // Accumulation time of the impacts; +inf for e = 1.
+  double zeno_time() const;
+  double energy_after_impact(int i) const;
+
+ private:
+  Params params_;
+  double m_, g_, e_, h0_, v0_;
+  double t1_, w1_;
+  SpMat L_;
+  Vec g0_;
+};
+
+}  // namespace nsb

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs nsbench's build dependencies from Debian packages (Debian 12 "bookworm").
+set -euo pipefail
+packages=(
+  build-essential cmake git pkg-config
+  libeigen3-dev libsundials-dev libsuitesparse-dev
+  catch2 libbenchmark-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+  python3 python3-matplotlib
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "install-deps: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,89 @@
+// Generic properties every registered integrator must have on the bouncing mass (a new
+// integrator is tested here without editing this file): impulses are non-negative and
+// act only on closed or closing contacts; impact times within O(dt) of the exact ones;
+// energy in flight i within O(dt) of E0 e^(2i).
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "integrators/registry.hpp"
+#include "integrators/run.hpp"
+#include "problems/bouncing_mass.hpp"
+
+namespace {
+
+struct Observed {
+  std::vector<double> impact_times;
+  std::vector<double> flight_energy;  // energy sampled at mid-flight of flight i (i = 1, 2, ...)
+  double min_impulse = 0.0;
+  long impulses_on_open_gap = 0;
+};
+
+Observed observe_bounces(const std::string& integrator_name, double e, double dt, int impacts) {
+  const nsb::BouncingMass problem(nsb::Params(nsb::BouncingMass::parameters_spec(), {{"e", std::to_string(e)}}));
+  auto integrator = nsb::make_integrator(integrator_name);
+  integrator->init(problem, problem.initial_state());
+  nsb::RunOptions options;
+  options.dt = dt;
+  options.t_end = problem.impact_time(impacts) + 0.5 * (problem.impact_time(impacts + 1) - problem.impact_time(impacts));
+  options.record_series = false;
+
+  Observed obs;
+  const double g = 9.81;
+  double q_prev = problem.initial_state().u[0], v_prev = problem.initial_state().v[0];
+  bool in_contact = false;
+  std::size_t next_mid = 1;
+  nsb::run(problem, *integrator, options, [&](const nsb::Integrator& it, const nsb::StepInfo& info) {
+    const double lambda = it.impulses()[0];
+    const double q = it.state().u[0], v = it.state().v[0];
+    obs.min_impulse = std::min(obs.min_impulse, lambda);
+    // A contact open at both ends of the step, by more than it can close in one step.
+    const double reach = info.dt * std::max(std::abs(v_prev), std::abs(v)) + g * info.dt * info.dt;
+    if (lambda != 0.0 && std::min(q_prev, q) > reach) ++obs.impulses_on_open_gap;
+    if (lambda > 0.0 && !in_contact) obs.impact_times.push_back(it.state().t);
+    in_contact = lambda > 0.0;
+    if (next_mid <= static_cast<std::size_t>(impacts) &&
+        it.state().t >= 0.5 * (problem.impact_time(next_mid) + problem.impact_time(next_mid + 1))) {
+      obs.flight_energy.push_back(it.energy().total());
+      ++next_mid;
+    }
+    q_prev = q;
+    v_prev = v;
+  });
+  return obs;
+}
+
+}  // namespace
+
+TEST_CASE("every integrator: contact law, impact times and flight energies on the bouncing mass",
+          "[integrators][contact]") {
+  const int impacts = 5;
+  const double dt = 1e-4;
+  for (const auto& entry : nsb::integrator_registry()) {
+    for (double e : {1.0, 0.9, 0.5}) {
+      DYNAMIC_SECTION(entry.name << " e=" << e) {
+        const nsb::BouncingMass problem(nsb::Params(nsb::BouncingMass::parameters_spec(), {{"e", std::to_string(e)}}));
+        const Observed obs = observe_bounces(entry.name, e, dt, impacts);
+        CHECK(obs.min_impulse >= 0.0);
+        CHECK(obs.impulses_on_open_gap == 0);
+        REQUIRE(obs.impact_times.size() >= static_cast<std::size_t>(impacts));
+        for (int i = 1; i <= impacts; ++i) {
+          // A time-stepping scheme sees an impact at the end of the step that closes the
+          // gap (lag <= dt) and rebounds from a penetration of at most one step of travel,
+          // which costs at most one more step: each impact adds at most 2 dt of phase.
+          const double err = obs.impact_times[i - 1] - problem.impact_time(i);
+          CAPTURE(i, err);
+          CHECK(std::abs(err) <= 2 * i * dt);
+        }
+        REQUIRE(obs.flight_energy.size() == static_cast<std::size_t>(impacts));
+        for (int i = 1; i <= impacts; ++i) {
+          // The phase error above (<= 2 dt per impact) changes the impact speed by at most
+          // 2 g dt per impact, an absolute error carried into flight i whose speed is
+          // e^i w1: relative energy error <= 2 * (2 g dt i) / (e^i w1).
+          const double rel = std::abs(obs.flight_energy[i - 1] / problem.energy_after_impact(i) - 1.0);
+          CAPTURE(i, rel);
+          CHECK(rel <= 4.0 * 9.81 * dt * i / (std::pow(e, i) * problem.first_impact_speed()));
+        }
+      }
+    }
+  }
+}

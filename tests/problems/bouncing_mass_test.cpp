@@ -1,0 +1,69 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "problems/bouncing_mass.hpp"
+
+using Catch::Detail::Approx;
+using nsb::BouncingMass;
+using nsb::Params;
+
+namespace {
+BouncingMass make(double e, double h0 = 1.0, double v0 = 0.0) {
+  return BouncingMass(Params(BouncingMass::parameters_spec(),
+                             {{"e", std::to_string(e)}, {"h0", std::to_string(h0)}, {"v0", std::to_string(v0)}}));
+}
+double energy(const BouncingMass& p, const nsb::State& s) {
+  return 0.5 * p.parameters().real("m") * s.v[0] * s.v[0] + p.load_potential(s.u);
+}
+}  // namespace
+
+TEST_CASE("bouncing mass exact: first impact solves h0 + v0 t - g t^2/2 = 0", "[problems][exact]") {
+  for (double v0 : {-2.0, 0.0, 3.0}) {
+    const auto p = make(0.9, 1.5, v0);
+    const double t1 = p.impact_time(1), g = 9.81;
+    CHECK(1.5 + v0 * t1 - 0.5 * g * t1 * t1 == Approx(0.0).margin(1e-12));
+    CHECK(p.exact_state(t1 * (1 - 1e-12))->v[0] == Approx(-p.first_impact_speed()).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("bouncing mass exact: restitution, flight energy E0 e^(2i), continuity at impacts", "[problems][exact]") {
+  for (double e : {1.0, 0.9, 0.5}) {
+    const auto p = make(e, 1.0, 0.5);
+    const double E0 = energy(p, *p.exact_state(0.0));
+    CHECK(E0 == Approx(p.initial_energy()).epsilon(1e-14));
+    for (int i = 1; i <= 6; ++i) {
+      const double ti = p.impact_time(i), eps = 1e-9;
+      const auto before = *p.exact_state(ti - eps), after = *p.exact_state(ti + eps);
+      CHECK(before.u[0] == Approx(0.0).margin(1e-8));
+      CHECK(after.u[0] == Approx(0.0).margin(1e-8));
+      CHECK(after.v[0] == Approx(-e * before.v[0]).epsilon(1e-7));
+      // Energy is constant in flight i and equal to E0 e^(2i).
+      const double mid = 0.5 * (ti + p.impact_time(i + 1));
+      CHECK(energy(p, *p.exact_state(mid)) == Approx(p.energy_after_impact(i)).epsilon(1e-12));
+      CHECK(p.energy_after_impact(i) == Approx(E0 * std::pow(e, 2 * i)).epsilon(1e-14));
+    }
+  }
+}
+
+TEST_CASE("bouncing mass exact: impacts accumulate at the Zeno time, then rest", "[problems][exact]") {
+  const auto p = make(0.5);
+  const double tz = p.zeno_time();
+  CHECK(tz == Approx(p.impact_time(1) + 2 * 0.5 * p.first_impact_speed() / (9.81 * 0.5)).epsilon(1e-14));
+  CHECK(p.impact_time(60) == Approx(tz).epsilon(1e-14));
+  CHECK(p.impact_time(60) <= tz);
+  const auto rest = *p.exact_state(tz + 0.1);
+  CHECK(rest.u[0] == 0.0);
+  CHECK(rest.v[0] == 0.0);
+  CHECK(std::isinf(make(1.0).zeno_time()));
+  CHECK(make(0.0).zeno_time() == p.impact_time(1));
+}
+
+TEST_CASE("bouncing mass exact: e = 1 is periodic", "[problems][exact]") {
+  const auto p = make(1.0, 2.0);
+  const double period = 2 * p.first_impact_speed() / 9.81;
+  for (double t : {0.3, 1.1, 5.7}) {
+    const auto a = *p.exact_state(t + p.impact_time(1)), b = *p.exact_state(t + p.impact_time(1) + 10 * period);
+    CHECK(a.u[0] == Approx(b.u[0]).margin(1e-9));
+    CHECK(a.v[0] == Approx(b.v[0]).margin(1e-9));
+  }
+}
