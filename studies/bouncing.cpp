@@ -1,0 +1,185 @@
+// Study "bouncing": every integrator on the bouncing mass against the exact solution.
+// e in {1, 0.9, 0.5}, steps 1e-2 .. 1e-5 (1e-6 with --full). Per case: impact-time errors
+// (first impact, max over the first K impacts), flight energy after each impact against
+// E0 e^{2i}, detected accumulation (Zeno) time against the exact one, max penetration,
+// steps, CPU time; observed orders (pairwise and least-squares) per (integrator, e).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrators/registry.hpp"
+#include "integrators/run.hpp"
+#include "problems/bouncing_mass.hpp"
+#include "studies/study.hpp"
+
+namespace nsb {
+
+namespace {
+
+constexpr int kImpacts = 5;  // impacts compared one by one
+constexpr double kG = 9.81;
+
+struct StepRecord {
+  double t, q, v, energy, impulse;
+};
+
+struct CaseResult {
+  bool diverged = false;
+  std::string message;
+  std::vector<double> impact_time_error;  // detected - exact, impact i = 1..
+  std::vector<double> flight_energy;      // energy at numerical mid-flight after impact i
+  double zeno_detected = std::numeric_limits<double>::quiet_NaN();
+  double max_penetration = 0.0, cpu = 0.0;
+  long steps = 0;
+};
+
+BouncingMass make_problem(double e) {
+  return BouncingMass(Params(BouncingMass::parameters_spec(), {{"e", fmt::format("{}", e)}}));
+}
+
+double horizon(const BouncingMass& p, double e) {
+  return e < 1.0 ? p.zeno_time() + 0.5 : p.impact_time(kImpacts + 1) + 0.1;
+}
+
+CaseResult run_case(const std::string& integrator_name, double e, double dt) {
+  const BouncingMass problem = make_problem(e);
+  auto integrator = make_integrator(integrator_name);
+  integrator->init(problem, problem.initial_state());
+  RunOptions options;
+  options.dt = dt;
+  options.t_end = horizon(problem, e);
+  options.record_series = false;
+  std::vector<StepRecord> steps;
+  steps.reserve(static_cast<std::size_t>(options.t_end / dt) + 2);
+  const RunResult r = run(problem, *integrator, options, [&](const Integrator& it, const StepInfo&) {
+    steps.push_back({it.state().t, it.state().u[0], it.state().v[0], it.energy().total(), it.impulses()[0]});
+  });
+  CaseResult c;
+  c.steps = r.steps;
+  c.cpu = r.cpu_seconds;
+  c.max_penetration = r.max_penetration;
+  if (r.status != RunStatus::Ok) {
+    c.diverged = true;
+    c.message = r.message;
+    return c;
+  }
+  // Impacts: first step of each run of steps with a positive impulse.
+  std::vector<std::size_t> starts;
+  for (std::size_t k = 0; k < steps.size(); ++k)
+    if (steps[k].impulse > 0.0 && (k == 0 || steps[k - 1].impulse == 0.0)) starts.push_back(k);
+  // Impacts compared: those whose exact flight lasts at least 10 steps (shorter flights are
+  // below the step's resolution and belong to the Zeno phase).
+  for (int i = 1; i <= static_cast<int>(starts.size()) && i <= kImpacts; ++i) {
+    if (problem.impact_time(i + 1) - problem.impact_time(i) < 10 * dt) break;
+    c.impact_time_error.push_back(steps[starts[i - 1]].t - problem.impact_time(i));
+    if (static_cast<std::size_t>(i) < starts.size())
+      c.flight_energy.push_back(steps[(starts[i - 1] + starts[i]) / 2].energy);
+  }
+  // At rest: rebound speed below two steps of gravity and height below what that reaches.
+  if (e < 1.0) {
+    std::size_t k = steps.size();
+    while (k > 0 && std::abs(steps[k - 1].v) <= 2 * kG * dt && steps[k - 1].q <= 2 * kG * dt * dt) --k;
+    if (k < steps.size() && steps.back().t - steps[k].t > 0.25) c.zeno_detected = steps[k].t;
+  }
+  return c;
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = std::numeric_limits<double>::quiet_NaN();
+  for (double x : v) m = std::isnan(m) ? std::abs(x) : std::max(m, std::abs(x));
+  return m;
+}
+
+Cell number(double v) { return std::isnan(v) ? Cell{} : Cell{v}; }
+
+std::vector<Table> bouncing_study(const StudyOptions& opt) {
+  const std::vector<double> restitutions = {1.0, 0.9, 0.5};
+  std::vector<double> steps = {1e-2, 1e-3, 1e-4, 1e-5};
+  if (opt.full) steps.push_back(1e-6);
+
+  Table cases;
+  cases.id = "bouncing_mass";
+  cases.title = "Bouncing mass: every integrator against the exact solution";
+  cases.caption = fmt::format(
+      "m = 1, g = 9.81, h0 = 1, v0 = 0. Impact times compared for the first {} impacts whose flight lasts "
+      "at least 10 steps; flight energy taken at the numerical mid-flight, relative to E0 e^(2i). Zeno time "
+      "detected as the first step after which |v| <= 2 g dt and q <= 2 g dt^2 for the rest of the run.",
+      kImpacts);
+  cases.columns = {
+      {"integrator", "", "", ""},
+      {"e", "", "{}", "restitution"},
+      {"dt", "s", "{:.0e}", "step"},
+      {"t1 err", "s", "{:.2e}", "|detected - exact| first impact time"},
+      {"max t_i err", "s", "{:.2e}", "max over compared impacts of |detected - exact| impact time"},
+      {"order t_i", "", "{:.2f}", "observed order of max t_i err against the previous dt"},
+      {"max E_i err", "", "{:.2e}", "max over compared impacts of |E_i / (E0 e^(2i)) - 1|"},
+      {"order E_i", "", "{:.2f}", "observed order of max E_i err against the previous dt"},
+      {"impacts", "", "", "impacts compared"},
+      {"Zeno detected", "s", "{:.5f}", ""},
+      {"Zeno err", "s", "{:.2e}", "|detected - exact| accumulation time"},
+      {"max pen.", "m", "{:.2e}", "max penetration max(0, -q)"},
+      {"steps", "", "", ""},
+      {"CPU", "s", "{:.2e}", "thread CPU time of the run"},
+  };
+  Table orders;
+  orders.id = "bouncing_mass_orders";
+  orders.title = "Bouncing mass: least-squares convergence orders";
+  orders.caption = "Slope of log(error) against log(dt) over the steps of the study (errors as in the main table).";
+  orders.columns = {{"integrator", "", "", ""}, {"e", "", "{}", ""},
+                    {"order t_i", "", "{:.2f}", "impact times"}, {"order E_i", "", "{:.2f}", "flight energies"},
+                    {"order Zeno", "", "{:.2f}", "accumulation time"}};
+  Table energies;
+  energies.id = "bouncing_mass_energy";
+  energies.title = "Bouncing mass: flight energy after each impact, dt = 1e-3";
+  energies.caption = "E_i / E0 at the numerical mid-flight after impact i, against the exact e^(2i).";
+  energies.columns = {{"integrator", "", "", ""}, {"e", "", "{}", ""}, {"impact", "", "", ""},
+                      {"E_i/E0", "", "{:.6f}", "numerical"}, {"e^(2i)", "", "{:.6f}", "exact"},
+                      {"rel. err", "", "{:.2e}", ""}};
+  cases.metadata = {{"study", "bouncing"}, {"steps", fmt::format("{}", fmt::join(steps, " "))},
+                    {"restitutions", fmt::format("{}", fmt::join(restitutions, " "))}};
+  orders.metadata = energies.metadata = cases.metadata;
+
+  for (const auto& entry : integrator_registry()) {
+    for (double e : restitutions) {
+      const BouncingMass problem = make_problem(e);
+      std::vector<double> t_err, e_err, z_err;
+      for (std::size_t s = 0; s < steps.size(); ++s) {
+        const double dt = steps[s];
+        const CaseResult c = run_case(entry.name, e, dt);
+        if (c.diverged) {
+          cases.add_row({entry.name, e, dt, "diverged", c.message, {}, {}, {}, {}, {}, {}, c.max_penetration, c.steps, c.cpu});
+          t_err.push_back(NAN), e_err.push_back(NAN), z_err.push_back(NAN);
+          continue;
+        }
+        std::vector<double> rel;
+        for (std::size_t i = 0; i < c.flight_energy.size(); ++i) {
+          const double exact = problem.energy_after_impact(static_cast<int>(i) + 1);
+          rel.push_back(c.flight_energy[i] / exact - 1.0);
+          if (dt == 1e-3)
+            energies.add_row({entry.name, e, static_cast<long>(i + 1), c.flight_energy[i] / problem.initial_energy(),
+                              exact / problem.initial_energy(), std::abs(rel.back())});
+        }
+        t_err.push_back(max_abs(c.impact_time_error));
+        e_err.push_back(max_abs(rel));
+        z_err.push_back(e < 1.0 ? std::abs(c.zeno_detected - problem.zeno_time()) : NAN);
+        const double order_t = s ? observed_order(steps[s - 1], t_err[s - 1], dt, t_err[s]) : NAN;
+        const double order_e = s ? observed_order(steps[s - 1], e_err[s - 1], dt, e_err[s]) : NAN;
+        cases.add_row({entry.name, e, dt,
+                       c.impact_time_error.empty() ? Cell{} : Cell{std::abs(c.impact_time_error[0])},
+                       number(t_err[s]), number(order_t), number(e_err[s]), number(order_e),
+                       static_cast<long>(c.impact_time_error.size()), number(c.zeno_detected), number(z_err[s]),
+                       c.max_penetration, c.steps, c.cpu});
+      }
+      orders.add_row({entry.name, e, number(fitted_order(steps, t_err)), number(fitted_order(steps, e_err)),
+                      number(fitted_order(steps, z_err))});
+    }
+  }
+  return {cases, orders, energies};
+}
+
+}  // namespace
+
+std::vector<Table> run_bouncing_study(const StudyOptions& opt) { return bouncing_study(opt); }
+
+}  // namespace nsb

@@ -1,0 +1,14 @@
+#include "studies/study.hpp"
+
+namespace nsb {
+
+std::vector<Table> run_bouncing_study(const StudyOptions&);
+
+const std::vector<StudyEntry>& study_registry() {
+  static const std::vector<StudyEntry> entries = {
+      {"bouncing", "bouncing mass: impact times, flight energies, Zeno time, orders, against the exact solution", &run_bouncing_study},
+  };
+  return entries;
+}
+
+}  // namespace nsb
