@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 
 namespace nsb {
 
@@ -34,16 +33,7 @@ void CdLagrange::init(const Problem& problem, const State& initial) {
   f_int_ = Vec::Zero(n);
   f_ext_ = Vec::Zero(n);
   problem.external_force(state_.t, f_ext_);
-  L_ = problem.gap_operator();
-  gap_ = Vec::Zero(L_.rows());
-
-  const SpMat H = SpMat(problem.gap_operator() * minv_.asDiagonal() * problem.gap_operator().transpose());
-  h_diag_ = H.diagonal();
-  h_is_diagonal_ = true;
-  for (Index j = 0; j < H.outerSize(); ++j)
-    for (SpMat::InnerIterator it(H, j); it; ++it)
-      if (it.row() != it.col() && it.value() != 0.0) h_is_diagonal_ = false;
-  if (!h_is_diagonal_) h_full_ = Eigen::MatrixXd(H);
+  contact_ = ImpulseContact(problem, minv_, lcp_);
   started_ = false;
 }
 
@@ -67,56 +57,10 @@ StepInfo CdLagrange::step(double tau) {
   std::swap(v_prev_, state_.v);
   state_.v.noalias() = v_prev_ + tau * minv_.cwiseProduct(f_ext_ - f_int_);  // v_free
 
-  info.iterations = solve_contacts(info);
+  info.iterations = contact_.apply(state_.u, v_prev_, state_.v, impulses_, info, work_);
   work_.lcp_iterations += info.iterations;
   ++work_.steps;
   return info;
-}
-
-long CdLagrange::solve_contacts(StepInfo& info) {
-  const Vec& g0 = problem_->gap_offset();
-  const double e = problem_->restitution();
-  gap_.noalias() = L_ * state_.u;
-  impulses_.setZero();
-  if (h_is_diagonal_) {
-    for (Index i = 0; i < L_.rows(); ++i) {
-      if (g0[i] + gap_[i] > 0.0) continue;
-      double gdot_free = 0.0, gdot_prev = 0.0;
-      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) {
-        gdot_free += it.value() * state_.v[it.col()];
-        gdot_prev += it.value() * v_prev_[it.col()];
-      }
-      const double lambda = std::max(0.0, -(gdot_free + e * gdot_prev) / h_diag_[i]);
-      if (lambda == 0.0) continue;
-      impulses_[i] = lambda;
-      for (decltype(L_)::InnerIterator it(L_, i); it; ++it)
-        state_.v[it.col()] += minv_[it.col()] * it.value() * lambda;
-    }
-    return 0;
-  }
-  // Coupled contacts (H not diagonal): LCP on the closed ones.
-  std::vector<Index> closed;
-  for (Index i = 0; i < L_.rows(); ++i)
-    if (g0[i] + gap_[i] <= 0.0) closed.push_back(i);
-  if (closed.empty()) return 0;
-  const Index a = static_cast<Index>(closed.size());
-  Eigen::MatrixXd D(a, a);
-  Vec q(a), x = Vec::Zero(a);
-  for (Index r = 0; r < a; ++r) {
-    for (Index c = 0; c < a; ++c) D(r, c) = h_full_(closed[r], closed[c]);
-    q[r] = L_.row(closed[r]).dot(state_.v) + e * L_.row(closed[r]).dot(v_prev_);
-  }
-  const LcpResult res = solve_lcp(D, q, x, lcp_);
-  if (!res.converged) {
-    info.converged = false;
-    ++work_.lcp_unconverged;
-  }
-  for (Index r = 0; r < a; ++r) {
-    impulses_[closed[r]] = x[r];
-    for (decltype(L_)::InnerIterator it(L_, closed[r]); it; ++it)
-      state_.v[it.col()] += minv_[it.col()] * it.value() * x[r];
-  }
-  return res.iterations;
 }
 
 Energy CdLagrange::energy() const {

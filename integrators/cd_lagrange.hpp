@@ -22,7 +22,7 @@
 //     E_{k+1/2} = 1/2 P_{k+1/2}^T M^{-1} P_{k+1/2} + 1/2 (V(U_k) + V(U_{k+1})),
 // which is constant in free flight under a constant force.
 #include "integrators/integrator.hpp"
-#include "integrators/lcp.hpp"
+#include "integrators/impulse_contact.hpp"
 
 namespace nsb {
 
@@ -37,18 +37,11 @@ class CdLagrange final : public Integrator {
   Energy energy() const override;
 
  private:
-  // Impulses on the contacts closed at U_{k+1}; returns LCP iterations.
-  long solve_contacts(StepInfo& info);
-
   LcpOptions lcp_;
+  ImpulseContact contact_;
   Vec m_, minv_;
   Vec u_prev_, v_prev_;   // U_k and M^{-1} P_{k+1/2}
   Vec f_int_, f_ext_;
-  Vec gap_;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
-  Vec h_diag_;            // diagonal of the Delassus operator H
-  bool h_is_diagonal_ = true;
-  Eigen::MatrixXd h_full_;  // H, when it is not diagonal
   bool started_ = false;
 };
 
