@@ -21,4 +21,5 @@ if [ "$what" = tests ]; then
   ctest --test-dir "$build" --output-on-failure -j "$jobs"
 else
   "$build"/studies/nsbench-study all --out reports
+  /usr/bin/python3 scripts/figures.py reports  # Debian python: matplotlib comes from python3-matplotlib
 fi

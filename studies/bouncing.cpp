@@ -11,6 +11,7 @@
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
 #include "problems/bouncing_mass.hpp"
+#include "studies/parallel.hpp"
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -122,6 +123,11 @@ std::vector<Table> bouncing_study(const StudyOptions& opt) {
       {"steps", "", "", ""},
       {"CPU", "s", "{:.2e}", "thread CPU time of the run"},
   };
+  cases.figures = {
+      {"bouncing_convergence", "Bouncing mass: impact-time error against the step", "dt", "max t_i err", {"integrator"}, {"e"}, true, true},
+      {"bouncing_work_precision", "Bouncing mass: impact-time error against CPU time", "CPU", "max t_i err", {"integrator"}, {"e"}, true, true},
+      {"bouncing_energy_convergence", "Bouncing mass: flight-energy error against the step", "dt", "max E_i err", {"integrator"}, {"e"}, true, true},
+  };
   Table orders;
   orders.id = "bouncing_mass_orders";
   orders.title = "Bouncing mass: least-squares convergence orders";
@@ -140,13 +146,21 @@ std::vector<Table> bouncing_study(const StudyOptions& opt) {
                     {"restitutions", fmt::format("{}", fmt::join(restitutions, " "))}};
   orders.metadata = energies.metadata = cases.metadata;
 
-  for (const auto& entry : integrator_registry()) {
+  // Cases in table order: integrator, e, dt.
+  const auto& integrators = integrator_registry();
+  const std::size_t per_integrator = restitutions.size() * steps.size();
+  const auto results = parallel_map<CaseResult>(integrators.size() * per_integrator, [&](std::size_t i) {
+    return run_case(integrators[i / per_integrator].name, restitutions[i % per_integrator / steps.size()],
+                    steps[i % steps.size()]);
+  }, "bouncing");
+  std::size_t next = 0;
+  for (const auto& entry : integrators) {
     for (double e : restitutions) {
       const BouncingMass problem = make_problem(e);
       std::vector<double> t_err, e_err, z_err;
       for (std::size_t s = 0; s < steps.size(); ++s) {
         const double dt = steps[s];
-        const CaseResult c = run_case(entry.name, e, dt);
+        const CaseResult& c = results[next++];
         if (c.diverged) {
           cases.add_row({entry.name, e, dt, "diverged", c.message, {}, {}, {}, {}, {}, {}, c.max_penetration, c.steps, c.cpu});
           t_err.push_back(NAN), e_err.push_back(NAN), z_err.push_back(NAN);

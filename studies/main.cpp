@@ -3,7 +3,8 @@
 //   nsbench-study list
 //   nsbench-study all|NAME... --out DIR [--full]
 //
-// Writes DIR/<table>.csv, .md, .tex for every table and DIR/index.md linking them.
+// Writes DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
+// scripts/figures.py to draw) and DIR/index.md linking them all.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
     std::string index = "# nsbench reports\n\n";
     const auto& b = nsb::build_info();
     index += fmt::format("Revision `{}`, {} build, {}.\n\n", b.git_revision, b.build_type, b.compiler);
+    std::vector<nsb::Table> all_tables;
     for (const auto* s : selected) {
       const auto start = std::chrono::steady_clock::now();
       fmt::print(stderr, "study {}: running\n", s->name);
@@ -61,11 +63,15 @@ int main(int argc, char** argv) {
       for (const auto& t : tables) {
         nsb::write_table(t, out);
         index += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", t.title, t.id, t.id, t.id);
+        for (const auto& f : t.figures)
+          index += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf))\n", f.title, f.id, f.id);
+        all_tables.push_back(t);
       }
       index += "\n";
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       fmt::print(stderr, "study {}: {} tables in {:.1f} s\n", s->name, tables.size(), secs);
     }
+    nsb::write_file_atomic(std::filesystem::path(out) / "figures.json", nsb::figures_to_json(all_tables));
     nsb::write_file_atomic(std::filesystem::path(out) / "index.md", index);
   } catch (const nsb::InputError& e) {
     fmt::print(stderr, "nsbench-study: error: {}\n", e.what());

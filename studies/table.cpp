@@ -8,6 +8,8 @@
 #include "core/build_info.hpp"
 #include "core/output.hpp"
 
+#include <nlohmann/json.hpp>
+
 namespace nsb {
 
 void Table::add_row(std::vector<Cell> row) {
@@ -15,6 +17,8 @@ void Table::add_row(std::vector<Cell> row) {
     throw std::logic_error(fmt::format("table {}: row of {} cells for {} columns", id, row.size(), columns.size()));
   rows.push_back(std::move(row));
 }
+
+std::string header_text(const Column& c) { return c.unit.empty() ? c.name : fmt::format("{} [{}]", c.name, c.unit); }
 
 namespace {
 
@@ -42,8 +46,6 @@ std::string cell_text(const Cell& c, const std::string& format) {
   };
   return std::visit(Visitor{format}, c);
 }
-
-std::string header_text(const Column& c) { return c.unit.empty() ? c.name : fmt::format("{} [{}]", c.name, c.unit); }
 
 std::string csv_escape(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -132,6 +134,31 @@ void write_table(const Table& t, const std::filesystem::path& dir) {
   write_file_atomic(dir / (t.id + ".csv"), to_csv(t));
   write_file_atomic(dir / (t.id + ".md"), to_markdown(t));
   write_file_atomic(dir / (t.id + ".tex"), to_latex(t));
+}
+
+}  // namespace nsb
+
+namespace nsb {
+
+std::string figures_to_json(const std::vector<Table>& tables) {
+  nlohmann::json all = nlohmann::json::array();
+  for (const auto& t : tables) {
+    const auto header = [&](const std::string& name) {
+      for (const auto& c : t.columns)
+        if (c.name == name) return header_text(c);
+      throw std::logic_error(fmt::format("figure of table {}: no column '{}'", t.id, name));
+    };
+    const auto headers = [&](const std::vector<std::string>& names) {
+      std::vector<std::string> h;
+      for (const auto& n : names) h.push_back(header(n));
+      return h;
+    };
+    for (const auto& f : t.figures)
+      all.push_back({{"id", f.id}, {"title", f.title}, {"csv", t.id + ".csv"}, {"x", header(f.x)},
+                     {"y", header(f.y)}, {"series", headers(f.series)}, {"panels", headers(f.panels)},
+                     {"log_x", f.log_x}, {"log_y", f.log_y}});
+  }
+  return all.dump(2) + "\n";
 }
 
 }  // namespace nsb

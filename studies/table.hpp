@@ -21,6 +21,19 @@ struct Column {
 // Empty cell (monostate) reads "n/a"; a diverged case writes text such as "diverged".
 using Cell = std::variant<std::monostate, double, long, std::string>;
 
+// A figure drawn from a table's CSV by scripts/figures.py: y against x, one line per
+// distinct value of the `series` columns, one panel per distinct value of the `panels`
+// columns. Rows whose x or y is not a number (n/a, diverged) are left out.
+struct Figure {
+  std::string id;     // <out>/figures/<id>.png and .pdf
+  std::string title;
+  std::string x, y;   // column names
+  std::vector<std::string> series;
+  std::vector<std::string> panels;
+  bool log_x = false;
+  bool log_y = false;
+};
+
 struct Table {
   std::string id;      // file stem: <out>/<id>.csv, .md, .tex
   std::string title;
@@ -28,6 +41,7 @@ struct Table {
   std::vector<Column> columns;
   std::vector<std::vector<Cell>> rows;
   std::vector<std::pair<std::string, std::string>> metadata;  // study parameters
+  std::vector<Figure> figures;
 
   void add_row(std::vector<Cell> row);  // throws std::logic_error on a width mismatch
 };
@@ -35,6 +49,12 @@ struct Table {
 std::string to_csv(const Table& table);
 std::string to_markdown(const Table& table);
 std::string to_latex(const Table& table);
+
+// "name [unit]": a column's header in every format.
+std::string header_text(const Column& column);
+
+// The figures of the tables as JSON for scripts/figures.py (CSV file, header texts).
+std::string figures_to_json(const std::vector<Table>& tables);
 
 // Writes <dir>/<id>.csv, .md and .tex, each whole or not at all.
 void write_table(const Table& table, const std::filesystem::path& dir);
