@@ -2,22 +2,24 @@
 # One entry point for a fresh Debian machine:
 #   scripts/run.sh studies   install dependencies, build, run the default studies into reports/
 #   scripts/run.sh tests     install dependencies, build, run the test suite (CTest)
+#   scripts/run.sh sanitize  the test suite built with AddressSanitizer + UBSan (build-asan/)
 # Environment: BUILD_DIR (default build), JOBS (default: number of cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 what="${1:-}"
 case "$what" in
-  studies|tests) ;;
-  *) echo "usage: scripts/run.sh studies|tests" >&2; exit 2 ;;
+  studies|tests) build="${BUILD_DIR:-build}"; config=(-DCMAKE_BUILD_TYPE=Release) ;;
+  sanitize) build="${BUILD_DIR:-build-asan}"
+            config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DNSBENCH_SANITIZE=ON -DNSBENCH_BENCHMARKS=OFF) ;;
+  *) echo "usage: scripts/run.sh studies|tests|sanitize" >&2; exit 2 ;;
 esac
-build="${BUILD_DIR:-build}"
 jobs="${JOBS:-$(nproc)}"
 
 bash scripts/install-deps.sh
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release
+cmake -S . -B "$build" "${config[@]}"
 cmake --build "$build" -j "$jobs"
 
-if [ "$what" = tests ]; then
+if [ "$what" != studies ]; then
   ctest --test-dir "$build" --output-on-failure -j "$jobs"
 else
   "$build"/studies/nsbench-study all --out reports
