@@ -22,6 +22,10 @@ cmake --build "$build" -j "$jobs"
 if [ "$what" != studies ]; then
   ctest --test-dir "$build" --output-on-failure -j "$jobs"
 else
-  "$build"/studies/nsbench-study all --out reports
-  /usr/bin/python3 scripts/figures.py reports  # Debian python: matplotlib comes from python3-matplotlib
+  # From scratch into reports.new, swapped in only when every study and figure succeeded.
+  rm -rf reports.new
+  "$build"/studies/nsbench-study all --out reports.new
+  /usr/bin/python3 scripts/figures.py reports.new  # Debian python: matplotlib from python3-matplotlib
+  rm -rf reports
+  mv reports.new reports
 fi
