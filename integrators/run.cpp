@@ -29,7 +29,8 @@ std::size_t Series::column(const std::string& name) const {
 }
 
 double relative_error(double value, double reference) {
-  return std::abs(value - reference) / std::max(std::abs(reference), 1e-300);
+  if (reference == 0.0) return std::numeric_limits<double>::quiet_NaN();
+  return std::abs(value - reference) / std::abs(reference);
 }
 
 RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& options,
@@ -65,7 +66,8 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     const Energy E = integrator.energy();
     const Vec& lambda = integrator.impulses();
     const double E_total = E.total();
-    result.max_energy_error = std::max(result.max_energy_error, relative_error(E_total, result.initial_energy));
+    const double err = relative_error(E_total, result.initial_energy);
+    if (!(err <= result.max_energy_error)) result.max_energy_error = err;  // NaN (E0 = 0) sticks
     if (!options.record_series) return;
     row[0] = s.t;
     row[1] = dt;

@@ -41,7 +41,7 @@ struct RunResult {
   double cpu_seconds = 0.0;      // thread CPU time of the stepping loop (sampling included)
   double initial_energy = 0.0;
   double final_energy = 0.0;
-  double max_energy_error = 0.0;  // max |E - E0| / |E0| over the samples
+  double max_energy_error = 0.0;  // max |E - E0| / |E0| over the samples; NaN when E0 = 0
   double max_penetration = 0.0;   // max over steps of max(0, -g)
   WorkCounters work;
 };
@@ -54,8 +54,8 @@ using StepObserver = std::function<void(const Integrator&, const StepInfo&)>;
 RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& options,
               const StepObserver& observer = {});
 
-// Relative energy error with a floor on the scale, so a zero initial energy gives an
-// absolute error instead of a division by zero.
+// |value - reference| / |reference|; NaN when reference is 0 (a relative error is then
+// undefined: callers with a natural scale divide by it themselves).
 double relative_error(double value, double reference);
 
 }  // namespace nsb
