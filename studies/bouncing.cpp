@@ -11,7 +11,6 @@
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
 #include "problems/bouncing_mass.hpp"
-#include "studies/parallel.hpp"
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -43,7 +42,7 @@ double horizon(const BouncingMass& p, double e) {
   return e < 1.0 ? p.zeno_time() + 0.5 : p.impact_time(kImpacts + 1) + 0.1;
 }
 
-CaseResult run_case(const std::string& integrator_name, double e, double dt) {
+CaseResult simulate(const std::string& integrator_name, double e, double dt) {
   const BouncingMass problem = make_problem(e);
   auto integrator = make_integrator(integrator_name);
   integrator->init(problem, problem.initial_state());
@@ -86,6 +85,33 @@ CaseResult run_case(const std::string& integrator_name, double e, double dt) {
   return c;
 }
 
+// JSON has no NaN: it travels as null through shard files.
+Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }
+double real(const Json& j) { return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>(); }
+
+std::vector<double> study_steps(const StudyOptions& opt) {
+  std::vector<double> steps = {1e-2, 1e-3, 1e-4, 1e-5};
+  if (opt.full) steps.push_back(1e-6);
+  return steps;
+}
+const std::vector<double> kRestitutions = {1.0, 0.9, 0.5};
+
+// Cases in table order: integrator, e, dt.
+std::vector<Json> bouncing_cases(const StudyOptions& opt) {
+  std::vector<Json> cases;
+  for (const auto& entry : integrator_registry())
+    for (double e : kRestitutions)
+      for (double dt : study_steps(opt)) cases.push_back({{"integrator", entry.name}, {"e", e}, {"dt", dt}});
+  return cases;
+}
+
+Json bouncing_case(const Json& c) {
+  const CaseResult r = simulate(c["integrator"], c["e"], c["dt"]);
+  return {{"diverged", r.diverged}, {"message", r.message}, {"impact_time_error", r.impact_time_error},
+          {"flight_energy", r.flight_energy}, {"zeno_detected", real(r.zeno_detected)},
+          {"max_penetration", r.max_penetration}, {"cpu", r.cpu}, {"steps", r.steps}};
+}
+
 double max_abs(const std::vector<double>& v) {
   double m = std::numeric_limits<double>::quiet_NaN();
   for (double x : v) m = std::isnan(m) ? std::abs(x) : std::max(m, std::abs(x));
@@ -94,20 +120,20 @@ double max_abs(const std::vector<double>& v) {
 
 Cell number(double v) { return std::isnan(v) ? Cell{} : Cell{v}; }
 
-std::vector<Table> bouncing_study(const StudyOptions& opt) {
-  const std::vector<double> restitutions = {1.0, 0.9, 0.5};
-  std::vector<double> steps = {1e-2, 1e-3, 1e-4, 1e-5};
-  if (opt.full) steps.push_back(1e-6);
+std::vector<Table> bouncing_tables(const std::vector<Json>& cases, const std::vector<Json>& results,
+                                   const StudyOptions& opt) {
+  const std::vector<double>& restitutions = kRestitutions;
+  const std::vector<double> steps = study_steps(opt);
 
-  Table cases;
-  cases.id = "bouncing_mass";
-  cases.title = "Bouncing mass: every integrator against the exact solution";
-  cases.caption = fmt::format(
+  Table table;
+  table.id = "bouncing_mass";
+  table.title = "Bouncing mass: every integrator against the exact solution";
+  table.caption = fmt::format(
       "m = 1, g = 9.81, h0 = 1, v0 = 0. Impact times compared for the first {} impacts whose flight lasts "
       "at least 10 steps; flight energy taken at the numerical mid-flight, relative to E0 e^(2i). Zeno time "
       "detected as the first step after which |v| <= 2 g dt and q <= 2 g dt^2 for the rest of the run.",
       kImpacts);
-  cases.columns = {
+  table.columns = {
       {"integrator", "", "", ""},
       {"e", "", "{}", "restitution"},
       {"dt", "s", "{:.0e}", "step"},
@@ -123,7 +149,7 @@ std::vector<Table> bouncing_study(const StudyOptions& opt) {
       {"steps", "", "", ""},
       {"CPU", "s", "{:.2e}", "thread CPU time of the run"},
   };
-  cases.figures = {
+  table.figures = {
       {"bouncing_convergence", "Bouncing mass: impact-time error against the step", "dt", "max t_i err", {"integrator"}, {"e"}, true, true},
       {"bouncing_work_precision", "Bouncing mass: impact-time error against CPU time", "CPU", "max t_i err", {"integrator"}, {"e"}, true, true},
       {"bouncing_energy_convergence", "Bouncing mass: flight-energy error against the step", "dt", "max E_i err", {"integrator"}, {"e"}, true, true},
@@ -142,58 +168,57 @@ std::vector<Table> bouncing_study(const StudyOptions& opt) {
   energies.columns = {{"integrator", "", "", ""}, {"e", "", "{}", ""}, {"impact", "", "", ""},
                       {"E_i/E0", "", "{:.6f}", "numerical"}, {"e^(2i)", "", "{:.6f}", "exact"},
                       {"rel. err", "", "{:.2e}", ""}};
-  cases.metadata = {{"study", "bouncing"}, {"steps", fmt::format("{}", fmt::join(steps, " "))},
+  table.metadata = {{"study", "bouncing"}, {"steps", fmt::format("{}", fmt::join(steps, " "))},
                     {"restitutions", fmt::format("{}", fmt::join(restitutions, " "))}};
-  orders.metadata = energies.metadata = cases.metadata;
+  orders.metadata = energies.metadata = table.metadata;
 
-  // Cases in table order: integrator, e, dt.
-  const auto& integrators = integrator_registry();
-  const std::size_t per_integrator = restitutions.size() * steps.size();
-  const auto results = parallel_map<CaseResult>(integrators.size() * per_integrator, [&](std::size_t i) {
-    return run_case(integrators[i / per_integrator].name, restitutions[i % per_integrator / steps.size()],
-                    steps[i % steps.size()]);
-  }, "bouncing");
   std::size_t next = 0;
-  for (const auto& entry : integrators) {
+  while (next < cases.size()) {
+    const std::string integrator = cases[next]["integrator"];
     for (double e : restitutions) {
       const BouncingMass problem = make_problem(e);
       std::vector<double> t_err, e_err, z_err;
       for (std::size_t s = 0; s < steps.size(); ++s) {
         const double dt = steps[s];
-        const CaseResult& c = results[next++];
-        if (c.diverged) {
-          cases.add_row({entry.name, e, dt, "diverged", c.message, {}, {}, {}, {}, {}, {}, c.max_penetration, c.steps, c.cpu});
+        const Json& c = results[next++];
+        const std::vector<double> impact_time_error = c["impact_time_error"], flight_energy = c["flight_energy"];
+        const double zeno_detected = real(c["zeno_detected"]), max_penetration = c["max_penetration"], cpu = c["cpu"];
+        const long n_steps = c["steps"];
+        if (c["diverged"]) {
+          table.add_row({integrator, e, dt, "diverged", c["message"].get<std::string>(), {}, {}, {}, {}, {}, {}, max_penetration, n_steps, cpu});
           t_err.push_back(NAN), e_err.push_back(NAN), z_err.push_back(NAN);
           continue;
         }
         std::vector<double> rel;
-        for (std::size_t i = 0; i < c.flight_energy.size(); ++i) {
+        for (std::size_t i = 0; i < flight_energy.size(); ++i) {
           const double exact = problem.energy_after_impact(static_cast<int>(i) + 1);
-          rel.push_back(c.flight_energy[i] / exact - 1.0);
+          rel.push_back(flight_energy[i] / exact - 1.0);
           if (dt == 1e-3)
-            energies.add_row({entry.name, e, static_cast<long>(i + 1), c.flight_energy[i] / problem.initial_energy(),
+            energies.add_row({integrator, e, static_cast<long>(i + 1), flight_energy[i] / problem.initial_energy(),
                               exact / problem.initial_energy(), std::abs(rel.back())});
         }
-        t_err.push_back(max_abs(c.impact_time_error));
+        t_err.push_back(max_abs(impact_time_error));
         e_err.push_back(max_abs(rel));
-        z_err.push_back(e < 1.0 ? std::abs(c.zeno_detected - problem.zeno_time()) : NAN);
+        z_err.push_back(e < 1.0 ? std::abs(zeno_detected - problem.zeno_time()) : NAN);
         const double order_t = s ? observed_order(steps[s - 1], t_err[s - 1], dt, t_err[s]) : NAN;
         const double order_e = s ? observed_order(steps[s - 1], e_err[s - 1], dt, e_err[s]) : NAN;
-        cases.add_row({entry.name, e, dt,
-                       c.impact_time_error.empty() ? Cell{} : Cell{std::abs(c.impact_time_error[0])},
+        table.add_row({integrator, e, dt,
+                       impact_time_error.empty() ? Cell{} : Cell{std::abs(impact_time_error[0])},
                        number(t_err[s]), number(order_t), number(e_err[s]), number(order_e),
-                       static_cast<long>(c.impact_time_error.size()), number(c.zeno_detected), number(z_err[s]),
-                       c.max_penetration, c.steps, c.cpu});
+                       static_cast<long>(impact_time_error.size()), number(zeno_detected), number(z_err[s]),
+                       max_penetration, n_steps, cpu});
       }
-      orders.add_row({entry.name, e, number(fitted_order(steps, t_err)), number(fitted_order(steps, e_err)),
+      orders.add_row({integrator, e, number(fitted_order(steps, t_err)), number(fitted_order(steps, e_err)),
                       number(fitted_order(steps, z_err))});
     }
   }
-  return {cases, orders, energies};
+  return {table, orders, energies};
 }
 
 }  // namespace
 
-std::vector<Table> run_bouncing_study(const StudyOptions& opt) { return bouncing_study(opt); }
+extern const StudyEntry bouncing_study = {
+    "bouncing", "bouncing mass: impact times, flight energies, Zeno time, orders, against the exact solution",
+    nullptr, &bouncing_cases, &bouncing_case, &bouncing_tables};
 
 }  // namespace nsb

@@ -12,7 +12,6 @@
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
 #include "problems/registry.hpp"
-#include "studies/parallel.hpp"
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -85,12 +84,21 @@ Outcome run_hard_case(const HardCase& c, const std::string& integrator_name) {
   return o;
 }
 
-std::vector<Table> hard_cases_study(const StudyOptions&) {
-  const auto& integrators = integrator_registry();
-  const auto outcomes = parallel_map<Outcome>(kCases.size() * integrators.size(), [&](std::size_t i) {
-    return run_hard_case(kCases[i / integrators.size()], integrators[i % integrators.size()].name);
-  }, "hard");
+std::vector<Json> hard_cases(const StudyOptions&) {
+  std::vector<Json> cases;
+  for (std::size_t k = 0; k < kCases.size(); ++k)
+    for (const auto& entry : integrator_registry()) cases.push_back({{"case", k}, {"integrator", entry.name}});
+  return cases;
+}
 
+Json hard_case(const Json& c) {
+  const Outcome o = run_hard_case(kCases[c["case"].get<std::size_t>()], c["integrator"]);
+  return {{"status", o.status}, {"steps", o.steps}, {"impacts", o.impacts}, {"max_penetration", o.max_penetration},
+          {"energy_growth", o.energy_growth}, {"final_energy_error", o.final_energy_error}, {"cpu", o.cpu},
+          {"dt", o.dt}, {"scale", o.scale}, {"message", o.message}};
+}
+
+std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector<Json>& outcomes, const StudyOptions&) {
   Table t;
   t.id = "hard_cases";
   t.title = "Hard cases: outcome of every integrator";
@@ -114,17 +122,21 @@ std::vector<Table> hard_cases_study(const StudyOptions&) {
                {"note", "", "", "why a run diverged"}};
   t.metadata = {{"study", "hard"}};
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
-    const HardCase& c = kCases[i / integrators.size()];
-    const Outcome& o = outcomes[i];
-    t.add_row({c.label, c.problem, integrators[i % integrators.size()].name, o.dt, c.t_end, o.status, o.impacts,
-               o.steps, o.max_penetration, c.penetration_tol, o.scale, o.energy_growth, c.energy_tol, o.final_energy_error,
-               o.cpu, o.message});
+    const HardCase& c = kCases[cases[i]["case"].get<std::size_t>()];
+    const Json& o = outcomes[i];
+    t.add_row({c.label, c.problem, cases[i]["integrator"].get<std::string>(), o["dt"].get<double>(), c.t_end,
+               o["status"].get<std::string>(), o["impacts"].get<long>(), o["steps"].get<long>(),
+               o["max_penetration"].get<double>(), c.penetration_tol, o["scale"].get<double>(),
+               o["energy_growth"].get<double>(), c.energy_tol, o["final_energy_error"].get<double>(),
+               o["cpu"].get<double>(), o["message"].get<std::string>()});
   }
   return {t};
 }
 
 }  // namespace
 
-std::vector<Table> run_hard_cases_study(const StudyOptions& opt) { return hard_cases_study(opt); }
+extern const StudyEntry hard_cases_study = {
+    "hard", "hard cases: Zeno, chattering, 10^4 impacts, resting and grazing contact; ok / diverged / penetration / energy blow-up",
+    nullptr, &hard_cases, &hard_case, &hard_tables};
 
 }  // namespace nsb

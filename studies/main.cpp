@@ -1,28 +1,92 @@
-// nsbench-study: runs the registered studies and writes their tables.
+// nsbench-study: runs the registered studies and writes their reports.
 //
 //   nsbench-study list
-//   nsbench-study all|NAME... --out DIR [--full]
+//   nsbench-study all|NAME... [--out DIR] [--full]                 run, write the reports
+//   nsbench-study all|NAME... [--out DIR] [--full] --shard I/N     run shard I of N only
+//   nsbench-study all|NAME... [--out DIR] [--full] --merge         merge the N shards, write
 //
-// Writes DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
-// scripts/figures.py to draw) and DIR/index.md linking them all.
+// Reports: DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
+// scripts/figures.py) and DIR/index.md linking them. Shards: DIR/shards/<study>-I-of-N.json.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <fstream>
+#include <map>
+#include <regex>
 
 #include "core/build_info.hpp"
 #include "core/output.hpp"
 #include "core/parameters.hpp"
+#include "studies/parallel.hpp"
 #include "studies/study.hpp"
 
+namespace {
+
+using nsb::InputError;
+using nsb::Json;
+namespace fs = std::filesystem;
+
+struct Shard {
+  int index = 0, count = 0;  // 1-based; count 0: not sharded
+};
+
+Shard parse_shard(const std::string& text) {
+  const std::regex form(R"((\d+)/(\d+))");
+  std::smatch m;
+  if (std::regex_match(text, m, form)) {
+    const int i = std::stoi(m[1]), n = std::stoi(m[2]);
+    if (n >= 1 && i >= 1 && i <= n) return {i, n};
+  }
+  throw InputError(fmt::format("--shard '{}': expected I/N with 1 <= I <= N", text));
+}
+
+fs::path shard_path(const fs::path& out, const std::string& study, int i, int n) {
+  return out / "shards" / fmt::format("{}-{}-of-{}.json", study, i, n);
+}
+
+// Results of every case of a study, read back from its shard files.
+std::vector<Json> merge_shards(const nsb::StudyEntry& study, const std::vector<Json>& cases, const fs::path& out,
+                               bool full) {
+  const std::regex name(study.name + R"(-(\d+)-of-(\d+)\.json)");
+  int count = 0;
+  if (fs::is_directory(out / "shards"))
+    for (const auto& f : fs::directory_iterator(out / "shards")) {
+      std::smatch m;
+      const std::string fname = f.path().filename().string();
+      if (std::regex_match(fname, m, name)) count = std::max(count, std::stoi(m[2]));
+    }
+  if (count == 0) throw InputError(fmt::format("--merge: no shard files for study {} in {}", study.name, (out / "shards").string()));
+  std::vector<Json> results(cases.size());
+  std::vector<bool> have(cases.size(), false);
+  for (int i = 1; i <= count; ++i) {
+    std::ifstream in(shard_path(out, study.name, i, count));
+    if (!in) throw InputError(fmt::format("--merge: shard {} of {} of study {} is missing", i, count, study.name));
+    const Json shard = Json::parse(in);
+    if (shard["cases"] != Json(cases) || shard["full"] != full)
+      throw InputError(fmt::format("--merge: shard {} of {} of study {} was made by other study definitions (stale); rerun it", i, count, study.name));
+    for (const auto& [k, r] : shard["results"].items()) {
+      results[std::stoul(k)] = r;
+      have[std::stoul(k)] = true;
+    }
+  }
+  for (std::size_t k = 0; k < have.size(); ++k)
+    if (!have[k]) throw InputError(fmt::format("--merge: case {} of study {} is in no shard", k, study.name));
+  return results;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  CLI::App app{"nsbench-study: run studies and write citable tables"};
+  CLI::App app{"nsbench-study: run studies and write citable reports"};
   std::vector<std::string> names;
-  std::string out = "reports";
-  bool full = false;
+  std::string out = "reports", shard_text;
+  bool full = false, merge = false;
   app.add_option("studies", names, "'list', 'all', or study names")->required();
   app.add_option("--out", out, "output directory (default reports)");
   app.add_flag("--full", full, "run the long sweeps");
+  app.add_option("--shard", shard_text, "run only shard I of N of the cases (job arrays), e.g. 3/8");
+  app.add_flag("--merge", merge, "merge the shards' results in DIR/shards and write the reports");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -34,31 +98,55 @@ int main(int argc, char** argv) {
     for (const auto& s : registry) fmt::print("{:<12} {}\n", s.name, s.description);
     return 0;
   }
-  std::vector<const nsb::StudyEntry*> selected;
-  for (const auto& n : names) {
-    bool found = false;
-    for (const auto& s : registry)
-      if (n == "all" || s.name == n) {
-        selected.push_back(&s);
-        found = true;
-      }
-    if (!found) {
-      std::vector<std::string> valid{"all"};
-      for (const auto& s : registry) valid.push_back(s.name);
-      fmt::print(stderr, "nsbench-study: error: unknown study '{}' (valid: {})\n", n, fmt::join(valid, ", "));
-      return 2;
-    }
-  }
   try {
+    const Shard shard = shard_text.empty() ? Shard{} : parse_shard(shard_text);
+    if (shard.count && merge) throw InputError("--shard and --merge: give one of them");
+    std::vector<const nsb::StudyEntry*> selected;
+    for (const auto& n : names) {
+      bool found = false;
+      for (const auto& s : registry)
+        if (n == "all" || s.name == n) {
+          selected.push_back(&s);
+          found = true;
+        }
+      if (!found) {
+        std::vector<std::string> valid{"all"};
+        for (const auto& s : registry) valid.push_back(s.name);
+        throw InputError(fmt::format("unknown study '{}' (valid: {})", n, fmt::join(valid, ", ")));
+      }
+    }
     nsb::ensure_directory(out);
-    std::string index = "# nsbench reports\n\n";
+    const nsb::StudyOptions options{full};
     const auto& b = nsb::build_info();
-    index += fmt::format("Revision `{}`, {} build, {}.\n\n", b.git_revision, b.build_type, b.compiler);
+    std::string index = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}.\n\n", b.git_revision,
+                                    b.build_type, b.compiler, full ? ", full sweeps" : "");
     std::vector<nsb::Table> all_tables;
     for (const auto* s : selected) {
       const auto start = std::chrono::steady_clock::now();
-      fmt::print(stderr, "study {}: running\n", s->name);
-      const auto tables = s->run(nsb::StudyOptions{full});
+      const std::vector<Json> cases = nsb::study_cases(*s, options);
+      std::vector<Json> results;
+      if (merge) {
+        results = merge_shards(*s, cases, out, full);
+      } else {
+        std::vector<std::size_t> mine;
+        for (std::size_t k = 0; k < cases.size(); ++k)
+          if (!shard.count || static_cast<int>(k % shard.count) == shard.index - 1) mine.push_back(k);
+        const auto computed = nsb::parallel_map<Json>(mine.size(), [&](std::size_t j) {
+          return nsb::run_study_case(*s, cases[mine[j]], options);
+        }, s->name);
+        if (shard.count) {
+          Json file = {{"study", s->name}, {"full", full}, {"shard", shard.index}, {"of", shard.count},
+                       {"cases", cases}, {"results", Json::object()}};
+          for (std::size_t j = 0; j < mine.size(); ++j) file["results"][std::to_string(mine[j])] = computed[j];
+          nsb::ensure_directory(fs::path(out) / "shards");
+          nsb::write_file_atomic(shard_path(out, s->name, shard.index, shard.count), file.dump() + "\n");
+          fmt::print(stderr, "study {}: shard {}/{} ({} of {} cases) written\n", s->name, shard.index, shard.count,
+                     mine.size(), cases.size());
+          continue;
+        }
+        results = computed;
+      }
+      const auto tables = nsb::study_tables(*s, cases, results, options);
       index += fmt::format("## {}\n\n{}\n\n", s->name, s->description);
       for (const auto& t : tables) {
         nsb::write_table(t, out);
@@ -69,12 +157,17 @@ int main(int argc, char** argv) {
       }
       index += "\n";
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      fmt::print(stderr, "study {}: {} tables in {:.1f} s\n", s->name, tables.size(), secs);
+      fmt::print(stderr, "study {}: {} cases, {} tables in {:.1f} s\n", s->name, cases.size(), tables.size(), secs);
     }
-    nsb::write_file_atomic(std::filesystem::path(out) / "figures.json", nsb::figures_to_json(all_tables));
-    nsb::write_file_atomic(std::filesystem::path(out) / "index.md", index);
-  } catch (const nsb::InputError& e) {
+    if (!shard.count) {
+      nsb::write_file_atomic(fs::path(out) / "figures.json", nsb::figures_to_json(all_tables));
+      nsb::write_file_atomic(fs::path(out) / "index.md", index);
+    }
+  } catch (const InputError& e) {
     fmt::print(stderr, "nsbench-study: error: {}\n", e.what());
+    return 2;
+  } catch (const Json::exception& e) {
+    fmt::print(stderr, "nsbench-study: error: unreadable shard file: {}\n", e.what());
     return 2;
   }
   return 0;

@@ -1,13 +1,21 @@
 #pragma once
-// A study runs a grid of cases and returns tables. Studies are listed by name in
-// studies/registry.cpp (one line each) and run by the nsbench-study driver.
-#include <filesystem>
+// A study is data: the list of its cases (each a JSON object saying what to run), how to
+// run one case (a pure function of the case: the same case gives the same numbers, CPU
+// times aside), and how to turn all the cases' results into tables. The driver
+// (nsbench-study) runs the cases in parallel, or one shard of them (--shard i/n, for a job
+// array), and merges the shards' results into the tables (nsbench-study merge).
+//
+// Studies are listed in studies/registry.cpp, one line each. A study written as a single
+// function returning tables (`run`) is a study of one case.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "studies/table.hpp"
 
 namespace nsb {
+
+using Json = nlohmann::json;
 
 struct StudyOptions {
   bool full = false;  // the long sweep (finer steps, bigger meshes) instead of the default
@@ -16,10 +24,23 @@ struct StudyOptions {
 struct StudyEntry {
   std::string name;
   std::string description;
-  std::vector<Table> (*run)(const StudyOptions&);
+  // Either a single function...
+  std::vector<Table> (*run)(const StudyOptions&) = nullptr;
+  // ...or cases, a case runner and a table builder.
+  std::vector<Json> (*cases)(const StudyOptions&) = nullptr;
+  Json (*run_case)(const Json& the_case) = nullptr;
+  std::vector<Table> (*tables)(const std::vector<Json>& cases, const std::vector<Json>& results,
+                               const StudyOptions&) = nullptr;
 };
 
 const std::vector<StudyEntry>& study_registry();
+
+// The cases of a study (one empty case for a single-function study), running one case,
+// and building the tables from all results.
+std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& options);
+Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOptions& options);
+std::vector<Table> study_tables(const StudyEntry& study, const std::vector<Json>& cases,
+                                const std::vector<Json>& results, const StudyOptions& options);
 
 // Observed order between two refinements: log(e1/e2) / log(h1/h2); NaN when an error is
 // not positive and finite.

@@ -162,3 +162,77 @@ std::string figures_to_json(const std::vector<Table>& tables) {
 }
 
 }  // namespace nsb
+
+namespace nsb {
+
+namespace {
+
+nlohmann::json cell_to_json(const Cell& c) {
+  switch (c.index()) {
+    case 0: return nullptr;
+    case 1: {
+      const double v = std::get<double>(c);
+      // JSON has no NaN or infinity: keep them as tagged strings.
+      if (std::isnan(v)) return {{"real", "nan"}};
+      if (std::isinf(v)) return {{"real", v > 0 ? "inf" : "-inf"}};
+      return {{"real", v}};
+    }
+    case 2: return {{"int", std::get<long>(c)}};
+    default: return {{"text", std::get<std::string>(c)}};
+  }
+}
+
+Cell cell_from_json(const nlohmann::json& j) {
+  if (j.is_null()) return {};
+  if (j.contains("int")) return j["int"].get<long>();
+  if (j.contains("text")) return j["text"].get<std::string>();
+  const auto& r = j["real"];
+  if (r.is_string()) {
+    const std::string s = r.get<std::string>();
+    return s == "nan" ? std::numeric_limits<double>::quiet_NaN()
+                      : (s == "inf" ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity());
+  }
+  return r.get<double>();
+}
+
+}  // namespace
+
+std::string table_to_json_text(const Table& t) {
+  nlohmann::json j;
+  j["id"] = t.id;
+  j["title"] = t.title;
+  j["caption"] = t.caption;
+  for (const auto& c : t.columns) j["columns"].push_back({c.name, c.unit, c.format, c.description});
+  j["rows"] = nlohmann::json::array();
+  for (const auto& row : t.rows) {
+    nlohmann::json r = nlohmann::json::array();
+    for (const auto& c : row) r.push_back(cell_to_json(c));
+    j["rows"].push_back(r);
+  }
+  j["metadata"] = t.metadata;
+  j["figures"] = nlohmann::json::array();
+  for (const auto& f : t.figures)
+    j["figures"].push_back({{"id", f.id}, {"title", f.title}, {"x", f.x}, {"y", f.y}, {"series", f.series},
+                            {"panels", f.panels}, {"log_x", f.log_x}, {"log_y", f.log_y}});
+  return j.dump();
+}
+
+Table table_from_json_text(const std::string& text) {
+  const auto j = nlohmann::json::parse(text);
+  Table t;
+  t.id = j["id"];
+  t.title = j["title"];
+  t.caption = j["caption"];
+  for (const auto& c : j["columns"]) t.columns.push_back({c[0], c[1], c[2], c[3]});
+  for (const auto& r : j["rows"]) {
+    std::vector<Cell> row;
+    for (const auto& c : r) row.push_back(cell_from_json(c));
+    t.rows.push_back(std::move(row));
+  }
+  t.metadata = j["metadata"].get<std::vector<std::pair<std::string, std::string>>>();
+  for (const auto& f : j["figures"])
+    t.figures.push_back({f["id"], f["title"], f["x"], f["y"], f["series"], f["panels"], f["log_x"], f["log_y"]});
+  return t;
+}
+
+}  // namespace nsb

@@ -56,6 +56,10 @@ std::string header_text(const Column& column);
 // The figures of the tables as JSON for scripts/figures.py (CSV file, header texts).
 std::string figures_to_json(const std::vector<Table>& tables);
 
+// Lossless JSON form of a table (shard files of single-function studies).
+std::string table_to_json_text(const Table& table);
+Table table_from_json_text(const std::string& text);
+
 // Writes <dir>/<id>.csv, .md and .tex, each whole or not at all.
 void write_table(const Table& table, const std::filesystem::path& dir);
 

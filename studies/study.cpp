@@ -1,0 +1,28 @@
+#include <stdexcept>
+
+#include "studies/study.hpp"
+
+namespace nsb {
+
+std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& options) {
+  if (study.run) return {Json::object()};
+  return study.cases(options);
+}
+
+Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOptions& options) {
+  if (!study.run) return study.run_case(the_case);
+  Json tables = Json::array();
+  for (const auto& t : study.run(options)) tables.push_back(table_to_json_text(t));
+  return tables;
+}
+
+std::vector<Table> study_tables(const StudyEntry& study, const std::vector<Json>& cases,
+                                const std::vector<Json>& results, const StudyOptions& options) {
+  if (!study.run) return study.tables(cases, results, options);
+  if (results.size() != 1) throw std::logic_error("single-function study " + study.name + " has one result");
+  std::vector<Table> tables;
+  for (const auto& text : results[0]) tables.push_back(table_from_json_text(text.get<std::string>()));
+  return tables;
+}
+
+}  // namespace nsb

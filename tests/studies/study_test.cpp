@@ -1,0 +1,66 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <stdexcept>
+
+#include "studies/parallel.hpp"
+#include "studies/study.hpp"
+
+using Catch::Detail::Approx;
+
+namespace {
+nsb::Table sample_table() {
+  nsb::Table t;
+  t.id = "sample";
+  t.title = "A_title with 50% & more";
+  t.caption = "caption";
+  t.columns = {{"name", "", "", ""}, {"err", "m", "{:.2e}", "error"}, {"n", "", "", ""}};
+  t.metadata = {{"study", "test"}};
+  t.add_row({std::string("a,b"), 1.5e-3, 7L});
+  t.add_row({std::string("diverged"), std::numeric_limits<double>::quiet_NaN(), nsb::Cell{}});
+  t.figures = {{"fig", "Fig", "n", "err", {"name"}, {}, true, true}};
+  return t;
+}
+}  // namespace
+
+TEST_CASE("tables: CSV keeps full precision, quotes, stamps; Markdown and LaTeX format and escape", "[studies]") {
+  const auto t = sample_table();
+  const std::string csv = nsb::to_csv(t);
+  CHECK_THAT(csv, Catch::Contains("# study: test\n") && Catch::Contains("# git_revision: ") &&
+                      Catch::Contains("name,err [m],n\n") && Catch::Contains("\"a,b\",0.0015,7\n") &&
+                      Catch::Contains("diverged,n/a,n/a\n"));
+  const std::string md = nsb::to_markdown(t);
+  CHECK_THAT(md, Catch::Contains("| a,b | 1.50e-03 | 7 |") && Catch::Contains("| diverged | n/a | n/a |"));
+  const std::string tex = nsb::to_latex(t);
+  CHECK_THAT(tex, Catch::Contains("A\\_title with 50\\% \\& more") && Catch::Contains("\\toprule") &&
+                      Catch::Contains("\\label{tab:sample}"));
+  nsb::Table bad = t;
+  CHECK_THROWS_AS(bad.add_row({1.0}), std::logic_error);
+}
+
+TEST_CASE("tables: the JSON form round-trips every cell type, NaN included", "[studies]") {
+  const auto t = sample_table();
+  const auto back = nsb::table_from_json_text(nsb::table_to_json_text(t));
+  CHECK(nsb::to_csv(back) == nsb::to_csv(t));
+  CHECK(back.figures.size() == 1);
+  CHECK(nsb::figures_to_json({back}) == nsb::figures_to_json({t}));
+}
+
+TEST_CASE("convergence: observed and fitted orders recover a known power law", "[studies]") {
+  const std::vector<double> h = {1e-1, 5e-2, 2.5e-2, 1.25e-2};
+  std::vector<double> e;
+  for (double x : h) e.push_back(3.0 * x * x);
+  CHECK(nsb::observed_order(h[0], e[0], h[1], e[1]) == Approx(2.0).epsilon(1e-12));
+  CHECK(nsb::fitted_order(h, e) == Approx(2.0).epsilon(1e-12));
+  e[1] = std::numeric_limits<double>::quiet_NaN();  // a diverged point is left out
+  CHECK(nsb::fitted_order(h, e) == Approx(2.0).epsilon(1e-12));
+  CHECK(std::isnan(nsb::observed_order(h[0], 0.0, h[1], 1.0)));
+  CHECK(std::isnan(nsb::fitted_order({1.0}, {1.0})));
+}
+
+TEST_CASE("parallel: results come back in case order, and a failing case is reported", "[studies]") {
+  const auto squares = nsb::parallel_map<long>(200, [](std::size_t i) { return static_cast<long>(i * i); }, "test");
+  for (std::size_t i = 0; i < squares.size(); ++i) REQUIRE(squares[i] == static_cast<long>(i * i));
+  CHECK_THROWS_WITH(nsb::parallel_for(50, [](std::size_t i) {
+    if (i == 17) throw std::runtime_error("case 17 failed");
+  }, "test"), "case 17 failed");
+}
