@@ -1,0 +1,172 @@
+// Study "precision": work-precision and convergence of every integrator on every problem
+// listed below (problems with an exact solution), one line of data per problem.
+//
+// Error norm: e = max over the steps of the window of ||u - u_exact||_inf, divided by
+// max |u_exact| over the run (relative displacement error). Two windows, reported
+// separately: a smooth window (no impact inside, the scheme's own order) and the whole
+// run (with impacts, where time-stepping schemes drop to order 1).
+// CPU: median of three timed runs after a warm-up run, none of them observed.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "integrators/registry.hpp"
+#include "integrators/run.hpp"
+#include "problems/registry.hpp"
+#include "studies/study.hpp"
+
+namespace nsb {
+
+namespace {
+
+struct PrecisionProblem {
+  std::string label;
+  std::string problem;
+  std::map<std::string, std::string> params;
+  double t_end;
+  double smooth_end;            // the smooth window is [0, smooth_end]
+  std::vector<double> steps;    // default sweep
+  std::vector<double> full_steps;
+};
+
+// Bouncing mass (h0 = 1, g = 9.81): first impact at 0.4515 s.
+const std::vector<PrecisionProblem> kProblems = {
+    {"bouncing mass, e = 0.9", "bouncing-mass", {{"e", "0.9"}}, 3.0, 0.4,
+     {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5}, {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6}},
+};
+constexpr int kTimedRepeats = 3;
+// Errors below this are round-off (e.g. both schemes are exact for a constant force in
+// flight): they carry no order and are left out of the order fits.
+constexpr double kRoundOff = 1e-11;
+
+std::vector<Json> precision_cases(const StudyOptions& opt) {
+  std::vector<Json> cases;
+  for (std::size_t p = 0; p < kProblems.size(); ++p)
+    for (const auto& entry : integrator_registry())
+      for (double dt : opt.full ? kProblems[p].full_steps : kProblems[p].steps)
+        cases.push_back({{"problem", p}, {"integrator", entry.name}, {"dt", dt}});
+  return cases;
+}
+
+Json precision_case(const Json& c) {
+  const PrecisionProblem& pp = kProblems[c["problem"].get<std::size_t>()];
+  auto problem = make_problem(pp.problem, pp.params);
+  RunOptions options;
+  options.dt = c["dt"];
+  options.t_end = pp.t_end;
+  options.record_series = false;
+
+  // Observed run: errors.
+  auto integrator = make_integrator(c["integrator"]);
+  integrator->init(*problem, problem->initial_state());
+  double err_all = 0.0, err_smooth = 0.0, scale = 0.0;
+  const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo&) {
+    const State& s = it.state();
+    const auto exact = problem->exact_state(s.t);
+    const double e = (s.u - exact->u).lpNorm<Eigen::Infinity>();
+    scale = std::max(scale, exact->u.lpNorm<Eigen::Infinity>());
+    err_all = std::max(err_all, e);
+    if (s.t <= pp.smooth_end) err_smooth = std::max(err_smooth, e);
+  });
+  Json out = {{"status", r.status == RunStatus::Ok ? "ok" : "diverged"}, {"message", r.message},
+              {"steps", r.steps}, {"force_evaluations", r.work.force_evaluations},
+              {"factorizations", r.work.factorizations}, {"lcp_iterations", r.work.lcp_iterations}};
+  if (r.status != RunStatus::Ok) return out;
+  out["err_all"] = err_all / scale;
+  out["err_smooth"] = err_smooth / scale;
+
+  // Timed runs: a warm-up, then the median of kTimedRepeats.
+  options.sample_every = std::numeric_limits<long>::max();
+  std::vector<double> cpu;
+  for (int k = 0; k <= kTimedRepeats; ++k) {
+    auto timed = make_integrator(c["integrator"]);
+    timed->init(*problem, problem->initial_state());
+    const double t = run(*problem, *timed, options).cpu_seconds;
+    if (k > 0) cpu.push_back(t);
+  }
+  std::sort(cpu.begin(), cpu.end());
+  out["cpu"] = cpu[cpu.size() / 2];
+  return out;
+}
+
+std::vector<Table> precision_tables(const std::vector<Json>& cases, const std::vector<Json>& results,
+                                    const StudyOptions&) {
+  Table t;
+  t.id = "work_precision";
+  t.title = "Work-precision and convergence on problems with an exact solution";
+  t.caption = "err = max over the window of ||u - u_exact||_inf / max |u_exact|; smooth window: before the first "
+              "impact; all: the whole run, impacts included. CPU: median of 3 timed runs after a warm-up. Errors below "
+              "1e-11 are round-off and carry no order (n/a).";
+  t.columns = {{"problem", "", "", ""},
+               {"integrator", "", "", ""},
+               {"dt", "s", "{:.1e}", ""},
+               {"err smooth", "", "{:.2e}", "relative displacement error, smooth window"},
+               {"order smooth", "", "{:.2f}", "against the previous dt"},
+               {"err all", "", "{:.2e}", "relative displacement error, whole run"},
+               {"order all", "", "{:.2f}", "against the previous dt"},
+               {"CPU", "s", "{:.2e}", "median thread CPU time"},
+               {"steps", "", "", ""},
+               {"F_int evals", "", "", "internal force evaluations"},
+               {"factorizations", "", "", ""},
+               {"LCP its", "", "", "LCP iterations"},
+               {"status", "", "", ""}};
+  t.figures = {
+      {"work_precision", "Work-precision: error (whole run) against CPU time", "CPU", "err all", {"integrator"}, {"problem"}, true, true},
+      {"work_precision_evals", "Error (whole run) against internal force evaluations", "F_int evals", "err all", {"integrator"}, {"problem"}, true, true},
+      {"convergence_smooth", "Convergence in the smooth window", "dt", "err smooth", {"integrator"}, {"problem"}, true, true},
+      {"convergence_impacts", "Convergence over the whole run (with impacts)", "dt", "err all", {"integrator"}, {"problem"}, true, true},
+  };
+  Table orders;
+  orders.id = "work_precision_orders";
+  orders.title = "Observed convergence orders: smooth window and with impacts";
+  orders.caption = "Least-squares slope of log(err) against log(dt) over the sweep, windows as in the main table; "
+                   "n/a where every error is at round-off (the scheme is exact there).";
+  orders.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""},
+                    {"order smooth", "", "{:.2f}", ""}, {"order all", "", "{:.2f}", ""}};
+  t.metadata = {{"study", "precision"}};
+  orders.metadata = t.metadata;
+
+  const auto num = [](const Json& j, const char* key) {
+    return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  const auto cell = [](double v) { return std::isnan(v) ? Cell{} : Cell{v}; };
+  std::size_t k = 0;
+  while (k < cases.size()) {
+    const std::size_t begin = k;  // one (problem, integrator) group
+    std::vector<double> dts, smooth, all;
+    for (; k < cases.size() && cases[k]["problem"] == cases[begin]["problem"] &&
+           cases[k]["integrator"] == cases[begin]["integrator"]; ++k) {
+      const Json& r = results[k];
+      const std::size_t i = dts.size();
+      dts.push_back(cases[k]["dt"]);
+      smooth.push_back(num(r, "err_smooth"));
+      all.push_back(num(r, "err_all"));
+      const auto above = [](double e) { return e > kRoundOff ? e : std::numeric_limits<double>::quiet_NaN(); };
+      const double o_s = i ? observed_order(dts[i - 1], above(smooth[i - 1]), dts[i], above(smooth[i])) : NAN;
+      const double o_a = i ? observed_order(dts[i - 1], above(all[i - 1]), dts[i], above(all[i])) : NAN;
+      const std::string status = r["status"];
+      t.add_row({kProblems[cases[k]["problem"].get<std::size_t>()].label, cases[k]["integrator"].get<std::string>(),
+                 dts[i], cell(smooth[i]), cell(o_s), cell(all[i]), cell(o_a), cell(num(r, "cpu")),
+                 r["steps"].get<long>(), r["force_evaluations"].get<long>(), r["factorizations"].get<long>(),
+                 r["lcp_iterations"].get<long>(), status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
+    }
+    const auto fit = [&](std::vector<double> e) {
+      for (double& x : e)
+        if (!(x > kRoundOff)) x = std::numeric_limits<double>::quiet_NaN();
+      return cell(fitted_order(dts, e));
+    };
+    orders.add_row({kProblems[cases[begin]["problem"].get<std::size_t>()].label,
+                    cases[begin]["integrator"].get<std::string>(), fit(smooth), fit(all)});
+  }
+  return {t, orders};
+}
+
+}  // namespace
+
+extern const StudyEntry work_precision_study = {
+    "precision", "work-precision and convergence orders (smooth window and with impacts) against exact solutions",
+    nullptr, &precision_cases, &precision_case, &precision_tables};
+
+}  // namespace nsb
