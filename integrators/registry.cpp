@@ -3,6 +3,7 @@
 #include "core/registry.hpp"
 #include "integrators/cd_lagrange.hpp"
 #include "integrators/moreau_jean.hpp"
+#include "reference/event_driven.hpp"
 
 namespace nsb {
 
@@ -10,6 +11,7 @@ const std::vector<IntegratorEntry>& integrator_registry() {
   static const std::vector<IntegratorEntry> entries = {
       {"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>},
       {"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>},
+      {"event-driven", "reference: CVODE with root finding, Newton impacts, closed-contact mode (node-to-rigid contacts)", &EventDriven::parameters_spec, &make_from_params<Integrator, EventDriven>},
   };
   return entries;
 }

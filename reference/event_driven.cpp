@@ -1,0 +1,236 @@
+#include "reference/event_driven.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace nsb {
+
+namespace {
+
+// Events at one instant beyond this mean the event logic cycles (a bug, not physics: a
+// Zeno sequence is cut by zeno_velocity long before).
+constexpr long kMaxEventsPerStep = 100000;
+
+}  // namespace
+
+ParamSpecs EventDriven::parameters_spec() {
+  return {
+      ParamSpec::choice("method", "bdf", {"bdf", "adams"}, "CVODE linear multistep method (bdf: Newton + KLU; adams: fixed point)"),
+      ParamSpec::real("rtol", 1e-11, 0.0, 1e-2, "CVODE relative tolerance", true),
+      ParamSpec::real("atol", 1e-13, 0.0, 1.0, "CVODE absolute tolerance (also the gap below which contacts hit together)", true),
+      ParamSpec::real("zeno_velocity", 1e-4, 0.0, 1e308, "rebound speed below which an impact is made plastic and the contact closes"),
+  };
+}
+
+EventDriven::EventDriven(const Params& params)
+    : Integrator(params), zeno_velocity_(params.real("zeno_velocity")) {
+  settings_.bdf = params.choice("method") == "bdf";
+  settings_.rtol = params.real("rtol");
+  settings_.atol = params.real("atol");
+}
+
+void EventDriven::init(const Problem& problem, const State& initial) {
+  bind(problem, initial);
+  const Index n = problem.ndof();
+  const auto m = diagonal_mass(mass_);
+  if (!m) throw InputError("event-driven: needs a diagonal (lumped) mass matrix; this problem's is not diagonal");
+  for (Index k = 0; k < n; ++k)
+    if (!((*m)[k] > 0.0))
+      throw InputError(fmt::format("event-driven: dof {} has mass {}; valid: > 0 (a massless dof is an algebraic "
+                                   "equation, which needs a DAE solver such as IDA)", k, (*m)[k]));
+  minv_ = m->cwiseInverse();
+
+  // Node-to-rigid contacts: one dof per row of L, one contact per dof.
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> L = problem.gap_operator();
+  const Vec& g0 = problem.gap_offset();
+  contacts_.clear();
+  dof_closed_.assign(static_cast<std::size_t>(n), 0);
+  std::vector<char> used(static_cast<std::size_t>(n), 0);
+  for (Index i = 0; i < L.rows(); ++i) {
+    Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L, i);
+    if (!it || it.value() == 0.0 || (++Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator(it)))
+      throw InputError(fmt::format("event-driven: contact {} must act on exactly one dof (node-to-rigid contact)", i));
+    if (used[it.col()]++)
+      throw InputError(fmt::format("event-driven: contacts share dof {}; valid: one contact per dof", it.col()));
+    contacts_.push_back({it.col(), it.value(), -g0[i] / it.value()});
+  }
+  closed_.assign(contacts_.size(), 0);
+  e_ = problem.restitution();
+  events_ = releases_ = zeno_stops_ = 0;
+  impact_log_.clear();
+
+  y_.resize(2 * n);
+  y_ << state_.u, state_.v;
+  f_ = Vec::Zero(n);
+  fext_ = Vec::Zero(n);
+  problem.external_force(state_.t, fext_);
+  g_ = Vec::Zero(static_cast<Index>(contacts_.size()));
+  problem.tangent_stiffness(state_.u, K_);
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
+    const double gap = c.a * (state_.u[c.dof] - c.position);
+    if (gap < -settings_.atol)
+      throw InputError(fmt::format("event-driven: the initial state penetrates contact {} (gap {}); valid: gap >= -atol", i, gap));
+  }
+  cvode_ = std::make_unique<Cvode>(static_cast<OdeSystem&>(*this), 2 * n, static_cast<int>(contacts_.size()), settings_);
+  // Every root watches its function decreasing through zero (see the header).
+  cvode_->set_root_directions(std::vector<int>(contacts_.size(), -1));
+  // Contacts touching at t0 impact or close before the first step.
+  handle_events(state_.t, std::vector<int>(contacts_.size(), 0));
+  state_.u = y_.head(n);
+  state_.v = y_.tail(n);
+  impulses_.setZero();
+  publish_work();
+}
+
+void EventDriven::net_force(double t, ConstVecRef u) {
+  problem_->internal_force(u, f_);
+  if (!problem_->external_force_is_constant()) problem_->external_force(t, fext_);
+  f_ = fext_ - f_;
+}
+
+void EventDriven::rhs(double t, ConstVecRef y, VecRef ydot) {
+  const Index n = problem_->ndof();
+  net_force(t, y.head(n));
+  ydot.head(n) = y.tail(n);
+  ydot.tail(n) = minv_.cwiseProduct(f_);
+  for (Index k = 0; k < n; ++k)
+    if (dof_closed_[k]) ydot[k] = ydot[n + k] = 0.0;
+}
+
+void EventDriven::jacobian(double, ConstVecRef y, CsrMatrix& J) {
+  // J = [0, I; -M^{-1} K, 0] with the rows of held dofs zeroed (kept as explicit zeros, so
+  // that the pattern, and KLU's analysis, survive mode changes).
+  const Index n = problem_->ndof();
+  if (!problem_->is_linear()) problem_->tangent_stiffness(y.head(n), K_);
+  std::vector<Eigen::Triplet<double, sunindextype>> entries;
+  entries.reserve(static_cast<std::size_t>(n + K_.nonZeros()));
+  for (Index k = 0; k < n; ++k) entries.emplace_back(k, n + k, dof_closed_[k] ? 0.0 : 1.0);
+  for (Index col = 0; col < K_.outerSize(); ++col)
+    for (SpMat::InnerIterator it(K_, col); it; ++it)
+      entries.emplace_back(n + it.row(), it.col(), dof_closed_[it.row()] ? 0.0 : -minv_[it.row()] * it.value());
+  J.resize(2 * n, 2 * n);
+  J.setFromTriplets(entries.begin(), entries.end());
+  J.makeCompressed();
+}
+
+void EventDriven::roots(double t, ConstVecRef y, VecRef g) {
+  const Index n = problem_->ndof();
+  net_force(t, y.head(n));
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
+    g[static_cast<Index>(i)] = closed_[i] ? -f_[c.dof] / c.a : c.a * (y[c.dof] - c.position);
+  }
+}
+
+void EventDriven::close(const Contact& c) {
+  y_[c.dof] = c.position;
+  y_[problem_->ndof() + c.dof] = 0.0;
+}
+
+void EventDriven::handle_events(double t, const std::vector<int>& fired) {
+  const Index n = problem_->ndof();
+  const std::size_t p = contacts_.size();
+  // Releases: the reaction of a closed contact reached zero; the dof leaves the obstacle
+  // from rest (and is no impact candidate now, or it would close again at once).
+  std::vector<char> released(p, 0);
+  for (std::size_t i = 0; i < p; ++i)
+    if (closed_[i] && fired[i]) {
+      closed_[i] = 0;
+      dof_closed_[contacts_[i].dof] = 0;
+      released[i] = 1;
+      ++releases_;
+    }
+  // Impacts: open contacts whose root fired or that touch (gap <= atol) while closing.
+  std::vector<std::size_t> hit;
+  std::vector<double> restitution;
+  for (std::size_t i = 0; i < p; ++i) {
+    if (closed_[i] || released[i]) continue;
+    const Contact& c = contacts_[i];
+    const double gap = c.a * (y_[c.dof] - c.position), rate = c.a * y_[n + c.dof];
+    if ((fired[i] || gap <= settings_.atol) && rate <= 0.0) {
+      hit.push_back(i);
+      const bool zeno = e_ * -rate < zeno_velocity_;
+      if (zeno && e_ > 0.0 && rate < 0.0) ++zeno_stops_;
+      restitution.push_back(zeno ? 0.0 : e_);
+    }
+  }
+  if (!hit.empty()) {
+    const Index h = static_cast<Index>(hit.size());
+    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(h, h);  // contacts on distinct dofs: diagonal
+    Vec q(h), x = Vec::Zero(h);
+    for (Index k = 0; k < h; ++k) {
+      const Contact& c = contacts_[hit[k]];
+      D(k, k) = c.a * c.a * minv_[c.dof];
+      q[k] = (1.0 + restitution[k]) * c.a * y_[n + c.dof];
+    }
+    const LcpResult res = solve_lcp(D, q, x, lcp_);
+    work_.lcp_iterations += res.iterations;
+    if (!res.converged) ++work_.lcp_unconverged;
+    for (Index k = 0; k < h; ++k) {
+      const Contact& c = contacts_[hit[k]];
+      const double before = c.a * y_[n + c.dof];
+      y_[n + c.dof] += minv_[c.dof] * c.a * x[k];
+      impact_log_.push_back({t, static_cast<Index>(hit[k]), before, c.a * y_[n + c.dof]});
+      y_[c.dof] = c.position;  // the gap is zero at the impact, exactly
+      impulses_[static_cast<Index>(hit[k])] += x[k];
+      if (restitution[k] == 0.0) {
+        closed_[hit[k]] = 1;  // candidate: kept below if its reaction is compressive
+        dof_closed_[c.dof] = 1;
+      }
+    }
+  }
+  // Closed contacts: held while the acceleration-level LCP gives a compressive reaction
+  // (diagonal here: lambda_i = -F_d / a_i > 0), released otherwise.
+  net_force(t, y_.head(n));
+  for (std::size_t i = 0; i < p; ++i) {
+    if (!closed_[i]) continue;
+    const Contact& c = contacts_[i];
+    if (-f_[c.dof] / c.a > 0.0) {
+      close(c);
+    } else {
+      closed_[i] = 0;
+      dof_closed_[c.dof] = 0;
+      y_[n + c.dof] = 0.0;  // a plastic impact left it at rest on the obstacle
+      ++releases_;
+    }
+  }
+  cvode_->restart(t, y_);
+}
+
+StepInfo EventDriven::step(double dt) {
+  StepInfo info;
+  impulses_.setZero();
+  const double target = state_.t + dt;
+  double t = state_.t;
+  long events = 0;
+  // Stop once within round-off of the target: CVODE refuses a tout that close to t.
+  while (target - t > 1e-14 * std::max(1.0, std::abs(target))) {
+    if (!cvode_->advance(target, t, y_)) break;
+    handle_events(t, cvode_->root_info());
+    ++events_;
+    if (++events > kMaxEventsPerStep)
+      throw std::runtime_error(fmt::format("event-driven: more than {} events in one step at t = {}", kMaxEventsPerStep, t));
+  }
+  const Index n = problem_->ndof();
+  state_.t = target;
+  state_.u = y_.head(n);
+  state_.v = y_.tail(n);
+  info.dt = dt;
+  info.iterations = events;
+  publish_work();
+  return info;
+}
+
+void EventDriven::publish_work() {
+  cvode_->add_work(work_);
+  work_.extra["events"] = static_cast<double>(events_);
+  work_.extra["impacts"] = static_cast<double>(impact_log_.size());
+  work_.extra["releases"] = static_cast<double>(releases_);
+  work_.extra["zeno_stops"] = static_cast<double>(zeno_stops_);
+}
+
+}  // namespace nsb
