@@ -4,6 +4,7 @@
 #include "integrators/cd_lagrange.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "reference/event_driven.hpp"
+#include "reference/penalty.hpp"
 
 namespace nsb {
 
@@ -12,6 +13,7 @@ const std::vector<IntegratorEntry>& integrator_registry() {
       {"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>},
       {"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>},
       {"event-driven", "reference: CVODE with root finding, Newton impacts, closed-contact mode (node-to-rigid contacts)", &EventDriven::parameters_spec, &make_from_params<Integrator, EventDriven>},
+      {"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>},
   };
   return entries;
 }

@@ -1,0 +1,217 @@
+#include "reference/penalty.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace nsb {
+
+namespace {
+
+constexpr double kMaxDampingRatio = 1e3;  // e(1e3) = 2.5e-7: plastic for any practical purpose
+
+using RowSpMat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+}  // namespace
+
+ParamSpecs PenaltyBdf::parameters_spec() {
+  return {
+      ParamSpec::real("stiffness", 1e10, 0.0, 1e308, "penalty stiffness k [N/m]", true),
+      ParamSpec::choice("damping", "restitution", {"restitution", "none"},
+                        "restitution: dashpot giving the problem's e; none: plain penalty k max(0, -g)"),
+      ParamSpec::real("rtol", 1e-9, 0.0, 1e-2, "CVODE relative tolerance", true),
+      ParamSpec::real("atol", 1e-12, 0.0, 1.0, "CVODE absolute tolerance", true),
+  };
+}
+
+PenaltyBdf::PenaltyBdf(const Params& params)
+    : Integrator(params), k_(params.real("stiffness")), damped_(params.choice("damping") == "restitution") {
+  settings_.bdf = true;
+  settings_.rtol = params.real("rtol");
+  settings_.atol = params.real("atol");
+}
+
+double PenaltyBdf::restitution(double zeta) {
+  if (zeta == 0.0) return 1.0;
+  if (zeta < 1.0) {
+    const double wd = std::sqrt(1.0 - zeta * zeta);
+    const double t = (std::numbers::pi - std::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta)) / wd;
+    return std::exp(-zeta * t) * std::abs(std::cos(wd * t) - zeta / wd * std::sin(wd * t));
+  }
+  if (zeta == 1.0) return std::exp(-2.0);  // critical: x = t e^-t, force zero at t* = 2
+  const double s = std::sqrt(zeta * zeta - 1.0), r1 = -zeta + s, r2 = -zeta - s;
+  const double t = std::log((1.0 + 2.0 * zeta * r2) / (1.0 + 2.0 * zeta * r1)) / (r1 - r2);
+  return std::abs((r1 * std::exp(r1 * t) - r2 * std::exp(r2 * t)) / (r1 - r2));
+}
+
+double PenaltyBdf::damping_ratio(double e) {
+  if (e >= 1.0) return 0.0;
+  // e(zeta) decreases from 1 (zeta = 0) to 0 (zeta -> inf): bisection in log zeta.
+  double lo = 1e-12, hi = kMaxDampingRatio;
+  if (restitution(hi) >= e) return hi;
+  for (int it = 0; it < 200 && hi / lo > 1.0 + 1e-15; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    (restitution(mid) > e ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+void PenaltyBdf::init(const Problem& problem, const State& initial) {
+  bind(problem, initial);
+  const Index n = problem.ndof();
+  const auto m = diagonal_mass(mass_);
+  if (!m || !(m->minCoeff() > 0.0))
+    throw InputError("penalty-bdf: needs a diagonal mass matrix with positive entries (M^{-1} in the right-hand side)");
+  minv_ = m->cwiseInverse();
+  L_ = problem.gap_operator();
+  const Index p = L_.rows();
+  const double zeta = damped_ ? damping_ratio(problem.restitution()) : 0.0;
+  c_ = Vec::Zero(p);
+  for (Index i = 0; i < p; ++i) {
+    const double h = L_.row(i).cwiseAbs2().dot(minv_.transpose());  // (L M^{-1} L^T)_ii
+    if (!(h > 0.0)) throw InputError(fmt::format("penalty-bdf: contact {} has an empty row of L", i));
+    c_[i] = 2.0 * zeta * std::sqrt(k_ / h);
+  }
+  y_ = Vec::Zero(2 * n + p);
+  y_ << state_.u, state_.v, Vec::Zero(p);
+  force_ = Vec::Zero(n);
+  fext_ = Vec::Zero(n);
+  problem.external_force(state_.t, fext_);
+  problem.tangent_stiffness(state_.u, K_);
+  switches_ = 0;
+
+  // Initial modes, looking ahead where the gap is exactly zero (a body resting on the
+  // obstacle presses into it: its free gap acceleration is negative).
+  gaps(y_);
+  problem.internal_force(state_.u, force_);
+  const Vec gddot = L_ * minv_.cwiseProduct(fext_ - force_);
+  on_.assign(static_cast<std::size_t>(p), 0);
+  for (Index i = 0; i < p; ++i)
+    on_[i] = (g_[i] < 0.0 && fc_[i] > 0.0) || (g_[i] == 0.0 && (gdot_[i] < 0.0 || (gdot_[i] == 0.0 && gddot[i] < 0.0)));
+
+  cvode_ = std::make_unique<Cvode>(static_cast<OdeSystem&>(*this), 2 * n + p, static_cast<int>(2 * p), settings_);
+  set_directions();
+  cvode_->restart(state_.t, y_);
+  publish_work();
+}
+
+void PenaltyBdf::gaps(ConstVecRef y) {
+  const Index n = problem_->ndof();
+  g_.noalias() = L_ * y.head(n);
+  g_ += problem_->gap_offset();
+  gdot_.noalias() = L_ * y.segment(n, n);
+  fc_ = -k_ * g_ - c_.cwiseProduct(gdot_);
+}
+
+void PenaltyBdf::set_directions() {
+  // Roots 2i (gap) and 2i+1 (force): an open contact watches the gap closing and the
+  // force rising; a contact that is on watches the gap reopening and the force vanishing.
+  std::vector<int> dir(2 * on_.size());
+  for (std::size_t i = 0; i < on_.size(); ++i) {
+    dir[2 * i] = on_[i] ? +1 : -1;
+    dir[2 * i + 1] = on_[i] ? -1 : +1;
+  }
+  cvode_->set_root_directions(dir);
+}
+
+void PenaltyBdf::rhs(double t, ConstVecRef y, VecRef ydot) {
+  const Index n = problem_->ndof(), p = L_.rows();
+  problem_->internal_force(y.head(n), force_);
+  if (!problem_->external_force_is_constant()) problem_->external_force(t, fext_);
+  force_ = fext_ - force_;
+  gaps(y);
+  for (Index i = 0; i < p; ++i) {
+    if (!on_[i]) fc_[i] = 0.0;
+    ydot[2 * n + i] = fc_[i];
+  }
+  force_.noalias() += L_.transpose() * fc_;
+  ydot.head(n) = y.segment(n, n);
+  ydot.segment(n, n) = minv_.cwiseProduct(force_);
+}
+
+void PenaltyBdf::jacobian(double, ConstVecRef y, CsrMatrix& J) {
+  // Contacts that are off keep their entries as explicit zeros: one pattern for the run.
+  const Index n = problem_->ndof(), p = L_.rows();
+  if (!problem_->is_linear()) problem_->tangent_stiffness(y.head(n), K_);
+  std::vector<Eigen::Triplet<double, sunindextype>> e;
+  e.reserve(static_cast<std::size_t>(n + K_.nonZeros() + 4 * L_.nonZeros()));
+  for (Index r = 0; r < n; ++r) e.emplace_back(r, n + r, 1.0);
+  for (Index col = 0; col < K_.outerSize(); ++col)
+    for (SpMat::InnerIterator it(K_, col); it; ++it) e.emplace_back(n + it.row(), it.col(), -minv_[it.row()] * it.value());
+  for (Index i = 0; i < p; ++i) {
+    const double on = on_[i] ? 1.0 : 0.0;
+    for (RowSpMat::InnerIterator a(L_, i); a; ++a) {
+      e.emplace_back(2 * n + i, a.col(), -on * k_ * a.value());
+      e.emplace_back(2 * n + i, n + a.col(), -on * c_[i] * a.value());
+      for (RowSpMat::InnerIterator b(L_, i); b; ++b) {
+        const double s = -on * minv_[a.col()] * a.value() * b.value();
+        e.emplace_back(n + a.col(), b.col(), s * k_);
+        e.emplace_back(n + a.col(), n + b.col(), s * c_[i]);
+      }
+    }
+  }
+  J.resize(2 * n + p, 2 * n + p);
+  J.setFromTriplets(e.begin(), e.end());
+  J.makeCompressed();
+}
+
+void PenaltyBdf::roots(double, ConstVecRef y, VecRef r) {
+  gaps(y);
+  for (Index i = 0; i < g_.size(); ++i) {
+    r[2 * i] = g_[i];
+    r[2 * i + 1] = fc_[i];
+  }
+}
+
+StepInfo PenaltyBdf::step(double dt) {
+  StepInfo info;
+  const Index n = problem_->ndof(), p = L_.rows();
+  const Vec lambda_start = y_.tail(p);
+  const double target = state_.t + dt;
+  double t = state_.t;
+  while (target - t > 1e-14 * std::max(1.0, std::abs(target))) {
+    if (!cvode_->advance(target, t, y_)) break;
+    const auto& fired = cvode_->root_info();
+    gaps(y_);
+    bool changed = false;
+    for (Index i = 0; i < p; ++i) {
+      const bool gap_root = fired[2 * i] != 0, force_root = fired[2 * i + 1] != 0;
+      if (!gap_root && !force_root) continue;
+      // Off -> on: the gap closes, or the force turns compressive inside the obstacle.
+      // On -> off: the gap reopens or the clamped force vanishes.
+      const bool now = on_[i] ? false : (gap_root || g_[i] < 0.0);
+      if (now != static_cast<bool>(on_[i])) {
+        on_[i] = now;
+        changed = true;
+        ++switches_;
+      }
+    }
+    if (changed) {
+      set_directions();
+      cvode_->restart(t, y_);
+    }
+  }
+  state_.t = target;
+  state_.u = y_.head(n);
+  state_.v = y_.segment(n, n);
+  impulses_ = y_.tail(p) - lambda_start;
+  info.dt = dt;
+  publish_work();
+  return info;
+}
+
+Energy PenaltyBdf::energy() const {
+  Energy E = Integrator::energy();
+  const Vec g = L_ * state_.u + problem_->gap_offset();
+  for (Index i = 0; i < g.size(); ++i)
+    if (on_[i] && g[i] < 0.0) E.potential += 0.5 * k_ * g[i] * g[i];
+  return E;
+}
+
+void PenaltyBdf::publish_work() {
+  cvode_->add_work(work_);
+  work_.extra["switches"] = static_cast<double>(switches_);
+}
+
+}  // namespace nsb
