@@ -132,11 +132,7 @@ int main(int argc, char** argv) {
         for (std::size_t k = 0; k < cases.size(); ++k)
           if (!shard.count || static_cast<int>(k % shard.count) == shard.index - 1) mine.push_back(k);
         const auto computed = nsb::parallel_map<Json>(mine.size(), [&](std::size_t j) {
-          try {
-            return nsb::run_study_case(*s, cases[mine[j]], options);
-          } catch (const InputError& e) {  // a bad study definition: say which case
-            throw InputError(fmt::format("study {}, case {} {}: {}", s->name, mine[j], cases[mine[j]].dump(), e.what()));
-          }
+          return nsb::run_study_case(*s, cases[mine[j]], options);
         }, s->name);
         if (shard.count) {
           Json file = {{"study", s->name}, {"full", full}, {"shard", shard.index}, {"of", shard.count},
