@@ -1,0 +1,124 @@
+#include "reference/cache.hpp"
+
+#include <fmt/format.h>
+#include <sundials/sundials_config.h>
+
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+
+namespace nsb {
+
+namespace {
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  // Written beside and renamed: a reader never sees half a file.
+  const auto tmp = std::filesystem::path(path.string() + ".tmp");
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error(fmt::format("reference cache: cannot write {}", tmp.string()));
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+// Inverse of series_to_csv; nullopt when the text is not a well-formed series.
+std::optional<Series> parse_series(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  Series s;
+  if (!std::getline(in, line) || line.empty()) return std::nullopt;
+  std::istringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) s.columns.push_back(name);
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::size_t count = 0;
+    for (std::string cell; std::getline(row, cell, ','); ++count) {
+      char* end = nullptr;
+      s.values.push_back(std::strtod(cell.c_str(), &end));
+      if (end != cell.c_str() + cell.size()) return std::nullopt;
+    }
+    if (count != s.columns.size()) return std::nullopt;
+  }
+  return s;
+}
+
+}  // namespace
+
+nlohmann::json reference_metadata(const ReferenceRequest& r) {
+  const auto& problem = find_problem(r.problem);
+  const auto& integrator = find_integrator(r.integrator);
+  return {{"cache_version", kReferenceCacheVersion},
+          {"sundials_version", SUNDIALS_VERSION},
+          {"problem", r.problem},
+          {"problem_parameters", Params(problem.parameters(), r.problem_parameters).values()},
+          {"integrator", r.integrator},
+          {"integrator_parameters", Params(integrator.parameters(), r.integrator_parameters).values()},
+          {"dt", r.dt},
+          {"t_end", r.t_end},
+          {"sample_every", r.sample_every}};
+}
+
+std::string reference_key(const nlohmann::json& metadata) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a
+  for (unsigned char c : metadata.dump()) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+CachedReference cached_reference(const std::filesystem::path& dir, const ReferenceRequest& request) {
+  CachedReference ref;
+  ref.metadata = reference_metadata(request);
+  const std::string key = reference_key(ref.metadata);
+  const auto json_path = dir / (key + ".json"), csv_path = dir / (key + ".csv");
+
+  const auto stored = nlohmann::json::parse(read_text(json_path), nullptr, /*allow_exceptions=*/false);
+  if (!stored.is_discarded() && stored.value("metadata", nlohmann::json()) == ref.metadata) {
+    if (auto series = parse_series(read_text(csv_path))) {
+      ref.summary = stored["summary"];
+      ref.series = std::move(*series);
+      ref.from_cache = true;
+      return ref;
+    }
+  }
+
+  auto problem = make_problem(request.problem, request.problem_parameters);
+  auto integrator = make_integrator(request.integrator, request.integrator_parameters);
+  integrator->init(*problem, problem->initial_state());
+  RunOptions options;
+  options.dt = request.dt;
+  options.t_end = request.t_end;
+  options.sample_every = request.sample_every;
+  const RunResult r = run(*problem, *integrator, options);
+  nlohmann::json work = {{"steps", r.work.steps},
+                         {"force_evaluations", r.work.force_evaluations},
+                         {"tangent_evaluations", r.work.tangent_evaluations},
+                         {"factorizations", r.work.factorizations},
+                         {"linear_solves", r.work.linear_solves}};
+  for (const auto& [k, v] : r.work.extra) work[k] = v;
+  ref.summary = {{"status", r.status == RunStatus::Ok ? "ok" : "diverged"},
+                 {"message", r.message},
+                 {"steps", r.steps},
+                 {"cpu_seconds", r.cpu_seconds},
+                 {"work", work}};
+  ref.series = r.series;
+  std::filesystem::create_directories(dir);
+  write_text(csv_path, series_to_csv(ref.series));
+  write_text(json_path, nlohmann::json{{"metadata", ref.metadata}, {"summary", ref.summary}}.dump(2) + "\n");
+  return ref;
+}
+
+}  // namespace nsb

@@ -1,0 +1,72 @@
+#include "reference/cache.hpp"
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <fstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("nsbench_cache_test_" + std::to_string(::getpid()));
+  TempDir() { fs::remove_all(path); }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+nsb::ReferenceRequest request() {
+  nsb::ReferenceRequest r;
+  r.problem = "bouncing-mass";
+  r.problem_parameters = {{"e", "0.9"}};
+  r.integrator = "event-driven";
+  r.dt = 0.01;
+  r.t_end = 1.0;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("reference cache: stored, reused, regenerated when missing, stale or corrupt", "[reference][cache]") {
+  TempDir dir;
+  const auto first = nsb::cached_reference(dir.path, request());
+  CHECK_FALSE(first.from_cache);
+  REQUIRE(first.summary["status"] == "ok");
+  const std::string key = nsb::reference_key(first.metadata);
+  REQUIRE(fs::exists(dir.path / (key + ".json")));
+  REQUIRE(fs::exists(dir.path / (key + ".csv")));
+  // Defaults are part of the metadata, so the key names the run completely.
+  CHECK(first.metadata["integrator_parameters"]["rtol"] == "1e-11");
+
+  const auto again = nsb::cached_reference(dir.path, request());
+  CHECK(again.from_cache);
+  CHECK(again.series.columns == first.series.columns);
+  CHECK(again.series.values == first.series.values);  // round-trip exact
+
+  // Another parameter is another run.
+  auto other = request();
+  other.integrator_parameters = {{"rtol", "1e-9"}};
+  CHECK_FALSE(nsb::cached_reference(dir.path, other).from_cache);
+
+  // Stale metadata (as left by an older version) and a truncated series are regenerated.
+  {
+    auto stored = nlohmann::json::parse(std::ifstream(dir.path / (key + ".json")));
+    stored["metadata"]["cache_version"] = 0;
+    std::ofstream(dir.path / (key + ".json")) << stored.dump();
+  }
+  CHECK_FALSE(nsb::cached_reference(dir.path, request()).from_cache);
+  CHECK(nsb::cached_reference(dir.path, request()).from_cache);
+  std::ofstream(dir.path / (key + ".csv")) << "t,dt\n1,2,3\n";
+  const auto rebuilt = nsb::cached_reference(dir.path, request());
+  CHECK_FALSE(rebuilt.from_cache);
+  CHECK(rebuilt.series.values == first.series.values);
+}
+
+TEST_CASE("reference cache: unknown names and bad values are input errors", "[reference][cache]") {
+  auto r = request();
+  r.integrator = "no-such";
+  CHECK_THROWS_AS(nsb::reference_metadata(r), nsb::InputError);
+  r = request();
+  r.integrator_parameters = {{"rtol", "-1"}};
+  CHECK_THROWS_AS(nsb::reference_metadata(r), nsb::InputError);
+}
