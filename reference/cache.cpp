@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
@@ -23,8 +24,10 @@ std::string read_text(const std::filesystem::path& path) {
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
-  // Written beside and renamed: a reader never sees half a file.
-  const auto tmp = std::filesystem::path(path.string() + ".tmp");
+  // Written beside and renamed: a reader never sees half a file, and concurrent writers of
+  // the same run (parallel study cases) each rename a whole file of the same content.
+  const auto tmp = std::filesystem::path(
+      fmt::format("{}.{}.tmp", path.string(), std::hash<std::thread::id>()(std::this_thread::get_id())));
   {
     std::ofstream out(tmp, std::ios::binary);
     out << text;
