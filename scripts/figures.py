@@ -63,9 +63,14 @@ def draw(spec, reports):
             lines.setdefault(label(row, spec["series"]), []).append((x, y))
         for name, pts in lines.items():
             pts.sort()
-            ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", markersize=3.5, linewidth=1.2, label=name)
+            dense = len(pts) > 50  # histories: a line, markers would hide it
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], marker=None if dense else "o", markersize=3.5,
+                    linewidth=1.2, label=name)
         ax.set_xscale("log" if spec["log_x"] else "linear")
         ax.set_yscale("log" if spec["log_y"] else "linear")
+        for axis, log in ((ax.xaxis, spec["log_x"]), (ax.yaxis, spec["log_y"])):
+            if not log:
+                axis.get_major_formatter().set_useOffset(False)  # plain values, no "1e-6 + 0.99999"
         ax.set_xlabel(spec["x"])
         ax.set_ylabel(spec["y"])
         if spec["panels"]:

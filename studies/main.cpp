@@ -150,7 +150,10 @@ int main(int argc, char** argv) {
       index += fmt::format("## {}\n\n{}\n\n", s->name, s->description);
       for (const auto& t : tables) {
         nsb::write_table(t, out);
-        index += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", t.title, t.id, t.id, t.id);
+        if (t.csv_only)
+          index += fmt::format("- {} ([csv]({}.csv))\n", t.title, t.id);
+        else
+          index += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", t.title, t.id, t.id, t.id);
         for (const auto& f : t.figures)
           index += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf))\n", f.title, f.id, f.id);
         all_tables.push_back(t);

@@ -1,5 +1,8 @@
+#include <fmt/format.h>
+
 #include <stdexcept>
 
+#include "core/parameters.hpp"
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -10,7 +13,13 @@ std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& optio
 }
 
 Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOptions& options) {
-  if (!study.run) return study.run_case(the_case);
+  if (!study.run) {
+    try {
+      return study.run_case(the_case);
+    } catch (const InputError& e) {  // a bad study definition: say which study and case
+      throw InputError(fmt::format("study {}, case {}: {}", study.name, the_case.dump(), e.what()));
+    }
+  }
   Json tables = Json::array();
   for (const auto& t : study.run(options)) tables.push_back(table_to_json_text(t));
   return tables;

@@ -35,8 +35,9 @@ struct StudyEntry {
 
 const std::vector<StudyEntry>& study_registry();
 
-// The cases of a study (one empty case for a single-function study), running one case,
-// and building the tables from all results.
+// The cases of a study (one empty case for a single-function study), running one case
+// (an InputError from a bad definition is rethrown naming the study and the case), and
+// building the tables from all results.
 std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& options);
 Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOptions& options);
 std::vector<Table> study_tables(const StudyEntry& study, const std::vector<Json>& cases,

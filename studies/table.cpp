@@ -132,6 +132,7 @@ std::string to_latex(const Table& t) {
 void write_table(const Table& t, const std::filesystem::path& dir) {
   ensure_directory(dir);
   write_file_atomic(dir / (t.id + ".csv"), to_csv(t));
+  if (t.csv_only) return;
   write_file_atomic(dir / (t.id + ".md"), to_markdown(t));
   write_file_atomic(dir / (t.id + ".tex"), to_latex(t));
 }
@@ -210,6 +211,7 @@ std::string table_to_json_text(const Table& t) {
     j["rows"].push_back(r);
   }
   j["metadata"] = t.metadata;
+  j["csv_only"] = t.csv_only;
   j["figures"] = nlohmann::json::array();
   for (const auto& f : t.figures)
     j["figures"].push_back({{"id", f.id}, {"title", f.title}, {"x", f.x}, {"y", f.y}, {"series", f.series},
@@ -230,6 +232,7 @@ Table table_from_json_text(const std::string& text) {
     t.rows.push_back(std::move(row));
   }
   t.metadata = j["metadata"].get<std::vector<std::pair<std::string, std::string>>>();
+  t.csv_only = j["csv_only"];
   for (const auto& f : j["figures"])
     t.figures.push_back({f["id"], f["title"], f["x"], f["y"], f["series"], f["panels"], f["log_x"], f["log_y"]});
   return t;

@@ -42,6 +42,7 @@ struct Table {
   std::vector<std::vector<Cell>> rows;
   std::vector<std::pair<std::string, std::string>> metadata;  // study parameters
   std::vector<Figure> figures;
+  bool csv_only = false;  // raw data behind a figure (histories): no Markdown or LaTeX
 
   void add_row(std::vector<Cell> row);  // throws std::logic_error on a width mismatch
 };

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "integrators/registry.hpp"
 #include "studies/parallel.hpp"
 #include "studies/study.hpp"
 
@@ -63,4 +64,18 @@ TEST_CASE("parallel: results come back in case order, and a failing case is repo
   CHECK_THROWS_WITH(nsb::parallel_for(50, [](std::size_t i) {
     if (i == 17) throw std::runtime_error("case 17 failed");
   }, "test"), "case 17 failed");
+}
+
+TEST_CASE("studies: a bad study definition fails with the study, the case and the reason", "[studies][bad-input]") {
+  nsb::StudyEntry bad;
+  bad.name = "broken";
+  bad.cases = [](const nsb::StudyOptions&) { return std::vector<nsb::Json>{{{"integrator", "no-such-scheme"}}}; };
+  bad.run_case = [](const nsb::Json& c) -> nsb::Json {
+    nsb::make_integrator(c["integrator"]);
+    return {};
+  };
+  const auto cases = nsb::study_cases(bad, {});
+  CHECK_THROWS_WITH(nsb::run_study_case(bad, cases[0], {}),
+                    Catch::Contains("study broken, case {\"integrator\":\"no-such-scheme\"}") &&
+                        Catch::Contains("unknown integrator (valid: cd-lagrange"));
 }
