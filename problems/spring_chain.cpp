@@ -11,8 +11,8 @@ ParamSpecs SpringChain::parameters_spec() {
       ParamSpec::real("m", 1.0, 0.0, 1e308, "mass of the even-numbered masses [kg]", true),
       ParamSpec::real("mass_ratio", 2.0, 0.0, 1e308, "odd-numbered masses are mass_ratio * m", true),
       ParamSpec::real("k", 100.0, 0.0, 1e308, "spring stiffness [N/m]", true),
-      ParamSpec::choice("wall", "none", {"none", "left"}, "rigid wall on the left of mass 0, or none"),
-      ParamSpec::real("gap", 0.1, 0.0, 1e308, "initial gap between mass 0 and the wall [m]"),
+      ParamSpec::choice("wall", "none", {"none", "left", "both"}, "rigid wall left of mass 0, also right of mass n-1 (both), or none"),
+      ParamSpec::real("gap", 0.1, 0.0, 1e308, "initial gap between an end mass and its wall [m]"),
       ParamSpec::real("e", 1.0, 0.0, 1.0, "Newton restitution coefficient at the wall"),
       ParamSpec::real("v0", 1.0, -1e308, 1e308, "rigid initial velocity towards the wall (-x) [m/s]"),
       ParamSpec::real("a", 0.5, -1e308, 1e308, "vibration: mass i starts with an extra a (-1)^i [m/s]"),
@@ -40,10 +40,12 @@ SpringChain::SpringChain(const Params& params)
   }
   K_.setFromTriplets(t.begin(), t.end());
 
-  const bool wall = params.choice("wall") == "left";
-  L_.resize(wall ? 1 : 0, n_);
-  g0_ = Vec::Constant(wall ? 1 : 0, params.real("gap"));
-  if (wall) L_.insert(0, 0) = 1.0;
+  const std::string& wall = params.choice("wall");
+  const Index walls = wall == "none" ? 0 : wall == "left" ? 1 : 2;
+  L_.resize(walls, n_);
+  g0_ = Vec::Constant(walls, params.real("gap"));
+  if (walls >= 1) L_.insert(0, 0) = 1.0;
+  if (walls == 2) L_.insert(1, n_ - 1) = -1.0;
   L_.makeCompressed();
 
   // omega_max^2 = largest eigenvalue of M^{-1/2} K M^{-1/2} (symmetric, same spectrum).

@@ -1,15 +1,16 @@
 #pragma once
 // Spring chain: n point masses in a line joined by n - 1 linear springs, no external force,
-// optionally a rigid wall on the left of the first mass.
+// optionally rigid walls: left of the first mass, or also right of the last one.
 //
 //     M U'' + K U = L^T lambda,     K = stiffness of the free chain (singular: rigid motion)
 //     masses alternate m, r m (r = mass_ratio), springs all k
 //     wall = left:  g(U) = gap + U_0 >= 0   (one contact);  wall = none: no contact
+//     wall = both:  also g(U) = gap - U_{n-1} >= 0  (the chain rattles between the walls)
 //
 // Initial state: U = 0, velocity -v0 + a (-1)^i on mass i (a rigid drift towards the wall
 // plus a vibration). A small stiff system with the momentum identities of a continuum:
 // F_int has zero resultant, so with no wall the total linear momentum sum_i m_i U'_i is
-// constant, and with the wall it changes by exactly the wall impulses. It is the test bed
+// constant, and with walls it changes by exactly the wall impulses (sum of L^T Lambda). It is the test bed
 // of the variable-step integrators (momentum under any step sequence, energy balance);
 // it is not a discretised bar (no element masses, no exact solution).
 //

@@ -26,7 +26,7 @@ TEST_CASE("spring chain: F_int is the gradient of the strain energy and has zero
   }
 }
 
-TEST_CASE("spring chain: stable step 2/omega_max, two masses in closed form; wall contact row", "[problems][spring-chain]") {
+TEST_CASE("spring chain: stable step 2/omega_max, two masses in closed form; wall contact rows", "[problems][spring-chain]") {
   // Two masses m, r m on a spring k: omega^2 = k (1/m + 1/(r m)).
   const auto p = chain({{"n", "2"}, {"m", "2"}, {"mass_ratio", "3"}, {"k", "50"}, {"wall", "left"}, {"gap", "0.2"}});
   CHECK(p.stable_step() == Approx(2.0 / std::sqrt(50.0 * (1.0 / 2.0 + 1.0 / 6.0))).epsilon(1e-12));
@@ -34,4 +34,7 @@ TEST_CASE("spring chain: stable step 2/omega_max, two masses in closed form; wal
   CHECK(p.gap_offset()[0] == 0.2);
   CHECK(p.gap_operator().coeff(0, 0) == 1.0);
   CHECK(chain({{"wall", "none"}}).ncontacts() == 0);
+  const auto both = chain({{"n", "4"}, {"wall", "both"}});
+  REQUIRE(both.ncontacts() == 2);
+  CHECK(both.gap_operator().coeff(1, 3) == -1.0);  // g = gap - U_3: closes when the last mass moves right
 }
