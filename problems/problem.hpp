@@ -75,6 +75,9 @@ class Problem {
   // Largest stable step of the explicit central-difference scheme, 2 / omega_max (an
   // estimate, from the largest eigenvalue of M^{-1} K).
   virtual double stable_step() const = 0;
+  // The same at configuration u, for schemes that follow a changing tangent (nonlinear
+  // problems override it; a linear problem's stable step does not depend on u).
+  virtual double stable_step_at(ConstVecRef /*u*/) const { return stable_step(); }
 
   // Problem-specific columns of series.csv (e.g. q, v, q_exact for the bouncing mass).
   virtual std::vector<std::string> observable_names() const { return {}; }

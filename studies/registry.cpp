@@ -5,6 +5,7 @@ namespace nsb {
 extern const StudyEntry bouncing_study;
 extern const StudyEntry hard_cases_study;
 extern const StudyEntry work_precision_study;
+extern const StudyEntry energy_study;
 extern const StudyEntry reference_study;
 
 const std::vector<StudyEntry>& study_registry() {
@@ -12,6 +13,7 @@ const std::vector<StudyEntry>& study_registry() {
       bouncing_study,
       hard_cases_study,
       work_precision_study,
+      energy_study,
       reference_study,
   };
   return entries;

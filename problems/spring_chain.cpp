@@ -1,0 +1,86 @@
+#include "problems/spring_chain.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <vector>
+
+namespace nsb {
+
+ParamSpecs SpringChain::parameters_spec() {
+  return {
+      ParamSpec::integer("n", 3, 2, 200, "number of masses"),
+      ParamSpec::real("m", 1.0, 0.0, 1e308, "mass of the even-numbered masses [kg]", true),
+      ParamSpec::real("mass_ratio", 2.0, 0.0, 1e308, "odd-numbered masses are mass_ratio * m", true),
+      ParamSpec::real("k", 100.0, 0.0, 1e308, "spring stiffness [N/m]", true),
+      ParamSpec::choice("wall", "none", {"none", "left", "both"}, "rigid wall left of mass 0, also right of mass n-1 (both), or none"),
+      ParamSpec::real("gap", 0.1, 0.0, 1e308, "initial gap between an end mass and its wall [m]"),
+      ParamSpec::real("e", 1.0, 0.0, 1.0, "Newton restitution coefficient at the wall"),
+      ParamSpec::real("v0", 1.0, -1e308, 1e308, "rigid initial velocity towards the wall (-x) [m/s]"),
+      ParamSpec::real("a", 0.5, -1e308, 1e308, "vibration: mass i starts with an extra a (-1)^i [m/s]"),
+  };
+}
+
+SpringChain::SpringChain(const Params& params)
+    : params_(params),
+      n_(params.integer("n")),
+      k_(params.real("k")),
+      e_(params.real("e")),
+      v0_(params.real("v0")),
+      a_(params.real("a")),
+      m_(n_),
+      K_(n_, n_) {
+  const double m = params.real("m"), ratio = params.real("mass_ratio");
+  for (Index i = 0; i < n_; ++i) m_[i] = (i % 2 == 0) ? m : ratio * m;
+
+  std::vector<Eigen::Triplet<double>> t;
+  for (Index i = 0; i + 1 < n_; ++i) {
+    t.emplace_back(i, i, k_);
+    t.emplace_back(i + 1, i + 1, k_);
+    t.emplace_back(i, i + 1, -k_);
+    t.emplace_back(i + 1, i, -k_);
+  }
+  K_.setFromTriplets(t.begin(), t.end());
+
+  const std::string& wall = params.choice("wall");
+  const Index walls = wall == "none" ? 0 : wall == "left" ? 1 : 2;
+  L_.resize(walls, n_);
+  g0_ = Vec::Constant(walls, params.real("gap"));
+  if (walls >= 1) L_.insert(0, 0) = 1.0;
+  if (walls == 2) L_.insert(1, n_ - 1) = -1.0;
+  L_.makeCompressed();
+
+  // omega_max^2 = largest eigenvalue of M^{-1/2} K M^{-1/2} (symmetric, same spectrum).
+  const Vec s = m_.cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd A = s.asDiagonal() * Eigen::MatrixXd(K_) * s.asDiagonal();
+  const double lambda_max = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  stable_step_ = 2.0 / std::sqrt(lambda_max);
+}
+
+SpMat SpringChain::mass_matrix() const {
+  SpMat M(n_, n_);
+  M.reserve(Eigen::VectorXi::Constant(n_, 1));
+  for (Index i = 0; i < n_; ++i) M.insert(i, i) = m_[i];
+  M.makeCompressed();
+  return M;
+}
+
+void SpringChain::internal_force(ConstVecRef u, VecRef f) const { f.noalias() = K_ * u; }
+
+void SpringChain::tangent_stiffness(ConstVecRef, SpMat& K) const { K = K_; }
+
+double SpringChain::strain_energy(ConstVecRef u) const {
+  double w = 0.0;
+  for (Index i = 0; i + 1 < n_; ++i) w += 0.5 * k_ * (u[i + 1] - u[i]) * (u[i + 1] - u[i]);
+  return w;
+}
+
+State SpringChain::initial_state() const {
+  State s;
+  s.u = Vec::Zero(n_);
+  s.v.resize(n_);
+  for (Index i = 0; i < n_; ++i) s.v[i] = -v0_ + ((i % 2 == 0) ? a_ : -a_);
+  return s;
+}
+
+void SpringChain::observe(const State& s, std::span<double> out) const { out[0] = momentum(s.v); }
+
+}  // namespace nsb

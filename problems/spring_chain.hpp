@@ -1,0 +1,59 @@
+#pragma once
+// Spring chain: n point masses in a line joined by n - 1 linear springs, no external force,
+// optionally rigid walls: left of the first mass, or also right of the last one.
+//
+//     M U'' + K U = L^T lambda,     K = stiffness of the free chain (singular: rigid motion)
+//     masses alternate m, r m (r = mass_ratio), springs all k
+//     wall = left:  g(U) = gap + U_0 >= 0   (one contact);  wall = none: no contact
+//     wall = both:  also g(U) = gap - U_{n-1} >= 0  (the chain rattles between the walls)
+//
+// Initial state: U = 0, velocity -v0 + a (-1)^i on mass i (a rigid drift towards the wall
+// plus a vibration). A small stiff system with the momentum identities of a continuum:
+// F_int has zero resultant, so with no wall the total linear momentum sum_i m_i U'_i is
+// constant, and with walls it changes by exactly the wall impulses (sum of L^T Lambda). It is the test bed
+// of the variable-step integrators (momentum under any step sequence, energy balance);
+// it is not a discretised bar (no element masses, no exact solution).
+//
+// Stable step of the central difference scheme: 2 / omega_max, omega_max^2 the largest
+// eigenvalue of M^{-1} K (computed once, dense, hence n <= 200).
+#include "problems/problem.hpp"
+
+namespace nsb {
+
+class SpringChain final : public Problem {
+ public:
+  explicit SpringChain(const Params& params);
+  static ParamSpecs parameters_spec();
+
+  std::string name() const override { return "spring-chain"; }
+  const Params& parameters() const override { return params_; }
+  Index ndof() const override { return n_; }
+  SpMat mass_matrix() const override;
+  void internal_force(ConstVecRef u, VecRef f) const override;
+  void tangent_stiffness(ConstVecRef u, SpMat& K) const override;
+  bool is_linear() const override { return true; }
+  void external_force(double, VecRef f) const override { f.setZero(); }
+  double strain_energy(ConstVecRef u) const override;
+  double load_potential(ConstVecRef) const override { return 0.0; }
+  const SpMat& gap_operator() const override { return L_; }
+  const Vec& gap_offset() const override { return g0_; }
+  double restitution() const override { return e_; }
+  State initial_state() const override;
+  double stable_step() const override { return stable_step_; }
+  std::vector<std::string> observable_names() const override { return {"momentum"}; }
+  void observe(const State& s, std::span<double> out) const override;
+
+  // Total linear momentum sum_i m_i v_i.
+  double momentum(ConstVecRef v) const { return m_.dot(v); }
+
+ private:
+  Params params_;
+  Index n_;
+  double k_, e_, v0_, a_;
+  Vec m_;
+  SpMat K_, L_;
+  Vec g0_;
+  double stable_step_;
+};
+
+}  // namespace nsb

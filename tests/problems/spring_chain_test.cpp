@@ -1,0 +1,40 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "problems/spring_chain.hpp"
+
+using Catch::Detail::Approx;
+
+namespace {
+nsb::SpringChain chain(const std::map<std::string, std::string>& p) {
+  return nsb::SpringChain(nsb::Params(nsb::SpringChain::parameters_spec(), p));
+}
+}  // namespace
+
+TEST_CASE("spring chain: F_int is the gradient of the strain energy and has zero resultant", "[problems][spring-chain]") {
+  const auto p = chain({{"n", "5"}, {"k", "30"}});
+  nsb::Vec u(5), f(5);
+  u << 0.1, -0.3, 0.25, 0.0, 0.7;
+  p.internal_force(u, f);
+  CHECK(f.sum() == Approx(0.0).margin(1e-12));
+  const double h = 1e-6;  // central differences of a quadratic: exact up to round-off
+  for (nsb::Index i = 0; i < 5; ++i) {
+    nsb::Vec up = u, um = u;
+    up[i] += h;
+    um[i] -= h;
+    CHECK((p.strain_energy(up) - p.strain_energy(um)) / (2 * h) == Approx(f[i]).margin(1e-7));
+  }
+}
+
+TEST_CASE("spring chain: stable step 2/omega_max, two masses in closed form; wall contact rows", "[problems][spring-chain]") {
+  // Two masses m, r m on a spring k: omega^2 = k (1/m + 1/(r m)).
+  const auto p = chain({{"n", "2"}, {"m", "2"}, {"mass_ratio", "3"}, {"k", "50"}, {"wall", "left"}, {"gap", "0.2"}});
+  CHECK(p.stable_step() == Approx(2.0 / std::sqrt(50.0 * (1.0 / 2.0 + 1.0 / 6.0))).epsilon(1e-12));
+  REQUIRE(p.ncontacts() == 1);
+  CHECK(p.gap_offset()[0] == 0.2);
+  CHECK(p.gap_operator().coeff(0, 0) == 1.0);
+  CHECK(chain({{"wall", "none"}}).ncontacts() == 0);
+  const auto both = chain({{"n", "4"}, {"wall", "both"}});
+  REQUIRE(both.ncontacts() == 2);
+  CHECK(both.gap_operator().coeff(1, 3) == -1.0);  // g = gap - U_3: closes when the last mass moves right
+}
