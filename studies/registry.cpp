@@ -5,12 +5,14 @@ namespace nsb {
 extern const StudyEntry bouncing_study;
 extern const StudyEntry hard_cases_study;
 extern const StudyEntry work_precision_study;
+extern const StudyEntry bar_study;
 
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
       bouncing_study,
       hard_cases_study,
       work_precision_study,
+      bar_study,
   };
   return entries;
 }
