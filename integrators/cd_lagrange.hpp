@@ -15,7 +15,21 @@
 // impulse form is not.
 //
 // Start: P_{1/2} = M v0 + tau/2 (F_ext(0) - F_int(U_0)) (half kick, second order in
-// smooth phases). Needs a diagonal mass with positive entries.
+// smooth phases). Needs a diagonal mass.
+//
+// Massless dofs (zero diagonal mass, e.g. the singular mass of signorini_bar.hpp) have no
+// momentum: each is quasi-static, its position from its own equilibrium with its contact
+// at t_{k+1}, after the massive dofs have moved (Khenous, Laborde, Renard 2008):
+//     r_i   = F_int,i(U_{k+1}) - F_ext,i(t_{k+1}),   u_i <- u_i - r_i / K_ii   (free equilibrium)
+//     if its contact c would be closed, g_c = g0_c + l u_i < 0:  u_i <- u_i - g_c / l
+//     F_int <- F_int + K(:, i) du_i   (exact: the problem is linear)
+//     Lambda_c = tau (F_int,i - F_ext,i) / l >= 0   (its internal force: no impulse law, no e)
+// Conditions, checked by init() (InputError otherwise): the problem is linear, K_ii > 0, no
+// two massless dofs are coupled by K (the massless tangent block is diagonal), and a contact
+// touching a massless dof touches only that dof (row l e_i), at most one per dof. The
+// momentum identity P_end - P_start = sum L^T Lambda + int F_ext still holds to round-off:
+// the massive dofs receive -tau F_int,i = -Lambda_c l - tau F_ext,i through K's zero column
+// sums. The reported v_i of a massless dof is its rate (U_{k+1,i} - U_{k,i}) / tau.
 //
 // Reported state after a step: t = t_{k+1}, u = U_{k+1}, v = M^{-1} P_{k+3/2} (the velocity
 // of the coming step). Reported energy: the scheme's discrete energy
@@ -43,6 +57,19 @@ class CdLagrange final : public Integrator {
   Vec u_prev_, v_prev_;   // U_k and M^{-1} P_{k+1/2}
   Vec f_int_, f_ext_;
   bool started_ = false;
+
+  // Quasi-static (massless) dofs; K's column i is stored as entries [begin, end) of
+  // column_rows_/column_values_, so the update touches only i's neighbours.
+  struct MasslessDof {
+    Index dof, contact;  // contact = -1: none
+    double k_ii, l;
+    std::size_t begin, end;
+  };
+  void solve_massless(double tau);
+  std::vector<MasslessDof> massless_;
+  std::vector<Index> column_rows_;
+  std::vector<double> column_values_;
+  Vec massless_impulse_;  // per massless dof, this step
 };
 
 }  // namespace nsb

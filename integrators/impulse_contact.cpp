@@ -22,7 +22,7 @@ long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef i
   impulses.setZero();
   if (h_is_diagonal_) {
     for (Index i = 0; i < L_.rows(); ++i) {
-      if (g0[i] + gap_[i] > 0.0) continue;
+      if (g0[i] + gap_[i] > 0.0 || h_diag_[i] == 0.0) continue;
       double gdot_free = 0.0, gdot_prev = 0.0;
       for (decltype(L_)::InnerIterator it(L_, i); it; ++it) {
         gdot_free += it.value() * v[it.col()];
@@ -37,7 +37,7 @@ long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef i
   }
   std::vector<Index> closed;
   for (Index i = 0; i < L_.rows(); ++i)
-    if (g0[i] + gap_[i] <= 0.0) closed.push_back(i);
+    if (g0[i] + gap_[i] <= 0.0 && h_diag_[i] != 0.0) closed.push_back(i);
   if (closed.empty()) return 0;
   const Index a = static_cast<Index>(closed.size());
   Eigen::MatrixXd D(a, a);

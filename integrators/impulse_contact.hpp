@@ -8,6 +8,8 @@
 // H diagonal (node-to-rigid contacts on distinct dofs): closed form per contact,
 // Lambda_i = max(0, -(g'_free,i + e g'_prev,i) / H_ii), no allocation. Otherwise an LCP on
 // the closed contacts (projected Gauss-Seidel, lcp.hpp).
+// A contact with H_ii = 0 acts on massless dofs only (minv zero there): it has no impulse
+// law and is skipped here; the caller solves it quasi-statically (cd_lagrange.hpp).
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
 

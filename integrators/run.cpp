@@ -77,7 +77,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     row[5] = min_gap();
     row[6] = lambda.sum();
     row[7] = static_cast<double>((lambda.array() > 0.0).count());
-    problem.observe(s, std::span<double>(row).subspan(kGenericColumns.size()));
+    problem.observe_step(s, lambda, dt, std::span<double>(row).subspan(kGenericColumns.size()));
     result.series.values.insert(result.series.values.end(), row.begin(), row.end());
   };
   const auto finite = [&]() {

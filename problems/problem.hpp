@@ -82,6 +82,12 @@ class Problem {
   // Problem-specific columns of series.csv (e.g. q, v, q_exact for the bouncing mass).
   virtual std::vector<std::string> observable_names() const { return {}; }
   virtual void observe(const State& /*s*/, std::span<double> /*out*/) const {}
+  // The same columns after a step, for those that need the step's contact impulses (size p)
+  // and its length dt (0 for the initial sample), e.g. a contact force impulse / dt. The
+  // run driver calls this one; the default forwards to observe().
+  virtual void observe_step(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
+    observe(s, out);
+  }
 
   // Exact solution where one is known.
   virtual std::optional<State> exact_state(double /*t*/) const { return std::nullopt; }

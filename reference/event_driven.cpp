@@ -184,12 +184,22 @@ void EventDriven::handle_events(double t, const std::vector<int>& fired) {
     }
   }
   // Closed contacts: held while the acceleration-level LCP gives a compressive reaction
-  // (diagonal here: lambda_i = -F_d / a_i > 0), released otherwise.
+  // (diagonal here: lambda_i = -F_d / a_i > 0), released otherwise. A zero reaction (an
+  // unstressed body arriving on the obstacle, as the bar at t = 0) is decided by its rate
+  // lambda_i' = (K v)_d / a_i: released while the reaction is zero, the dof would sit at
+  // zero gap with no root to catch it going through, since a root at its start is no root.
   net_force(t, y_.head(n));
+  if (!problem_->is_linear()) problem_->tangent_stiffness(y_.head(n), K_);
   for (std::size_t i = 0; i < p; ++i) {
     if (!closed_[i]) continue;
     const Contact& c = contacts_[i];
-    if (-f_[c.dof] / c.a > 0.0) {
+    const double reaction = -f_[c.dof] / c.a;
+    // Zero up to the round-off of F_int (a rigidly moving body: K u = 0 only to eps |K| |u|).
+    const double roundoff = 1e-12 * (std::abs(fext_[c.dof]) + K_.col(c.dof).cwiseAbs().sum() * y_.head(n).cwiseAbs().maxCoeff());
+    const bool zero = std::abs(f_[c.dof]) <= roundoff;
+    if (reaction > 0.0 && !zero) {
+      close(c);
+    } else if (zero && K_.col(c.dof).dot(y_.tail(n)) / c.a >= 0.0) {  // K symmetric: row = column
       close(c);
     } else {
       closed_[i] = 0;

@@ -7,6 +7,7 @@ extern const StudyEntry hard_cases_study;
 extern const StudyEntry work_precision_study;
 extern const StudyEntry energy_study;
 extern const StudyEntry reference_study;
+extern const StudyEntry bar_study;
 
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
@@ -15,6 +16,7 @@ const std::vector<StudyEntry>& study_registry() {
       work_precision_study,
       energy_study,
       reference_study,
+      bar_study,
   };
   return entries;
 }

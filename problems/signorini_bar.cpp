@@ -1,0 +1,199 @@
+#include "problems/signorini_bar.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace nsb {
+
+namespace {
+
+struct Defaults {
+  double L, E, rho, A, v0, g0;
+};
+
+ParamSpecs bar_spec(const Defaults& d) {
+  constexpr double inf = 1e308;
+  return {
+      ParamSpec::real("L", d.L, 0.0, inf, "bar length [m]", true),
+      ParamSpec::real("E", d.E, 0.0, inf, "Young's modulus [Pa]", true),
+      ParamSpec::real("rho", d.rho, 0.0, inf, "density [kg/m^3]", true),
+      ParamSpec::real("A", d.A, 0.0, inf, "cross-section area [m^2]", true),
+      ParamSpec::real("v0", d.v0, 0.0, inf, "initial speed towards the wall [m/s]", true),
+      ParamSpec::real("g0", d.g0, 0.0, inf, "initial gap to the wall [m]"),
+      ParamSpec::integer("N", 100, 1, 100'000'000, "number of linear elements"),
+      ParamSpec::choice("mass", "lumped", {"lumped", "consistent", "singular"},
+                        "mass model (singular: massless contact node, Khenous-Laborde-Renard 2008)"),
+  };
+}
+
+SignoriniBar::MassModel parse_model(const std::string& m) {
+  if (m == "consistent") return SignoriniBar::MassModel::Consistent;
+  if (m == "singular") return SignoriniBar::MassModel::Singular;
+  return SignoriniBar::MassModel::Lumped;
+}
+
+}  // namespace
+
+ParamSpecs SignoriniBar::parameters_spec() { return bar_spec({1.0, 1.0, 1.0, 1.0, 1.0, 0.0}); }
+
+ParamSpecs SignoriniBar::steel_parameters_spec() { return bar_spec({1.0, 210e9, 7800.0, 3.14e-4, 0.1, 5e-5}); }
+
+std::unique_ptr<Problem> SignoriniBar::make_steel(const Params& params) {
+  return std::make_unique<SignoriniBar>(params, "signorini-bar-steel");
+}
+
+SignoriniBar::SignoriniBar(const Params& params, std::string name)
+    : name_(std::move(name)),
+      params_(params),
+      len_(params.real("L")),
+      young_(params.real("E")),
+      rho_(params.real("rho")),
+      area_(params.real("A")),
+      v0_(params.real("v0")),
+      gap0_(params.real("g0")),
+      n_(params.integer("N")),
+      model_(parse_model(params.choice("mass"))) {
+  c_ = std::sqrt(young_ / rho_);
+  t0_ = gap0_ / v0_;
+  const double h = element_size();
+  k_ = young_ * area_ / h;
+  const double me = rho_ * area_ * h;  // element mass
+  const Index n = ndof();
+
+  std::vector<Eigen::Triplet<double>> kt, mt;
+  kt.reserve(4 * n_);
+  mt.reserve(4 * n_);
+  for (Index e = 0; e < n_; ++e) {
+    for (Index a = 0; a < 2; ++a)
+      for (Index b = 0; b < 2; ++b) kt.emplace_back(e + a, e + b, a == b ? k_ : -k_);
+    if (model_ == MassModel::Consistent) {
+      for (Index a = 0; a < 2; ++a)
+        for (Index b = 0; b < 2; ++b) mt.emplace_back(e + a, e + b, me * (a == b ? 2.0 : 1.0) / 6.0);
+    } else {
+      mt.emplace_back(e, e, 0.5 * me);
+      mt.emplace_back(e + 1, e + 1, 0.5 * me);
+    }
+  }
+  K_.resize(n, n);
+  K_.setFromTriplets(kt.begin(), kt.end());
+  M_.resize(n, n);
+  M_.setFromTriplets(mt.begin(), mt.end());
+  if (model_ == MassModel::Singular) {
+    // The contact node's mass goes to node 1 (header: what is kept and what is not).
+    M_.coeffRef(1, 1) += M_.coeffRef(0, 0);
+    M_.coeffRef(0, 0) = 0.0;
+  }
+  M_.makeCompressed();
+  mass_rows_ = M_ * Vec::Ones(n);
+
+  L_.resize(1, n);
+  L_.insert(0, 0) = 1.0;
+  L_.makeCompressed();
+  g0_ = Vec::Constant(1, gap0_);
+}
+
+// Element loop written as a tridiagonal stencil: one pass, no matrix, no allocation.
+void SignoriniBar::internal_force(ConstVecRef u, VecRef f) const {
+  const Index n = n_;
+  const double* x = u.data();
+  double* y = f.data();
+  y[0] = k_ * (x[0] - x[1]);
+  for (Index i = 1; i < n; ++i) y[i] = k_ * (2.0 * x[i] - x[i - 1] - x[i + 1]);
+  y[n] = k_ * (x[n] - x[n - 1]);
+}
+
+void SignoriniBar::tangent_stiffness(ConstVecRef, SpMat& K) const {
+  if (K.rows() == K_.rows() && K.cols() == K_.cols() && K.isCompressed() && K.nonZeros() == K_.nonZeros())
+    std::copy(K_.valuePtr(), K_.valuePtr() + K_.nonZeros(), K.valuePtr());
+  else
+    K = K_;
+}
+
+double SignoriniBar::strain_energy(ConstVecRef u) const {
+  double s = 0.0;
+  for (Index e = 0; e < n_; ++e) {
+    const double d = u[e + 1] - u[e];
+    s += d * d;
+  }
+  return 0.5 * k_ * s;
+}
+
+State SignoriniBar::initial_state() const {
+  State s;
+  s.u = Vec::Zero(ndof());
+  s.v = Vec::Constant(ndof(), -v0_);
+  return s;
+}
+
+double SignoriniBar::stable_step() const {
+  const double h = element_size();
+  return model_ == MassModel::Consistent ? h / (std::sqrt(3.0) * c_) : h / c_;
+}
+
+double SignoriniBar::exact_displacement(double x, double t) const {
+  const double s = t - t0_, T = contact_duration();
+  if (s <= x / c_) return -v0_ * t;
+  if (s < (2.0 * len_ - x) / c_) return -gap0_ - v0_ * x / c_;
+  if (s <= T) return -gap0_ - v0_ * x / c_ + v0_ * (s - (2.0 * len_ - x) / c_);
+  return -gap0_ + v0_ * (s - T);
+}
+
+double SignoriniBar::exact_velocity(double x, double t) const {
+  const double s = t - t0_;
+  if (s <= x / c_) return -v0_;
+  if (s < (2.0 * len_ - x) / c_) return 0.0;
+  return v0_;
+}
+
+double SignoriniBar::exact_stress(double x, double t) const {
+  const double s = t - t0_;
+  return (s > x / c_ && s < (2.0 * len_ - x) / c_) ? -rho_ * c_ * v0_ : 0.0;
+}
+
+double SignoriniBar::exact_contact_force(double t) const {
+  const double s = t - t0_;
+  return (s > 0.0 && s < contact_duration()) ? contact_force_level() : 0.0;
+}
+
+double SignoriniBar::exact_momentum(double t) const {
+  const double s = std::clamp(t - t0_, 0.0, contact_duration());
+  return -total_mass() * v0_ + contact_force_level() * s;
+}
+
+std::optional<State> SignoriniBar::exact_state(double t) const {
+  State s;
+  s.t = t;
+  s.u.resize(ndof());
+  s.v.resize(ndof());
+  const double h = element_size();
+  for (Index i = 0; i <= n_; ++i) {
+    const double x = static_cast<double>(i) * h;
+    s.u[i] = exact_displacement(x, t);
+    s.v[i] = exact_velocity(x, t);
+  }
+  return s;
+}
+
+std::vector<std::string> SignoriniBar::observable_names() const {
+  return {"u_contact", "v_contact", "contact_force", "u_contact_exact", "v_contact_exact",
+          "contact_force_exact", "momentum", "momentum_exact"};
+}
+
+void SignoriniBar::observe(const State& s, std::span<double> out) const {
+  out[0] = s.u[0];
+  out[1] = s.v[0];
+  out[2] = 0.0;  // no step, no impulse
+  out[3] = exact_displacement(0.0, s.t);
+  out[4] = exact_velocity(0.0, s.t);
+  out[5] = exact_contact_force(s.t);
+  out[6] = momentum(s.v);
+  out[7] = exact_momentum(s.t);
+}
+
+void SignoriniBar::observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
+  observe(s, out);
+  if (dt > 0.0) out[2] = impulses[0] / dt;
+}
+
+}  // namespace nsb

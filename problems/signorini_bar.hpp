@@ -1,0 +1,120 @@
+#pragma once
+// Signorini bar: a 1D linear elastic bar hitting a rigid wall (DESIGN.md section 3).
+//
+//     rho A u_tt - E A u_xx = 0   on (0, L),      E A u_x(L, t) = 0     (free end)
+//     g(t) = g0 + u(0, t) >= 0,   lambda >= 0,   g lambda = 0,   E A u_x(0, t) = -lambda
+//     u(x, 0) = 0,   u_t(x, 0) = -v0                 (rigid motion towards the wall)
+//
+// The wall is at x = -g0. Parameters: L, E, rho, A, v0 > 0, g0 >= 0, N (linear elements),
+// mass = lumped | consistent | singular. c = sqrt(E / rho), T = 2 L / c, t0 = g0 / v0.
+//
+// Exact solution (d'Alembert), s = t - t0 (contact starts at t0 and lasts exactly T):
+//     s <= x/c                 u = -v0 t                          v = -v0   sigma = 0
+//     x/c < s < (2L - x)/c     u = -g0 - v0 x / c                 v = 0     sigma = -rho c v0
+//     (2L - x)/c <= s <= T     u = -g0 - v0 x / c + v0 (s - (2L - x)/c)  v = +v0  sigma = 0
+//     s >= T                   u = -g0 + v0 (s - T)               v = +v0   sigma = 0
+// u is continuous across both fronts x = c s and x = 2L - c s; v and sigma jump there.
+// Contact force A rho c v0 for 0 < s < T, else 0. Energy rho A L v0^2 / 2 at all times;
+// momentum -rho A L v0 + A rho c v0 clamp(s, 0, T); the bar leaves the wall with +v0.
+//
+// Discretisation: nodes x_i = i h, h = L / N, i = 0..N; dof i is u(x_i); contact on node 0:
+// L = [1 0 ... 0], gap offset g0, restitution e = 0 (a continuum contact has no impact law;
+// the lumped model's node impacts are inelastic and the study shows what that costs).
+//     K: element (E A / h) [1 -1; -1 1];  strain energy U^T K U / 2.
+//     lumped      M = rho A h diag(1/2, 1, ..., 1, 1/2)
+//     consistent  element (rho A h / 6) [2 1; 1 2]
+//     singular    M = rho A h diag(0, 3/2, 1, ..., 1, 1/2)
+// Stable step 2/omega_max: the free-free lumped chain has omega_max = 2c/h exactly, so h/c;
+// singular: Gershgorin on M^{-1} K over the massive dofs (node 0 condensed, free or on the
+// wall) gives at most 4 c^2 / h^2 too, so h/c; consistent: omega_max = 2 sqrt(3) c / h, so
+// h / (sqrt(3) c).
+//
+// Singular mass (Khenous, Laborde, Renard, Eur. J. Mech. A/Solids 27, 2008; Di Stasio et
+// al. 2021). The contact node gets no mass; its lumped mass rho A h / 2 goes to node 1.
+// Kept: the total mass, hence the momentum and kinetic energy of rigid motions and the
+// rebound velocity. Not kept: the centre of mass moves inward by h^2 / (2L) (O(h^2)), and
+// so does the second moment. With linear elements and non-negative masses nothing better
+// exists locally: keeping the centre of mass too needs node 1 += rho A h, node 2 -= rho A h/2
+// (node 2 at half mass halves its stable-step margin: h / (sqrt(2) c)); keeping the second
+// moment as well needs a negative mass. We keep the stable step h / c.
+// Massless contact node: with m_0 = 0 the node's equation is static,
+//     0 = F_ext,0 - F_int,0(U) + lambda,   F_int,0 = (E A / h)(u_0 - u_1),
+//     0 <= g0 + u_0  _|_  lambda >= 0,
+// whose solution given u_1 is u_0 = max(-g0, u_1) and lambda = (E A / h)(u_0 - u_1) >= 0:
+// the node sits on the wall while its element pushes and follows the element otherwise,
+// and the contact force is the node's internal force. Condensing u_0 out leaves the massive
+// dofs with a unilateral spring E A / h from node 1 to the wall: a Lipschitz force, so the
+// semi-discrete problem is an ODE (well posed, energy conserving, no impacts, hence neither
+// the impact energy loss nor the contact-force chatter of the lumped model). Integrators
+// see only a zero diagonal mass entry and treat the dof quasi-statically (cd_lagrange.hpp).
+#include <memory>
+
+#include "problems/problem.hpp"
+
+namespace nsb {
+
+class SignoriniBar final : public Problem {
+ public:
+  enum class MassModel { Lumped, Consistent, Singular };
+
+  explicit SignoriniBar(const Params& params, std::string name = "signorini-bar");
+  // Nondimensional defaults: L = E = rho = A = v0 = 1, g0 = 0, N = 100, lumped.
+  static ParamSpecs parameters_spec();
+  // Steel defaults: L = 1 m, E = 210 GPa, rho = 7800 kg/m^3, A = 3.14e-4 m^2, v0 = 0.1 m/s,
+  // g0 = 5e-5 m (registry line signorini-bar-steel).
+  static ParamSpecs steel_parameters_spec();
+  static std::unique_ptr<Problem> make_steel(const Params& params);
+
+  std::string name() const override { return name_; }
+  const Params& parameters() const override { return params_; }
+  Index ndof() const override { return n_ + 1; }
+  SpMat mass_matrix() const override { return M_; }
+  void internal_force(ConstVecRef u, VecRef f) const override;
+  void tangent_stiffness(ConstVecRef u, SpMat& K) const override;
+  bool is_linear() const override { return true; }
+  void external_force(double, VecRef f) const override { f.setZero(); }
+  double strain_energy(ConstVecRef u) const override;
+  double load_potential(ConstVecRef) const override { return 0.0; }
+  const SpMat& gap_operator() const override { return L_; }
+  const Vec& gap_offset() const override { return g0_; }
+  double restitution() const override { return 0.0; }
+  State initial_state() const override;
+  double stable_step() const override;
+  // u_contact, v_contact, contact_force (impulse / dt of the step), their exact values,
+  // momentum (sum of M's row sums times v) and its exact value.
+  std::vector<std::string> observable_names() const override;
+  void observe(const State& s, std::span<double> out) const override;
+  void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  std::optional<State> exact_state(double t) const override;
+
+  // Exact field at any (x, t), x in [0, L].
+  double exact_displacement(double x, double t) const;
+  double exact_velocity(double x, double t) const;
+  double exact_stress(double x, double t) const;
+  double exact_contact_force(double t) const;
+  double exact_momentum(double t) const;
+
+  MassModel mass_model() const { return model_; }
+  double wave_speed() const { return c_; }
+  double contact_start() const { return t0_; }      // g0 / v0
+  double contact_duration() const { return 2.0 * len_ / c_; }
+  double contact_force_level() const { return area_ * rho_ * c_ * v0_; }
+  double total_mass() const { return rho_ * area_ * len_; }
+  double exact_energy() const { return 0.5 * total_mass() * v0_ * v0_; }
+  double rebound_velocity() const { return v0_; }
+  double element_size() const { return len_ / static_cast<double>(n_); }
+  // Linear momentum sum_i (row sum of M)_i v_i (exact for every mass model: 1^T M v).
+  double momentum(ConstVecRef v) const { return mass_rows_.dot(v); }
+
+ private:
+  std::string name_;
+  Params params_;
+  double len_, young_, rho_, area_, v0_, gap0_;
+  Index n_;
+  MassModel model_;
+  double c_, t0_, k_;  // wave speed, contact start, element stiffness E A / h
+  SpMat M_, K_, L_;
+  Vec g0_, mass_rows_;
+};
+
+}  // namespace nsb

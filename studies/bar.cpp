@@ -1,0 +1,236 @@
+// Study "bar": every integrator on the Signorini bar (problems/signorini_bar.hpp) against the
+// exact d'Alembert solution, nondimensional (L = E = rho = A = v0 = 1, g0 = 0: c = 1, contact
+// on [0, T], T = 2, force 1, E0 = 1/2), run to 1.5 T.
+// Grid: N in {50, 100, 200, 400, 800, 1600} (--full: also 3200, 6400), dt = alpha * stable step with
+// alpha in {0.25, 0.5, 0.9, 1}, mass lumped | consistent | singular, every registered
+// integrator. A scheme that declines a mass model (InputError at init, e.g. CD-Lagrange with
+// the consistent mass) gives a row "n/a" with its reason; a diverging run gives "diverged".
+// Per case:
+//   u max / u L2   contact-node displacement error, max over the steps and L2 in time,
+//                  sqrt(sum dt (u_0 - u_0,exact)^2), at the step times
+//   duration err   |(t_last - t_first + dt) - T|, t_first/t_last: first/last step with an
+//                  impulse (each such step carries one step of contact force)
+//   rebound err    |P_end / M - v0| / v0 (P = 1^T M v, constant after the release)
+//   E max / E end  relative energy error, max over the steps and at the end (the scheme's
+//                  own energy, Integrator::energy)
+//   force osc.     RMS of (Lambda_k / dt - A rho c v0) / (A rho c v0) over the steps k whose
+//                  interval [t_k - dt, t_k + dt] lies inside the exact contact (0, T): the
+//                  dispersive overshoot of the discrete fronts and any chatter
+//   chatter        RMS over the same steps of the period-2 component of the force,
+//                  (F_{k+1} - 2 F_k + F_{k-1}) / (4 A rho c v0): an alternation of amplitude
+//                  a gives a, a smooth overshoot O(dt^2)
+//   lost steps     steps without impulse inside the exact contact (contact lost and regained)
+//   CPU            thread CPU time of the run
+// Orders under joint refinement (dt proportional to h = L/N): pairwise against the previous
+// N and least-squares over all N, per (integrator, mass, alpha).
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "integrators/registry.hpp"
+#include "integrators/run.hpp"
+#include "problems/signorini_bar.hpp"
+#include "studies/study.hpp"
+
+namespace nsb {
+
+namespace {
+
+const std::vector<double> kAlphas = {0.25, 0.5, 0.9, 1.0};
+const std::vector<std::string> kMasses = {"lumped", "consistent", "singular"};
+constexpr double kHorizon = 1.5;  // t_end in contact durations
+
+std::vector<long> study_meshes(const StudyOptions& opt) {
+  std::vector<long> meshes = {50, 100, 200, 400, 800, 1600};
+  if (opt.full) meshes.insert(meshes.end(), {3200, 6400});
+  return meshes;
+}
+
+// JSON has no NaN: it travels as null through shard files.
+Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }
+double real(const Json& j) { return j.is_null() ? NAN : j.get<double>(); }
+
+// Error columns, in table order (JSON keys, headers, descriptions).
+struct ErrorColumn {
+  const char* key;
+  const char* header;
+  const char* description;
+};
+const std::vector<ErrorColumn> kErrors = {
+    {"u_max", "u max err", "max over steps of |u_0 - u_0,exact|"},
+    {"u_l2", "u L2 err", "sqrt(sum dt (u_0 - u_0,exact)^2)"},
+    {"duration", "duration err", "|(t_last - t_first + dt) - 2L/c|"},
+    {"rebound", "rebound err", "|P_end / M - v0| / v0"},
+    {"e_max", "E max err", "max |E - E0| / E0"},
+    {"e_end", "E end err", "|E_end - E0| / E0"},
+    {"force_osc", "force osc.", "RMS (Lambda/dt - A rho c v0) / (A rho c v0) inside the contact"},
+    {"chatter", "chatter", "RMS (F_{k+1} - 2 F_k + F_{k-1}) / (4 A rho c v0) inside the contact"},
+};
+
+std::vector<Json> bar_cases(const StudyOptions& opt) {
+  std::vector<Json> cases;
+  for (const auto& entry : integrator_registry())
+    for (const auto& mass : kMasses)
+      for (double alpha : kAlphas)
+        for (long N : study_meshes(opt))
+          cases.push_back({{"integrator", entry.name}, {"mass", mass}, {"alpha", alpha}, {"N", N}});
+  return cases;
+}
+
+Json bar_case(const Json& c) {
+  const SignoriniBar p(Params(SignoriniBar::parameters_spec(),
+                              {{"mass", c["mass"].get<std::string>()}, {"N", fmt::format("{}", c["N"].get<long>())}}));
+  const double dt = c["alpha"].get<double>() * p.stable_step();
+  Json out = {{"dt", dt}, {"status", "ok"}, {"message", ""}};
+  auto integrator = make_integrator(c["integrator"]);
+  try {
+    integrator->init(p, p.initial_state());
+  } catch (const InputError& e) {
+    out["status"] = "n/a";
+    out["message"] = e.what();
+    return out;
+  }
+  const double T = p.contact_duration(), t0 = p.contact_start(), F = p.contact_force_level();
+  double u_max = 0.0, u_sq = 0.0, first = NAN, last = NAN;
+  std::vector<double> force;     // relative contact force of the steps inside the contact
+  RunOptions options;
+  options.dt = dt;
+  options.t_end = t0 + kHorizon * T;
+  options.record_series = false;
+  force.reserve(static_cast<std::size_t>(T / dt) + 1);
+  const RunResult r = run(p, *integrator, options, [&](const Integrator& it, const StepInfo& info) {
+    const double t = it.state().t, lambda = it.impulses()[0];
+    const double du = it.state().u[0] - p.exact_displacement(0.0, t);
+    u_max = std::max(u_max, std::abs(du));
+    u_sq += info.dt * du * du;
+    if (lambda > 0.0) {
+      if (std::isnan(first)) first = t;
+      last = t;
+    }
+    if (t - info.dt > t0 && t + info.dt < t0 + T) force.push_back(lambda / info.dt / F);
+  });
+  double osc_sq = 0.0, chatter_sq = 0.0;
+  long lost = 0;
+  for (std::size_t k = 0; k < force.size(); ++k) {
+    osc_sq += (force[k] - 1.0) * (force[k] - 1.0);
+    lost += force[k] == 0.0;
+    if (k > 0 && k + 1 < force.size()) {
+      const double d2 = 0.25 * (force[k + 1] - 2.0 * force[k] + force[k - 1]);
+      chatter_sq += d2 * d2;
+    }
+  }
+  out["steps"] = r.steps;
+  out["cpu"] = r.cpu_seconds;
+  if (r.status != RunStatus::Ok) {
+    out["status"] = "diverged";
+    out["message"] = r.message;
+    return out;
+  }
+  const double v0 = p.rebound_velocity();
+  out["u_max"] = u_max;
+  out["u_l2"] = std::sqrt(u_sq);
+  out["duration"] = real(std::abs(last - first + dt - T));
+  out["rebound"] = std::abs(p.momentum(integrator->state().v) / p.total_mass() - v0) / v0;
+  out["e_max"] = real(r.max_energy_error);
+  out["e_end"] = real(relative_error(r.final_energy, r.initial_energy));
+  out["force_osc"] = real(force.empty() ? NAN : std::sqrt(osc_sq / static_cast<double>(force.size())));
+  out["chatter"] = real(force.size() < 3 ? NAN : std::sqrt(chatter_sq / static_cast<double>(force.size() - 2)));
+  out["lost"] = lost;
+  return out;
+}
+
+std::vector<Table> bar_tables(const std::vector<Json>& cases, const std::vector<Json>& results, const StudyOptions& opt) {
+  const std::vector<long> meshes = study_meshes(opt);
+  const std::string setup =
+      "Nondimensional Signorini bar: L = E = rho = A = v0 = 1, g0 = 0 (contact on [0, 2], force 1, E0 = 1/2), "
+      "run to t = 3; dt = alpha * stable step (h/c lumped and singular, h/(sqrt(3) c) consistent).";
+  const auto metadata = std::vector<std::pair<std::string, std::string>>{
+      {"study", "bar"}, {"N", fmt::format("{}", fmt::join(meshes, " "))},
+      {"alpha", fmt::format("{}", fmt::join(kAlphas, " "))}, {"mass", fmt::format("{}", fmt::join(kMasses, " "))}};
+
+  Table table;
+  table.id = "bar";
+  table.title = "Signorini bar: every integrator and mass model against the exact solution";
+  table.caption = setup + " Errors: u = contact-node displacement; duration of contact; rebound velocity from the "
+                          "momentum; scheme energy; contact-force oscillation. Order: against the previous N "
+                          "(dt proportional to h). n/a: the scheme declines the mass model.";
+  table.columns = {{"integrator", "", "", ""}, {"mass", "", "", ""}, {"alpha", "", "{}", "dt / stable step"},
+                   {"N", "", "", "elements"}, {"dt", "", "{:.2e}", ""}};
+  for (const auto& e : kErrors) {
+    table.columns.push_back({e.header, "", "{:.2e}", e.description});
+    if (std::string(e.key) == "u_max" || std::string(e.key) == "duration")
+      table.columns.push_back({fmt::format("order {}", e.key), "", "{:.2f}", "observed order against the previous N"});
+  }
+  table.columns.push_back({"lost steps", "", "", "steps without impulse inside the exact contact"});
+  table.columns.push_back({"CPU", "s", "{:.2e}", "thread CPU time of the run"});
+  table.columns.push_back({"note", "", "", "why a case is n/a or diverged"});
+  table.metadata = metadata;
+  table.figures = {
+      {"bar_convergence", "Signorini bar: contact-node displacement error against N", "N", "u max err", {"integrator", "mass"}, {"alpha"}, true, true},
+      {"bar_energy", "Signorini bar: max energy error against N", "N", "E max err", {"integrator", "mass"}, {"alpha"}, true, true},
+      {"bar_force_oscillation", "Signorini bar: contact-force oscillation against N", "N", "force osc.", {"integrator", "mass"}, {"alpha"}, true, true},
+  };
+
+  Table orders;
+  orders.id = "bar_orders";
+  orders.title = "Signorini bar: least-squares orders under joint refinement";
+  orders.caption = setup + " Slope of log(error) against log(h) over N = " + fmt::format("{}", fmt::join(meshes, ", ")) +
+                   " with dt = alpha * stable step (errors as in table bar).";
+  orders.columns = {{"integrator", "", "", ""}, {"mass", "", "", ""}, {"alpha", "", "{}", ""}};
+  for (const auto& e : kErrors) orders.columns.push_back({fmt::format("order {}", e.header), "", "{:.2f}", e.description});
+  orders.metadata = metadata;
+
+  Table headline;
+  headline.id = "bar_n100";
+  headline.title = "Signorini bar, N = 100, alpha = 0.9: energy and contact-force oscillation";
+  headline.caption = setup + " The talk's claims: with the singular mass, CD-Lagrange conserves energy and has no "
+                             "spurious contact-force oscillation.";
+  headline.columns = {{"integrator", "", "", ""}, {"mass", "", "", ""}, {"E max err", "", "{:.2e}", ""},
+                      {"E end err", "", "{:.2e}", ""}, {"force osc.", "", "{:.2e}", ""}, {"chatter", "", "{:.2e}", ""},
+                      {"duration err", "", "{:.2e}", ""}, {"rebound err", "", "{:.2e}", ""}, {"note", "", "", ""}};
+  headline.metadata = metadata;
+
+  // Cases come in blocks of meshes for each (integrator, mass, alpha).
+  for (std::size_t b = 0; b < cases.size(); b += meshes.size()) {
+    const std::string integrator = cases[b]["integrator"], mass = cases[b]["mass"];
+    const double alpha = cases[b]["alpha"];
+    std::vector<double> h;
+    std::vector<std::vector<double>> err(kErrors.size());
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
+      const Json& r = results[b + m];
+      const long N = meshes[m];
+      h.push_back(1.0 / static_cast<double>(N));
+      const bool ok = r["status"] == "ok";
+      for (std::size_t e = 0; e < kErrors.size(); ++e) err[e].push_back(ok ? real(r[kErrors[e].key]) : NAN);
+      const std::string status = r["status"];
+      // A case that did not run to the end shows its status in the error columns.
+      const auto value = [&](const char* key) { return ok ? Cell(real(r[key])) : Cell(status); };
+      std::vector<Cell> row = {integrator, mass, alpha, N, r["dt"].get<double>()};
+      for (std::size_t e = 0; e < kErrors.size(); ++e) {
+        row.push_back(value(kErrors[e].key));
+        const std::string key = kErrors[e].key;
+        if (key == "u_max" || key == "duration")
+          row.emplace_back(std::in_place_type<double>, m ? observed_order(h[m - 1], err[e][m - 1], h[m], err[e][m]) : NAN);
+      }
+      row.push_back(ok ? Cell(r["lost"].get<long>()) : Cell(status));
+      row.push_back(r.contains("cpu") ? r["cpu"].get<double>() : NAN);
+      row.push_back(r["message"].get<std::string>());
+      table.add_row(std::move(row));
+      if (N == 100 && alpha == 0.9)
+        headline.add_row({integrator, mass, value("e_max"), value("e_end"), value("force_osc"), value("chatter"),
+                          value("duration"), value("rebound"), r["message"].get<std::string>()});
+    }
+    std::vector<Cell> row = {integrator, mass, alpha};
+    for (std::size_t e = 0; e < kErrors.size(); ++e) row.push_back(fitted_order(h, err[e]));
+    orders.add_row(std::move(row));
+  }
+  return {table, orders, headline};
+}
+
+}  // namespace
+
+extern const StudyEntry bar_study = {
+    "bar", "Signorini bar: contact-node error, contact duration, rebound, energy, force oscillation, orders (exact solution)",
+    nullptr, &bar_cases, &bar_case, &bar_tables};
+
+}  // namespace nsb

@@ -1,0 +1,175 @@
+#include <Eigen/Dense>
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "problems/registry.hpp"
+#include "problems/signorini_bar.hpp"
+
+using Catch::Detail::Approx;
+using nsb::Params;
+using nsb::SignoriniBar;
+
+namespace {
+
+SignoriniBar bar(const std::map<std::string, std::string>& set = {}) {
+  return SignoriniBar(Params(SignoriniBar::parameters_spec(), set));
+}
+
+// Energy and momentum of the exact field by integrating over the pieces between the fronts,
+// where the integrand is constant: exact up to round-off.
+struct Integrals {
+  double energy, momentum;
+};
+Integrals integrate_exact(const SignoriniBar& p, double t) {
+  const auto& prm = p.parameters();
+  const double L = prm.real("L"), E = prm.real("E"), rho = prm.real("rho"), A = prm.real("A");
+  const double s = t - p.contact_start(), c = p.wave_speed();
+  std::vector<double> cuts = {0.0, L, std::clamp(c * s, 0.0, L), std::clamp(2 * L - c * s, 0.0, L)};
+  std::sort(cuts.begin(), cuts.end());
+  Integrals r{0.0, 0.0};
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const double a = cuts[i], b = cuts[i + 1], x = 0.5 * (a + b);
+    const double v = p.exact_velocity(x, t), sig = p.exact_stress(x, t);
+    r.energy += (b - a) * A * (0.5 * rho * v * v + 0.5 * sig * sig / E);
+    r.momentum += (b - a) * rho * A * v;
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("signorini bar exact: displacement continuous across both fronts, jumps obey rho c [v] = -[sigma]",
+          "[problems][exact][signorini-bar]") {
+  for (double g0 : {0.0, 0.3}) {
+    const auto p = bar({{"g0", std::to_string(g0)}, {"E", "4"}, {"L", "2"}, {"v0", "0.5"}});
+    const double c = p.wave_speed(), t0 = p.contact_start(), rho = 1.0, v0 = 0.5, eps = 1e-9;
+    for (double s : {0.1, 0.5, 0.9, 1.3, 1.7}) {
+      const double t = t0 + s;
+      // Incoming front x = c s (s < L/c), reflected front x = 2L - c s (s > L/c).
+      const double x = (c * s < 2.0) ? c * s : 4.0 - c * s;
+      CAPTURE(g0, s, x);
+      CHECK(p.exact_displacement(x - eps, t) == Approx(p.exact_displacement(x + eps, t)).margin(1e-8));
+      const double dv = p.exact_velocity(x + eps, t) - p.exact_velocity(x - eps, t);
+      const double dsig = p.exact_stress(x + eps, t) - p.exact_stress(x - eps, t);
+      CHECK(std::abs(dv) == Approx(v0));
+      // Front moving towards +x (incoming) has speed +c, the reflected one -c.
+      const double speed = (c * s < 2.0) ? c : -c;
+      CHECK(rho * speed * dv == Approx(-dsig));
+    }
+    // The contact point: on the wall during contact, leaves it with +v0.
+    CHECK(p.exact_displacement(0.0, t0 + 0.5 * p.contact_duration()) == Approx(-g0).margin(1e-15));
+    CHECK(p.exact_velocity(0.0, t0 + p.contact_duration() + 0.1) == Approx(v0));
+    CHECK(p.exact_displacement(0.0, t0 + p.contact_duration() + 0.1) == Approx(-g0 + 0.1 * v0));
+    // Continuity in time at the start and the end of contact, at every node.
+    for (double te : {t0, t0 + p.contact_duration()})
+      for (double x : {0.0, 0.5, 1.0, 2.0})
+        CHECK(p.exact_displacement(x, te - eps) == Approx(p.exact_displacement(x, te + eps)).margin(1e-8));
+  }
+}
+
+TEST_CASE("signorini bar exact: energy constant, momentum and contact force consistent",
+          "[problems][exact][signorini-bar]") {
+  for (double g0 : {0.0, 0.25}) {
+    const auto p = bar({{"g0", std::to_string(g0)}, {"rho", "3"}, {"A", "0.5"}, {"v0", "2"}});
+    const double T = p.contact_duration(), t0 = p.contact_start();
+    for (double t : {0.0, 0.5 * t0, t0 + 0.1 * T, t0 + 0.5 * T, t0 + 0.8 * T, t0 + 1.2 * T}) {
+      CAPTURE(g0, t);
+      const Integrals I = integrate_exact(p, t);
+      CHECK(I.energy == Approx(p.exact_energy()).epsilon(1e-13));
+      CHECK(I.momentum == Approx(p.exact_momentum(t)).margin(1e-12));
+      // The wall's force is the bar's compressive end stress times the section.
+      CHECK(p.exact_contact_force(t) == Approx(-0.5 * p.exact_stress(0.0, t)).margin(1e-12));
+    }
+    // Total impulse A rho c v0 T = 2 M v0: the momentum reverses.
+    CHECK(p.exact_momentum(t0 + T) == Approx(-p.exact_momentum(0.0)));
+  }
+}
+
+TEST_CASE("signorini bar: tangent stiffness and strain energy match finite differences of F_int",
+          "[problems][signorini-bar]") {
+  for (std::string mass : {"lumped", "singular", "consistent"}) {
+    const auto p = bar({{"N", "7"}, {"E", "3"}, {"A", "2"}, {"mass", mass}});
+    const nsb::Index n = p.ndof();
+    nsb::Vec u = nsb::Vec::LinSpaced(n, 0.1, -0.4);
+    u[3] += 0.2;
+    nsb::SpMat K;
+    p.tangent_stiffness(u, K);
+    nsb::Vec f0(n), f1(n), fm(n);
+    p.internal_force(u, f0);
+    // Central differences are exact for a linear force up to round-off: O(eps |f| / h).
+    const double h = 1e-6;
+    for (nsb::Index j = 0; j < n; ++j) {
+      nsb::Vec up = u, um = u;
+      up[j] += h;
+      um[j] -= h;
+      p.internal_force(up, f1);
+      p.internal_force(um, fm);
+      const nsb::Vec col = (f1 - fm) / (2 * h);
+      CHECK((col - nsb::Vec(K.col(j))).norm() <= 1e-8 * K.norm());
+      CHECK((p.strain_energy(up) - p.strain_energy(um)) / (2 * h) == Approx(f0[j]).margin(1e-8));
+    }
+    // Refilling an existing pattern keeps the values.
+    p.tangent_stiffness(u, K);
+    CHECK((nsb::Vec(K * u) - f0).norm() <= 1e-14 * f0.norm() + 1e-14);
+    // Rigid motions carry no force.
+    p.internal_force(nsb::Vec::Constant(n, 0.7), f1);
+    CHECK(f1.norm() <= 1e-14);
+  }
+}
+
+TEST_CASE("signorini bar: mass models keep the total mass; the singular one has a massless contact node",
+          "[problems][signorini-bar]") {
+  for (std::string mass : {"lumped", "singular", "consistent"}) {
+    const auto p = bar({{"N", "10"}, {"rho", "2"}, {"A", "3"}, {"L", "5"}, {"mass", mass}});
+    const nsb::SpMat M = p.mass_matrix();
+    const nsb::Vec one = nsb::Vec::Ones(p.ndof());
+    CHECK(one.dot(M * one) == Approx(30.0));
+    CHECK(p.momentum(one) == Approx(30.0));
+    CHECK(bool(nsb::diagonal_mass(M)) == (mass != "consistent"));
+    if (mass == "singular") {
+      CHECK(M.coeff(0, 0) == 0.0);
+      CHECK(M.coeff(1, 1) == Approx(1.5 * 2 * 3 * 0.5));
+    }
+  }
+}
+
+TEST_CASE("signorini bar: stable step is 2 / omega_max of the discrete bar", "[problems][signorini-bar]") {
+  const int N = 20;
+  for (std::string mass : {"lumped", "consistent", "singular"}) {
+    CAPTURE(mass);
+    const auto p = bar({{"N", std::to_string(N)}, {"E", "4"}, {"mass", mass}});
+    nsb::SpMat Ks;
+    p.tangent_stiffness(nsb::Vec::Zero(p.ndof()), Ks);
+    const Eigen::MatrixXd K = Eigen::MatrixXd(Ks), M = Eigen::MatrixXd(p.mass_matrix());
+    double lambda_max = 0.0;
+    if (mass != "singular") {
+      Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
+      lambda_max = es.eigenvalues().maxCoeff();
+      CHECK(2.0 / std::sqrt(lambda_max) == Approx(p.stable_step()).epsilon(1e-10));
+    } else {
+      // Massless node 0 condensed out: free (Schur complement) or held on the wall (removed).
+      const Eigen::MatrixXd Kmm = K.bottomRightCorner(N, N), Mmm = M.bottomRightCorner(N, N);
+      const Eigen::MatrixXd free = Kmm - K.bottomLeftCorner(N, 1) * K.topRightCorner(1, N) / K(0, 0);
+      for (const Eigen::MatrixXd& Kc : {free, Kmm}) {
+        Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kc, Mmm);
+        lambda_max = std::max(lambda_max, es.eigenvalues().maxCoeff());
+      }
+      CHECK(2.0 / std::sqrt(lambda_max) >= p.stable_step());
+    }
+  }
+}
+
+TEST_CASE("signorini bar: registry, steel preset and bad input", "[problems][signorini-bar]") {
+  const auto steel = nsb::make_problem("signorini-bar-steel");
+  CHECK(steel->name() == "signorini-bar-steel");
+  const auto& s = dynamic_cast<const SignoriniBar&>(*steel);
+  CHECK(s.wave_speed() == Approx(std::sqrt(210e9 / 7800)));
+  CHECK(s.contact_start() == Approx(5e-4));
+  CHECK(s.contact_force_level() == Approx(3.14e-4 * 7800 * std::sqrt(210e9 / 7800) * 0.1));
+  CHECK(nsb::make_problem("signorini-bar")->name() == "signorini-bar");
+  CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"N", "0"}}), nsb::InputError);
+  CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"mass", "diagonal"}}), nsb::InputError);
+  CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"v0", "0"}}), nsb::InputError);
+  CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"g0", "-1"}}), nsb::InputError);
+}
