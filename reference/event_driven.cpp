@@ -62,8 +62,9 @@ void EventDriven::init(const Problem& problem, const State& initial) {
   events_ = releases_ = zeno_stops_ = 0;
   impact_log_.clear();
 
-  y_.resize(2 * n);
-  y_ << state_.u, state_.v;
+  // y = (u, v, Lambda): Lambda_i integrates contact i's reaction while it is closed.
+  y_.resize(2 * n + static_cast<Index>(contacts_.size()));
+  y_ << state_.u, state_.v, Vec::Zero(static_cast<Index>(contacts_.size()));
   f_ = Vec::Zero(n);
   fext_ = Vec::Zero(n);
   problem.external_force(state_.t, fext_);
@@ -75,13 +76,13 @@ void EventDriven::init(const Problem& problem, const State& initial) {
     if (gap < -settings_.atol)
       throw InputError(fmt::format("event-driven: the initial state penetrates contact {} (gap {}); valid: gap >= -atol", i, gap));
   }
-  cvode_ = std::make_unique<Cvode>(static_cast<OdeSystem&>(*this), 2 * n, static_cast<int>(contacts_.size()), settings_);
+  cvode_ = std::make_unique<Cvode>(static_cast<OdeSystem&>(*this), y_.size(), static_cast<int>(contacts_.size()), settings_);
   // Every root watches its function decreasing through zero (see the header).
   cvode_->set_root_directions(std::vector<int>(contacts_.size(), -1));
   // Contacts touching at t0 impact or close before the first step.
   handle_events(state_.t, std::vector<int>(contacts_.size(), 0));
   state_.u = y_.head(n);
-  state_.v = y_.tail(n);
+  state_.v = y_.segment(n, n);
   impulses_.setZero();
   publish_work();
 }
@@ -95,24 +96,32 @@ void EventDriven::net_force(double t, ConstVecRef u) {
 void EventDriven::rhs(double t, ConstVecRef y, VecRef ydot) {
   const Index n = problem_->ndof();
   net_force(t, y.head(n));
-  ydot.head(n) = y.tail(n);
-  ydot.tail(n) = minv_.cwiseProduct(f_);
+  ydot.head(n) = y.segment(n, n);
+  ydot.segment(n, n) = minv_.cwiseProduct(f_);
   for (Index k = 0; k < n; ++k)
     if (dof_closed_[k]) ydot[k] = ydot[n + k] = 0.0;
+  for (std::size_t i = 0; i < contacts_.size(); ++i)
+    ydot[2 * n + static_cast<Index>(i)] = closed_[i] ? -f_[contacts_[i].dof] / contacts_[i].a : 0.0;
 }
 
 void EventDriven::jacobian(double, ConstVecRef y, CsrMatrix& J) {
-  // J = [0, I; -M^{-1} K, 0] with the rows of held dofs zeroed (kept as explicit zeros, so
-  // that the pattern, and KLU's analysis, survive mode changes).
+  // J = [0, I, 0; -M^{-1} K, 0, 0; K_d / a, 0, 0] with the rows of held dofs and of open
+  // contacts zeroed (kept as explicit zeros, so that the pattern, and KLU's analysis,
+  // survive mode changes). Row 2n + i: d(lambda_i)/du = d(-F_d / a_i)/du = K_{d,:} / a_i.
   const Index n = problem_->ndof();
   if (!problem_->is_linear()) problem_->tangent_stiffness(y.head(n), K_);
   std::vector<Eigen::Triplet<double, sunindextype>> entries;
-  entries.reserve(static_cast<std::size_t>(n + K_.nonZeros()));
+  entries.reserve(static_cast<std::size_t>(n + 2 * K_.nonZeros()));
   for (Index k = 0; k < n; ++k) entries.emplace_back(k, n + k, dof_closed_[k] ? 0.0 : 1.0);
+  std::vector<Index> contact_of(static_cast<std::size_t>(n), -1);
+  for (std::size_t i = 0; i < contacts_.size(); ++i) contact_of[contacts_[i].dof] = static_cast<Index>(i);
   for (Index col = 0; col < K_.outerSize(); ++col)
-    for (SpMat::InnerIterator it(K_, col); it; ++it)
+    for (SpMat::InnerIterator it(K_, col); it; ++it) {
       entries.emplace_back(n + it.row(), it.col(), dof_closed_[it.row()] ? 0.0 : -minv_[it.row()] * it.value());
-  J.resize(2 * n, 2 * n);
+      if (const Index i = contact_of[it.row()]; i >= 0)
+        entries.emplace_back(2 * n + i, it.col(), closed_[i] ? it.value() / contacts_[i].a : 0.0);
+    }
+  J.resize(y.size(), y.size());
   J.setFromTriplets(entries.begin(), entries.end());
   J.makeCompressed();
 }
@@ -199,7 +208,7 @@ void EventDriven::handle_events(double t, const std::vector<int>& fired) {
     const bool zero = std::abs(f_[c.dof]) <= roundoff;
     if (reaction > 0.0 && !zero) {
       close(c);
-    } else if (zero && K_.col(c.dof).dot(y_.tail(n)) / c.a >= 0.0) {  // K symmetric: row = column
+    } else if (zero && K_.col(c.dof).dot(y_.segment(n, n)) / c.a >= 0.0) {  // K symmetric: row = column
       close(c);
     } else {
       closed_[i] = 0;
@@ -216,6 +225,8 @@ StepInfo EventDriven::step(double dt) {
   impulses_.setZero();
   const double target = state_.t + dt;
   double t = state_.t;
+  const Index n = problem_->ndof();
+  const Vec reaction_start = y_.tail(impulses_.size());
   long events = 0;
   // Stop once within round-off of the target: CVODE refuses a tout that close to t.
   while (target - t > 1e-14 * std::max(1.0, std::abs(target))) {
@@ -225,10 +236,10 @@ StepInfo EventDriven::step(double dt) {
     if (++events > kMaxEventsPerStep)
       throw std::runtime_error(fmt::format("event-driven: more than {} events in one step at t = {}", kMaxEventsPerStep, t));
   }
-  const Index n = problem_->ndof();
+  impulses_ += y_.tail(impulses_.size()) - reaction_start;  // closed contacts' reactions
   state_.t = target;
   state_.u = y_.head(n);
-  state_.v = y_.tail(n);
+  state_.v = y_.segment(n, n);
   info.dt = dt;
   info.iterations = events;
   publish_work();

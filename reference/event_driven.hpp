@@ -27,7 +27,10 @@
 // gives lambda > 0, and opens otherwise.
 //
 // step(dt) advances to t + dt exactly (CVODE in CV_NORMAL mode: interpolated output, no
-// restart unless an event happens); impulses() sums the impulses of the step's impacts.
+// restart unless an event happens); impulses() is what the contacts gave during the step:
+// the impacts' impulses plus the closed contacts' reactions integrated over the step
+// (p extra states Lambda_i' = lambda_i while contact i is closed, under CVODE's error
+// control), so the momentum balance holds with them as with any time-stepping scheme.
 // Work: CVODE steps, RHS (= F_int) evaluations, Jacobian evaluations, KLU factorisations,
 // Newton iterations; extra: root_evaluations, events, impacts, releases, zeno_stops,
 // restarts, error_test_failures.
