@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "problems/block_2d.hpp"
 #include "problems/bouncing_mass.hpp"
 
 namespace nsb {
@@ -16,6 +17,7 @@ std::unique_ptr<Problem> make(const Params& p) {
 const std::vector<ProblemEntry>& problem_registry() {
   static const std::vector<ProblemEntry> entries = {
       {"bouncing-mass", "point mass bouncing on a rigid floor under gravity (exact solution)", &BouncingMass::parameters_spec, &make<BouncingMass>},
+      {"block-2d", "hyperelastic Q4 block (plane strain) dropped tilted on a rigid frictionless floor", &Block2d::parameters_spec, &make<Block2d>},
   };
   return entries;
 }
