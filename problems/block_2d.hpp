@@ -1,8 +1,9 @@
 #pragma once
 // 2D block impact: a hyperelastic block (plane strain, thickness 1 m) dropped, tilted and
 // spinning, on a rigid frictionless floor y = 0 (DESIGN.md section 3; the benchmark family
-// of Di Stasio, Dureisseix, Gravouil, Georges, Shibanuma, "Benchmark cases for robust
-// explicit time integrators in non-smooth transient dynamics", AMSES 6:2, 2019).
+// of J. Di Stasio, D. Dureisseix, A. Gravouil et al., "Benchmark cases for robust explicit
+// time integrators in non-smooth transient dynamics", Advanced Modeling and Simulation in
+// Engineering Sciences (AMSES), 2019).
 //
 // Kinematics, total Lagrangian. The reference configuration is the block as placed at
 // t = 0 (tilted, lifted), so U(0) = 0 and node a sits at x_a = X_a + U_a. Bilinear Q4
@@ -32,7 +33,9 @@
 //
 // Observables: strain and gravity energy, P_x, P_y, angular momentum about the origin
 // J = sum_a m_a (x_a v_a,y - y_a v_a,x), contacts closed (g <= 0). The generic columns add
-// kinetic and total energy, impulse sums and active contacts.
+// kinetic and total energy, impulse sums and active contacts. J of CD-Lagrange's reported
+// pair (U_{k+1}, P_{k+3/2}) is its exact discrete invariant in free flight (derivation in
+// tests/integrators/block_momentum_test.cpp).
 //
 // Parameters: W, H (size [m]), nx, ny (elements), E [Pa], nu, rho [kg/m^3], material
 // {svk, neo-hookean}, height (lowest corner above the floor [m]), tilt [deg, about the
