@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace nsb {
@@ -37,6 +38,7 @@ void MoreauJean::init(const Problem& problem, const State& initial) {
   f_ext_next_ = f_ext_now_;
   pattern_analyzed_ = false;
   h_factored_ = 0.0;
+  solver_.cholmod().print = 1;  // errors only: "not positive definite" is handled by the LU fallback
 }
 
 void MoreauJean::factorize(double h) {
@@ -47,18 +49,25 @@ void MoreauJean::factorize(double h) {
   }
   solver_.factorize(W_);
   ++work_.factorizations;
-  if (solver_.info() != Eigen::Success)
-    throw std::runtime_error("moreau-jean: iteration matrix M + h^2 theta^2 K is not positive definite");
+  use_lu_ = solver_.info() != Eigen::Success;
+  if (use_lu_) {
+    lu_.compute(W_);
+    ++work_.extra["lu_fallbacks"];
+    if (lu_.info() != Eigen::Success)
+      throw std::runtime_error("moreau-jean: iteration matrix M + h^2 theta^2 K is singular");
+  }
   h_factored_ = h;
   for (auto& r : response_) r.resize(0);
 }
+
+Vec MoreauJean::solve(const Vec& rhs) { return use_lu_ ? Vec(lu_.solve(rhs)) : Vec(solver_.solve(rhs)); }
 
 const Vec& MoreauJean::contact_response(Index i) {
   Vec& r = response_[i];
   if (r.size() == 0) {
     Vec li = Vec::Zero(problem_->ndof());
     for (decltype(L_)::InnerIterator it(L_, i); it; ++it) li[it.col()] = it.value();
-    r = solver_.solve(li);
+    r = solve(li);
     ++work_.linear_solves;
   }
   return r;
@@ -80,7 +89,7 @@ StepInfo MoreauJean::step(double h) {
 
   rhs_.noalias() = h * (theta_ * f_ext_next_ + (1.0 - theta_) * f_ext_now_ - f_int_);
   rhs_.noalias() -= (h * h * theta_) * (K_ * state_.v);
-  v_free_ = solver_.solve(rhs_);
+  v_free_ = solve(rhs_);
   v_free_ += state_.v;
   ++work_.linear_solves;
 
@@ -109,6 +118,8 @@ StepInfo MoreauJean::step(double h) {
     const LcpResult res = solve_lcp(D, q, x, lcp_);
     info.iterations = res.iterations;
     work_.lcp_iterations += res.iterations;
+    double& max_residual = work_.extra["lcp_max_residual"];
+    max_residual = std::max(max_residual, res.residual);
     if (!res.converged) {
       info.converged = false;
       ++work_.lcp_unconverged;

@@ -12,8 +12,9 @@
 // an isolated clamped contact rebounds with exactly the problem's restitution e:
 //     e(zeta) = |x'(t*)|,  x'' + 2 zeta x' + x = 0,  x(0) = 0, x'(0) = 1,
 //     t* = first t > 0 where x + 2 zeta x' = 0 (the clamped force vanishes)
-// (closed form under- and over-damped; e -> 0 needs zeta -> inf, so zeta is capped at 1e3,
-// a rebound of 2.5e-7 of the impact speed). `damping = none`: c = 0, the plain penalty
+// (closed form under- and over-damped; e -> 0 needs zeta -> inf, so zeta is capped at 16,
+// a rebound of 1e-3 of the impact speed: stiffer dashpots switch faster than the root
+// finding resolves, see penalty.cpp). `damping = none`: c = 0, the plain penalty
 // k max(0, -g) (elastic: e = 1 at the contact itself).
 // The on/off switches are located by root finding (on g_i and f_i, one direction each for
 // the current mode) and CVODE restarts there, so each smooth phase has a smooth right-hand
@@ -25,7 +26,9 @@
 // Lambda (the time integral of the contact force) gives impulses(): its increase over a
 // step, comparable with the impulses of the impulse-based schemes.
 // energy(): kinetic + potential + penalty springs k g_i^2 / 2 of the contacts that are on.
-// Work counters as for event-driven (reference/cvode.hpp); extra: switches (on/off events).
+// Work counters as for event-driven (reference/cvode.hpp); extra: switches (on/off events),
+// missed_switches (found by the mode-consistency check after each CVODE return: a function
+// crossing zero twice within one CVODE step), restitution_floor.
 // Refused (InputError): a non-diagonal or singular mass (M^{-1} in the right-hand side).
 //
 // References: P. Wriggers, Computational Contact Mechanics, 2nd ed., Springer 2006, ch. 2
@@ -66,12 +69,14 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
   CvodeSettings settings_;
   double k_;
   bool damped_;
+  bool restitution_floored_ = false;  // the problem's e was below e(max damping ratio)
   std::unique_ptr<Cvode> cvode_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
   Vec minv_, c_, y_, force_, fext_, g_, gdot_, fc_;
   std::vector<char> on_;
   SpMat K_;
   long switches_ = 0;
+  long missed_switches_ = 0;  // mode switches found by the consistency check, not by a root
 };
 
 }  // namespace nsb

@@ -1,0 +1,236 @@
+// Study "block": every integrator on the 2D hyperelastic block (block-2d defaults: 1 x 0.5 m,
+// SVK, E = 1 MPa, nu = 0.3, rho = 1000, tilted 15 degrees, lowest corner 0.1 m up, falling
+// at 1 m/s, gravity; here also sliding at vx = 0.5 m/s so that P_x is not trivially zero)
+// on N x N meshes, N = 4 .. 32, steps 2e-4 and 1e-4, to t = 0.15 s (the first impact);
+// --full adds N = 64, the step 5e-5 and runs to t = 0.3 s (rebound and second contact).
+//
+// Per case:
+// - centre-of-mass height error: max over t = 0, 0.01, .. of |y_c - y_c,ref| against the
+//   reference, CD-Lagrange on the finest mesh at half the smallest step. Its own error is
+//   estimated by the same norm against the run at twice its step (time) and on the next
+//   coarser mesh (space); both are stated in the metadata.
+// - energy error (E - E0) / E0, max and final: the continuum (elastic, frictionless)
+//   conserves energy, so all of it is discretisation error (lumped mass, node-wise e = 0).
+// - horizontal momentum error max_k |P_x,k - P_x,0| / sum_a m_a |v_a,0| (round-off expected).
+// - angular momentum balance residual, max over steps k >= 2 of
+//       |J_k - J_{k-1} - tau sum_a x_a (-m_a g) - sum_i x_i Lambda_i| / sum_a m_a |x_a,0| |v_a,0|
+//   with J = sum_a m_a x_a x v_a of the reported state and the torques at the end-of-step
+//   positions: CD-Lagrange's exact discrete balance (tests/integrators/block_momentum_test.cpp).
+//   Moreau-Jean's forces act at other points (theta-weighted, linearised), so it shows
+//   that scheme's balance error and the choice of point together.
+// - impacts (a contact whose impulse turns positive), largest number of simultaneously
+//   active contacts, LCP iterations and largest LCP residual, steps, CPU time.
+// Cost growth: CPU time per step (observer time removed) against dofs at dt = 1e-4, and
+// the least-squares log-log slope per integrator.
+#include <fmt/format.h>
+#include <time.h>
+
+#include <cmath>
+
+#include "integrators/registry.hpp"
+#include "integrators/run.hpp"
+#include "problems/block_2d.hpp"
+#include "studies/study.hpp"
+
+namespace nsb {
+
+namespace {
+
+constexpr double kVx = 0.5;
+constexpr double kSample = 0.01;  // y_c sampling period [s]
+
+double thread_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+Block2d make_block(long n) {
+  return Block2d(Params(Block2d::parameters_spec(),
+                        {{"nx", fmt::format("{}", n)}, {"ny", fmt::format("{}", n)}, {"vx", fmt::format("{}", kVx)}}));
+}
+
+struct CaseResult {
+  bool diverged = false;
+  std::string message;
+  std::vector<double> yc;  // centre-of-mass height at t = j kSample
+  double energy_max = 0, energy_final = 0, px_error = 0, j_residual = 0, cpu = 0, observer_cpu = 0;
+  double lcp_residual = NAN;
+  long impacts = 0, max_active = 0, steps = 0, lcp_iterations = 0;
+};
+
+CaseResult run_case(const std::string& integrator_name, long n, double dt, double t_end) {
+  const Block2d b = make_block(n);
+  auto integ = make_integrator(integrator_name);
+  const State s0 = b.initial_state();
+  integ->init(b, s0);
+  const Vec& m = b.lumped_mass();
+  const double g = b.parameters().real("g");
+  const SpMat& L = b.gap_operator();
+  double p_scale = 0.0, j_scale = 0.0;
+  for (Index a = 0; a < b.nodes(); ++a) {
+    p_scale += m[2 * a] * s0.v.segment<2>(2 * a).norm();
+    j_scale += m[2 * a] * s0.v.segment<2>(2 * a).norm() * b.reference_position(a).norm();
+  }
+  const auto centre_height = [&](const Vec& u) {
+    double y = 0.0;
+    for (Index a = 0; a < b.nodes(); ++a) y += m[2 * a + 1] * (b.reference_position(a).y() + u[2 * a + 1]);
+    return y / (m.sum() / 2);
+  };
+
+  CaseResult c;
+  c.yc.push_back(centre_height(s0.u));
+  const double px0 = b.linear_momentum(s0.v).x();
+  double J_prev = b.angular_momentum(s0.u, s0.v);
+  Vec lambda_prev = Vec::Zero(L.rows()), force(b.ndof());
+  long k = 0;
+  RunOptions options;
+  options.dt = dt;
+  options.t_end = t_end;
+  options.record_series = false;
+  const RunResult r = run(b, *integ, options, [&](const Integrator& it, const StepInfo& info) {
+    const double start = thread_cpu();
+    const State& s = it.state();
+    const Vec& lambda = it.impulses();
+    ++k;
+    c.px_error = std::max(c.px_error, std::abs(b.linear_momentum(s.v).x() - px0) / p_scale);
+    const double J = b.angular_momentum(s.u, s.v);
+    if (k >= 2) {
+      force.noalias() = L.transpose() * lambda;
+      double torque = 0.0;
+      for (Index a = 0; a < b.nodes(); ++a)
+        torque += (b.reference_position(a).x() + s.u[2 * a]) * (force[2 * a + 1] - info.dt * m[2 * a + 1] * g);
+      c.j_residual = std::max(c.j_residual, std::abs(J - J_prev - torque) / j_scale);
+    }
+    J_prev = J;
+    long active = 0;
+    for (Index i = 0; i < lambda.size(); ++i) {
+      active += lambda[i] > 0.0;
+      c.impacts += lambda[i] > 0.0 && lambda_prev[i] == 0.0;
+    }
+    c.max_active = std::max(c.max_active, active);
+    lambda_prev = lambda;
+    if (std::abs(s.t - kSample * static_cast<double>(c.yc.size())) < 0.5 * info.dt) c.yc.push_back(centre_height(s.u));
+    c.observer_cpu += thread_cpu() - start;
+  });
+  c.steps = r.steps;
+  c.cpu = r.cpu_seconds;
+  c.lcp_iterations = r.work.lcp_iterations;
+  if (r.work.extra.count("lcp_max_residual")) c.lcp_residual = r.work.extra.at("lcp_max_residual");
+  c.energy_max = r.max_energy_error;
+  c.energy_final = (r.final_energy - r.initial_energy) / r.initial_energy;
+  if (r.status != RunStatus::Ok) {
+    c.diverged = true;
+    c.message = r.message;
+  }
+  return c;
+}
+
+// max_j |a_j - b_j| over the common samples; NaN when either is missing.
+double history_error(const CaseResult& a, const CaseResult& b) {
+  if (a.diverged || b.diverged || a.yc.empty() || b.yc.empty()) return NAN;
+  double e = 0.0;
+  for (std::size_t j = 0; j < std::min(a.yc.size(), b.yc.size()); ++j) e = std::max(e, std::abs(a.yc[j] - b.yc[j]));
+  return e;
+}
+
+Cell number(double v) { return std::isfinite(v) ? Cell{v} : Cell{}; }
+
+std::vector<Table> block_study(const StudyOptions& opt) {
+  std::vector<long> meshes = {4, 8, 16, 32};
+  std::vector<double> steps = {2e-4, 1e-4};
+  double t_end = 0.15;  // the first impact, whole (contact from about 0.09 s to 0.14 s)
+  if (opt.full) {
+    meshes.push_back(64);
+    steps.push_back(5e-5);
+    t_end = 0.3;
+  }
+  const long n_ref = meshes.back();
+  const double dt_ref = steps.back() / 2;
+  const CaseResult ref = run_case("cd-lagrange", n_ref, dt_ref, t_end);
+  const double ref_time_error = history_error(ref, run_case("cd-lagrange", n_ref, 2 * dt_ref, t_end));
+  const double ref_space_error = history_error(ref, run_case("cd-lagrange", n_ref / 2, dt_ref, t_end));
+
+  Table cases;
+  cases.id = "block";
+  cases.title = "2D block on a rigid floor: every integrator, meshes and steps";
+  cases.caption = fmt::format(
+      "block-2d defaults (SVK, E = 1 MPa, nu = 0.3, tilt 15 deg, falling at 1 m/s, gravity, e = 0) with vx = {} m/s, "
+      "N x N Q4 elements, to t = {} s. y_c err: max over t = 0, {}, ... of the centre-of-mass height error against "
+      "CD-Lagrange on {}x{} at dt = {:.1e} (its own estimated error: {:.1e} m from the step, {:.1e} m from the mesh). "
+      "E err: (E - E0)/E0 of the integrator's energy. P_x err: max |P_x - P_x0| / sum m|v0|. J res.: angular "
+      "momentum balance residual with torques at the end-of-step positions, relative to sum m|x0||v0|.",
+      kVx, t_end, kSample, n_ref, n_ref, dt_ref, ref_time_error, ref_space_error);
+  cases.columns = {
+      {"integrator", "", "", ""},
+      {"mesh", "", "", "N x N elements"},
+      {"dofs", "", "", ""},
+      {"dt", "s", "{:.1e}", "step"},
+      {"dt/dt_CFL", "", "{:.2f}", "step over the problem's stable-step estimate"},
+      {"y_c err", "m", "{:.2e}", "max centre-of-mass height error against the reference"},
+      {"max E err", "", "{:.2e}", "max |E - E0| / E0"},
+      {"final E err", "", "{:.2e}", "(E - E0) / E0 at t_end"},
+      {"P_x err", "", "{:.1e}", "max horizontal momentum error, relative"},
+      {"J res.", "", "{:.1e}", "max angular momentum balance residual per step, relative"},
+      {"impacts", "", "", "contacts whose impulse turns positive"},
+      {"max contacts", "", "", "most contacts active in one step"},
+      {"LCP it.", "", "", "total LCP iterations"},
+      {"LCP res.", "", "{:.1e}", "largest LCP residual (n/a: closed form)"},
+      {"steps", "", "", ""},
+      {"CPU", "s", "{:.2e}", "thread CPU time of the run, observer excluded"},
+  };
+  Table cost;
+  cost.id = "block_cost";
+  cost.title = "2D block: CPU time per step against dofs";
+  cost.caption = fmt::format("dt = 1e-4 s to t = {} s (impacts included), observer time excluded; slope: least-squares "
+                             "log-log slope of time per step against dofs over the meshes.", t_end);
+  cost.columns = {{"integrator", "", "", ""}, {"mesh", "", "", ""}, {"dofs", "", "", ""},
+                  {"time/step", "s", "{:.2e}", ""}, {"slope", "", "{:.2f}", "fitted over all meshes (last row)"}};
+  cases.metadata = {{"study", "block"},
+                    {"meshes", fmt::format("{}", fmt::join(meshes, " "))},
+                    {"steps", fmt::format("{}", fmt::join(steps, " "))},
+                    {"t_end", fmt::format("{}", t_end)},
+                    {"reference", fmt::format("cd-lagrange {}x{} dt {}", n_ref, n_ref, dt_ref)},
+                    {"reference error (step)", fmt::format("{:.3e}", ref_time_error)},
+                    {"reference error (mesh)", fmt::format("{:.3e}", ref_space_error)}};
+  cost.metadata = cases.metadata;
+
+  for (const auto& entry : integrator_registry()) {
+    std::vector<double> dofs, time_per_step;
+    for (long n : meshes) {
+      const Block2d b = make_block(n);
+      for (double dt : steps) {
+        CaseResult c;
+        try {
+          c = run_case(entry.name, n, dt, t_end);
+        } catch (const InputError& e) {
+          c.diverged = true;
+          c.message = fmt::format("unsupported: {}", e.what());
+        }
+        const double cpu = c.cpu - c.observer_cpu;
+        const std::string mesh = fmt::format("{}x{}", n, n);
+        if (c.diverged) {
+          cases.add_row({entry.name, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(), "diverged", c.message,
+                         {}, {}, {}, {}, {}, {}, {}, c.steps, cpu});
+          continue;
+        }
+        cases.add_row({entry.name, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(),
+                       number(history_error(c, ref)), c.energy_max, c.energy_final, c.px_error, c.j_residual,
+                       c.impacts, c.max_active, c.lcp_iterations, number(c.lcp_residual), c.steps, cpu});
+        if (dt == 1e-4) {
+          dofs.push_back(static_cast<double>(b.ndof()));
+          time_per_step.push_back(cpu / static_cast<double>(c.steps));
+          cost.add_row({entry.name, mesh, static_cast<long>(b.ndof()), time_per_step.back(), {}});
+        }
+      }
+    }
+    cost.add_row({entry.name, "all", {}, {}, number(fitted_order(dofs, time_per_step))});
+  }
+  return {cases, cost};
+}
+
+}  // namespace
+
+std::vector<Table> run_block_study(const StudyOptions& opt) { return block_study(opt); }
+
+}  // namespace nsb
