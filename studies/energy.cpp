@@ -6,7 +6,20 @@
 //   - bouncing mass, e = 1, h0 = 1, dt = 1e-3, 1000 impacts (10^4 with --full);
 //   - spring chain (3 masses 1, 2, 1 kg, k = 100 N/m) rattling between two walls 0.5 m
 //     away, e = 1, dt = 0.02 s (0.14 of the stable step 0.141 s), 40 s (400 s with --full):
-//     about 45 contact phases. It stands in for the Signorini bar, which is not in main yet.
+//     about 45 contact phases;
+//   - Signorini bar bouncing under gravity (problems/signorini_bar.hpp), nondimensional
+//     (L = E = rho = A = v0 = 1), g = 0.25 (g L / (c v0) = 1/4: contact 2L/c = 2, first
+//     flight about 2 v0 / g = 8), lumped and singular mass, dt = h / (2c) (half the stable
+//     step), to t = 210: 21 cycles of the first period 10 (later flights shorten as the
+//     bar's vibrations take energy from its rigid motion). N = 50; with --full N = 100 to
+//     t = 2100. The default mesh is coarse because the references cost 10-15 s CPU per
+//     case at N = 50 (event-driven: CVODE over the bar's vibrations) and the adaptive scheme
+//     takes ~3e6 steps (its step collapses in the contacts). Cycles: contact phases that
+//     start after at least L/c = 1 without contact impulse (a chattering contact node
+//     restarts phases within a contact). Energy history: E(t)/E_0 at 400 evenly spaced
+//     times (table energy_bar_history, figure energy_bar_history).
+//   A scheme that declines a mass model (InputError at init: the adaptive scheme and the
+//   references need positive masses) gives a row "n/a" with its reason.
 //   Energy: each integrator's own (CD-Lagrange: E_{k+1/2}). Errors are relative to E_1, the
 //   energy after the first step (CD-Lagrange balances E_{1/2}, which differs from the
 //   continuous E_0 by O(dt^2): shown apart as the offset). Drift: least-squares slope of
@@ -41,13 +54,23 @@ struct EnergyProblem {
   double dt;
   double t_end, full_t_end;
   int flights;  // > 0: flight-energy table over that many impacts (bouncing mass only)
+  double min_flight = 0.0;  // a contact phase counts after at least this long without impulse
+  bool history = false;     // E(t)/E_0 history for the figure
+  std::map<std::string, std::string> full_params = {};  // with --full, on top of params
+  double full_dt = 0.0;                                 // with --full when > 0
 };
+
+constexpr int kHistoryPoints = 400;
 
 // Bouncing mass h0 = 1: first impact 0.4515 s, period 0.9030 s, so 904 s holds 1001 impacts.
 const std::vector<EnergyProblem> kProblems = {
     {"bouncing mass, e = 1", "bouncing-mass", {{"e", "1"}}, 1e-3, 904.0, 9031.0, 0},
     {"spring chain between walls, e = 1", "spring-chain", {{"wall", "both"}, {"gap", "0.5"}}, 0.02, 40.0, 400.0, 0},
     {"bouncing mass, e = 0.9", "bouncing-mass", {{"e", "0.9"}}, 1e-3, 0.0, 0.0, 10},
+    {"Signorini bar, g = 0.25, lumped", "signorini-bar", {{"g", "0.25"}, {"mass", "lumped"}, {"N", "50"}}, 0.01,
+     210.0, 2100.0, 0, 1.0, true, {{"N", "100"}}, 0.005},
+    {"Signorini bar, g = 0.25, singular", "signorini-bar", {{"g", "0.25"}, {"mass", "singular"}, {"N", "50"}}, 0.01,
+     210.0, 2100.0, 0, 1.0, true, {{"N", "100"}}, 0.005},
 };
 
 // The adaptive scheme's variants; the other integrators run at their defaults.
@@ -72,24 +95,34 @@ Cell cell(const Json& j) { return j.is_null() ? Cell{} : Cell{j.get<double>()}; 
 
 std::vector<Json> energy_cases(const StudyOptions& opt) {
   std::vector<Json> cases;
-  for (std::size_t p = 0; p < kProblems.size(); ++p)
+  for (std::size_t p = 0; p < kProblems.size(); ++p) {
+    const EnergyProblem& ep = kProblems[p];
+    auto params = ep.params;
+    if (opt.full)
+      for (const auto& [k, x] : ep.full_params) params[k] = x;
+    const double dt = opt.full && ep.full_dt > 0.0 ? ep.full_dt : ep.dt;
     for (const auto& entry : integrator_registry()) {
       const bool adaptive = entry.name == "cd-lagrange-adaptive";
       for (const auto& v : adaptive ? kAdaptiveVariants : std::vector<std::map<std::string, std::string>>{{}})
-        cases.push_back({{"problem", p}, {"integrator", entry.name}, {"variant", v},
-                         {"t_end", opt.full ? kProblems[p].full_t_end : kProblems[p].t_end}});
+        cases.push_back({{"problem", p}, {"params", params}, {"dt", dt}, {"integrator", entry.name}, {"variant", v},
+                         {"t_end", opt.full ? ep.full_t_end : ep.t_end}});
     }
+  }
   return cases;
 }
 
 Json energy_case(const Json& c) {
   const EnergyProblem& ep = kProblems[c["problem"].get<std::size_t>()];
-  auto problem = make_problem(ep.problem, ep.params);
+  auto problem = make_problem(ep.problem, c["params"].get<std::map<std::string, std::string>>());
   auto integrator = make_integrator(c["integrator"], c["variant"].get<std::map<std::string, std::string>>());
-  integrator->init(*problem, problem->initial_state());
+  try {
+    integrator->init(*problem, problem->initial_state());
+  } catch (const InputError& e) {
+    return {{"status", "n/a"}, {"message", e.what()}, {"t_end", c["t_end"]}};
+  }
   const auto* bouncing = dynamic_cast<const BouncingMass*>(problem.get());
   RunOptions options;
-  options.dt = ep.dt;
+  options.dt = c["dt"];
   options.t_end = ep.flights > 0 ? bouncing->impact_time(ep.flights + 1) : c["t_end"].get<double>();
   options.record_series = false;
   options.sample_every = 1000;
@@ -110,7 +143,8 @@ Json energy_case(const Json& c) {
   double mean_t = 0.0, mean_e = 0.0, c_te = 0.0, c_tt = 0.0;  // Welford sums for the drift slope
   long k = 0, impacts = 0;
   bool in_contact = false;
-  std::vector<double> flight_err;
+  double last_contact = -1e300;  // time of the last step with an impulse
+  std::vector<double> flight_err, history_t, history_e;
   const auto observer = [&](const Integrator& it, const StepInfo& info) {
     const double t = it.state().t, E = it.energy().total();
     if (std::isnan(E1)) E1 = E;
@@ -124,9 +158,15 @@ Json energy_case(const Json& c) {
     c_tt += dt_mean * (t - mean_t);
     dt_min = std::min(dt_min, info.dt);
     dt_max = std::max(dt_max, info.dt);
+    // A phase starts with an impulse after a step without one, min_flight after the last one.
     const bool contact = it.impulses().sum() > 0.0;
-    if (contact && !in_contact) ++impacts;
+    if (contact && !in_contact && t - last_contact > ep.min_flight) ++impacts;
+    if (contact) last_contact = t;
     in_contact = contact;
+    if (ep.history && t >= options.t_end * static_cast<double>(history_t.size()) / kHistoryPoints) {
+      history_t.push_back(t);
+      history_e.push_back(E / E0);
+    }
     impulse_sum += lsum.dot(it.impulses());
     if (momentum_balance) momentum = std::max(momentum, std::abs(msum.dot(it.state().v) - p0 - impulse_sum) / p_scale);
     const int i = static_cast<int>(flight_err.size()) + 1;
@@ -146,7 +186,8 @@ Json energy_case(const Json& c) {
           {"offset", real((E1 - E0) / std::abs(E0))}, {"max_err", real(max_err)}, {"final_err", real(std::abs(err))},
           {"drift", real(c_tt > 0.0 ? c_te / c_tt : kNaN)}, {"momentum", real(momentum_balance ? momentum : kNaN)},
           {"dt_min", dt_min}, {"dt_max", dt_max}, {"flight_max", real(flight_max)},
-          {"flights", static_cast<long>(flight_err.size())}, {"counters", counters}};
+          {"flights", static_cast<long>(flight_err.size())}, {"counters", counters},
+          {"history_t", history_t}, {"history_e", history_e}};
 }
 
 std::vector<Table> energy_tables(const std::vector<Json>& cases, const std::vector<Json>& results, const StudyOptions& opt) {
@@ -158,14 +199,16 @@ std::vector<Table> energy_tables(const std::vector<Json>& cases, const std::vect
       "step; offset (E_1 - E_0)/E_0. Drift: least-squares slope of (E - E_1)/E_1 over every step. Momentum: max "
       "|sum M v - sum M v_0 - sum of impulse resultants| / sum |m v_0| (n/a under gravity). Adaptive counters: "
       "residual evaluations, steps without a root of the energy equation (least residual taken), steps held at "
-      "the CFL bound or user cap, max |residual| / energy terms. The Signorini bar is not in main: no bar row; "
-      "the spring chain between walls is the stiff case.";
+      "the CFL bound or user cap, max |residual| / energy terms. Signorini bar: nondimensional (L = E = rho = A = "
+      "v0 = 1), g = 0.25, dt = h/(2c); N = 50 to t = 210 (about 21 cycles), N = 100 to t = 2100 with --full only "
+      "(the references cost 10-15 s CPU per case at N = 50); its impacts count contact phases after at least L/c "
+      "without impulse (cycles). n/a: the scheme declines the mass model (reason in status).";
   lt.columns = {{"problem", "", "", ""},
                 {"integrator", "", "", ""},
                 {"variant", "", "", "parameters of the adaptive scheme"},
                 {"dt", "s", "{:.0e}", "requested (initial) step"},
                 {"t_end", "s", "{}", ""},
-                {"impacts", "", "", "contact phases started"},
+                {"impacts", "", "", "contact phases started (bar: after at least L/c without impulse)"},
                 {"steps", "", "", ""},
                 {"min step", "s", "{:.2e}", ""},
                 {"max step", "s", "{:.2e}", ""},
@@ -190,27 +233,47 @@ std::vector<Table> energy_tables(const std::vector<Json>& cases, const std::vect
                 {"max flight E err", "", "{:.2e}", "max |E_i / (E0 e^(2i)) - 1|"}, {"steps", "", "", ""},
                 {"min step", "s", "{:.2e}", ""}, {"max step", "s", "{:.2e}", ""}, {"no root", "", "{:.0f}", ""},
                 {"capped", "", "{:.0f}", ""}, {"status", "", "", ""}};
+  Table history;
+  history.id = "energy_bar_history";
+  history.title = "Signorini bar bouncing under gravity: energy history";
+  history.caption = "E(t) / E_0 with each integrator's own energy (CD-Lagrange: E_{k+1/2}), at 400 evenly spaced times.";
+  history.columns = {{"integrator", "", "", ""}, {"variant", "", "", ""}, {"mass", "", "", ""},
+                     {"t", "s", "{:.4f}", ""}, {"E/E0", "", "{:.6f}", ""}};
+  history.csv_only = true;
+  history.figures = {{"energy_bar_history", history.title, "t", "E/E0", {"integrator", "variant"}, {"mass"}, false, false}};
   lt.metadata = {{"study", "energy"}, {"full", opt.full ? "yes" : "no"}};
-  tg.metadata = lt.metadata;
+  tg.metadata = history.metadata = lt.metadata;
   for (std::size_t i = 0; i < results.size(); ++i) {
     const EnergyProblem& ep = kProblems[cases[i]["problem"].get<std::size_t>()];
     const Json& o = results[i];
     const Json& n = o["counters"];
     const std::string integrator = cases[i]["integrator"], variant = variant_text(cases[i]["variant"]);
+    const Json& params = cases[i]["params"];
+    const std::string label = ep.label + (params.contains("N") ? ", N = " + params["N"].get<std::string>() : "");
     const std::string status = o["status"].get<std::string>() + (o["message"].get<std::string>().empty() ? "" : ": " + o["message"].get<std::string>());
+    if (o["status"] == "n/a") {
+      std::vector<Cell> row(lt.columns.size());
+      row[0] = label, row[1] = integrator, row[2] = variant, row[3] = cases[i]["dt"].get<double>();
+      row[4] = o["t_end"].get<double>(), row.back() = status;
+      lt.add_row(row);
+      continue;
+    }
+    const std::vector<double> ht = o["history_t"], he = o["history_e"];
+    for (std::size_t j = 0; j < ht.size(); ++j)
+      history.add_row({integrator, variant, params["mass"].get<std::string>(), ht[j], he[j]});
     if (ep.flights > 0) {
       tg.add_row({integrator, variant, o["flights"].get<long>(), cell(o["flight_max"]), o["steps"].get<long>(),
                   o["dt_min"].get<double>(), o["dt_max"].get<double>(), cell(n["no_root_steps"]),
                   cell(n["cfl_capped_steps"]), status});
       continue;
     }
-    lt.add_row({ep.label, integrator, variant, ep.dt, o["t_end"].get<double>(), o["impacts"].get<long>(),
+    lt.add_row({label, integrator, variant, cases[i]["dt"].get<double>(), o["t_end"].get<double>(), o["impacts"].get<long>(),
                 o["steps"].get<long>(), o["dt_min"].get<double>(), o["dt_max"].get<double>(), cell(o["offset"]),
                 cell(o["max_err"]), cell(o["final_err"]), cell(o["drift"]), cell(o["momentum"]),
                 cell(n["energy_iterations"]), cell(n["no_root_steps"]), cell(n["cfl_capped_steps"]),
                 cell(n["max_rel_residual"]), o["cpu"].get<double>(), status});
   }
-  return {lt, tg};
+  return {lt, tg, history};
 }
 
 }  // namespace

@@ -173,3 +173,39 @@ TEST_CASE("signorini bar: registry, steel preset and bad input", "[problems][sig
   CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"v0", "0"}}), nsb::InputError);
   CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"g0", "-1"}}), nsb::InputError);
 }
+
+TEST_CASE("signorini bar under gravity: F_ext = -grad V_load, weight rho A L g on every mass model, no exact solution",
+          "[problems][signorini-bar]") {
+  for (std::string mass : {"lumped", "singular", "consistent"}) {
+    CAPTURE(mass);
+    const auto p = bar({{"N", "6"}, {"rho", "2"}, {"A", "3"}, {"L", "1.5"}, {"g", "0.7"}, {"mass", mass}});
+    const nsb::Index n = p.ndof();
+    nsb::Vec f(n);
+    p.external_force(0.0, f);
+    // Total weight rho A L g towards the wall (-x), whatever the mass model.
+    CHECK(f.sum() == Approx(-2 * 3 * 1.5 * 0.7));
+    // The massless node carries no load, so its static contact equation is unchanged.
+    if (mass == "singular") CHECK(f[0] == 0.0);
+    // V_load is linear: central differences are exact up to round-off, O(eps |V| / h).
+    const nsb::Vec u = nsb::Vec::LinSpaced(n, 0.3, -0.2);
+    const double h = 1e-6;
+    for (nsb::Index j = 0; j < n; ++j) {
+      nsb::Vec up = u, um = u;
+      up[j] += h;
+      um[j] -= h;
+      CHECK((p.load_potential(up) - p.load_potential(um)) / (2 * h) == Approx(-f[j]).margin(1e-8));
+    }
+    CHECK(p.load_potential(nsb::Vec::Zero(n)) == 0.0);
+    CHECK_FALSE(p.exact_state(0.5).has_value());
+    std::vector<double> obs(p.observable_names().size());
+    p.observe(p.initial_state(), obs);
+    CHECK(std::isnan(obs[3]));  // u_contact_exact: the g = 0 solution does not apply
+  }
+  // g = 0 (the default) keeps the load-free problem and its exact solution.
+  const auto p0 = bar({{"N", "6"}});
+  nsb::Vec f(p0.ndof());
+  p0.external_force(0.0, f);
+  CHECK(f.isZero(0.0));
+  CHECK(p0.exact_state(0.5).has_value());
+  CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"g", "-1"}}), nsb::InputError);
+}
