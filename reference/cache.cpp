@@ -4,6 +4,7 @@
 #include <sundials/sundials_config.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -80,6 +81,11 @@ std::string reference_key(const nlohmann::json& metadata) {
     h *= 0x100000001b3ULL;
   }
   return fmt::format("{:016x}", h);
+}
+
+std::filesystem::path reference_cache_dir() {
+  const char* env = std::getenv("NSBENCH_REFERENCE_CACHE");
+  return env && *env ? std::filesystem::path(env) : std::filesystem::path(".nsbench-cache/reference");
 }
 
 CachedReference cached_reference(const std::filesystem::path& dir, const ReferenceRequest& request) {

@@ -18,7 +18,7 @@
 
 namespace nsb {
 
-inline constexpr int kReferenceCacheVersion = 1;
+inline constexpr int kReferenceCacheVersion = 2;
 
 struct ReferenceRequest {
   std::string problem;
@@ -40,6 +40,9 @@ struct CachedReference {
 // The canonical metadata of a request (throws InputError for unknown names or bad values).
 nlohmann::json reference_metadata(const ReferenceRequest& request);
 std::string reference_key(const nlohmann::json& metadata);
+
+// Where studies keep reference runs: $NSBENCH_REFERENCE_CACHE, default .nsbench-cache/reference.
+std::filesystem::path reference_cache_dir();
 
 // Loads the run from `dir` when present and current, otherwise runs it and stores it.
 CachedReference cached_reference(const std::filesystem::path& dir, const ReferenceRequest& request);

@@ -96,6 +96,7 @@ class Cvode {
   std::vector<int> roots_found_;
   std::vector<int> directions_;
   std::vector<sunindextype> pattern_;  // outer then inner indices of the last Jacobian
+  CsrMatrix zero_diagonal_, with_diagonal_;  // see copy_jacobian
   struct Totals {
     long steps = 0, rhs = 0, jac = 0, setups = 0, newton = 0, roots = 0, error_fails = 0, restarts = 0;
     Totals operator+(const Totals& o) const;

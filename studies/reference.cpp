@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
@@ -36,11 +35,6 @@ const std::vector<double> kStiffness = {1e6, 1e7, 1e8, 1e9, 1e10};
 constexpr int kTimedRepeats = 3;
 
 std::string text(double x) { return fmt::format("{}", x); }
-
-std::filesystem::path cache_dir() {
-  const char* env = std::getenv("NSBENCH_REFERENCE_CACHE");
-  return env && *env ? std::filesystem::path(env) : std::filesystem::path(".nsbench-cache/reference");
-}
 
 std::vector<Json> reference_cases(const StudyOptions&) {
   std::vector<Json> cases;
@@ -87,7 +81,7 @@ Json reference_case(const Json& c) {
   }
   if (c["sweep"] == "stiffness") {
     ReferenceRequest req{"bouncing-mass", kProblemParams, "event-driven", {{"rtol", "1e-12"}, {"atol", "1e-14"}}, kSample, kEnd, 1};
-    const CachedReference ref = cached_reference(cache_dir(), req);
+    const CachedReference ref = cached_reference(reference_cache_dir(), req);
     const std::size_t col = ref.series.column("q");
     double d = 0.0;
     for (std::size_t k = 0; k < u.size() && k + 1 < ref.series.rows(); ++k) d = std::max(d, std::abs(u[k] - ref.series.at(k + 1, col)));
