@@ -44,6 +44,7 @@ namespace nsb {
 namespace {
 
 constexpr double kVx = 0.5;
+constexpr long kStepBudget = 20;  // steps allowed per step of the requested size
 constexpr double kSample = 0.01;  // y_c sampling period [s]
 
 double thread_cpu() {
@@ -95,6 +96,9 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
   options.dt = dt;
   options.t_end = t_end;
   options.record_series = false;
+  // Work budget: an adaptive scheme whose step collapses on the stiff block (1000x the
+  // fixed scheme's steps) stops here, deterministically, and its row says so.
+  options.max_steps = kStepBudget * static_cast<long>(std::ceil(t_end / dt));
   const RunResult r = run(b, *integ, options, [&](const Integrator& it, const StepInfo& info) {
     const double start = thread_cpu();
     const State& s = it.state();
@@ -170,33 +174,94 @@ Reference penalty_reference(long n, double t_end, double stiffness, double rtol,
 
 Cell number(double v) { return std::isfinite(v) ? Cell{v} : Cell{}; }
 
-std::vector<Table> block_study(const StudyOptions& opt) {
+struct Grid {
   std::vector<long> meshes = {4, 8, 16, 32};
   std::vector<double> steps = {2e-4, 1e-4};
   double t_end = 0.15;  // the first impact, whole (contact from about 0.09 s to 0.14 s)
-  if (opt.full) {
-    meshes.push_back(64);
-    steps.push_back(5e-5);
-    t_end = 0.3;
-  }
-  const long n_ref = meshes.back();
-  const Reference ref = penalty_reference(n_ref, t_end, kRefStiffness, kRefRtol);
-  const double e_ref = ref.run.summary["work"]["restitution_floor"].get<double>();
-  const double ref_penalty_error = history_error(ref.yc, penalty_reference(n_ref, t_end, kRefStiffness / 10, kRefRtol).yc);
-  const double ref_tolerance_error = history_error(ref.yc, penalty_reference(n_ref, t_end, kRefStiffness, 10 * kRefRtol).yc);
-  const double ref_restitution_error =
-      history_error(ref.yc, penalty_reference(n_ref, t_end, kRefStiffness, kRefRtol, fmt::format("{}", 2 * e_ref)).yc);
-  const double ref_mesh_error = history_error(ref.yc, penalty_reference(n_ref / 2, t_end, kRefStiffness, kRefRtol).yc);
-  const std::string ref_cost = fmt::format("{:.1f} s CPU, {} CVODE steps, {} factorisations{}",
-                                           ref.run.summary["cpu_seconds"].get<double>(),
-                                           ref.run.summary["work"]["steps"].get<long>(),
-                                           ref.run.summary["work"]["factorizations"].get<long>(),
-                                           ref.run.from_cache ? ", cached" : "");
+};
 
-  Table cases;
-  cases.id = "block";
-  cases.title = "2D block on a rigid floor: every integrator, meshes and steps";
-  cases.caption = fmt::format(
+Grid grid(const StudyOptions& opt) {
+  Grid g;
+  if (opt.full) {
+    g.meshes.push_back(64);
+    g.steps.push_back(5e-5);
+    g.t_end = 0.3;
+  }
+  return g;
+}
+
+// The reference and its four error estimates (penalty, tolerance, restitution, mesh) are
+// cases of their own, so that they run in parallel with the integrators (and are cached).
+enum RefCase { kRefMain, kRefSoft, kRefLoose, kRefRestitution, kRefCoarse, kRefCases };
+
+std::vector<Json> block_cases(const StudyOptions& opt) {
+  const Grid g = grid(opt);
+  std::vector<Json> cases;
+  for (int r = 0; r < kRefCases; ++r) cases.push_back({{"reference", r}});
+  for (const auto& entry : integrator_registry())
+    for (long n : g.meshes)
+      for (double dt : g.steps) cases.push_back({{"integrator", entry.name}, {"n", n}, {"dt", dt}});
+  return cases;
+}
+
+Json block_case(const Json& c, const StudyOptions& opt) {
+  const Grid g = grid(opt);
+  const long n_ref = g.meshes.back();
+  if (c.contains("reference")) {
+    // The restitution estimate doubles the reference's floored e, read from its main run
+    // (cached, so this is a lookup once the main case has run).
+    const auto e_ref = [&] {
+      return penalty_reference(n_ref, g.t_end, kRefStiffness, kRefRtol).run.summary["work"]["restitution_floor"].get<double>();
+    };
+    Reference r;
+    switch (c["reference"].get<int>()) {
+      case kRefMain: r = penalty_reference(n_ref, g.t_end, kRefStiffness, kRefRtol); break;
+      case kRefSoft: r = penalty_reference(n_ref, g.t_end, kRefStiffness / 10, kRefRtol); break;
+      case kRefLoose: r = penalty_reference(n_ref, g.t_end, kRefStiffness, 10 * kRefRtol); break;
+      case kRefRestitution: r = penalty_reference(n_ref, g.t_end, kRefStiffness, kRefRtol, fmt::format("{}", 2 * e_ref())); break;
+      default: r = penalty_reference(n_ref / 2, g.t_end, kRefStiffness, kRefRtol);
+    }
+    return {{"yc", r.yc}, {"summary", r.run.summary}, {"from_cache", r.run.from_cache}};
+  }
+  CaseResult r;
+  try {
+    r = run_case(c["integrator"], c["n"], c["dt"], g.t_end);
+  } catch (const InputError& e) {
+    r.diverged = true;
+    r.message = fmt::format("unsupported: {}", e.what());
+  }
+  const auto real = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+  return {{"diverged", r.diverged}, {"message", r.message}, {"yc", r.yc}, {"energy_max", real(r.energy_max)},
+          {"energy_final", real(r.energy_final)}, {"px_error", r.px_error}, {"j_residual", r.j_residual},
+          {"cpu", r.cpu - r.observer_cpu}, {"lcp_residual", real(r.lcp_residual)}, {"impacts", r.impacts},
+          {"max_active", r.max_active}, {"steps", r.steps}, {"lcp_iterations", r.lcp_iterations}};
+}
+
+std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vector<Json>& results,
+                                const StudyOptions& opt) {
+  const Grid g = grid(opt);
+  const std::vector<long>& meshes = g.meshes;
+  const std::vector<double>& steps = g.steps;
+  const double t_end = g.t_end;
+  const long n_ref = meshes.back();
+  const auto yc_of = [&](int r) { return results[static_cast<std::size_t>(r)]["yc"].get<std::vector<double>>(); };
+  const Json& ref_summary = results[kRefMain]["summary"];
+  const std::vector<double> ref_yc = yc_of(kRefMain);
+  const double e_ref = ref_summary["work"]["restitution_floor"].get<double>();
+  const double ref_penalty_error = history_error(ref_yc, yc_of(kRefSoft));
+  const double ref_tolerance_error = history_error(ref_yc, yc_of(kRefLoose));
+  const double ref_restitution_error = history_error(ref_yc, yc_of(kRefRestitution));
+  const double ref_mesh_error = history_error(ref_yc, yc_of(kRefCoarse));
+  const std::string ref_cost = fmt::format("{:.1f} s CPU, {} CVODE steps, {} factorisations{}",
+                                           ref_summary["cpu_seconds"].get<double>(),
+                                           ref_summary["work"]["steps"].get<long>(),
+                                           ref_summary["work"]["factorizations"].get<long>(),
+                                           results[kRefMain]["from_cache"].get<bool>() ? ", cached" : "");
+
+  Table cases_table;
+  cases_table.id = "block";
+  cases_table.title = "2D block on a rigid floor: every integrator, meshes and steps";
+  cases_table.caption = fmt::format(
       "block-2d defaults (SVK, E = 1 MPa, nu = 0.3, tilt 15 deg, falling at 1 m/s, gravity, e = 0) with vx = {} m/s, "
       "N x N Q4 elements, to t = {} s. y_c err: max over t = 0, {}, ... of the centre-of-mass height error against "
       "the penalty-bdf reference on {}x{} (k = {:.0e} N/m, rtol {:.0e}, atol {:.0e}; {}), whose dashpots give each "
@@ -207,7 +272,7 @@ std::vector<Table> block_study(const StudyOptions& opt) {
       "end-of-step positions, relative to sum m|x0||v0|.",
       kVx, t_end, kSample, n_ref, n_ref, kRefStiffness, kRefRtol, 1e-3 * kRefRtol, ref_cost, e_ref,
       ref_penalty_error, ref_tolerance_error, ref_restitution_error, 2 * e_ref, ref_mesh_error, n_ref / 2, n_ref / 2);
-  cases.columns = {
+  cases_table.columns = {
       {"integrator", "", "", ""},
       {"mesh", "", "", "N x N elements"},
       {"dofs", "", "", ""},
@@ -232,7 +297,7 @@ std::vector<Table> block_study(const StudyOptions& opt) {
                              "log-log slope of time per step against dofs over the meshes.", t_end);
   cost.columns = {{"integrator", "", "", ""}, {"mesh", "", "", ""}, {"dofs", "", "", ""},
                   {"time/step", "s", "{:.2e}", ""}, {"slope", "", "{:.2f}", "fitted over all meshes (last row)"}};
-  cases.metadata = {{"study", "block"},
+  cases_table.metadata = {{"study", "block"},
                     {"meshes", fmt::format("{}", fmt::join(meshes, " "))},
                     {"steps", fmt::format("{}", fmt::join(steps, " "))},
                     {"t_end", fmt::format("{}", t_end)},
@@ -243,44 +308,60 @@ std::vector<Table> block_study(const StudyOptions& opt) {
                     {"reference error (tolerance)", fmt::format("{:.3e}", ref_tolerance_error)},
                     {"reference error (restitution)", fmt::format("{:.3e}", ref_restitution_error)},
                     {"reference error (mesh)", fmt::format("{:.3e}", ref_mesh_error)}};
-  cost.metadata = cases.metadata;
+  cost.metadata = cases_table.metadata;
 
-  for (const auto& entry : integrator_registry()) {
+  const auto num = [](const Json& v) { return v.is_number() ? Cell{v.get<double>()} : Cell{}; };
+  std::size_t k = kRefCases;
+  while (k < cases.size()) {
+    const std::string integrator = cases[k]["integrator"];
     std::vector<double> dofs, time_per_step;
     for (long n : meshes) {
       const Block2d b = make_block(n);
       for (double dt : steps) {
-        CaseResult c;
-        try {
-          c = run_case(entry.name, n, dt, t_end);
-        } catch (const InputError& e) {
-          c.diverged = true;
-          c.message = fmt::format("unsupported: {}", e.what());
-        }
-        const double cpu = c.cpu - c.observer_cpu;
+        const Json& c = results[k++];
         const std::string mesh = fmt::format("{}x{}", n, n);
-        if (c.diverged) {
-          cases.add_row({entry.name, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(), "diverged", c.message,
-                         {}, {}, {}, {}, {}, {}, {}, c.steps, cpu});
+        const double cpu = c["cpu"].get<double>();
+        const long n_steps = c["steps"].get<long>();
+        if (c["diverged"].get<bool>()) {
+          cases_table.add_row({integrator, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(), "diverged",
+                               c["message"].get<std::string>(), {}, {}, {}, {}, {}, {}, {}, n_steps, cpu});
           continue;
         }
-        cases.add_row({entry.name, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(),
-                       number(history_error(c.yc, ref.yc)), c.energy_max, c.energy_final, c.px_error, c.j_residual,
-                       c.impacts, c.max_active, c.lcp_iterations, number(c.lcp_residual), c.steps, cpu});
+        cases_table.add_row({integrator, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(),
+                             number(history_error(c["yc"].get<std::vector<double>>(), ref_yc)), num(c["energy_max"]),
+                             num(c["energy_final"]), c["px_error"].get<double>(), c["j_residual"].get<double>(),
+                             c["impacts"].get<long>(), c["max_active"].get<long>(), c["lcp_iterations"].get<long>(),
+                             num(c["lcp_residual"]), n_steps, cpu});
         if (dt == 1e-4) {
           dofs.push_back(static_cast<double>(b.ndof()));
-          time_per_step.push_back(cpu / static_cast<double>(c.steps));
-          cost.add_row({entry.name, mesh, static_cast<long>(b.ndof()), time_per_step.back(), {}});
+          time_per_step.push_back(cpu / static_cast<double>(n_steps));
+          cost.add_row({integrator, mesh, static_cast<long>(b.ndof()), time_per_step.back(), {}});
         }
       }
     }
-    cost.add_row({entry.name, "all", {}, {}, number(fitted_order(dofs, time_per_step))});
+    cost.add_row({integrator, "all", {}, {}, number(fitted_order(dofs, time_per_step))});
   }
-  return {cases, cost};
+  return {cases_table, cost};
 }
 
 }  // namespace
 
-std::vector<Table> run_block_study(const StudyOptions& opt) { return block_study(opt); }
+// The case runner needs the study options (grid): they travel in the case.
+Json block_case_entry(const Json& c) { return block_case(c["case"], StudyOptions{c["full"].get<bool>()}); }
+std::vector<Json> block_case_list(const StudyOptions& opt) {
+  std::vector<Json> cases;
+  for (const auto& c : block_cases(opt)) cases.push_back({{"case", c}, {"full", opt.full}});
+  return cases;
+}
+std::vector<Table> block_table_entry(const std::vector<Json>& cases, const std::vector<Json>& results,
+                                     const StudyOptions& opt) {
+  std::vector<Json> inner;
+  for (const auto& c : cases) inner.push_back(c["case"]);
+  return block_tables(inner, results, opt);
+}
+
+extern const StudyEntry block_study = {
+    "block", "2D hyperelastic block on a rigid floor: momentum and energy errors, error against a reference, cost growth",
+    nullptr, &block_case_list, &block_case_entry, &block_table_entry};
 
 }  // namespace nsb

@@ -8,7 +8,7 @@ extern const StudyEntry work_precision_study;
 extern const StudyEntry energy_study;
 extern const StudyEntry reference_study;
 extern const StudyEntry bar_study;
-std::vector<Table> run_block_study(const StudyOptions&);
+extern const StudyEntry block_study;
 
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
@@ -18,7 +18,7 @@ const std::vector<StudyEntry>& study_registry() {
       energy_study,
       reference_study,
       bar_study,
-      {"block", "2D hyperelastic block on a rigid floor: momentum and energy errors, error against a reference, cost growth", &run_block_study},
+      block_study,
   };
   return entries;
 }
