@@ -167,7 +167,7 @@ std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector
                {"F_int evals", "", "", "internal force evaluations"},
                {"budget", "", "", "F_int evaluations allowed"},
                {"max pen.", "m", "{:.2e}", "max penetration"},
-               {"pen. tol", "m", "{:.0e}", ""},
+               {"pen. tol", "m", "{:.2g}", ""},
                {"E scale", "J", "{:.3g}", "energy scale: |E0|, or m g (1 m) when E0 = 0"},
                {"energy growth", "", "{:.2e}", "max (E - E0) / E scale"},
                {"growth tol", "", "{:.0e}", ""},
