@@ -28,6 +28,15 @@ std::size_t Series::column(const std::string& name) const {
   throw std::out_of_range("no column '" + name + "' in series");
 }
 
+const char* status_name(RunStatus status) {
+  switch (status) {
+    case RunStatus::Ok: return "ok";
+    case RunStatus::Diverged: return "diverged";
+    case RunStatus::OverBudget: return "over budget";
+  }
+  return "?";
+}
+
 double relative_error(double value, double reference) {
   if (reference == 0.0) return std::numeric_limits<double>::quiet_NaN();
   return std::abs(value - reference) / std::abs(reference);
@@ -39,6 +48,8 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     throw InputError(fmt::format("--dt {}: must be a finite number > 0", options.dt));
   if (!(options.t_end > 0.0) || !std::isfinite(options.t_end))
     throw InputError(fmt::format("--t-end {}: must be a finite number > 0", options.t_end));
+  if (options.max_force_evaluations < 0)
+    throw InputError(fmt::format("max_force_evaluations {}: must be >= 0 (0: no budget)", options.max_force_evaluations));
   if (options.sample_every < 1)
     throw InputError(fmt::format("sample_every {}: must be >= 1", options.sample_every));
   if (options.t_end / options.dt > static_cast<double>(options.max_steps))
@@ -109,6 +120,12 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
         result.message = fmt::format("step limit {} reached at t = {}", options.max_steps, integrator.state().t);
         break;
       }
+      if (options.max_force_evaluations > 0 && integrator.work().force_evaluations > options.max_force_evaluations) {
+        result.status = RunStatus::OverBudget;
+        result.message = fmt::format("budget of {} F_int evaluations exceeded at t = {} after {} steps",
+                                     options.max_force_evaluations, integrator.state().t, result.steps);
+        break;
+      }
     }
   } catch (const InputError&) {
     throw;
@@ -120,7 +137,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   result.t_final = integrator.state().t;
   result.final_energy = integrator.energy().total();
   result.work = integrator.work();
-  if (result.status == RunStatus::Ok && !finite()) {
+  if (result.status != RunStatus::Diverged && !finite()) {  // over budget and non-finite: diverged
     result.status = RunStatus::Diverged;
     result.message = fmt::format("non-finite state at t = {}", result.t_final);
   }
@@ -185,7 +202,7 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
       {"dt", options.dt},
       {"t_end", options.t_end},
       {"sample_every", options.sample_every},
-      {"status", result.status == RunStatus::Ok ? "ok" : "diverged"},
+      {"status", status_name(result.status)},
       {"message", result.message},
       {"steps", result.steps},
       {"t_final", result.t_final},

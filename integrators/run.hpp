@@ -18,6 +18,11 @@ struct RunOptions {
   long sample_every = 1;    // record every k-th step (and the first and last)
   bool record_series = true;
   long max_steps = 200'000'000;
+  // Work budget: the run stops with status OverBudget once the integrator's F_int
+  // evaluations (WorkCounters::force_evaluations) exceed it; 0: no budget. A count, not a
+  // clock, so the same run stops at the same step on any machine. Checked after each step:
+  // a run may overshoot by one step's work (an event-driven step can take many).
+  long max_force_evaluations = 0;
 };
 
 // Samples in row-major order.
@@ -30,7 +35,9 @@ struct Series {
   std::size_t column(const std::string& name) const;
 };
 
-enum class RunStatus { Ok, Diverged };
+enum class RunStatus { Ok, Diverged, OverBudget };
+// "ok", "diverged", "over budget".
+const char* status_name(RunStatus status);
 
 struct RunResult {
   RunStatus status = RunStatus::Ok;
@@ -50,7 +57,7 @@ struct RunResult {
 using StepObserver = std::function<void(const Integrator&, const StepInfo&)>;
 
 // Throws InputError for a bad dt or t_end; a non-finite state or a solver failure ends the
-// run with status Diverged and the reason in message.
+// run with status Diverged, an exhausted work budget with OverBudget, the reason in message.
 RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& options,
               const StepObserver& observer = {});
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace nsb {
@@ -25,6 +26,8 @@ ParamSpecs bar_spec(const Defaults& d) {
       ParamSpec::integer("N", 100, 1, 100'000'000, "number of linear elements"),
       ParamSpec::choice("mass", "lumped", {"lumped", "consistent", "singular"},
                         "mass model (singular: massless contact node, Khenous-Laborde-Renard 2008)"),
+      ParamSpec::real("stiff_ratio", 1.0, 0.0, 1e12,
+                      "Young's modulus of the half at the wall over E (stiff/soft bar; no exact solution unless 1)", true),
   };
 }
 
@@ -55,11 +58,14 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
       gap0_(params.real("g0")),
       gravity_(params.real("g")),
       n_(params.integer("N")),
-      model_(parse_model(params.choice("mass"))) {
+      model_(parse_model(params.choice("mass"))),
+      stiff_ratio_(params.real("stiff_ratio")) {
   c_ = std::sqrt(young_ / rho_);
   t0_ = gap0_ / v0_;
   const double h = element_size();
-  k_ = young_ * area_ / h;
+  ke_.resize(static_cast<std::size_t>(n_));
+  for (Index e = 0; e < n_; ++e)
+    ke_[e] = young_ * area_ / h * ((static_cast<double>(e) + 0.5) * h < 0.5 * len_ ? stiff_ratio_ : 1.0);
   const double me = rho_ * area_ * h;  // element mass
   const Index n = ndof();
 
@@ -68,7 +74,7 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
   mt.reserve(4 * n_);
   for (Index e = 0; e < n_; ++e) {
     for (Index a = 0; a < 2; ++a)
-      for (Index b = 0; b < 2; ++b) kt.emplace_back(e + a, e + b, a == b ? k_ : -k_);
+      for (Index b = 0; b < 2; ++b) kt.emplace_back(e + a, e + b, a == b ? ke_[e] : -ke_[e]);
     if (model_ == MassModel::Consistent) {
       for (Index a = 0; a < 2; ++a)
         for (Index b = 0; b < 2; ++b) mt.emplace_back(e + a, e + b, me * (a == b ? 2.0 : 1.0) / 6.0);
@@ -99,10 +105,11 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
 void SignoriniBar::internal_force(ConstVecRef u, VecRef f) const {
   const Index n = n_;
   const double* x = u.data();
+  const double* k = ke_.data();
   double* y = f.data();
-  y[0] = k_ * (x[0] - x[1]);
-  for (Index i = 1; i < n; ++i) y[i] = k_ * (2.0 * x[i] - x[i - 1] - x[i + 1]);
-  y[n] = k_ * (x[n] - x[n - 1]);
+  y[0] = k[0] * (x[0] - x[1]);
+  for (Index i = 1; i < n; ++i) y[i] = k[i - 1] * (x[i] - x[i - 1]) + k[i] * (x[i] - x[i + 1]);
+  y[n] = k[n - 1] * (x[n] - x[n - 1]);
 }
 
 void SignoriniBar::tangent_stiffness(ConstVecRef, SpMat& K) const {
@@ -116,9 +123,9 @@ double SignoriniBar::strain_energy(ConstVecRef u) const {
   double s = 0.0;
   for (Index e = 0; e < n_; ++e) {
     const double d = u[e + 1] - u[e];
-    s += d * d;
+    s += ke_[e] * d * d;
   }
-  return 0.5 * k_ * s;
+  return 0.5 * s;
 }
 
 State SignoriniBar::initial_state() const {
@@ -129,8 +136,8 @@ State SignoriniBar::initial_state() const {
 }
 
 double SignoriniBar::stable_step() const {
-  const double h = element_size();
-  return model_ == MassModel::Consistent ? h / (std::sqrt(3.0) * c_) : h / c_;
+  const double h = element_size(), c = c_ * std::sqrt(std::max(stiff_ratio_, 1.0));
+  return model_ == MassModel::Consistent ? h / (std::sqrt(3.0) * c) : h / c;
 }
 
 double SignoriniBar::exact_displacement(double x, double t) const {
@@ -164,7 +171,7 @@ double SignoriniBar::exact_momentum(double t) const {
 }
 
 std::optional<State> SignoriniBar::exact_state(double t) const {
-  if (gravity_ > 0.0) return std::nullopt;
+  if (gravity_ > 0.0 || stiff_ratio_ != 1.0) return std::nullopt;
   State s;
   s.t = t;
   s.u.resize(ndof());
@@ -184,7 +191,7 @@ std::vector<std::string> SignoriniBar::observable_names() const {
 }
 
 void SignoriniBar::observe(const State& s, std::span<double> out) const {
-  const bool exact = gravity_ == 0.0;  // the d'Alembert solution holds without gravity only
+  const bool exact = gravity_ == 0.0 && stiff_ratio_ == 1.0;  // the d'Alembert solution's scope
   out[0] = s.u[0];
   out[1] = s.v[0];
   out[2] = 0.0;  // no step, no impulse

@@ -6,8 +6,13 @@
 //     u(x, 0) = 0,   u_t(x, 0) = -v0                 (rigid motion towards the wall)
 //
 // The wall is at x = -g0. Parameters: L, E, rho, A, v0 > 0, g0 >= 0, g >= 0 (gravity towards
-// the wall, default 0), N (linear elements), mass = lumped | consistent | singular.
-// c = sqrt(E / rho), T = 2 L / c, t0 = g0 / v0.
+// the wall, default 0), N (linear elements), mass = lumped | consistent | singular,
+// stiff_ratio r > 0. c = sqrt(E / rho), T = 2 L / c, t0 = g0 / v0.
+// Stiff/soft bar (hard cases): the elements of the half at the wall (centre x < L/2) have
+// Young's modulus r E. The stable step is then set by the stiffer half and the slow
+// dynamics by the softer one, a contrast of max(r, 1/r) in M^{-1} K. For r != 1 waves
+// reflect at x = L/2 and the d'Alembert solution below no longer holds: exact_state()
+// gives nothing and the exact observables are NaN (exact_* describe the bar with r = 1).
 //
 // Exact solution (d'Alembert) for g = 0 only (exact_state returns nullopt when g > 0; the
 // exact_* functions and the *_exact observables describe g = 0 and read NaN when g > 0),
@@ -30,7 +35,8 @@
 // Stable step 2/omega_max: the free-free lumped chain has omega_max = 2c/h exactly, so h/c;
 // singular: Gershgorin on M^{-1} K over the massive dofs (node 0 condensed, free or on the
 // wall) gives at most 4 c^2 / h^2 too, so h/c; consistent: omega_max = 2 sqrt(3) c / h, so
-// h / (sqrt(3) c).
+// h / (sqrt(3) c). With r != 1, c is the stiffer half's c sqrt(max(r, 1)): Gershgorin
+// (lumped, singular) and the element bound (consistent) hold with it, as a bound.
 //
 // Singular mass (Khenous, Laborde, Renard, Eur. J. Mech. A/Solids 27, 2008; Di Stasio et
 // al. 2021). The contact node gets no mass; its lumped mass rho A h / 2 goes to node 1.
@@ -70,6 +76,7 @@
 // energy). g L / (c v0) compares the static stress rho g L with the impact stress rho c v0:
 // keep it below 1 for contacts close to the d'Alembert one (the energy study uses 1/4).
 #include <memory>
+#include <vector>
 
 #include "problems/problem.hpp"
 
@@ -135,7 +142,9 @@ class SignoriniBar final : public Problem {
   double len_, young_, rho_, area_, v0_, gap0_, gravity_;
   Index n_;
   MassModel model_;
-  double c_, t0_, k_;  // wave speed, contact start, element stiffness E A / h
+  double stiff_ratio_;
+  double c_, t0_;  // wave speed (of E), contact start
+  std::vector<double> ke_;  // element stiffnesses E_e A / h
   SpMat M_, K_, L_;
   Vec g0_, mass_rows_;
 };

@@ -5,6 +5,7 @@
 
 Writes REPORTS/figures/<id>.png and .pdf, each stamped with the revision and build read from
 the CSV's '#' metadata lines. Rows whose x or y is not a number (n/a, diverged) are skipped.
+A line labelled 'exact' is the reference: black, dashed, drawn over the others.
 """
 import csv
 import json
@@ -64,8 +65,9 @@ def draw(spec, reports):
         for name, pts in lines.items():
             pts.sort()
             dense = len(pts) > 50  # histories: a line, markers would hide it
+            style = {"color": "black", "linestyle": "--", "linewidth": 1.0, "zorder": 3} if name == "exact" else {}
             ax.plot([p[0] for p in pts], [p[1] for p in pts], marker=None if dense else "o", markersize=3.5,
-                    linewidth=1.2, label=name)
+                    **{"linewidth": 1.2, **style}, label=name)
         ax.set_xscale("log" if spec["log_x"] else "linear")
         ax.set_yscale("log" if spec["log_y"] else "linear")
         for axis, log in ((ax.xaxis, spec["log_x"]), (ax.yaxis, spec["log_y"])):

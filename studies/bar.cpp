@@ -23,6 +23,10 @@
 //   CPU            thread CPU time of the run
 // Orders under joint refinement (dt proportional to h = L/N): pairwise against the previous
 // N and least-squares over all N, per (integrator, mass, alpha).
+// Contact-force history (figure bar_contact_force): the impulses summed over each nominal
+// step (t_j - dt, t_j], t_j = j dt, over dt A rho c v0, in the N = 100, alpha = 0.9 runs of
+// the grid, lumped and singular mass, against the exact 0 -> 1 -> 0. For fixed-step schemes
+// a bin is a step; the adaptive scheme's many small steps are summed into the bins.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -39,6 +43,10 @@ namespace {
 const std::vector<double> kAlphas = {0.25, 0.5, 0.9, 1.0};
 const std::vector<std::string> kMasses = {"lumped", "consistent", "singular"};
 constexpr double kHorizon = 1.5;  // t_end in contact durations
+// The runs whose contact-force history is kept.
+bool keeps_history(const Json& c) {
+  return c["N"].get<long>() == 100 && c["alpha"].get<double>() == 0.9 && c["mass"] != "consistent";
+}
 
 std::vector<long> study_meshes(const StudyOptions& opt) {
   // The grid; the references and the adaptive scheme cost seconds per case at
@@ -95,6 +103,8 @@ Json bar_case(const Json& c) {
   const double T = p.contact_duration(), t0 = p.contact_start(), F = p.contact_force_level();
   double u_max = 0.0, u_sq = 0.0, first = NAN, last = NAN;
   std::vector<double> force;     // relative contact force of the steps inside the contact
+  std::vector<double> history;  // impulse per nominal step
+  const bool keep_history = keeps_history(c);
   RunOptions options;
   options.dt = dt;
   options.t_end = t0 + kHorizon * T;
@@ -110,7 +120,21 @@ Json bar_case(const Json& c) {
       last = t;
     }
     if (t - info.dt > t0 && t + info.dt < t0 + T) force.push_back(lambda / info.dt / F);
+    if (keep_history) {
+      const auto j = static_cast<std::size_t>(std::ceil(t / dt - 1e-9));
+      if (history.size() <= j) history.resize(j + 1, 0.0);
+      history[j] += lambda;
+    }
   });
+  if (keep_history) {
+    std::vector<double> history_t, history_force;
+    for (std::size_t j = 1; j < history.size(); ++j) {
+      history_t.push_back(static_cast<double>(j) * dt);
+      history_force.push_back(history[j] / dt / F);
+    }
+    out["history_t"] = history_t;
+    out["history_force"] = history_force;
+  }
   double osc_sq = 0.0, chatter_sq = 0.0;
   long lost = 0;
   for (std::size_t k = 0; k < force.size(); ++k) {
@@ -192,6 +216,17 @@ std::vector<Table> bar_tables(const std::vector<Json>& cases, const std::vector<
                       {"duration err", "", "{:.2e}", ""}, {"rebound err", "", "{:.2e}", ""}, {"note", "", "", ""}};
   headline.metadata = metadata;
 
+  Table history;
+  history.id = "bar_contact_force_history";
+  history.title = "Signorini bar, N = 100, alpha = 0.9: contact force history";
+  history.caption = setup + " Contact force: the impulses of each nominal step (t - dt, t] over dt, over A rho c v0 "
+                            "(the adaptive scheme's small steps summed); exact: 1 on (0, 2), else 0.";
+  history.columns = {{"integrator", "", "", ""}, {"mass", "", "", ""}, {"t", "", "{:.4f}", ""},
+                     {"F / (A rho c v0)", "", "{:.4f}", ""}};
+  history.csv_only = true;
+  history.figures = {{"bar_contact_force", history.title, "t", "F / (A rho c v0)", {"mass"}, {"integrator"}, false, false}};
+  history.metadata = metadata;
+
   // Cases come in blocks of meshes for each (integrator, mass, alpha).
   for (std::size_t b = 0; b < cases.size(); b += meshes.size()) {
     const std::string integrator = cases[b]["integrator"], mass = cases[b]["mass"];
@@ -218,6 +253,13 @@ std::vector<Table> bar_tables(const std::vector<Json>& cases, const std::vector<
       row.push_back(r.contains("cpu") ? r["cpu"].get<double>() : NAN);
       row.push_back(r["message"].get<std::string>());
       table.add_row(std::move(row));
+      if (r.contains("history_t")) {
+        const std::vector<double> ht = r["history_t"], hf = r["history_force"];
+        const SignoriniBar exact(Params(SignoriniBar::parameters_spec(), {}));
+        for (std::size_t i = 0; i < ht.size(); ++i) history.add_row({integrator, mass, ht[i], hf[i]});
+        if (mass == "lumped")  // the exact force once per panel, at the same times
+          for (double t : ht) history.add_row({integrator, "exact", t, exact.exact_contact_force(t) / exact.contact_force_level()});
+      }
       if (N == 100 && alpha == 0.9)
         headline.add_row({integrator, mass, value("e_max"), value("e_end"), value("force_osc"), value("chatter"),
                           value("duration"), value("rebound"), r["message"].get<std::string>()});
@@ -226,7 +268,7 @@ std::vector<Table> bar_tables(const std::vector<Json>& cases, const std::vector<
     for (std::size_t e = 0; e < kErrors.size(); ++e) row.push_back(fitted_order(h, err[e]));
     orders.add_row(std::move(row));
   }
-  return {table, orders, headline};
+  return {table, orders, headline, history};
 }
 
 }  // namespace

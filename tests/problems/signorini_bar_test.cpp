@@ -209,3 +209,46 @@ TEST_CASE("signorini bar under gravity: F_ext = -grad V_load, weight rho A L g o
   CHECK(p0.exact_state(0.5).has_value());
   CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"g", "-1"}}), nsb::InputError);
 }
+
+TEST_CASE("signorini bar: stiff_ratio stiffens the half at the wall; the stable step bounds the true one; no exact solution",
+          "[problems][signorini-bar]") {
+  const int N = 10;
+  for (double r : {1e6, 1e-3}) {
+    for (std::string mass : {"lumped", "consistent", "singular"}) {
+      CAPTURE(r, mass);
+      const auto p = bar({{"N", std::to_string(N)}, {"E", "4"}, {"stiff_ratio", std::to_string(r)}, {"mass", mass}});
+      nsb::SpMat Ks;
+      p.tangent_stiffness(nsb::Vec::Zero(p.ndof()), Ks);
+      const Eigen::MatrixXd K = Eigen::MatrixXd(Ks), M = Eigen::MatrixXd(p.mass_matrix());
+      // Element e spans nodes e, e+1: 4 r / h for the five at the wall, 4 / h for the others.
+      for (int e = 0; e < N; ++e) CHECK(-K(e, e + 1) == Approx((e < N / 2 ? r : 1.0) * 4.0 * N));
+      const nsb::Vec u = nsb::Vec::LinSpaced(p.ndof(), 0.3, -0.2).array().square();
+      nsb::Vec f(p.ndof());
+      p.internal_force(u, f);
+      CHECK((f - K * u).norm() <= 1e-12 * (K * u).norm());
+      CHECK(p.strain_energy(u) == Approx(0.5 * u.dot(K * u)).epsilon(1e-12));
+      // A bound (stable), and not a loose one: within a factor 2 of 2 / omega_max.
+      double lambda_max = 0.0;
+      if (mass != "singular") {
+        Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
+        lambda_max = es.eigenvalues().maxCoeff();
+      } else {  // massless node 0 condensed out: free (Schur complement) or held on the wall
+        const Eigen::MatrixXd Kmm = K.bottomRightCorner(N, N), Mmm = M.bottomRightCorner(N, N);
+        const Eigen::MatrixXd free = Kmm - K.bottomLeftCorner(N, 1) * K.topRightCorner(1, N) / K(0, 0);
+        for (const Eigen::MatrixXd& Kc : {free, Kmm}) {
+          Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kc, Mmm);
+          lambda_max = std::max(lambda_max, es.eigenvalues().maxCoeff());
+        }
+      }
+      const double exact_limit = 2.0 / std::sqrt(lambda_max);
+      CHECK(p.stable_step() <= exact_limit * (1 + 1e-12));
+      CHECK(p.stable_step() >= 0.5 * exact_limit);
+      CHECK_FALSE(p.exact_state(0.5).has_value());
+      std::vector<double> obs(p.observable_names().size());
+      p.observe(p.initial_state(), obs);
+      CHECK(std::isnan(obs[3]));
+      CHECK(obs[6] == Approx(-1.0));  // momentum -rho A L v0, still measured
+    }
+  }
+  CHECK(bar({{"stiff_ratio", "1"}}).exact_state(0.5).has_value());
+}
