@@ -44,7 +44,7 @@ namespace nsb {
 namespace {
 
 constexpr double kVx = 0.5;
-constexpr long kStepBudget = 20;  // steps allowed per step of the requested size
+constexpr long kStepBudget = 20;  // F_int evaluations allowed per step of the requested size
 constexpr double kSample = 0.01;  // y_c sampling period [s]
 
 double thread_cpu() {
@@ -59,8 +59,8 @@ Block2d make_block(long n) {
 }
 
 struct CaseResult {
-  bool diverged = false;
-  std::string message;
+  bool diverged = false;  // or over budget: `status` says which
+  std::string status = "ok", message;
   std::vector<double> yc;  // centre-of-mass height at t = j kSample
   double energy_max = 0, energy_final = 0, px_error = 0, j_residual = 0, cpu = 0, observer_cpu = 0;
   double lcp_residual = NAN;
@@ -98,7 +98,7 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
   options.record_series = false;
   // Work budget: an adaptive scheme whose step collapses on the stiff block (1000x the
   // fixed scheme's steps) stops here, deterministically, and its row says so.
-  options.max_steps = kStepBudget * static_cast<long>(std::ceil(t_end / dt));
+  options.max_force_evaluations = kStepBudget * static_cast<long>(std::ceil(t_end / dt));
   const RunResult r = run(b, *integ, options, [&](const Integrator& it, const StepInfo& info) {
     const double start = thread_cpu();
     const State& s = it.state();
@@ -132,6 +132,7 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
   c.energy_final = (r.final_energy - r.initial_energy) / r.initial_energy;
   if (r.status != RunStatus::Ok) {
     c.diverged = true;
+    c.status = status_name(r.status);
     c.message = r.message;
   }
   return c;
@@ -228,10 +229,11 @@ Json block_case(const Json& c, const StudyOptions& opt) {
     r = run_case(c["integrator"], c["n"], c["dt"], g.t_end);
   } catch (const InputError& e) {
     r.diverged = true;
+    r.status = "n/a";
     r.message = fmt::format("unsupported: {}", e.what());
   }
   const auto real = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
-  return {{"diverged", r.diverged}, {"message", r.message}, {"yc", r.yc}, {"energy_max", real(r.energy_max)},
+  return {{"diverged", r.diverged}, {"status", r.status}, {"message", r.message}, {"yc", r.yc}, {"energy_max", real(r.energy_max)},
           {"energy_final", real(r.energy_final)}, {"px_error", r.px_error}, {"j_residual", r.j_residual},
           {"cpu", r.cpu - r.observer_cpu}, {"lcp_residual", real(r.lcp_residual)}, {"impacts", r.impacts},
           {"max_active", r.max_active}, {"steps", r.steps}, {"lcp_iterations", r.lcp_iterations}};
@@ -323,7 +325,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
         const double cpu = c["cpu"].get<double>();
         const long n_steps = c["steps"].get<long>();
         if (c["diverged"].get<bool>()) {
-          cases_table.add_row({integrator, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(), "diverged",
+          cases_table.add_row({integrator, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(), c["status"].get<std::string>(),
                                c["message"].get<std::string>(), {}, {}, {}, {}, {}, {}, {}, n_steps, cpu});
           continue;
         }
