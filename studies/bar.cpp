@@ -56,9 +56,6 @@ std::vector<long> study_meshes(const StudyOptions& opt) {
   return meshes;
 }
 
-// JSON has no NaN: it travels as null through shard files.
-Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }
-double real(const Json& j) { return j.is_null() ? NAN : j.get<double>(); }
 
 // Error columns, in table order (JSON keys, headers, descriptions).
 struct ErrorColumn {

@@ -173,7 +173,6 @@ Reference penalty_reference(long n, double t_end, double stiffness, double rtol,
   return r;
 }
 
-Cell number(double v) { return std::isfinite(v) ? Cell{v} : Cell{}; }
 
 struct Grid {
   std::vector<long> meshes = {4, 8, 16, 32};
@@ -232,7 +231,6 @@ Json block_case(const Json& c, const StudyOptions& opt) {
     r.status = "n/a";
     r.message = fmt::format("unsupported: {}", e.what());
   }
-  const auto real = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
   return {{"diverged", r.diverged}, {"status", r.status}, {"message", r.message}, {"yc", r.yc}, {"energy_max", real(r.energy_max)},
           {"energy_final", real(r.energy_final)}, {"px_error", r.px_error}, {"j_residual", r.j_residual},
           {"cpu", r.cpu - r.observer_cpu}, {"lcp_residual", real(r.lcp_residual)}, {"impacts", r.impacts},
@@ -312,7 +310,6 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
                     {"reference error (mesh)", fmt::format("{:.3e}", ref_mesh_error)}};
   cost.metadata = cases_table.metadata;
 
-  const auto num = [](const Json& v) { return v.is_number() ? Cell{v.get<double>()} : Cell{}; };
   std::size_t k = kRefCases;
   while (k < cases.size()) {
     const std::string integrator = cases[k]["integrator"];
@@ -330,10 +327,10 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
           continue;
         }
         cases_table.add_row({integrator, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(),
-                             number(history_error(c["yc"].get<std::vector<double>>(), ref_yc)), num(c["energy_max"]),
-                             num(c["energy_final"]), c["px_error"].get<double>(), c["j_residual"].get<double>(),
+                             number_cell(history_error(c["yc"].get<std::vector<double>>(), ref_yc)), number_cell(c["energy_max"]),
+                             number_cell(c["energy_final"]), c["px_error"].get<double>(), c["j_residual"].get<double>(),
                              c["impacts"].get<long>(), c["max_active"].get<long>(), c["lcp_iterations"].get<long>(),
-                             num(c["lcp_residual"]), n_steps, cpu});
+                             number_cell(c["lcp_residual"]), n_steps, cpu});
         if (dt == 1e-4) {
           dofs.push_back(static_cast<double>(b.ndof()));
           time_per_step.push_back(cpu / static_cast<double>(n_steps));
@@ -341,7 +338,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
         }
       }
     }
-    cost.add_row({integrator, "all", {}, {}, number(fitted_order(dofs, time_per_step))});
+    cost.add_row({integrator, "all", {}, {}, number_cell(fitted_order(dofs, time_per_step))});
   }
   return {cases_table, cost};
 }

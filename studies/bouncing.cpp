@@ -96,9 +96,6 @@ CaseResult simulate(const std::string& integrator_name, double e, double dt) {
   return c;
 }
 
-// JSON has no NaN: it travels as null through shard files.
-Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }
-double real(const Json& j) { return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>(); }
 
 std::vector<double> study_steps(const StudyOptions& opt) {
   std::vector<double> steps = {1e-2, 1e-3, 1e-4, 1e-5};
@@ -130,7 +127,6 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
-Cell number(double v) { return std::isnan(v) ? Cell{} : Cell{v}; }
 
 std::vector<Table> bouncing_tables(const std::vector<Json>& cases, const std::vector<Json>& results,
                                    const StudyOptions& opt) {
@@ -225,12 +221,12 @@ std::vector<Table> bouncing_tables(const std::vector<Json>& cases, const std::ve
         const double order_e = s ? observed_order(steps[s - 1], e_err[s - 1], dt, e_err[s]) : NAN;
         table.add_row({integrator, e, dt,
                        impact_time_error.empty() ? Cell{} : Cell{std::abs(impact_time_error[0])},
-                       number(t_err[s]), number(order_t), number(e_err[s]), number(order_e),
-                       static_cast<long>(impact_time_error.size()), number(zeno_detected), number(z_err[s]),
+                       number_cell(t_err[s]), number_cell(order_t), number_cell(e_err[s]), number_cell(order_e),
+                       static_cast<long>(impact_time_error.size()), number_cell(zeno_detected), number_cell(z_err[s]),
                        max_penetration, n_steps, cpu});
       }
-      orders.add_row({integrator, e, number(fitted_order(steps, t_err)), number(fitted_order(steps, e_err)),
-                      number(fitted_order(steps, z_err))});
+      orders.add_row({integrator, e, number_cell(fitted_order(steps, t_err)), number_cell(fitted_order(steps, e_err)),
+                      number_cell(fitted_order(steps, z_err))});
     }
   }
   return {table, orders, energies, history};

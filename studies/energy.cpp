@@ -89,9 +89,6 @@ std::string variant_text(const std::map<std::string, std::string>& v) {
   return fmt::format("{}", fmt::join(items, " "));
 }
 
-// JSON has no NaN: it travels as null through shard files.
-Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }
-Cell cell(const Json& j) { return j.is_null() ? Cell{} : Cell{j.get<double>()}; }
 
 std::vector<Json> energy_cases(const StudyOptions& opt) {
   std::vector<Json> cases;
@@ -262,16 +259,16 @@ std::vector<Table> energy_tables(const std::vector<Json>& cases, const std::vect
     for (std::size_t j = 0; j < ht.size(); ++j)
       history.add_row({integrator, variant, params["mass"].get<std::string>(), ht[j], he[j]});
     if (ep.flights > 0) {
-      tg.add_row({integrator, variant, o["flights"].get<long>(), cell(o["flight_max"]), o["steps"].get<long>(),
-                  o["dt_min"].get<double>(), o["dt_max"].get<double>(), cell(n["no_root_steps"]),
-                  cell(n["cfl_capped_steps"]), status});
+      tg.add_row({integrator, variant, o["flights"].get<long>(), number_cell(o["flight_max"]), o["steps"].get<long>(),
+                  o["dt_min"].get<double>(), o["dt_max"].get<double>(), number_cell(n["no_root_steps"]),
+                  number_cell(n["cfl_capped_steps"]), status});
       continue;
     }
     lt.add_row({label, integrator, variant, cases[i]["dt"].get<double>(), o["t_end"].get<double>(), o["impacts"].get<long>(),
-                o["steps"].get<long>(), o["dt_min"].get<double>(), o["dt_max"].get<double>(), cell(o["offset"]),
-                cell(o["max_err"]), cell(o["final_err"]), cell(o["drift"]), cell(o["momentum"]),
-                cell(n["energy_iterations"]), cell(n["no_root_steps"]), cell(n["cfl_capped_steps"]),
-                cell(n["max_rel_residual"]), o["cpu"].get<double>(), status});
+                o["steps"].get<long>(), o["dt_min"].get<double>(), o["dt_max"].get<double>(), number_cell(o["offset"]),
+                number_cell(o["max_err"]), number_cell(o["final_err"]), number_cell(o["drift"]), number_cell(o["momentum"]),
+                number_cell(n["energy_iterations"]), number_cell(n["no_root_steps"]), number_cell(n["cfl_capped_steps"]),
+                number_cell(n["max_rel_residual"]), o["cpu"].get<double>(), status});
   }
   return {lt, tg, history};
 }

@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "core/parameters.hpp"
@@ -11,6 +13,11 @@ std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& optio
   if (study.run) return {Json::object()};
   return study.cases(options);
 }
+
+Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }
+double real(const Json& j) { return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>(); }
+Cell number_cell(double v) { return std::isnan(v) ? Cell{} : Cell{v}; }
+Cell number_cell(const Json& j) { return j.is_number() ? number_cell(j.get<double>()) : Cell{}; }
 
 Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOptions& options) {
   if (!study.run) {

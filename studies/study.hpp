@@ -43,6 +43,13 @@ Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOp
 std::vector<Table> study_tables(const StudyEntry& study, const std::vector<Json>& cases,
                                 const std::vector<Json>& results, const StudyOptions& options);
 
+// JSON has no NaN: a missing number travels as null through case results and shard files.
+Json real(double v);          // NaN -> null
+double real(const Json& j);   // null -> NaN
+// A number as a table cell; NaN, null or a non-number -> an empty cell (n/a).
+Cell number_cell(double v);
+Cell number_cell(const Json& j);
+
 // Observed order between two refinements: log(e1/e2) / log(h1/h2); NaN when an error is
 // not positive and finite.
 double observed_order(double h1, double e1, double h2, double e2);

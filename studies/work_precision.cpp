@@ -145,7 +145,6 @@ std::vector<Table> precision_tables(const std::vector<Json>& cases, const std::v
   const auto num = [](const Json& j, const char* key) {
     return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
   };
-  const auto cell = [](double v) { return std::isnan(v) ? Cell{} : Cell{v}; };
   std::size_t k = 0;
   while (k < cases.size()) {
     const std::size_t begin = k;  // one (problem, integrator) group
@@ -162,14 +161,14 @@ std::vector<Table> precision_tables(const std::vector<Json>& cases, const std::v
       const double o_a = i ? observed_order(dts[i - 1], above(all[i - 1]), dts[i], above(all[i])) : NAN;
       const std::string status = r["status"];
       t.add_row({kProblems[cases[k]["problem"].get<std::size_t>()].label, cases[k]["integrator"].get<std::string>(),
-                 dts[i], cell(smooth[i]), cell(o_s), cell(all[i]), cell(o_a), cell(num(r, "cpu")),
+                 dts[i], number_cell(smooth[i]), number_cell(o_s), number_cell(all[i]), number_cell(o_a), number_cell(num(r, "cpu")),
                  r["steps"].get<long>(), r["force_evaluations"].get<long>(), r["factorizations"].get<long>(),
                  r["lcp_iterations"].get<long>(), status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
     }
     const auto fit = [&](std::vector<double> e) {
       for (double& x : e)
         if (!(x > kRoundOff)) x = std::numeric_limits<double>::quiet_NaN();
-      return cell(fitted_order(dts, e));
+      return number_cell(fitted_order(dts, e));
     };
     orders.add_row({kProblems[cases[begin]["problem"].get<std::size_t>()].label,
                     cases[begin]["integrator"].get<std::string>(), fit(smooth), fit(all)});
