@@ -64,6 +64,8 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
 
   void gaps(ConstVecRef y);  // g_, gdot_, f_ (penalty forces as if on)
   void set_directions();
+  // Mode of contact i from the state gaps() left (force_root: its force root fired).
+  bool mode(Index i, bool force_root) const;
   void publish_work();
 
   CvodeSettings settings_;
@@ -77,6 +79,7 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
   SpMat K_;
   long switches_ = 0;
   long missed_switches_ = 0;  // mode switches found by the consistency check, not by a root
+  long unconfirmed_roots_ = 0;  // roots after which the state kept the contact's mode
 };
 
 }  // namespace nsb
