@@ -18,17 +18,22 @@
 // k max(0, -g) (elastic: e = 1 at the contact itself).
 // The on/off switches are located by root finding (on g_i and f_i, one direction each for
 // the current mode) and CVODE restarts there, so each smooth phase has a smooth right-hand
-// side and an exact Jacobian:
+// side and an exact Jacobian. At every CVODE return (root or output time) each contact's
+// mode is set from the state, on <=> g_i < 0 and f_i > 0, a value exactly at zero decided
+// by the motion (a gap at zero is on while closing): a root says where to look, not what
+// to switch.
 //     y = (u, v, Lambda),  u' = v,  v' = M^{-1} (F + sum_on L_i^T f_i),  Lambda_i' = f_i [on]
 //     J = [ 0                          I               0 ]
 //         [ -M^{-1} (K + k L_on^T L_on)  -M^{-1} L_on^T C L_on   0 ]
 //         [ -k L_on                     -C L_on          0 ]
 // Lambda (the time integral of the contact force) gives impulses(): its increase over a
-// step, comparable with the impulses of the impulse-based schemes.
+// step, comparable with the impulses of the impulse-based schemes. It is a quadrature, left
+// out of CVODE's error test (see penalty.cpp): M v' carries the same forces.
 // energy(): kinetic + potential + penalty springs k g_i^2 / 2 of the contacts that are on.
 // Work counters as for event-driven (reference/cvode.hpp); extra: switches (on/off events),
-// missed_switches (found by the mode-consistency check after each CVODE return: a function
-// crossing zero twice within one CVODE step), restitution_floor.
+// missed_switches (switches without a root of their own, found at a CVODE return: a function
+// crossing zero twice within one CVODE step), unconfirmed_roots (roots after which the state
+// kept the contact's mode, e.g. one reported again after its restart), restitution_floor.
 // Refused (InputError): a non-diagonal or singular mass (M^{-1} in the right-hand side).
 //
 // References: P. Wriggers, Computational Contact Mechanics, 2nd ed., Springer 2006, ch. 2
