@@ -86,7 +86,7 @@ void PenaltyBdf::init(const Problem& problem, const State& initial) {
   fext_ = Vec::Zero(n);
   problem.external_force(state_.t, fext_);
   problem.tangent_stiffness(state_.u, K_);
-  switches_ = 0;
+  switches_ = missed_switches_ = unconfirmed_roots_ = 0;
 
   // Initial modes, looking ahead where the gap is exactly zero (a body resting on the
   // obstacle presses into it: its free gap acceleration is negative).

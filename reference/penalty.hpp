@@ -34,8 +34,9 @@
 // missed_switches (switches without a root of their own, found at a CVODE return: a function
 // crossing zero twice within one CVODE step), unconfirmed_roots (roots after which the state
 // kept the contact's mode, e.g. one reported again after its restart), restitution_floor.
-// A missed switch-on is an energy source: the spring starts at k g^2 / 2, never stored (a
-// contact left off at g = 0 while closing sank 3.4 mm before the fix: 23 E0 on the block).
+// A missed switch-on is an energy source: the spring starts at k g^2 / 2, never stored (on
+// the hard study's block, a contact left off at g = 0 while closing sank 3.4 mm unseen, and
+// its spring then held 23 E0: see mode()).
 // Cost of a bouncing contact with e = 1 (inherent, not a defect): the spring is undamped,
 // so every bounce is resolved, its flight and its contact (pi sqrt(m_i / k) long) alike,
 // with a restart at each switch. The hard study's grazing drop (bouncing mass, h0 = 1e-9 m,
@@ -95,7 +96,7 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
   std::vector<char> on_;
   SpMat K_;
   long switches_ = 0;
-  long missed_switches_ = 0;  // mode switches found by the consistency check, not by a root
+  long missed_switches_ = 0;  // mode switches found at a CVODE return, not by a root
   long unconfirmed_roots_ = 0;  // roots after which the state kept the contact's mode
 };
 
