@@ -18,7 +18,7 @@
 
 namespace nsb {
 
-inline constexpr int kReferenceCacheVersion = 2;
+inline constexpr int kReferenceCacheVersion = 3;
 
 struct ReferenceRequest {
   std::string problem;

@@ -8,6 +8,7 @@
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace nsb {
@@ -89,7 +90,17 @@ void Cvode::restart(double t, ConstVecRef y) {
     check(CVodeInit(mem_, rhs_callback, t, y_), "CVodeInit");
     check(CVodeSetUserData(mem_, this), "CVodeSetUserData");
     check(CVodeSetErrHandlerFn(mem_, error_handler, this), "CVodeSetErrHandlerFn");
-    check(CVodeSStolerances(mem_, settings_.rtol, settings_.atol), "CVodeSStolerances");
+    if (settings_.quadratures > 0) {
+      N_Vector atol = N_VClone(y_);
+      if (!atol) throw std::runtime_error("CVODE: out of memory");
+      view_mut(atol).setConstant(settings_.atol);
+      view_mut(atol).tail(settings_.quadratures).setConstant(std::numeric_limits<double>::infinity());
+      const int flag = CVodeSVtolerances(mem_, settings_.rtol, atol);  // copies atol
+      N_VDestroy(atol);
+      check(flag, "CVodeSVtolerances");
+    } else {
+      check(CVodeSStolerances(mem_, settings_.rtol, settings_.atol), "CVodeSStolerances");
+    }
     check(CVodeSetMaxNumSteps(mem_, settings_.max_steps), "CVodeSetMaxNumSteps");
     if (settings_.bdf) {
       matrix_ = SUNSparseMatrix(size_, size_, std::max<Index>(size_, 1), CSR_MAT, context_);

@@ -4,9 +4,13 @@
 //   - BDF (orders 1-5), Newton iteration on  (I - gamma J) dy = r,  J = df/dy given
 //     analytically in sparse CSR form and factorised by KLU (SUNLinSol_KLU, SuiteSparse); or
 //   - Adams-Moulton (orders 1-12) with fixed-point iteration (no Jacobian; non-stiff);
-// local error test  ||e_n||_WRMS <= 1  with weights 1 / (rtol |y_i| + atol);
+// local error test  ||e_n||_WRMS <= 1  with weights 1 / (rtol |y_i| + atol) (0 for the
+// trailing quadrature components, CvodeSettings::quadratures);
 // root finding on g(t, y) with a direction per root (CVodeSetRootDirection), so that a
-// root function that starts a mode at zero cannot fire again on its way out.
+// root function that starts a mode at zero cannot fire again on its way out (CVODE ignores
+// a function that is zero at the restart until it has left zero; but if its first step is
+// shorter than its root tolerance, 100 ulp(t), a function still at zero there is reported
+// again: see reference/penalty.cpp).
 // CVODE's counters are reset by CVodeReInit: this class keeps the running totals.
 //
 // References: A. C. Hindmarsh et al., SUNDIALS: Suite of nonlinear and
@@ -48,6 +52,10 @@ struct CvodeSettings {
   double rtol = 1e-10;
   double atol = 1e-12;
   long max_steps = 1000000;  // internal steps per call of advance
+  // The last `quadratures` components are time integrals nothing else depends on: they are
+  // left out of the error test (infinite absolute tolerance, weight 0), as CVODES does with
+  // its quadrature variables by default. Their accuracy is that of what they integrate.
+  Index quadratures = 0;
 };
 
 class Cvode {

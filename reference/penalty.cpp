@@ -86,7 +86,7 @@ void PenaltyBdf::init(const Problem& problem, const State& initial) {
   fext_ = Vec::Zero(n);
   problem.external_force(state_.t, fext_);
   problem.tangent_stiffness(state_.u, K_);
-  switches_ = 0;
+  switches_ = missed_switches_ = unconfirmed_roots_ = 0;
 
   // Initial modes, looking ahead where the gap is exactly zero (a body resting on the
   // obstacle presses into it: its free gap acceleration is negative).
@@ -97,6 +97,13 @@ void PenaltyBdf::init(const Problem& problem, const State& initial) {
   for (Index i = 0; i < p; ++i)
     on_[i] = (g_[i] < 0.0 && fc_[i] > 0.0) || (g_[i] == 0.0 && (gdot_[i] < 0.0 || (gdot_[i] == 0.0 && gddot[i] < 0.0)));
 
+  // Lambda out of the error test: with weight 1 / atol it starts at zero on a contact's
+  // first switch and grows at the full contact force, and CVODE's initial-step bound (a
+  // forward Euler step may change no component by more than 10% or its tolerance) then
+  // gave 1e-17 s after the restart on the block (1e7 N, atol 1e-12 N s): below ulp(t) and
+  // CVODE's root tolerance 100 ulp(t), so that the restarting root was reported again.
+  // Lambda_i' = f_i is the force M v' carries, so the velocities' error test bounds it.
+  settings_.quadratures = p;
   cvode_ = std::make_unique<Cvode>(static_cast<OdeSystem&>(*this), 2 * n + p, static_cast<int>(2 * p), settings_);
   set_directions();
   cvode_->restart(state_.t, y_);
@@ -120,6 +127,20 @@ void PenaltyBdf::set_directions() {
     dir[2 * i + 1] = on_[i] ? -1 : +1;
   }
   cvode_->set_root_directions(dir);
+}
+
+bool PenaltyBdf::mode(Index i, bool force_root) const {
+  // on <=> g < 0 and f > 0, from the state alone: a root only says where to look. At an
+  // exact zero the value cannot tell; there the motion decides, as the root functions
+  // cannot: CVODE ignores a root function that is zero where it (re)starts until it has
+  // left zero, and leaving zero is no crossing. A gap at zero is on while closing, so a
+  // contact restarted off at g = 0 while closing (no root can ever fire for it: its gap
+  // leaves zero downwards, its force -c g' is already positive) cannot be left off; a
+  // force at zero inside the obstacle switches when its own root fired.
+  if (g_[i] > 0.0) return false;
+  if (g_[i] == 0.0) return gdot_[i] < 0.0 || (gdot_[i] == 0.0 && on_[i]);
+  if (fc_[i] != 0.0) return fc_[i] > 0.0;
+  return force_root != static_cast<bool>(on_[i]);
 }
 
 void PenaltyBdf::rhs(double t, ConstVecRef y, VecRef ydot) {
@@ -184,22 +205,20 @@ StepInfo PenaltyBdf::step(double dt) {
     for (Index i = 0; i < p; ++i) {
       const bool gap_root = root && cvode_->root_info()[2 * i] != 0;
       const bool force_root = root && cvode_->root_info()[2 * i + 1] != 0;
-      bool now;
-      if (gap_root || force_root) {
-        // Off -> on: the gap closes, or the force turns compressive inside the obstacle.
-        // On -> off: the gap reopens or the clamped force vanishes.
-        now = on_[i] ? false : (gap_root || g_[i] < 0.0);
-      } else {
-        // Mode consistency (on <=> g < 0 and f > 0): a root watches one direction, so a
-        // function crossing zero twice within one CVODE step (a stiff dashpot) is missed.
-        now = on_[i] ? !(g_[i] > 0.0 || fc_[i] < 0.0) : (g_[i] < 0.0 && fc_[i] > 0.0);
-        if (now != static_cast<bool>(on_[i])) ++missed_switches_;
+      const bool now = mode(i, force_root);
+      if (now == static_cast<bool>(on_[i])) {
+        // A root the state does not confirm, e.g. one reported again just after the restart
+        // that dealt with it. Not an open contact's force root: that law crosses zero in
+        // flight, at g = c |g'| / k above the obstacle, and switches nothing by design.
+        if (gap_root || (force_root && (on_[i] || g_[i] <= 0.0))) ++unconfirmed_roots_;
+        continue;
       }
-      if (now != static_cast<bool>(on_[i])) {
-        on_[i] = now;
-        changed = true;
-        ++switches_;
-      }
+      // A switch without a root of its own: a root watches one direction, so a function
+      // crossing zero twice within one CVODE step (a stiff dashpot) goes unseen.
+      if (!gap_root && !force_root) ++missed_switches_;
+      on_[i] = now;
+      changed = true;
+      ++switches_;
     }
     if (changed) {
       set_directions();
@@ -228,6 +247,7 @@ void PenaltyBdf::publish_work() {
   cvode_->add_work(work_);
   work_.extra["switches"] = static_cast<double>(switches_);
   work_.extra["missed_switches"] = static_cast<double>(missed_switches_);
+  work_.extra["unconfirmed_roots"] = static_cast<double>(unconfirmed_roots_);
   work_.extra["restitution_floor"] = restitution_floored_ ? restitution(kMaxDampingRatio) : 0.0;
 }
 
