@@ -25,10 +25,11 @@
 // (impact or arrival) or reaction turning tensile (release). Search: samples every
 // 2 pi / (w_max samples_per_period) (default 16 per shortest period) and at the vertex of
 // each signal's polynomial (rigid-mode) part, a sign change bracketed between samples, then
-// refined by the Illinois method to round-off. LIMITATION: two roots (or a tangency, a
-// double root) closer together than the sample spacing can be missed; the sampling sees
-// every sign change of a signal whose components it resolves (16 samples per period of the
-// fastest mode), not a grazing touch shorter than one sample.
+// refined by the Illinois method to round-off (the event is the bracket's negative end).
+// LIMITATION: a sign change is seen only when a sample lands on the negative side, so a dip
+// below zero shorter than the sample spacing (two close roots, or a tangency: a double root)
+// can be missed; at 16 samples per period of the fastest mode that takes a dip shorter than
+// 1/16 of the shortest period. samples_per_period trades search cost for that margin.
 //
 // At an event (as event_driven.hpp, Acary & Brogliato 2008, ch. 7):
 //   impacts   open contacts touching (gap <= round-off or the root found) and closing: the
@@ -48,6 +49,9 @@
 // Then the state is projected on the new mode: q0 = Phi^T M_AA u_A, q0' = Phi^T M_AA v_A.
 // Round-off: a signal is zero when |s| <= 1e-12 (|k_i| + sum_j |l_ij q_j|) (its evaluation
 // error is eps times that sum); an open contact within it while closing hits together.
+// Exact up to the eigendecomposition's backward error eps max w^2 (of M^{-1} K), which the
+// slow modes carrying the energy and momentum feel relatively as eps (w_max / w_low)^2: on
+// the bar (L = c = 1) energy and momentum errors of 1e-12 at N = 100, 1e-10 at N = 800.
 //
 // step(dt) advances to t + dt exactly, handling every event inside. state(): all dofs;
 // held dofs on the obstacle at rest, a free massless dof at its condensed value and rate.
@@ -55,12 +59,16 @@
 // form (integral of k_i + l_i . q over the segment), so 1^T M (v_end - v_start) =
 // 1^T (L^T Lambda + F dt) to round-off. energy(): v^T M v / 2 + strain energy + load potential
 // (conserved exactly except at massive impacts, which lose (1 - e^2) (g'-)^2 / (2 H_ii)).
+// An impact at the initial time happens in init(): its impulse belongs to no step (as in
+// event-driven); the momentum balance holds from state() after init().
 // Work: force_evaluations stays 0 (no F_int is evaluated); factorizations counts the eigen-
-// decompositions and the Cholesky factorisations of M_SS and K_ZZ; extra: events, impacts,
-// arrivals, releases, eigen_decompositions, root_evaluations (signal evaluations), zeno_stops.
-// Cost: O(n^3) per mode (dense), O(n m) per step (state reconstruction), O(m) per signal
-// evaluation; step() allocates nothing once its modes are cached (a multi-contact impact
-// LCP allocates in solve_lcp).
+// decompositions and the Cholesky factorisations of M_SS and K_ZZ; extra: events (instants
+// handled by step()), impacts, arrivals, releases, eigen_decompositions, root_evaluations
+// (signal evaluations), zeno_stops.
+// Cost: O(n^3) per mode (dense), O(n m) per step (state reconstruction: two dense
+// matrix-vector products), O(m) per signal evaluation. step() allocates nothing once its
+// modes are cached, but for the event log's amortised growth and a multi-contact impact LCP
+// (solve_lcp).
 //
 // Refused (InputError): a nonlinear problem, a time-dependent F_ext, contact rows on
 // several dofs, two contacts on one dof, a massless dof with off-diagonal mass, M_SS not
@@ -76,9 +84,6 @@
 #include <map>
 #include <vector>
 
-#include <Eigen/Cholesky>
-#include <Eigen/Dense>
-
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
 
@@ -87,6 +92,9 @@ namespace nsb {
 class ModalExact final : public Integrator {
  public:
   explicit ModalExact(const Params& params);
+  // Not copyable: mode_ and the published counters point into its own containers.
+  ModalExact(const ModalExact&) = delete;
+  ModalExact& operator=(const ModalExact&) = delete;
   static ParamSpecs parameters_spec();
 
   std::string name() const override { return "modal-exact"; }

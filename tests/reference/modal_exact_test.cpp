@@ -4,6 +4,7 @@
 // impulses, no penetration.
 #include "reference/modal_exact.hpp"
 
+#include <Eigen/LU>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
@@ -150,14 +151,15 @@ TEST_CASE("modal-exact vs event-driven: lumped bar contact duration within 1e-6 
 TEST_CASE("modal-exact: lumped bar contact duration T_N -> 2L/c at the rate 2/3 of dispersive fronts",
           "[reference][modal-exact][signorini-bar]") {
   // Why 2/3: the lumped chain's dispersion w = (2c/h) sin(kh/2) = c k (1 - (kh)^2/24 + ...)
-  // spreads a front that has travelled a distance D over an Airy layer of width
-  // ~ (h^2 D)^(1/3) (third-order dispersion; e.g. Whitham, Linear and Nonlinear Waves, 1974,
-  // sec. 11.5). The release waits for the unloading front back from the free end (D = 2L),
-  // so T_N - 2L/c ~ C h^(2/3) L^(1/3) / c. Measured (L = c = 1):
+  // has its largest group velocity c at k = 0, and a front that has travelled a distance D
+  // spreads over an Airy layer of width ~ (h^2 D)^(1/3) (D/h sites: (D/h)^(1/3) sites, the
+  // Bessel-function front of the chain, E. Schroedinger, Ann. Phys. 44, 1914; Whitham, Linear
+  // and Nonlinear Waves, 1974, ch. 11). The release waits for the unloading front back from
+  // the free end (D = 2L), so T_N - 2L/c ~ C h^(2/3) L^(1/3) / c. Measured (L = c = 1):
   //     N       10      20      40      80      160     320
   //     T_N-2   0.04922 0.03230 0.02102 0.01347 0.00859 0.00545
   //     (T_N-2) N^(2/3)  0.228  0.238  0.246  0.250  0.253  0.255
-  // local orders 0.61, 0.62, 0.64, 0.65, 0.66: pre-asymptotic, rising towards 2/3 (the
+  // local orders 0.608, 0.620, 0.642, 0.650, 0.656: pre-asymptotic, rising towards 2/3 (the
   // constant still grows by about 1 % per doubling at N = 320).
   const std::vector<int> meshes = {10, 20, 40, 80, 160, 320};
   std::vector<double> h, err;
@@ -170,11 +172,11 @@ TEST_CASE("modal-exact: lumped bar contact duration T_N -> 2L/c at the rate 2/3 
     CHECK(err[k] > 0.0);
     if (k == 0) continue;
     CHECK(err[k] < err[k - 1]);
-    // Each local order within the measured pre-asymptotic band, below the asymptote.
+    // Each local order in a band around 2/3 that holds the measured pre-asymptotic drift.
     const double order = nsb::observed_order(h[k - 1], err[k - 1], h[k], err[k]);
     CAPTURE(order);
     CHECK(order > 0.58);
-    CHECK(order < 2.0 / 3.0);
+    CHECK(order < 0.70);
   }
   // Fitted over N = 40..320: within 0.03 of 2/3 (measured 0.649).
   const double fitted = nsb::fitted_order({h.begin() + 2, h.end()}, {err.begin() + 2, err.end()});
