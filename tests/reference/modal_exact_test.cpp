@@ -278,6 +278,34 @@ TEST_CASE("modal-exact: spring chain between two walls, e = 1: energy conserved,
   CHECK(min_gap >= -1e-12);
 }
 
+TEST_CASE("modal-exact: two contacts hitting together go through the impulse LCP at one instant",
+          "[reference][modal-exact][spring-chain][contact]") {
+  // Two equal masses joined by a spring k, flying apart at -a and +a towards walls at the same
+  // gap: each moves by x(t) = (a / w) sin(w t), w = sqrt(2 k / m), and both hit at
+  // t1 = asin(gap w / a) / w, rebounding with e = 1.
+  const double k = 100.0, a = 0.5, gap = 0.02, w = std::sqrt(2.0 * k);
+  const nsb::SpringChain p(Params(nsb::SpringChain::parameters_spec(), {{"n", "2"}, {"mass_ratio", "1"}, {"wall", "both"},
+                                                                        {"gap", "0.02"}, {"v0", "0"}, {"a", "-0.5"}}));
+  auto me = make_me();
+  me.init(p, p.initial_state());
+  const double E0 = me.energy().total();
+  advance(me, 0.1, 0.0137);
+  REQUIRE(me.events().size() >= 2);
+  const auto& left = me.events()[0];
+  const auto& right = me.events()[1];
+  CHECK(left.contact != right.contact);
+  CHECK(left.t == right.t);
+  CHECK(me.work().lcp_iterations >= 1);  // one LCP of size 2, not two single impacts
+  const double t1 = std::asin(gap * w / a) / w;
+  CHECK(std::abs(left.t - t1) <= 1e-14);
+  for (const auto& ev : {left, right}) {
+    CHECK(ev.kind == ModalExact::EventKind::Impact);
+    CHECK(ev.rate_before == Approx(-a * std::cos(w * t1)).epsilon(1e-12));
+    CHECK(ev.rate_after == Approx(-ev.rate_before).epsilon(1e-12));
+  }
+  CHECK(std::abs(me.energy().total() - E0) <= 1e-14 * E0);
+}
+
 TEST_CASE("modal-exact: refuses what it cannot integrate exactly, saying why", "[reference][modal-exact][bad-input]") {
   const nsb::Block2d block(Params(nsb::Block2d::parameters_spec()));
   auto me = make_me();
