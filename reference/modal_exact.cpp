@@ -468,12 +468,12 @@ void ModalExact::handle_events(Index fired) {
   double rate_scale = 0.0;
   for (Index i = 0; i < p; ++i) {
     if (closed_work_[i]) continue;
-    double gap, scale, rate, rate_size;
+    double gap, scale;
     signal_derivative(i, 0, gap, scale);
     if (i != fired && gap > kRoundoff * scale) continue;
     if (leading_sign(i, 1) >= 0) continue;
-    signal_derivative(i, 1, rate, rate_size);
     const Contact& c = contacts_[i];
+    const double rate = c.a * v[c.dof];  // a massless dof's v: the rate of its condensed value
     u[c.dof] = c.position;  // the gap is zero at the event, exactly
     if (c.massless) {
       // No inertia, no impulse: the dof arrives (its gap is continuous) and closes.
@@ -486,7 +486,7 @@ void ModalExact::handle_events(Index fired) {
     if (zeno && e_ > 0.0 && rate < 0.0) ++zeno_stops_;
     hits_.push_back(i);
     restitution_.push_back(zeno ? 0.0 : e_);
-    rate_before_.push_back(c.a * v[c.dof]);
+    rate_before_.push_back(rate);
     rate_scale = std::max(rate_scale, std::abs(rate));
   }
   if (!hits_.empty()) {
