@@ -117,7 +117,7 @@ void ModalExact::init(const Problem& problem, const State& initial) {
   }
 
   e_ = problem.restitution();
-  events_ = impacts_ = arrivals_ = releases_ = zeno_stops_ = root_evaluations_ = 0;
+  events_ = impacts_ = arrivals_ = releases_ = zeno_stops_ = root_evaluations_ = forced_events_ = 0;
   event_log_.clear();
   modes_.clear();
   for (Vec* v : {&q_, &qd_, &qt_, &qdt_, &qint_, &work_a_, &work_b_}) *v = Vec::Zero(n);
@@ -129,7 +129,8 @@ void ModalExact::init(const Problem& problem, const State& initial) {
   published_.clear();
   for (const auto& [key, counter] : {std::pair<const char*, const long*>{"events", &events_}, {"impacts", &impacts_},
                                      {"arrivals", &arrivals_}, {"releases", &releases_}, {"eigen_decompositions", &decompositions_},
-                                     {"root_evaluations", &root_evaluations_}, {"zeno_stops", &zeno_stops_}})
+                                     {"root_evaluations", &root_evaluations_}, {"zeno_stops", &zeno_stops_},
+                                     {"forced_events", &forced_events_}})
     published_.emplace_back(&work_.extra[key], counter);
 
   // The all-open mode first: K >= 0 iff K_ZZ > 0 and its K~ >= 0, which build_mode checks.
@@ -144,7 +145,7 @@ void ModalExact::init(const Problem& problem, const State& initial) {
   }
   // Contacts touching at t0 impact or close before the first step; an impulse there belongs
   // to no step (as in event-driven).
-  handle_events(-1);
+  handle_events(-1, false);
   impulses_.setZero();
   publish_work();
 }
@@ -312,10 +313,10 @@ int ModalExact::leading_sign(Index i, int r0) const {
   return 0;
 }
 
-std::pair<double, Index> ModalExact::find_event(double tau_max) {
+ModalExact::Found ModalExact::find_event(double tau_max) {
   const Mode& md = *mode_;
   const Index p = static_cast<Index>(contacts_.size());
-  const std::pair<double, Index> none{tau_max + 1.0, -1};
+  const Found none{tau_max + 1.0, -1, false};
   if (p == 0) return none;
   // Vertex of each signal's rigid-mode part c0 + c1 tau + c2 tau^2 (its only extremum), so
   // that a polynomial dip between two samples is sampled too.
@@ -334,7 +335,7 @@ std::pair<double, Index> ModalExact::find_event(double tau_max) {
     const double b = a + md.sample_step > a ? std::min(a + md.sample_step, tau_max) : tau_max;
     modal_at(b, qt_, nullptr);
     root_evaluations_ += p;
-    std::pair<double, Index> first = none;
+    Found first = none;
     for (Index i = 0; i < p; ++i) {
       const double fa = signal_prev_[i], fb = signal_now_[i] = signal_value(i, qt_);
       double lo = a, flo = fa, hi = b, fhi = fb;
@@ -351,16 +352,35 @@ std::pair<double, Index> ModalExact::find_event(double tau_max) {
         }
       }
       if (!(fhi < 0.0)) continue;
-      // Negative at the left end too: only at tau = 0 (later samples would have stopped the
-      // search), a state the last event left at round-off below zero: the event is now.
-      const double root = flo < 0.0 ? lo : refine(i, lo, flo, hi, fhi);
-      if (root < first.first) first = {root, i};
+      const Found found = locate(i, lo, flo, hi, fhi);
+      if (found.tau < first.tau) first = found;
     }
-    if (first.second >= 0) return first;
+    if (first.contact >= 0) return first;
     a = b;
     signal_prev_.swap(signal_now_);
   }
   return none;
+}
+
+ModalExact::Found ModalExact::locate(Index i, double lo, double flo, double hi, double fhi) {
+  if (lo > 0.0) return {refine(i, lo, flo, hi, fhi), i, false};
+  // From the start, where an event may have left the signal at zero (to round-off).
+  double value, scale;
+  signal_derivative(i, 0, value, scale);
+  if (std::abs(value) > kRoundoff * scale) return flo < 0.0 ? Found{0.0, i, true} : Found{refine(i, lo, flo, hi, fhi), i, false};
+  if (leading_sign(i, 1) < 0) return {0.0, i, false};  // going down now: the handler acts on it
+  // Its derivatives send it up first: the excursion above zero ends before hi. Halve towards
+  // the start until a sample is on it.
+  for (int k = 0; k < 64; ++k) {
+    const double x = 0.5 * hi;
+    modal_at(x, qint_, nullptr);
+    ++root_evaluations_;
+    const double fx = signal_value(i, qint_);
+    if (fx >= 0.0) return {refine(i, x, fx, hi, fhi), i, false};
+    hi = x;
+    fhi = fx;
+  }
+  return {0.0, i, true};
 }
 
 double ModalExact::refine(Index i, double a, double fa, double b, double fb) {
@@ -455,12 +475,21 @@ void ModalExact::project() {
   reconstruct();
 }
 
-void ModalExact::handle_events(Index fired) {
+void ModalExact::handle_events(Index fired, bool forced) {
   const Index p = static_cast<Index>(contacts_.size());
   const double t = state_.t;
   Vec& u = state_.u;
   Vec& v = state_.v;
   closed_work_ = mode_->closed;
+  // A forced event overrules the derivatives: a closed contact opens, an open one is hit
+  // plastically and stays closed through the reaction check below.
+  const Index forced_closing = forced && !closed_work_[fired] ? fired : -1;
+  if (forced) ++forced_events_;
+  if (forced && closed_work_[fired]) {
+    closed_work_[fired] = 0;
+    ++releases_;
+    event_log_.push_back({t, fired, EventKind::Release, 0.0, 0.0, 0.0});
+  }
   // Hits: open contacts touching (the root found, or a gap zero to round-off) and closing.
   hits_.clear();
   restitution_.clear();
@@ -471,7 +500,7 @@ void ModalExact::handle_events(Index fired) {
     double gap, scale;
     signal_derivative(i, 0, gap, scale);
     if (i != fired && gap > kRoundoff * scale) continue;
-    if (leading_sign(i, 1) >= 0) continue;
+    if (i != forced_closing && leading_sign(i, 1) >= 0) continue;
     const Contact& c = contacts_[i];
     const double rate = c.a * v[c.dof];  // a massless dof's v: the rate of its condensed value
     u[c.dof] = c.position;  // the gap is zero at the event, exactly
@@ -485,7 +514,7 @@ void ModalExact::handle_events(Index fired) {
     const bool zeno = e_ * -rate < zeno_velocity_;
     if (zeno && e_ > 0.0 && rate < 0.0) ++zeno_stops_;
     hits_.push_back(i);
-    restitution_.push_back(zeno ? 0.0 : e_);
+    restitution_.push_back(zeno || i == forced_closing ? 0.0 : e_);
     rate_before_.push_back(rate);
     rate_scale = std::max(rate_scale, std::abs(rate));
   }
@@ -546,7 +575,7 @@ void ModalExact::handle_events(Index fired) {
     project();
     bool released = false;
     for (Index i = 0; i < p; ++i) {
-      if (!closed_work_[i] || leading_sign(i, 0) >= 0) continue;
+      if (!closed_work_[i] || i == forced_closing || leading_sign(i, 0) >= 0) continue;
       closed_work_[i] = 0;
       released = true;
       ++releases_;
@@ -564,15 +593,15 @@ StepInfo ModalExact::step(double dt) {
   for (;;) {
     const double tau_max = target - state_.t;
     if (!(tau_max > 0.0)) break;
-    const auto [tau, fired] = find_event(tau_max);
-    if (fired < 0) {
+    const Found event = find_event(tau_max);
+    if (event.contact < 0) {
       advance(tau_max);
       break;
     }
-    advance(tau);
-    state_.t = tau == tau_max ? target : state_.t + tau;
+    advance(event.tau);
+    state_.t = event.tau == tau_max ? target : state_.t + event.tau;
     reconstruct();
-    handle_events(fired);
+    handle_events(event.contact, event.forced);
     ++events_;
     if (++events > kMaxEventsPerStep)
       throw std::runtime_error(fmt::format("modal-exact: more than {} events in one step at t = {}", kMaxEventsPerStep, state_.t));

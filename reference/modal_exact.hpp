@@ -26,6 +26,11 @@
 // 2 pi / (w_max samples_per_period) (default 16 per shortest period) and at the vertex of
 // each signal's polynomial (rigid-mode) part, a sign change bracketed between samples, then
 // refined by the Illinois method to round-off (the event is the bracket's negative end).
+// A signal an event left at zero that its derivatives send up, yet negative at the next
+// sample (a short excursion: a node released from rest that its element pushes back at
+// once) is searched at halving distances from the start; an excursion below round-off at
+// all of them is no excursion: the contact is closed (or released) against its derivatives
+// (counted in forced_events) rather than flipped back and forth at one instant.
 // LIMITATION: a sign change is seen only when a sample lands on the negative side, so a dip
 // below zero shorter than the sample spacing (two close roots, or a tangency: a double root)
 // can be missed; at 16 samples per period of the fastest mode that takes a dip shorter than
@@ -64,7 +69,7 @@
 // Work: force_evaluations stays 0 (no F_int is evaluated); factorizations counts the eigen-
 // decompositions and the Cholesky factorisations of M_SS and K_ZZ; extra: events (instants
 // handled by step()), impacts, arrivals, releases, eigen_decompositions, root_evaluations
-// (signal evaluations), zeno_stops.
+// (signal evaluations), zeno_stops, forced_events.
 // Cost: O(n^3) per mode (dense), O(n m) per step (state reconstruction: two dense
 // matrix-vector products), O(m) per signal evaluation. step() allocates nothing once its
 // modes are cached, but for the event log's amortised growth and a multi-contact impact LCP
@@ -146,15 +151,25 @@ class ModalExact final : public Integrator {
   // +1 / -1: sign of the first derivative (from order r0) of signal i that is not zero to
   // round-off; 0 when all are.
   int leading_sign(Index i, int r0) const;
-  // First event in (0, tau_max]: its tau and the signal, or tau_max + 1 and -1.
-  std::pair<double, Index> find_event(double tau_max);
+  // First event in (0, tau_max], or contact -1. forced: signal `contact` starts at zero and
+  // its derivatives say it moves up, but it is below zero at every sample down to round-off
+  // (an excursion too small to resolve): the handler overrules the derivatives.
+  struct Found {
+    double tau;
+    Index contact;
+    bool forced;
+  };
+  Found find_event(double tau_max);
+  // The first root of signal i in (lo, hi] given its values there (fhi < 0).
+  Found locate(Index i, double lo, double flo, double hi, double fhi);
   double refine(Index i, double a, double fa, double b, double fb);
   void advance(double tau);       // q_, qd_ to tau; closed contacts' reactions into impulses_
   void reconstruct();             // state_.u, state_.v from the mode and q_, qd_
   void project();                 // q_, qd_ from state_.u, state_.v (held, massless set)
   // Impacts, arrivals, closings and releases at the current state; `fired`: the contact
-  // whose signal crossed zero (-1: none, at init). Leaves the new mode and q_, qd_ set.
-  void handle_events(Index fired);
+  // whose signal crossed zero (-1: none, at init), `forced` as in Found. Leaves the new mode
+  // and q_, qd_ set.
+  void handle_events(Index fired, bool forced);
   void publish_work();
 
   double zeno_velocity_;
@@ -180,7 +195,7 @@ class ModalExact final : public Integrator {
   std::vector<std::pair<double*, const long*>> published_;
   std::vector<Event> event_log_;
   long events_ = 0, impacts_ = 0, arrivals_ = 0, releases_ = 0, zeno_stops_ = 0, decompositions_ = 0, cholesky_ = 0;
-  long root_evaluations_ = 0;
+  long root_evaluations_ = 0, forced_events_ = 0;
 };
 
 }  // namespace nsb
