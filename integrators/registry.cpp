@@ -5,6 +5,7 @@
 #include "integrators/cd_lagrange_adaptive.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "reference/event_driven.hpp"
+#include "reference/modal_exact.hpp"
 #include "reference/penalty.hpp"
 
 namespace nsb {
@@ -15,6 +16,7 @@ const std::vector<IntegratorEntry>& integrator_registry() {
       {"cd-lagrange-adaptive", "CD-Lagrange with the step chosen from the discrete energy balance (KMOW variable step), CFL-capped", &CdLagrangeAdaptive::parameters_spec, &make_from_params<Integrator, CdLagrangeAdaptive>},
       {"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>},
       {"event-driven", "reference: CVODE with root finding, Newton impacts, closed-contact mode (node-to-rigid contacts)", &EventDriven::parameters_spec, &make_from_params<Integrator, EventDriven>},
+      {"modal-exact", "reference: exact modal solution of linear problems between contact events, closed-form event signals (node-to-rigid contacts)", &ModalExact::parameters_spec, &make_from_params<Integrator, ModalExact>},
       {"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>},
   };
   return entries;

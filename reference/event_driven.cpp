@@ -61,6 +61,7 @@ void EventDriven::init(const Problem& problem, const State& initial) {
   e_ = problem.restitution();
   events_ = releases_ = zeno_stops_ = 0;
   impact_log_.clear();
+  release_log_.clear();
 
   // y = (u, v, Lambda): Lambda_i integrates contact i's reaction while it is closed.
   y_.resize(2 * n + static_cast<Index>(contacts_.size()));
@@ -152,6 +153,7 @@ void EventDriven::handle_events(double t, const std::vector<int>& fired) {
       dof_closed_[contacts_[i].dof] = 0;
       released[i] = 1;
       ++releases_;
+      release_log_.push_back({t, static_cast<Index>(i)});
     }
   // Impacts: open contacts whose root fired or that touch (gap <= atol) while closing.
   std::vector<std::size_t> hit;
@@ -215,6 +217,7 @@ void EventDriven::handle_events(double t, const std::vector<int>& fired) {
       dof_closed_[c.dof] = 0;
       y_[n + c.dof] = 0.0;  // a plastic impact left it at rest on the obstacle
       ++releases_;
+      release_log_.push_back({t, static_cast<Index>(i)});
     }
   }
   cvode_->restart(t, y_);

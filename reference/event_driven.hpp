@@ -67,6 +67,13 @@ class EventDriven final : public Integrator, private OdeSystem {
     double rate_before, rate_after;  // g' just before and just after
   };
   const std::vector<Impact>& impacts() const { return impact_log_; }
+  // Every release so far: a closed contact's reaction reaching zero, or a plastic impact's
+  // contact whose reaction would be tensile (it leaves the obstacle from rest).
+  struct Release {
+    double t;
+    Index contact;
+  };
+  const std::vector<Release>& releases() const { return release_log_; }
 
  private:
   struct Contact {
@@ -96,6 +103,7 @@ class EventDriven final : public Integrator, private OdeSystem {
   SpMat K_;
   double e_ = 0.0;
   std::vector<Impact> impact_log_;
+  std::vector<Release> release_log_;
   long events_ = 0, releases_ = 0, zeno_stops_ = 0;
 };
 
