@@ -163,14 +163,18 @@ ModalExact::Mode ModalExact::build_mode(const std::vector<char>& closed) {
   const Index n = K_.rows(), p = static_cast<Index>(contacts_.size());
   Mode md;
   md.closed = closed;
+  md.slot.assign(static_cast<std::size_t>(n), -1);
   for (Index k = 0; k < n; ++k) {
     const Index i = contact_of_[k];
-    if (i >= 0 && closed[i])
+    if (i >= 0 && closed[i]) {
       md.held.push_back(k);
-    else if (massless_[k])
+    } else if (massless_[k]) {
+      md.slot[k] = static_cast<Index>(md.massless.size());
       md.massless.push_back(k);
-    else
+    } else {
+      md.slot[k] = static_cast<Index>(md.active.size());
       md.active.push_back(k);
+    }
   }
   const auto& A = md.active;
   const auto& Z = md.massless;
@@ -585,10 +589,7 @@ void ModalExact::handle_events(Index fired, bool forced) {
   }
 }
 
-StepInfo ModalExact::step(double dt) {
-  StepInfo info;
-  impulses_.setZero();
-  const double target = state_.t + dt;
+long ModalExact::advance_through_events(double target) {
   long events = 0;
   for (;;) {
     const double tau_max = target - state_.t;
@@ -607,12 +608,35 @@ StepInfo ModalExact::step(double dt) {
       throw std::runtime_error(fmt::format("modal-exact: more than {} events in one step at t = {}", kMaxEventsPerStep, state_.t));
   }
   state_.t = target;
+  return events;
+}
+
+StepInfo ModalExact::step(double dt) {
+  StepInfo info;
+  impulses_.setZero();
+  const double target = state_.t + dt;
+  info.iterations = advance_through_events(target);
   reconstruct();
   ++work_.steps;
   info.dt = dt;
-  info.iterations = events;
   publish_work();
   return info;
+}
+
+void ModalExact::advance_to(double t) {
+  if (!(t >= state_.t))
+    throw InputError(fmt::format("modal-exact: advance_to({}) is behind the solution's time {}; valid: t >= it", t, state_.t));
+  advance_through_events(t);
+  publish_work();
+}
+
+double ModalExact::displacement(Index dof) const {
+  const Mode& md = *mode_;
+  const Index k = md.slot[static_cast<std::size_t>(dof)];
+  if (k < 0) return contacts_[contact_of_[dof]].position;
+  const Index m = md.size();
+  if (massless_[dof]) return md.cond0[k] + md.cond.row(k).dot(q_.head(m));
+  return md.phi.row(k).dot(q_.head(m));
 }
 
 void ModalExact::publish_work() {

@@ -119,6 +119,14 @@ class ModalExact final : public Integrator {
   };
   const std::vector<Event>& events() const { return event_log_; }
 
+  // Sampling one dof at many times (a study's reference at a scheme's step times) without
+  // the O(n m) state reconstruction of step(): advance_to(t) moves the solution to t >= its
+  // time, handling the events on the way; state().t is then t, but state().u and v are
+  // those of the last event or step() until the next step(). displacement(dof) is u_dof at
+  // the current time in O(m); impulses() holds what the contacts gave since that step().
+  void advance_to(double t);
+  double displacement(Index dof) const;
+
  private:
   struct Contact {
     Index dof;
@@ -129,6 +137,7 @@ class ModalExact final : public Integrator {
   struct Mode {
     std::vector<char> closed;                  // per contact
     std::vector<Index> active, massless, held;  // dofs: A, free massless Z, held H
+    std::vector<Index> slot;  // per dof: its index in active or massless, -1 when held
     Eigen::MatrixXd phi;      // |A| x m, M_AA-orthonormal
     Eigen::MatrixXd phi_t_m;  // Phi^T M_AA: projection of u_A on q
     Vec omega, force, q_static;  // w_j (0: rigid), f_j, f_j / w_j^2 (0: rigid)
@@ -160,6 +169,7 @@ class ModalExact final : public Integrator {
     bool forced;
   };
   Found find_event(double tau_max);
+  long advance_through_events(double target);  // returns the events handled
   // The first root of signal i in (lo, hi] given its values there (fhi < 0).
   Found locate(Index i, double lo, double flo, double hi, double fhi);
   double refine(Index i, double a, double fa, double b, double fb);

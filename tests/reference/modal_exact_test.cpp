@@ -252,6 +252,30 @@ TEST_CASE("modal-exact: singular bar bouncing under gravity keeps its energy ove
   CHECK(min_gap >= -1e-12);
 }
 
+TEST_CASE("modal-exact: advance_to and displacement sample one dof as step() does, through events",
+          "[reference][modal-exact][signorini-bar]") {
+  // Singular (a massless dof) and lumped (a held massive dof) bars under gravity, sampled at
+  // times that are not the stepping ones, across arrivals, impacts and releases.
+  for (const std::string mass : {"singular", "lumped"}) {
+    const auto p = bar(mass, 20, {{"g", "0.25"}});
+    auto stepped = make_me(), sampled = make_me();
+    stepped.init(p, p.initial_state());
+    sampled.init(p, p.initial_state());
+    double worst = 0.0;
+    while (stepped.state().t < 20.0) {
+      stepped.step(0.0731);
+      sampled.advance_to(stepped.state().t);
+      for (nsb::Index dof : {nsb::Index(0), nsb::Index(1), nsb::Index(10), nsb::Index(20)})
+        worst = std::max(worst, std::abs(sampled.displacement(dof) - stepped.state().u[dof]));
+    }
+    INFO(mass);
+    CHECK(sampled.events().size() == stepped.events().size());
+    CHECK(sampled.events().size() >= 4);
+    CHECK(worst <= 1e-12);
+    CHECK_THROWS_AS(sampled.advance_to(1.0), nsb::InputError);
+  }
+}
+
 TEST_CASE("modal-exact: lumped bar bouncing under gravity: the contact node's chatter only loses energy",
           "[reference][modal-exact][signorini-bar]") {
   // The energy study's case (N = 50, g = 0.25) to t = 100: dozens of plastic impacts of the
