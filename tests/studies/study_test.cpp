@@ -19,6 +19,7 @@ nsb::Table sample_table() {
   t.add_row({std::string("a,b"), 1.5e-3, 7L});
   t.add_row({std::string("diverged"), std::numeric_limits<double>::quiet_NaN(), nsb::Cell{}});
   t.figures = {{"fig", "Fig", "n", "err", {"name"}, {}, true, true}};
+  t.headline = true;
   return t;
 }
 }  // namespace
@@ -43,6 +44,7 @@ TEST_CASE("tables: the JSON form round-trips every cell type, NaN included", "[s
   const auto back = nsb::table_from_json_text(nsb::table_to_json_text(t));
   CHECK(nsb::to_csv(back) == nsb::to_csv(t));
   CHECK(back.figures.size() == 1);
+  CHECK(back.headline);
   CHECK(nsb::figures_to_json({back}) == nsb::figures_to_json({t}));
 }
 
