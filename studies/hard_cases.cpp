@@ -13,8 +13,15 @@
 //
 // Steps near the CFL limit: the step is a multiple of the problem's stable_step() (bar:
 // h/c for the lumped and the singular mass alike; block: the element bound).
+//
+// Histories (one CSV-only table and two figures per problem): over each of kHistoryPoints
+// equal intervals of [0, t_end], the largest energy deviation |E - E0| / E scale and the
+// largest penetration max(0, -g), recorded at the interval's last step (a run that stops
+// early ends with its last, partial interval). Log scales: the deviation spans round-off
+// to a blow-up's 1e300; intervals without penetration have none to draw.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -80,11 +87,14 @@ const std::vector<HardCase> kCases = {
     {"block, 2 x CFL", "block-2d", {}, 2.0, true, 0.3, 2.5e-2, 0.1, 0, 1'000'000},
 };
 
+constexpr int kHistoryPoints = 200;
+
 struct Outcome {
   std::string status;
   long steps = 0, impacts = 0, force_evaluations = 0;
   double t_reached = 0, max_penetration = 0, energy_growth = 0, final_energy_error = 0, cpu = 0, dt = 0, scale = 0;
   std::string message;
+  std::vector<double> history_t, history_energy, history_penetration;  // per interval, see above
 };
 
 Outcome run_hard_case(const HardCase& c, const std::string& integrator_name) {
@@ -107,13 +117,30 @@ Outcome run_hard_case(const HardCase& c, const std::string& integrator_name) {
   options.max_force_evaluations = c.budget;
   const double E0 = integrator->energy().total();
   const double scale = o.scale = c.energy_scale > 0.0 ? c.energy_scale : std::abs(E0);
+  const SpMat& L = problem->gap_operator();
+  Vec gap(L.rows());
   bool in_contact = false;
+  double t_last = 0.0, interval_energy = 0.0, interval_penetration = 0.0;  // the open history interval
+  const auto close_interval = [&] {
+    o.history_t.push_back(t_last);
+    o.history_energy.push_back(interval_energy);
+    o.history_penetration.push_back(interval_penetration);
+    interval_energy = interval_penetration = 0.0;
+  };
   const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo&) {
     const bool contact = it.impulses().sum() > 0.0;
     if (contact && !in_contact) ++o.impacts;
     in_contact = contact;
-    o.energy_growth = std::max(o.energy_growth, (it.energy().total() - E0) / scale);
+    const double E = it.energy().total();
+    o.energy_growth = std::max(o.energy_growth, (E - E0) / scale);
+    gap.noalias() = L * it.state().u;
+    gap += problem->gap_offset();
+    t_last = it.state().t;
+    interval_energy = std::max(interval_energy, std::abs(E - E0) / scale);
+    interval_penetration = std::max(interval_penetration, -gap.minCoeff());
+    if (t_last >= c.t_end * static_cast<double>(o.history_t.size() + 1) / kHistoryPoints) close_interval();
   });
+  if (o.history_t.empty() || t_last > o.history_t.back()) close_interval();
   o.steps = r.steps;
   o.force_evaluations = r.work.force_evaluations;
   o.t_reached = r.t_final;
@@ -144,7 +171,8 @@ Json hard_case(const Json& c) {
   return {{"status", o.status}, {"steps", o.steps}, {"impacts", o.impacts}, {"force_evaluations", o.force_evaluations},
           {"t_reached", o.t_reached}, {"max_penetration", o.max_penetration},
           {"energy_growth", o.energy_growth}, {"final_energy_error", o.final_energy_error}, {"cpu", o.cpu},
-          {"dt", o.dt}, {"scale", o.scale}, {"message", o.message}};
+          {"dt", o.dt}, {"scale", o.scale}, {"message", o.message}, {"history_t", o.history_t},
+          {"history_energy", reals(o.history_energy)}, {"history_penetration", reals(o.history_penetration)}};
 }
 
 std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector<Json>& outcomes, const StudyOptions&) {
@@ -175,6 +203,29 @@ std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector
                {"CPU", "s", "{:.2e}", ""},
                {"note", "", "", "why a run diverged, stopped or is n/a"}};
   t.metadata = {{"study", "hard"}};
+  // One history table per problem, in the order the cases first use them.
+  std::vector<Table> histories;
+  std::map<std::string, std::size_t> history_of;
+  for (const auto& c : kCases) {
+    if (history_of.count(c.problem)) continue;
+    history_of[c.problem] = histories.size();
+    Table h;
+    h.id = "hard_history_" + c.problem;
+    std::replace(h.id.begin(), h.id.end(), '-', '_');
+    h.title = fmt::format("Hard cases, {}: energy and penetration histories", c.problem);
+    h.caption = fmt::format("Over each of {} equal intervals of [0, t_end]: the largest |E - E0| / E scale (E scale as "
+                            "in hard_cases) and the largest penetration, at the interval's last step.", kHistoryPoints);
+    h.columns = {{"case", "", "", ""}, {"integrator", "", "", ""}, {"t", "s", "", "end of the interval"},
+                 {"|E - E0| / E scale", "", "", "largest over the interval"},
+                 {"penetration", "m", "", "largest max(0, -g) over the interval"}};
+    h.csv_only = true;
+    h.metadata = t.metadata;
+    h.figures = {{h.id + "_energy", fmt::format("Hard cases, {}: energy deviation", c.problem), "t",
+                  "|E - E0| / E scale", {"integrator"}, {"case"}, false, true},
+                 {h.id + "_penetration", fmt::format("Hard cases, {}: penetration", c.problem), "t", "penetration",
+                  {"integrator"}, {"case"}, false, true}};
+    histories.push_back(h);
+  }
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const HardCase& c = kCases[cases[i]["case"].get<std::size_t>()];
     const Json& o = outcomes[i];
@@ -184,8 +235,14 @@ std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector
                o["max_penetration"].get<double>(), c.penetration_tol, o["scale"].get<double>(),
                o["energy_growth"].get<double>(), c.energy_tol, o["final_energy_error"].get<double>(),
                o["cpu"].get<double>(), o["message"].get<std::string>()});
+    Table& h = histories[history_of.at(c.problem)];
+    const std::vector<double> ht = o["history_t"];
+    for (std::size_t j = 0; j < ht.size(); ++j)
+      h.add_row({c.label, cases[i]["integrator"].get<std::string>(), ht[j], number_cell(o["history_energy"][j]),
+                 number_cell(o["history_penetration"][j])});
   }
-  return {t};
+  histories.insert(histories.begin(), t);
+  return histories;
 }
 
 }  // namespace

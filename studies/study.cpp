@@ -16,6 +16,11 @@ std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& optio
 
 Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }
 double real(const Json& j) { return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>(); }
+Json reals(const std::vector<double>& v) {
+  Json a = Json::array();
+  for (double x : v) a.push_back(std::isfinite(x) ? Json(x) : Json(nullptr));
+  return a;
+}
 Cell number_cell(double v) { return std::isnan(v) ? Cell{} : Cell{v}; }
 Cell number_cell(const Json& j) { return j.is_number() ? number_cell(j.get<double>()) : Cell{}; }
 

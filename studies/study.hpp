@@ -46,6 +46,7 @@ std::vector<Table> study_tables(const StudyEntry& study, const std::vector<Json>
 // JSON has no NaN: a missing number travels as null through case results and shard files.
 Json real(double v);          // NaN -> null
 double real(const Json& j);   // null -> NaN
+Json reals(const std::vector<double>& v);  // a non-finite number (NaN, an overflow) -> null
 // A number as a table cell; NaN, null or a non-number -> an empty cell (n/a).
 Cell number_cell(double v);
 Cell number_cell(const Json& j);
