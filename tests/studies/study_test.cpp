@@ -81,3 +81,12 @@ TEST_CASE("studies: a bad study definition fails with the study, the case and th
                     Catch::Contains("study broken, case {\"integrator\":\"no-such-scheme\"}") &&
                         Catch::Contains("unknown integrator (valid: cd-lagrange"));
 }
+
+TEST_CASE("studies: NaN and overflowing numbers travel through JSON as null and come back as n/a", "[studies]") {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const nsb::Json j = nsb::Json::parse(nsb::reals({1.5, nan, inf}).dump());
+  CHECK(nsb::real(j[0]) == 1.5);
+  CHECK(std::isnan(nsb::real(j[1])));
+  CHECK(std::isnan(nsb::real(j[2])));
+  CHECK(std::holds_alternative<std::monostate>(nsb::number_cell(j[2])));
+}
