@@ -54,7 +54,8 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
   t.title = title;
   std::vector<std::string> sources;
   for (const auto& p : problems)
-    sources.push_back(p.floor > 0.0 ? fmt::format("{}: against {} (its own error {:.1e})", p.label, p.error_source, p.floor)
+    sources.push_back(p.floor > 0.0 ? fmt::format("{}: against {} (its own error {:.1e}{}{})", p.label, p.error_source,
+                                                  p.floor, error.unit.empty() ? "" : " ", error.unit)
                                     : fmt::format("{}: against {}", p.label, p.error_source));
   t.caption = fmt::format(
       "Cheapest integrator reaching each target error. Cost: {}, interpolated log-log between an integrator's runs "

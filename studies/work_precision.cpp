@@ -195,7 +195,7 @@ std::vector<Table> precision_tables(const std::vector<Json>& cases, const std::v
     orders.add_row({kProblems[cases[begin]["problem"].get<std::size_t>()].label, integrator, fit(smooth), fit(all)});
   }
   Table rank = ranking_table("work_precision_ranking", "Cheapest integrator at each target error, against exact solutions",
-                             {"err all", "", "", "relative displacement error, whole run"},
+                             {"err", "", "", "err all of work_precision: relative displacement error, whole run"},
                              "median CPU time of 3 timed runs", ranking);
   rank.metadata = t.metadata;
   return {t, orders, rank};
