@@ -94,8 +94,10 @@ def panel_lines(spec, rows):
 def draw(spec, reports):
     meta, rows = read_table(os.path.join(reports, spec["csv"]))
     panels = panel_lines(spec, rows)
-    names = list(dict.fromkeys(name for lines in panels.values() for name in lines))  # first seen first
-    styles = line_styles([name for name in names if name != "exact"])
+    # Styles follow the table's rows (the registry's order), drawn or not: a line keeps its
+    # colour in every figure of the table. The legend lists the lines drawn.
+    styles = line_styles([name for name in dict.fromkeys(label(row, spec["series"]) for row in rows) if name != "exact"])
+    names = list(dict.fromkeys(name for lines in panels.values() for name in lines))
     n = len(panels)
     cols = min(n, 3)
     nrows = math.ceil(n / cols)

@@ -77,7 +77,7 @@ struct CaseResult {
   double energy_max = 0, energy_final = 0, px_error = 0, j_residual = 0, cpu = 0, observer_cpu = 0;
   double lcp_residual = NAN;
   long impacts = 0, max_active = 0, steps = 0, lcp_iterations = 0;
-  std::vector<double> history_t, history_px, history_j;  // momentum histories (when asked for)
+  IntervalMax history;  // P_x error, J residual (when asked for)
 };
 
 CaseResult run_case(const std::string& integrator_name, long n, double dt, double t_end, bool history) {
@@ -105,7 +105,7 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
   double J_prev = b.angular_momentum(s0.u, s0.v);
   Vec lambda_prev = Vec::Zero(L.rows()), force(b.ndof());
   long k = 0;
-  double interval_px = 0.0, interval_j = 0.0;
+  c.history = IntervalMax(t_end, kHistoryPoints, 2);
   RunOptions options;
   options.dt = dt;
   options.t_end = t_end;
@@ -120,24 +120,18 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
     ++k;
     const double px = std::abs(b.linear_momentum(s.v).x() - px0) / p_scale;
     c.px_error = std::max(c.px_error, px);
-    interval_px = std::max(interval_px, px);
+    double j_res = 0.0;
     const double J = b.angular_momentum(s.u, s.v);
     if (k >= 2) {
       force.noalias() = L.transpose() * lambda;
       double torque = 0.0;
       for (Index a = 0; a < b.nodes(); ++a)
         torque += (b.reference_position(a).x() + s.u[2 * a]) * (force[2 * a + 1] - info.dt * m[2 * a + 1] * g);
-      const double j_res = std::abs(J - J_prev - torque) / j_scale;
+      j_res = std::abs(J - J_prev - torque) / j_scale;
       c.j_residual = std::max(c.j_residual, j_res);
-      interval_j = std::max(interval_j, j_res);
     }
     J_prev = J;
-    if (history && s.t >= t_end * static_cast<double>(c.history_t.size() + 1) / kHistoryPoints) {
-      c.history_t.push_back(s.t);
-      c.history_px.push_back(interval_px);
-      c.history_j.push_back(interval_j);
-      interval_px = interval_j = 0.0;
-    }
+    if (history) c.history.add(s.t, {px, j_res});
     long active = 0;
     for (Index i = 0; i < lambda.size(); ++i) {
       active += lambda[i] > 0.0;
@@ -148,6 +142,7 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
     if (std::abs(s.t - kSample * static_cast<double>(c.yc.size())) < 0.5 * info.dt) c.yc.push_back(centre_height(s.u));
     c.observer_cpu += thread_cpu() - start;
   });
+  c.history.finish();
   c.steps = r.steps;
   c.cpu = r.cpu_seconds;
   c.lcp_iterations = r.work.lcp_iterations;
@@ -259,7 +254,8 @@ Json block_case(const Json& c, const StudyOptions& opt) {
           {"energy_final", real(r.energy_final)}, {"px_error", r.px_error}, {"j_residual", r.j_residual},
           {"cpu", r.cpu - r.observer_cpu}, {"lcp_residual", real(r.lcp_residual)}, {"impacts", r.impacts},
           {"max_active", r.max_active}, {"steps", r.steps}, {"lcp_iterations", r.lcp_iterations},
-          {"history_t", r.history_t}, {"history_px", reals(r.history_px)}, {"history_j", reals(r.history_j)}};
+          {"history_t", r.history.times()}, {"history_px", reals(r.history.largest(0))},
+          {"history_j", reals(r.history.largest(1))}};
 }
 
 std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vector<Json>& results,

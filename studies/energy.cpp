@@ -144,8 +144,8 @@ Json energy_case(const Json& c) {
   long k = 0, impacts = 0;
   bool in_contact = false;
   double last_contact = -1e300;  // time of the last step with an impulse
-  std::vector<double> flight_err, history_t, history_e, momentum_t, momentum_res;
-  double interval_momentum = 0.0;
+  std::vector<double> flight_err, history_t, history_e;
+  IntervalMax momentum_history(options.t_end, kHistoryPoints, 1);
   const auto observer = [&](const Integrator& it, const StepInfo& info) {
     const double t = it.state().t, E = it.energy().total();
     if (std::isnan(E1)) E1 = E;
@@ -172,18 +172,14 @@ Json energy_case(const Json& c) {
     if (momentum_balance) {
       const double res = std::abs(msum.dot(it.state().v) - p0 - impulse_sum) / p_scale;
       momentum = std::max(momentum, res);
-      interval_momentum = std::max(interval_momentum, res);
-      if (t >= options.t_end * static_cast<double>(momentum_t.size() + 1) / kHistoryPoints) {
-        momentum_t.push_back(t);
-        momentum_res.push_back(interval_momentum);
-        interval_momentum = 0.0;
-      }
+      momentum_history.add(t, {res});
     }
     const int i = static_cast<int>(flight_err.size()) + 1;
     if (ep.flights > 0 && i <= ep.flights && t >= 0.5 * (bouncing->impact_time(i) + bouncing->impact_time(i + 1)))
       flight_err.push_back(E / bouncing->energy_after_impact(i) - 1.0);
   };
   const RunResult r = run(*problem, *integrator, options, observer);
+  momentum_history.finish();
   double flight_max = flight_err.empty() ? kNaN : 0.0;
   for (double x : flight_err) flight_max = std::max(flight_max, std::abs(x));
   Json counters = Json::object();
@@ -197,8 +193,8 @@ Json energy_case(const Json& c) {
           {"drift", real(c_tt > 0.0 ? c_te / c_tt : kNaN)}, {"momentum", real(momentum_balance ? momentum : kNaN)},
           {"dt_min", dt_min}, {"dt_max", dt_max}, {"flight_max", real(flight_max)},
           {"flights", static_cast<long>(flight_err.size())}, {"counters", counters},
-          {"history_t", history_t}, {"history_e", history_e}, {"momentum_t", momentum_t},
-          {"momentum_res", reals(momentum_res)}};
+          {"history_t", history_t}, {"history_e", history_e}, {"momentum_t", momentum_history.times()},
+          {"momentum_res", reals(momentum_history.largest(0))}};
 }
 
 std::vector<Table> energy_tables(const std::vector<Json>& cases, const std::vector<Json>& results, const StudyOptions& opt) {

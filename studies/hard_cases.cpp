@@ -94,7 +94,7 @@ struct Outcome {
   long steps = 0, impacts = 0, force_evaluations = 0;
   double t_reached = 0, max_penetration = 0, energy_growth = 0, final_energy_error = 0, cpu = 0, dt = 0, scale = 0;
   std::string message;
-  std::vector<double> history_t, history_energy, history_penetration;  // per interval, see above
+  IntervalMax history;  // energy deviation, penetration; see above
 };
 
 Outcome run_hard_case(const HardCase& c, const std::string& integrator_name) {
@@ -120,13 +120,7 @@ Outcome run_hard_case(const HardCase& c, const std::string& integrator_name) {
   const SpMat& L = problem->gap_operator();
   Vec gap(L.rows());
   bool in_contact = false;
-  double t_last = 0.0, interval_energy = 0.0, interval_penetration = 0.0;  // the open history interval
-  const auto close_interval = [&] {
-    o.history_t.push_back(t_last);
-    o.history_energy.push_back(interval_energy);
-    o.history_penetration.push_back(interval_penetration);
-    interval_energy = interval_penetration = 0.0;
-  };
+  o.history = IntervalMax(c.t_end, kHistoryPoints, 2);
   const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo&) {
     const bool contact = it.impulses().sum() > 0.0;
     if (contact && !in_contact) ++o.impacts;
@@ -135,12 +129,9 @@ Outcome run_hard_case(const HardCase& c, const std::string& integrator_name) {
     o.energy_growth = std::max(o.energy_growth, (E - E0) / scale);
     gap.noalias() = L * it.state().u;
     gap += problem->gap_offset();
-    t_last = it.state().t;
-    interval_energy = std::max(interval_energy, std::abs(E - E0) / scale);
-    interval_penetration = std::max(interval_penetration, -gap.minCoeff());
-    if (t_last >= c.t_end * static_cast<double>(o.history_t.size() + 1) / kHistoryPoints) close_interval();
+    o.history.add(it.state().t, {std::abs(E - E0) / scale, -gap.minCoeff()});
   });
-  if (o.history_t.empty() || t_last > o.history_t.back()) close_interval();
+  o.history.finish();
   o.steps = r.steps;
   o.force_evaluations = r.work.force_evaluations;
   o.t_reached = r.t_final;
@@ -171,8 +162,8 @@ Json hard_case(const Json& c) {
   return {{"status", o.status}, {"steps", o.steps}, {"impacts", o.impacts}, {"force_evaluations", o.force_evaluations},
           {"t_reached", o.t_reached}, {"max_penetration", o.max_penetration},
           {"energy_growth", o.energy_growth}, {"final_energy_error", o.final_energy_error}, {"cpu", o.cpu},
-          {"dt", o.dt}, {"scale", o.scale}, {"message", o.message}, {"history_t", o.history_t},
-          {"history_energy", reals(o.history_energy)}, {"history_penetration", reals(o.history_penetration)}};
+          {"dt", o.dt}, {"scale", o.scale}, {"message", o.message}, {"history_t", o.history.times()},
+          {"history_energy", reals(o.history.largest(0))}, {"history_penetration", reals(o.history.largest(1))}};
 }
 
 std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector<Json>& outcomes, const StudyOptions&) {

@@ -90,3 +90,19 @@ TEST_CASE("studies: NaN and overflowing numbers travel through JSON as null and 
   CHECK(std::isnan(nsb::real(j[2])));
   CHECK(std::holds_alternative<std::monostate>(nsb::number_cell(j[2])));
 }
+
+TEST_CASE("interval histories: the largest value of each interval at its last step, a partial last interval closed", "[studies]") {
+  nsb::IntervalMax h(1.0, 4, 2);  // intervals end at 0.25, 0.5, 0.75, 1
+  const std::vector<double> t = {0.1, 0.2, 0.3, 0.6, 0.7};
+  const std::vector<double> a = {1.0, 3.0, 2.0, 5.0, 4.0};
+  for (std::size_t i = 0; i < t.size(); ++i) h.add(t[i], {a[i], 10.0 * a[i]});
+  h.finish();  // stopped at 0.7: the third interval is partial
+  CHECK(h.times() == std::vector<double>{0.3, 0.6, 0.7});
+  CHECK(h.largest(0) == std::vector<double>{3.0, 5.0, 4.0});
+  CHECK(h.largest(1) == std::vector<double>{30.0, 50.0, 40.0});
+  h.finish();  // nothing open: nothing added
+  CHECK(h.times().size() == 3);
+  const nsb::IntervalMax none;  // a run that never started (n/a)
+  CHECK(none.times().empty());
+  CHECK(none.largest(1).empty());
+}
