@@ -6,8 +6,8 @@
 Writes REPORTS/figures/<id>.png and .pdf, each stamped with the revision and build read from
 the CSV's '#' metadata lines. Rows whose x is not a number (n/a, diverged) are skipped; where
 y is not a number (or not positive on a log scale) the line has a gap. A line keeps its colour
-in every panel, one legend below the panels says which is which; a line labelled 'exact' is
-the reference: black, dashed, drawn over the others.
+and dashes in every panel and figure of a table; one legend, outside the panels, says which is
+which. A line labelled 'exact' is the reference: black, dashed, drawn over the others.
 """
 import csv
 import json

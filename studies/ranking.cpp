@@ -41,8 +41,7 @@ TargetCost cost_at_target(const WorkCurve& curve, double target, double floor) {
 std::vector<Standing> rank_at_target(const std::vector<WorkCurve>& curves, double target, double floor) {
   std::vector<Standing> all;
   for (std::size_t i = 0; i < curves.size(); ++i) all.push_back({i, cost_at_target(curves[i], target, floor)});
-  std::stable_partition(all.begin(), all.end(), [](const Standing& s) { return s.cost.reached; });
-  const auto reached_end = std::find_if(all.begin(), all.end(), [](const Standing& s) { return !s.cost.reached; });
+  const auto reached_end = std::stable_partition(all.begin(), all.end(), [](const Standing& s) { return s.cost.reached; });
   std::stable_sort(all.begin(), reached_end, [](const Standing& a, const Standing& b) { return a.cost.cost < b.cost.cost; });
   return all;
 }
