@@ -15,6 +15,9 @@ struct IntegratorEntry {
   std::string description;
   ParamSpecs (*parameters)();
   std::unique_ptr<Integrator> (*make)(const Params&);
+  // A reference solver (the studies' yardstick where no exact solution exists); studies
+  // rank it with the others but mark it.
+  bool reference;
 };
 
 const std::vector<IntegratorEntry>& integrator_registry();

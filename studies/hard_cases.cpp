@@ -19,8 +19,15 @@
 //
 // Steps near the CFL limit: the step is a multiple of the problem's stable_step() (bar:
 // h/c for the lumped and the singular mass alike; block: the element bound).
+//
+// Histories (one CSV-only table and two figures per problem): over each of kHistoryPoints
+// equal intervals of [0, t_end], the largest energy deviation |E - E0| / E scale and the
+// largest penetration max(0, -g), recorded at the interval's last step (a run that stops
+// early ends with its last, partial interval). Log scales: the deviation spans round-off
+// to a blow-up's 1e300; intervals without penetration have none to draw.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -86,6 +93,8 @@ const std::vector<HardCase> kCases = {
     {"block, 2 x CFL", "block-2d", {}, 2.0, true, 0.3, 2.5e-2, 0.1, 0, 1'000'000},
 };
 
+constexpr int kHistoryPoints = 200;
+
 struct Outcome {
   std::string status;
   long steps = 0, impacts = 0, force_evaluations = 0;
@@ -94,6 +103,7 @@ struct Outcome {
   double switches = NAN, missed_switches = NAN;
   double t_reached = 0, max_penetration = 0, energy_growth = 0, final_energy_error = 0, cpu = 0, dt = 0, scale = 0;
   std::string message;
+  IntervalMax history;  // energy deviation, penetration; see above
 };
 
 Outcome run_hard_case(const HardCase& c, const std::string& integrator_name) {
@@ -116,13 +126,21 @@ Outcome run_hard_case(const HardCase& c, const std::string& integrator_name) {
   options.max_force_evaluations = c.budget;
   const double E0 = integrator->energy().total();
   const double scale = o.scale = c.energy_scale > 0.0 ? c.energy_scale : std::abs(E0);
+  const SpMat& L = problem->gap_operator();
+  Vec gap(L.rows());
   bool in_contact = false;
+  o.history = IntervalMax(c.t_end, kHistoryPoints, 2);
   const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo&) {
     const bool contact = it.impulses().sum() > 0.0;
     if (contact && !in_contact) ++o.impacts;
     in_contact = contact;
-    o.energy_growth = std::max(o.energy_growth, (it.energy().total() - E0) / scale);
+    const double E = it.energy().total();
+    o.energy_growth = std::max(o.energy_growth, (E - E0) / scale);
+    gap.noalias() = L * it.state().u;
+    gap += problem->gap_offset();
+    o.history.add(it.state().t, {std::abs(E - E0) / scale, -gap.minCoeff()});
   });
+  o.history.finish();
   o.steps = r.steps;
   o.force_evaluations = r.work.force_evaluations;
   o.t_reached = r.t_final;
@@ -156,7 +174,8 @@ Json hard_case(const Json& c) {
           {"switches", real(o.switches)}, {"missed_switches", real(o.missed_switches)},
           {"t_reached", o.t_reached}, {"max_penetration", o.max_penetration},
           {"energy_growth", o.energy_growth}, {"final_energy_error", o.final_energy_error}, {"cpu", o.cpu},
-          {"dt", o.dt}, {"scale", o.scale}, {"message", o.message}};
+          {"dt", o.dt}, {"scale", o.scale}, {"message", o.message}, {"history_t", o.history.times()},
+          {"history_energy", reals(o.history.largest(0))}, {"history_penetration", reals(o.history.largest(1))}};
 }
 
 std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector<Json>& outcomes, const StudyOptions&) {
@@ -189,6 +208,29 @@ std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector
                {"CPU", "s", "{:.2e}", ""},
                {"note", "", "", "why a run diverged, stopped or is n/a"}};
   t.metadata = {{"study", "hard"}};
+  // One history table per problem, in the order the cases first use them.
+  std::vector<Table> histories;
+  std::map<std::string, std::size_t> history_of;
+  for (const auto& c : kCases) {
+    if (history_of.count(c.problem)) continue;
+    history_of[c.problem] = histories.size();
+    Table h;
+    h.id = "hard_history_" + c.problem;
+    std::replace(h.id.begin(), h.id.end(), '-', '_');
+    h.title = fmt::format("Hard cases, {}: energy and penetration histories", c.problem);
+    h.caption = fmt::format("Over each of {} equal intervals of [0, t_end]: the largest |E - E0| / E scale (E scale as "
+                            "in hard_cases) and the largest penetration, at the interval's last step.", kHistoryPoints);
+    h.columns = {{"case", "", "", ""}, {"integrator", "", "", ""}, {"t", "s", "", "end of the interval"},
+                 {"|E - E0| / E scale", "", "", "largest over the interval"},
+                 {"penetration", "m", "", "largest max(0, -g) over the interval"}};
+    h.csv_only = true;
+    h.metadata = t.metadata;
+    h.figures = {{h.id + "_energy", fmt::format("Hard cases, {}: energy deviation", c.problem), "t",
+                  "|E - E0| / E scale", {"integrator"}, {"case"}, false, true},
+                 {h.id + "_penetration", fmt::format("Hard cases, {}: penetration", c.problem), "t", "penetration",
+                  {"integrator"}, {"case"}, false, true}};
+    histories.push_back(h);
+  }
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const HardCase& c = kCases[cases[i]["case"].get<std::size_t>()];
     const Json& o = outcomes[i];
@@ -198,8 +240,14 @@ std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector
                o["max_penetration"].get<double>(), c.penetration_tol, o["scale"].get<double>(),
                o["energy_growth"].get<double>(), c.energy_tol, o["final_energy_error"].get<double>(),
                o["cpu"].get<double>(), o["message"].get<std::string>()});
+    Table& h = histories[history_of.at(c.problem)];
+    const std::vector<double> ht = o["history_t"];
+    for (std::size_t j = 0; j < ht.size(); ++j)
+      h.add_row({c.label, cases[i]["integrator"].get<std::string>(), ht[j], number_cell(o["history_energy"][j]),
+                 number_cell(o["history_penetration"][j])});
   }
-  return {t};
+  histories.insert(histories.begin(), t);
+  return histories;
 }
 
 }  // namespace

@@ -6,7 +6,8 @@
 //   nsbench-study all|NAME... [--out DIR] [--full] --merge         merge the N shards, write
 //
 // Reports: DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
-// scripts/figures.py) and DIR/index.md linking them. Shards: DIR/shards/<study>-I-of-N.json.
+// scripts/figures.py) and DIR/index.md linking them, opening with the headline tables (the
+// rankings) in full. Shards: DIR/shards/<study>-I-of-N.json.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -120,6 +121,8 @@ int main(int argc, char** argv) {
     const auto& b = nsb::build_info();
     std::string index = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}.\n\n", b.git_revision,
                                     b.build_type, b.compiler, full ? ", full sweeps" : "");
+    std::string studies;   // a section per study, after the headline
+    std::string headline;  // the headline tables, shown first
     std::vector<nsb::Table> all_tables;
     for (const auto* s : selected) {
       const auto start = std::chrono::steady_clock::now();
@@ -147,24 +150,30 @@ int main(int argc, char** argv) {
         results = computed;
       }
       const auto tables = nsb::study_tables(*s, cases, results, options);
-      index += fmt::format("## {}\n\n{}\n\n", s->name, s->description);
+      studies += fmt::format("## {}\n\n{}\n\n", s->name, s->description);
       for (const auto& t : tables) {
         nsb::write_table(t, out);
         if (t.csv_only)
-          index += fmt::format("- {} ([csv]({}.csv))\n", t.title, t.id);
+          studies += fmt::format("- {} ([csv]({}.csv))\n", t.title, t.id);
         else
-          index += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", t.title, t.id, t.id, t.id);
+          studies += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", t.title, t.id, t.id, t.id);
         for (const auto& f : t.figures)
-          index += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf))\n", f.title, f.id, f.id);
+          studies += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf))\n", f.title, f.id, f.id);
+        if (t.headline)
+          headline += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", t.title, t.id, s->name, t.caption,
+                                  nsb::markdown_grid(t));
         all_tables.push_back(t);
       }
-      index += "\n";
+      studies += "\n";
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       fmt::print(stderr, "study {}: {} cases, {} tables in {:.1f} s\n", s->name, cases.size(), tables.size(), secs);
     }
     if (!shard.count) {
       nsb::write_file_atomic(fs::path(out) / "figures.json", nsb::figures_to_json(all_tables));
-      nsb::write_file_atomic(fs::path(out) / "index.md", index);
+      if (!headline.empty())
+        index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
+                 "caption).\n\n" + headline + "\n";
+      nsb::write_file_atomic(fs::path(out) / "index.md", index + studies);
     }
   } catch (const InputError& e) {
     fmt::print(stderr, "nsbench-study: error: {}\n", e.what());

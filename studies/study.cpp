@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -16,8 +17,45 @@ std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& optio
 
 Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }
 double real(const Json& j) { return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>(); }
+Json reals(const std::vector<double>& v) {
+  Json a = Json::array();
+  for (double x : v) a.push_back(std::isfinite(x) ? Json(x) : Json(nullptr));
+  return a;
+}
 Cell number_cell(double v) { return std::isnan(v) ? Cell{} : Cell{v}; }
 Cell number_cell(const Json& j) { return j.is_number() ? number_cell(j.get<double>()) : Cell{}; }
+
+IntervalMax::IntervalMax(double t_end, int intervals, std::size_t quantities)
+    : t_end_(t_end), intervals_(intervals), current_(quantities, 0.0), largest_(quantities) {}
+
+void IntervalMax::add(double t, std::initializer_list<double> values) {
+  std::size_t i = 0;
+  for (double v : values) {
+    current_[i] = std::max(current_[i], v);  // a NaN is not a largest value
+    ++i;
+  }
+  t_last_ = t;
+  open_ = true;
+  if (t >= t_end_ * static_cast<double>(times_.size() + 1) / intervals_) close();
+}
+
+const std::vector<double>& IntervalMax::largest(std::size_t quantity) const {
+  static const std::vector<double> none;
+  return quantity < largest_.size() ? largest_[quantity] : none;
+}
+
+void IntervalMax::finish() {
+  if (open_) close();
+}
+
+void IntervalMax::close() {
+  times_.push_back(t_last_);
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    largest_[i].push_back(current_[i]);
+    current_[i] = 0.0;
+  }
+  open_ = false;
+}
 
 Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOptions& options) {
   if (!study.run) {

@@ -8,6 +8,7 @@
 // Studies are listed in studies/registry.cpp, one line each. A study written as a single
 // function returning tables (`run`) is a study of one case.
 #include <nlohmann/json.hpp>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -46,9 +47,33 @@ std::vector<Table> study_tables(const StudyEntry& study, const std::vector<Json>
 // JSON has no NaN: a missing number travels as null through case results and shard files.
 Json real(double v);          // NaN -> null
 double real(const Json& j);   // null -> NaN
+Json reals(const std::vector<double>& v);  // a non-finite number (NaN, an overflow) -> null
 // A number as a table cell; NaN, null or a non-number -> an empty cell (n/a).
 Cell number_cell(double v);
 Cell number_cell(const Json& j);
+
+// The largest values of a few non-negative quantities over each of `intervals` equal intervals of
+// [0, t_end], each with the time of the interval's last step: a history that, unlike samples,
+// keeps a spike or a blow-up between them. Fed after every step; finish() closes the last,
+// partial interval of a run that stopped early (or short of t_end by round-off).
+class IntervalMax {
+ public:
+  IntervalMax() = default;  // no quantities, no intervals: an empty history
+  IntervalMax(double t_end, int intervals, std::size_t quantities);
+  void add(double t, std::initializer_list<double> values);
+  void finish();
+  const std::vector<double>& times() const { return times_; }
+  const std::vector<double>& largest(std::size_t quantity) const;  // empty in an empty history
+
+ private:
+  double t_end_ = 0.0;
+  int intervals_ = 1;
+  double t_last_ = 0.0;
+  bool open_ = false;  // steps added since the last interval closed
+  std::vector<double> times_, current_;
+  std::vector<std::vector<double>> largest_;
+  void close();
+};
 
 // Observed order between two refinements: log(e1/e2) / log(h1/h2); NaN when an error is
 // not positive and finite.

@@ -86,20 +86,23 @@ std::string to_csv(const Table& t) {
   return out;
 }
 
-std::string to_markdown(const Table& t) {
-  std::string out = fmt::format("## {}\n\n{}\n\n", t.title, t.caption);
+std::string markdown_grid(const Table& t) {
   std::vector<std::string> head, rule;
   for (const auto& c : t.columns) {
     head.push_back(header_text(c));
     rule.push_back("---");
   }
-  out += fmt::format("| {} |\n| {} |\n", fmt::join(head, " | "), fmt::join(rule, " | "));
+  std::string out = fmt::format("| {} |\n| {} |\n", fmt::join(head, " | "), fmt::join(rule, " | "));
   for (const auto& row : t.rows) {
     std::vector<std::string> cells;
     for (std::size_t i = 0; i < row.size(); ++i) cells.push_back(cell_text(row[i], t.columns[i].format));
     out += fmt::format("| {} |\n", fmt::join(cells, " | "));
   }
-  out += "\n";
+  return out;
+}
+
+std::string to_markdown(const Table& t) {
+  std::string out = fmt::format("## {}\n\n{}\n\n{}\n", t.title, t.caption, markdown_grid(t));
   for (const auto& c : t.columns)
     if (!c.description.empty()) out += fmt::format("- `{}`: {}\n", c.name, c.description);
   out += "\n";
@@ -212,6 +215,7 @@ std::string table_to_json_text(const Table& t) {
   }
   j["metadata"] = t.metadata;
   j["csv_only"] = t.csv_only;
+  j["headline"] = t.headline;
   j["figures"] = nlohmann::json::array();
   for (const auto& f : t.figures)
     j["figures"].push_back({{"id", f.id}, {"title", f.title}, {"x", f.x}, {"y", f.y}, {"series", f.series},
@@ -233,6 +237,7 @@ Table table_from_json_text(const std::string& text) {
   }
   t.metadata = j["metadata"].get<std::vector<std::pair<std::string, std::string>>>();
   t.csv_only = j["csv_only"];
+  t.headline = j["headline"];
   for (const auto& f : j["figures"])
     t.figures.push_back({f["id"], f["title"], f["x"], f["y"], f["series"], f["panels"], f["log_x"], f["log_y"]});
   return t;

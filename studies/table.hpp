@@ -43,12 +43,15 @@ struct Table {
   std::vector<std::pair<std::string, std::string>> metadata;  // study parameters
   std::vector<Figure> figures;
   bool csv_only = false;  // raw data behind a figure (histories): no Markdown or LaTeX
+  bool headline = false;  // also shown first in index.md, under "Headline ranking"
 
   void add_row(std::vector<Cell> row);  // throws std::logic_error on a width mismatch
 };
 
 std::string to_csv(const Table& table);
 std::string to_markdown(const Table& table);
+// The Markdown table alone (header, rule, rows), as to_markdown writes it.
+std::string markdown_grid(const Table& table);
 std::string to_latex(const Table& table);
 
 // "name [unit]": a column's header in every format.

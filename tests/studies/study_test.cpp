@@ -19,6 +19,7 @@ nsb::Table sample_table() {
   t.add_row({std::string("a,b"), 1.5e-3, 7L});
   t.add_row({std::string("diverged"), std::numeric_limits<double>::quiet_NaN(), nsb::Cell{}});
   t.figures = {{"fig", "Fig", "n", "err", {"name"}, {}, true, true}};
+  t.headline = true;
   return t;
 }
 }  // namespace
@@ -43,6 +44,7 @@ TEST_CASE("tables: the JSON form round-trips every cell type, NaN included", "[s
   const auto back = nsb::table_from_json_text(nsb::table_to_json_text(t));
   CHECK(nsb::to_csv(back) == nsb::to_csv(t));
   CHECK(back.figures.size() == 1);
+  CHECK(back.headline);
   CHECK(nsb::figures_to_json({back}) == nsb::figures_to_json({t}));
 }
 
@@ -78,4 +80,29 @@ TEST_CASE("studies: a bad study definition fails with the study, the case and th
   CHECK_THROWS_WITH(nsb::run_study_case(bad, cases[0], {}),
                     Catch::Contains("study broken, case {\"integrator\":\"no-such-scheme\"}") &&
                         Catch::Contains("unknown integrator (valid: cd-lagrange"));
+}
+
+TEST_CASE("studies: NaN and overflowing numbers travel through JSON as null and come back as n/a", "[studies]") {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const nsb::Json j = nsb::Json::parse(nsb::reals({1.5, nan, inf}).dump());
+  CHECK(nsb::real(j[0]) == 1.5);
+  CHECK(std::isnan(nsb::real(j[1])));
+  CHECK(std::isnan(nsb::real(j[2])));
+  CHECK(std::holds_alternative<std::monostate>(nsb::number_cell(j[2])));
+}
+
+TEST_CASE("interval histories: the largest value of each interval at its last step, a partial last interval closed", "[studies]") {
+  nsb::IntervalMax h(1.0, 4, 2);  // intervals end at 0.25, 0.5, 0.75, 1
+  const std::vector<double> t = {0.1, 0.2, 0.3, 0.6, 0.7};
+  const std::vector<double> a = {1.0, 3.0, 2.0, 5.0, 4.0};
+  for (std::size_t i = 0; i < t.size(); ++i) h.add(t[i], {a[i], 10.0 * a[i]});
+  h.finish();  // stopped at 0.7: the third interval is partial
+  CHECK(h.times() == std::vector<double>{0.3, 0.6, 0.7});
+  CHECK(h.largest(0) == std::vector<double>{3.0, 5.0, 4.0});
+  CHECK(h.largest(1) == std::vector<double>{30.0, 50.0, 40.0});
+  h.finish();  // nothing open: nothing added
+  CHECK(h.times().size() == 3);
+  const nsb::IntervalMax none;  // a run that never started (n/a)
+  CHECK(none.times().empty());
+  CHECK(none.largest(1).empty());
 }

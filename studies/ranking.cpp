@@ -1,0 +1,104 @@
+#include "studies/ranking.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+namespace nsb {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+bool usable(double x) { return x > 0.0 && std::isfinite(x); }
+}  // namespace
+
+TargetCost cost_at_target(const WorkCurve& curve, double target, double floor) {
+  struct Run {
+    double cost, error;
+    std::size_t index;
+  };
+  std::vector<Run> runs;
+  for (std::size_t i = 0; i < curve.points.size(); ++i) {
+    const WorkPoint& p = curve.points[i];
+    if (usable(p.cost) && usable(p.error)) runs.push_back({p.cost, std::max(p.error, floor), i});
+  }
+  std::sort(runs.begin(), runs.end(), [](const Run& a, const Run& b) {
+    return std::tie(a.cost, a.error, a.index) < std::tie(b.cost, b.error, b.index);
+  });
+  const auto hit = std::find_if(runs.begin(), runs.end(), [&](const Run& r) { return r.error <= target; });
+  if (hit == runs.end()) return {false, kNaN, ""};
+  const std::string& at = curve.points[hit->index].run;
+  if (hit == runs.begin()) return {true, hit->cost, at + " (cheapest run)"};
+  // The first of equally accurate cheaper runs is the cheapest of them.
+  const Run& before = *std::min_element(runs.begin(), hit, [](const Run& a, const Run& b) { return a.error < b.error; });
+  const double f = std::log(before.error / target) / std::log(before.error / hit->error);  // in (0, 1]
+  return {true, before.cost * std::pow(hit->cost / before.cost, f), curve.points[before.index].run + " .. " + at};
+}
+
+std::vector<Standing> rank_at_target(const std::vector<WorkCurve>& curves, double target, double floor) {
+  std::vector<Standing> all;
+  for (std::size_t i = 0; i < curves.size(); ++i) all.push_back({i, cost_at_target(curves[i], target, floor)});
+  const auto reached_end = std::stable_partition(all.begin(), all.end(), [](const Standing& s) { return s.cost.reached; });
+  std::stable_sort(all.begin(), reached_end, [](const Standing& a, const Standing& b) { return a.cost.cost < b.cost.cost; });
+  return all;
+}
+
+Table ranking_table(const std::string& id, const std::string& title, const Column& error, const std::string& cost,
+                    const std::vector<RankingProblem>& problems) {
+  Table t;
+  t.id = id;
+  t.title = title;
+  std::vector<std::string> sources;
+  for (const auto& p : problems)
+    sources.push_back(p.floor > 0.0 ? fmt::format("{}: against {} (its own error {:.1e}{}{})", p.label, p.error_source,
+                                                  p.floor, error.unit.empty() ? "" : " ", error.unit)
+                                    : fmt::format("{}: against {}", p.label, p.error_source));
+  t.caption = fmt::format(
+      "Cheapest integrator reaching each target error. Cost: {}, interpolated log-log between an integrator's runs "
+      "(by increasing cost: the first reaching the target and the most accurate cheaper one), never extrapolated "
+      "(\"cheapest run\": that run already reaches the target, its cost is an upper bound); diverged, over-budget "
+      "and n/a runs left out. References are ranked as peers, marked. Errors: {}; below the source's own error they "
+      "count as it, and no target below it is ranked.",
+      cost, fmt::join(sources, "; "));
+  t.columns = {{"problem", "", "", ""},
+               {"target " + error.name, error.unit, "{:.0e}", error.description},
+               {"winner", "", "", "cheapest integrator reaching the target"},
+               {"winner CPU", "s", "{:.2e}", "its CPU time at the target"},
+               {"winner runs", "", "", "the runs its cost is interpolated between"},
+               {"runner-up", "", "", "second cheapest"},
+               {"runner-up CPU", "s", "{:.2e}", ""},
+               {"runner-up runs", "", "", ""},
+               {"ratio", "", "{:.2f}", "runner-up CPU / winner CPU"},
+               {"not reached", "", "", "integrators whose runs never reach the target"}};
+  t.headline = true;
+  const auto name = [](const WorkCurve& c) { return c.reference ? c.integrator + " (reference)" : c.integrator; };
+  for (const auto& p : problems)
+    for (double target : p.targets) {
+      if (target < p.floor) {
+        t.add_row({p.label, target, fmt::format("not ranked: below the error source's own error {:.1e}", p.floor),
+                   {}, {}, {}, {}, {}, {}, {}});
+        continue;
+      }
+      const auto standings = rank_at_target(p.curves, target, p.floor);
+      std::vector<std::string> missed;
+      for (const auto& s : standings)
+        if (!s.cost.reached) missed.push_back(name(p.curves[s.curve]));
+      // Name, cost and runs of the k-th placed integrator; "none" when there is none.
+      const auto placed = [&](std::size_t k) -> std::array<Cell, 3> {
+        if (k >= standings.size() || !standings[k].cost.reached) return {std::string("none"), {}, {}};
+        const Standing& s = standings[k];
+        return {name(p.curves[s.curve]), s.cost.cost, s.cost.runs};
+      };
+      const auto first = placed(0), second = placed(1);
+      const bool two = standings.size() > 1 && standings[1].cost.reached;
+      t.add_row({p.label, target, first[0], first[1], first[2], second[0], second[1], second[2],
+                 two ? Cell{standings[1].cost.cost / standings[0].cost.cost} : Cell{},
+                 missed.empty() ? std::string("none") : fmt::format("{}", fmt::join(missed, ", "))});
+    }
+  return t;
+}
+
+}  // namespace nsb
