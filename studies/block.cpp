@@ -362,7 +362,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
         for (std::size_t j = 0; j < ht.size(); ++j)
           momentum.add_row({integrator, mesh, ht[j], number_cell(c["history_px"][j]), number_cell(c["history_j"][j])});
         if (c["diverged"].get<bool>()) {
-          curve.points.push_back({run, cpu, NAN});
+          if (c["status"] != "n/a") curve.points.push_back({run, cpu, NAN});
           cases_table.add_row({integrator, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(), c["status"].get<std::string>(),
                                c["message"].get<std::string>(), {}, {}, {}, {}, {}, {}, {}, n_steps, cpu});
           continue;

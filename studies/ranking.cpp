@@ -84,8 +84,8 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
       }
       const auto standings = rank_at_target(p.curves, target, p.floor);
       std::vector<std::string> missed;
-      for (const auto& s : standings)
-        if (!s.cost.reached) missed.push_back(name(p.curves[s.curve]));
+      for (const auto& s : standings)  // a curve without runs: the integrator declined the problem
+        if (!s.cost.reached && !p.curves[s.curve].points.empty()) missed.push_back(name(p.curves[s.curve]));
       // Name, cost and runs of the k-th placed integrator; "none" when there is none.
       const auto placed = [&](std::size_t k) -> std::array<Cell, 3> {
         if (k >= standings.size() || !standings[k].cost.reached) return {std::string("none"), {}, {}};

@@ -57,7 +57,8 @@ struct RankingProblem {
 };
 
 // One row per problem and target: the winner, its cost and the runs it is read between, the
-// runner-up, its cost and runs, their cost ratio, and the integrators not reaching the target.
+// runner-up, its cost and runs, their cost ratio, and the integrators not reaching the target
+// (a curve without points is an integrator that declined the problem, n/a: not listed).
 // References are ranked with the others (they are peers in cost against error) and marked
 // "(reference)". A target below the problem's floor is not ranked (its row says so).
 // `error` names the error column (name, unit, format, description); `cost` says what the

@@ -101,4 +101,8 @@ TEST_CASE("ranking: the table names the winner, the runner-up, their ratio and w
   const nsb::Table none = nsb::ranking_table("rank", "Ranking", {"err", "", "", ""}, "CPU", {hard});
   CHECK(text(none.rows[0][2]) == "none");
   CHECK(text(none.rows[0][9]) == "a");
+  // An integrator that declined the problem (a curve without runs) is not "not reached".
+  hard.curves.push_back({"declined", true, {}});
+  const nsb::Table declined = nsb::ranking_table("rank", "Ranking", {"err", "", "", ""}, "CPU", {hard});
+  CHECK(text(declined.rows[0][9]) == "a");
 }
