@@ -44,8 +44,12 @@ struct PrecisionProblem {
 };
 
 // Bouncing mass (h0 = 1, g = 9.81): first impact at 0.4515 s.
-// Signorini bar (nondimensional, N = 100, lumped, stable step h/c = 0.01): g0 = 0.5 so that
-// the bar flies rigidly until t0 = 0.5, then stays in contact for T = 2; run to t0 + 1.5 T.
+// Signorini bar (nondimensional, N = 100, lumped, stable step h/c = 0.01): g0 = 0.4937 so that
+// the bar flies rigidly until t0 = 0.4937, then stays in contact for about T = 2; run to 3.5.
+// t0 is on no step grid of the sweep (with g0 = 0.5 every sweep met the wall at a zero gap,
+// and round-off decided whether the contact began a step early). The error with impacts is
+// O(dt) times a factor set by where the impact falls inside its step, so the whole-run
+// curves are not monotone; the least-squares order reads through that.
 // The error is against the same semi-discrete bar solved exactly (modal-exact, round-off
 // about 1e-12 at N = 100): the time-discretisation error alone (the continuum solution would
 // add the 1.8e-2 mesh error, a floor; the bar study refines h and dt together). In the
@@ -63,7 +67,7 @@ const std::vector<PrecisionProblem> kProblems = {
     {"bouncing mass, e = 0.9", "bouncing-mass", {{"e", "0.9"}}, 3.0, 0.4,
      {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5}, {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6}, 10'000'000,
      "", "the exact solution", 0.0, {1e-2, 1e-3, 1e-4, 1e-6}},
-    {"Signorini bar, N = 100, lumped", "signorini-bar", {{"N", "100"}, {"mass", "lumped"}, {"g0", "0.5"}}, 3.5, 0.45,
+    {"Signorini bar, N = 100, lumped", "signorini-bar", {{"N", "100"}, {"mass", "lumped"}, {"g0", "0.4937"}}, 3.5, 0.45,
      {8e-3, 4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4}, {8e-3, 4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4, 6.25e-5}, 1'000'000,
      "modal-exact", "the same semi-discrete bar solved exactly (modal-exact): the time error alone", 1e-12,
      {1e-2, 1e-3, 1e-4, 1e-6}},
