@@ -193,7 +193,7 @@ std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector
                {"t_end", "s", "{}", ""},
                {"outcome", "", "", ""},
                {"t reached", "s", "{:.4g}", ""},
-               {"impacts", "", "", "contact phases started"},
+               {"impacts", "", "", "contact phases started, as seen at the steps (several inside one step of a reference count once)"},
                {"switches", "", "{:.0f}", "contact mode switches located inside the steps (penalty-bdf: on and off)"},
                {"missed", "", "{:.0f}", "switches found only at a step's end, not by a root: the contact was in the wrong mode meanwhile"},
                {"steps", "", "", ""},
