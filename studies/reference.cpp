@@ -32,7 +32,6 @@ const std::map<std::string, std::string> kProblemParams = {{"e", "0.9"}};
 constexpr double kSample = 1e-3, kEnd = 3.0;
 const std::vector<double> kTolerances = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
 const std::vector<double> kStiffness = {1e6, 1e7, 1e8, 1e9, 1e10};
-constexpr int kTimedRepeats = 3;
 
 std::string text(double x) { return fmt::format("{}", x); }
 
@@ -87,15 +86,7 @@ Json reference_case(const Json& c) {
     for (std::size_t k = 0; k < u.size() && k + 1 < ref.series.rows(); ++k) d = std::max(d, std::abs(u[k] - ref.series.at(k + 1, col)));
     out["err_ref"] = d;
   }
-  std::vector<double> cpu;
-  for (int k = 0; k <= kTimedRepeats; ++k) {
-    auto timed = make_integrator(c["integrator"], params);
-    timed->init(*problem, problem->initial_state());
-    const double t = run(*problem, *timed, options).cpu_seconds;
-    if (k > 0) cpu.push_back(t);
-  }
-  std::sort(cpu.begin(), cpu.end());
-  out["cpu"] = cpu[cpu.size() / 2];
+  out["cpu"] = median_cpu_seconds(*problem, c["integrator"], params, options);
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/parameters.hpp"
+#include "integrators/registry.hpp"
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -13,6 +14,20 @@ namespace nsb {
 std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& options) {
   if (study.run) return {Json::object()};
   return study.cases(options);
+}
+
+double median_cpu_seconds(const Problem& problem, const std::string& integrator,
+                          const std::map<std::string, std::string>& params, RunOptions options, int repeats) {
+  options.sample_every = std::numeric_limits<long>::max();
+  std::vector<double> cpu;
+  for (int k = 0; k <= repeats; ++k) {
+    auto timed = make_integrator(integrator, params);
+    timed->init(problem, problem.initial_state());
+    const double t = run(problem, *timed, options).cpu_seconds;
+    if (k > 0) cpu.push_back(t);  // run 0 is the warm-up
+  }
+  std::sort(cpu.begin(), cpu.end());
+  return cpu[cpu.size() / 2];
 }
 
 Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }

@@ -9,9 +9,11 @@
 // function returning tables (`run`) is a study of one case.
 #include <nlohmann/json.hpp>
 #include <initializer_list>
+#include <map>
 #include <string>
 #include <vector>
 
+#include "integrators/run.hpp"
 #include "studies/table.hpp"
 
 namespace nsb {
@@ -51,6 +53,12 @@ Json reals(const std::vector<double>& v);  // a non-finite number (NaN, an overf
 // A number as a table cell; NaN, null or a non-number -> an empty cell (n/a).
 Cell number_cell(double v);
 Cell number_cell(const Json& j);
+
+// CPU time of a run, as the work-precision tables report it: the median thread CPU time of
+// `repeats` runs of a fresh `integrator` (with `params`) on `problem`, after a warm-up run,
+// none of them observed or sampled (options.sample_every is set past the end).
+double median_cpu_seconds(const Problem& problem, const std::string& integrator,
+                          const std::map<std::string, std::string>& params, RunOptions options, int repeats = 3);
 
 // The largest values of a few non-negative quantities over each of `intervals` equal intervals of
 // [0, t_end], each with the time of the interval's last step: a history that, unlike samples,

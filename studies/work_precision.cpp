@@ -75,7 +75,6 @@ const std::vector<PrecisionProblem> kProblems = {
      {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5}, {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6}, 10'000'000,
      "modal-exact", "the chain solved exactly (modal-exact)", 1e-13, {1e-2, 1e-3, 1e-4, 1e-6}},
 };
-constexpr int kTimedRepeats = 3;
 // Errors below this are round-off (e.g. both schemes are exact for a constant force in
 // flight): they carry no order and are left out of the order fits.
 constexpr double kRoundOff = 1e-11;
@@ -125,18 +124,7 @@ Json precision_case(const Json& c) {
   if (r.status != RunStatus::Ok) return out;
   out["err_all"] = err_all / scale;
   out["err_smooth"] = err_smooth / scale;
-
-  // Timed runs: a warm-up, then the median of kTimedRepeats.
-  options.sample_every = std::numeric_limits<long>::max();
-  std::vector<double> cpu;
-  for (int k = 0; k <= kTimedRepeats; ++k) {
-    auto timed = make_integrator(c["integrator"]);
-    timed->init(*problem, problem->initial_state());
-    const double t = run(*problem, *timed, options).cpu_seconds;
-    if (k > 0) cpu.push_back(t);
-  }
-  std::sort(cpu.begin(), cpu.end());
-  out["cpu"] = cpu[cpu.size() / 2];
+  out["cpu"] = median_cpu_seconds(*problem, c["integrator"], {}, options);
   return out;
 }
 
