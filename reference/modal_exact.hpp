@@ -102,7 +102,8 @@ class ModalExact final : public Integrator {
   ModalExact& operator=(const ModalExact&) = delete;
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "modal-exact"; }
+  static constexpr const char* kName = "modal-exact";
+  std::string name() const override { return kName; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
 
