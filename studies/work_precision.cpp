@@ -200,8 +200,7 @@ std::vector<Table> precision_tables(const std::vector<Json>& cases, const std::v
     WorkCurve curve{integrator, find_integrator(integrator).reference, {}};
     for (std::size_t i = 0; i < dts.size(); ++i)
       if (results[begin + i]["status"] != "n/a") curve.points.push_back({fmt::format("dt = {:.1e}", dts[i]), cpu[i], all[i]});
-    if (integrator != kProblems[cases[begin]["problem"].get<std::size_t>()].reference)
-      ranking[cases[begin]["problem"].get<std::size_t>()].curves.push_back(curve);
+    ranking[cases[begin]["problem"].get<std::size_t>()].curves.push_back(curve);
     const auto fit = [&](std::vector<double> e) {
       for (double& x : e)
         if (!(x > kRoundOff)) x = std::numeric_limits<double>::quiet_NaN();
