@@ -43,20 +43,8 @@ void EventDriven::init(const Problem& problem, const State& initial) {
                                    "equation, which needs a DAE solver such as IDA)", k, (*m)[k]));
   minv_ = m->cwiseInverse();
 
-  // Node-to-rigid contacts: one dof per row of L, one contact per dof.
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> L = problem.gap_operator();
-  const Vec& g0 = problem.gap_offset();
-  contacts_.clear();
+  contacts_ = node_contacts(problem, name());
   dof_closed_.assign(static_cast<std::size_t>(n), 0);
-  std::vector<char> used(static_cast<std::size_t>(n), 0);
-  for (Index i = 0; i < L.rows(); ++i) {
-    Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L, i);
-    if (!it || it.value() == 0.0 || (++Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator(it)))
-      throw InputError(fmt::format("event-driven: contact {} must act on exactly one dof (node-to-rigid contact)", i));
-    if (used[it.col()]++)
-      throw InputError(fmt::format("event-driven: contacts share dof {}; valid: one contact per dof", it.col()));
-    contacts_.push_back({it.col(), it.value(), -g0[i] / it.value()});
-  }
   closed_.assign(contacts_.size(), 0);
   e_ = problem.restitution();
   events_ = releases_ = zeno_stops_ = 0;

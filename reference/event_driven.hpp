@@ -48,6 +48,7 @@
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
 #include "reference/cvode.hpp"
+#include "reference/node_contacts.hpp"
 
 namespace nsb {
 
@@ -76,11 +77,7 @@ class EventDriven final : public Integrator, private OdeSystem {
   const std::vector<Release>& releases() const { return release_log_; }
 
  private:
-  struct Contact {
-    Index dof;
-    double a;         // g = a (u_dof - position)
-    double position;  // of the dof on the obstacle
-  };
+  using Contact = NodeContact;
 
   void rhs(double t, ConstVecRef y, VecRef ydot) override;
   void jacobian(double t, ConstVecRef y, CsrMatrix& J) override;

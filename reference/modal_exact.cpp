@@ -81,21 +81,10 @@ void ModalExact::init(const Problem& problem, const State& initial) {
     }
   }
 
-  // Node-to-rigid contacts: one dof per row of L, one contact per dof.
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> L = problem.gap_operator();
-  const Vec& g0 = problem.gap_offset();
-  contacts_.clear();
-  contact_of_.assign(static_cast<std::size_t>(n), -1);
-  for (Index i = 0; i < L.rows(); ++i) {
-    Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L, i);
-    if (!it || it.value() == 0.0 || (++Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator(it)))
-      throw InputError(fmt::format("modal-exact: contact {} must act on exactly one dof (node-to-rigid contact)", i));
-    if (contact_of_[it.col()] >= 0)
-      throw InputError(fmt::format("modal-exact: contacts share dof {}; valid: one contact per dof", it.col()));
-    contact_of_[it.col()] = i;
-    contacts_.push_back({it.col(), it.value(), -g0[i] / it.value(), massless_[it.col()] != 0});
-  }
+  contacts_ = node_contacts(problem, name());
   const Index p = static_cast<Index>(contacts_.size());
+  contact_of_.assign(static_cast<std::size_t>(n), -1);
+  for (Index i = 0; i < p; ++i) contact_of_[contacts_[i].dof] = i;
 
   // M_SS^{-1} L^T for the impacts (massive contacts only: a massless one takes no impulse).
   cholesky_ = decompositions_ = 0;
@@ -109,7 +98,7 @@ void ModalExact::init(const Problem& problem, const State& initial) {
   for (std::size_t k = 0; k < massive.size(); ++k) massive_index[massive[k]] = static_cast<Index>(k);
   for (Index i = 0; i < p; ++i) {
     const Contact& c = contacts_[i];
-    if (c.massless) continue;
+    if (massless_[c.dof]) continue;
     Vec rhs = Vec::Zero(static_cast<Index>(massive.size()));
     rhs[massive_index[c.dof]] = c.a;
     const Vec col = mass_llt.solve(rhs);
@@ -252,7 +241,7 @@ ModalExact::Mode ModalExact::build_mode(const std::vector<char>& closed) {
       const Eigen::RowVectorXd mphi = M_(d, A) * md.phi;
       md.signal.row(i) = (-mphi.cwiseProduct(omega2.transpose()) + K_(d, A) * md.phi + K_(d, Z) * md.cond) / c.a;
       md.signal0[i] = (mphi.dot(md.force) + K_(d, Z).dot(md.cond0) + K_(d, H).dot(uH) - F_[d]) / c.a;
-    } else if (c.massless) {
+    } else if (massless_[c.dof]) {
       md.signal.row(i) = c.a * md.cond.row(where[d]);
       md.signal0[i] = c.a * (md.cond0[where[d]] - c.position);
     } else {
@@ -508,7 +497,7 @@ void ModalExact::handle_events(Index fired, bool forced) {
     const Contact& c = contacts_[i];
     const double rate = c.a * v[c.dof];  // a massless dof's v: the rate of its condensed value
     u[c.dof] = c.position;  // the gap is zero at the event, exactly
-    if (c.massless) {
+    if (massless_[c.dof]) {
       // No inertia, no impulse: the dof arrives (its gap is continuous) and closes.
       closed_work_[i] = 1;
       ++arrivals_;
@@ -527,7 +516,7 @@ void ModalExact::handle_events(Index fired, bool forced) {
     // with a non-diagonal M an impulse elsewhere could push a held dof into its obstacle.
     lcp_set_.assign(hits_.begin(), hits_.end());
     for (Index i = 0; i < p; ++i)
-      if (closed_work_[i] && !contacts_[i].massless) lcp_set_.push_back(i);
+      if (closed_work_[i] && !massless_[contacts_[i].dof]) lcp_set_.push_back(i);
     const Index h = static_cast<Index>(lcp_set_.size());
     const auto rate_of = [&](Index i) { return contacts_[i].a * v[contacts_[i].dof]; };
     const auto delassus = [&](Index j, Index k) { return contacts_[lcp_set_[j]].a * minv_lt_(contacts_[lcp_set_[j]].dof, lcp_set_[k]); };

@@ -91,6 +91,7 @@
 
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
+#include "reference/node_contacts.hpp"
 
 namespace nsb {
 
@@ -129,12 +130,7 @@ class ModalExact final : public Integrator {
   double displacement(Index dof) const;
 
  private:
-  struct Contact {
-    Index dof;
-    double a;         // g = a (u_dof - position)
-    double position;  // of the dof on the obstacle
-    bool massless;
-  };
+  using Contact = NodeContact;
   struct Mode {
     std::vector<char> closed;                  // per contact
     std::vector<Index> active, massless, held;  // dofs: A, free massless Z, held H
