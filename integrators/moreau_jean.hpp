@@ -40,10 +40,11 @@
 // fallback LU is Eigen's (UMFPACK calls BLAS too). Debian's serial OpenBLAS keeps its work
 // buffers in one process-wide table taken without a lock, so two studies' cases factorising
 // at once wrote into each other's buffers and changed each other's results; and the BLAS
-// kernel picked for the CPU changes the rounding from one machine to the next. Simplicial
-// costs nothing here: factorisation + solve of the block's W, 32x32 1.9 ms vs 2.5 ms
-// supernodal, 64x64 14.2 ms vs 14.4 ms (min of 90, tests/integrators/moreau_jean_concurrency_test.cpp
-// guards the race).
+// kernel picked for the CPU changes the rounding from one machine to the next. The price,
+// thread CPU per step of the block (min of 3, a heavily loaded 2-core machine: noisy):
+// 32x32 2.7 ms vs 2.4 ms supernodal (+13%), 64x64 19 ms vs 12.6 ms (+50%); factorisation
+// + solve alone on a lightly loaded machine: 1.9 vs 2.5 ms and 14.2 vs 14.4 ms.
+// tests/integrators/moreau_jean_concurrency_test.cpp guards the race.
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseLU>
 
