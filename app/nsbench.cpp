@@ -4,10 +4,17 @@
 //   nsbench run --problem P --integrator I --dt DT --t-end T [--set key=value]... --out DIR
 //
 // Exit codes: 0 ok, 2 bad input (one line on stderr naming the parameter and its valid
-// range), 3 the run diverged (its files are still written, with status "diverged").
+// range), 3 the run diverged (its files are still written, with status "diverged"),
+// 128 + signal number after SIGINT or SIGTERM: the run stops at the next step and its files
+// are written whole, with status "interrupted" (a second signal kills at once; the files
+// are renamed into place, never half-written).
+// Guardrails: a conditionally stable scheme with dt above the problem's stable step gets one
+// warning line on stderr (and runs); a run longer than a few seconds shows its progress.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <csignal>
 #include <iostream>
 
 #include "core/output.hpp"
@@ -16,6 +23,13 @@
 #include "problems/registry.hpp"
 
 namespace {
+
+volatile std::sig_atomic_t interrupt_signal = 0;
+
+extern "C" void on_interrupt(int signal) {
+  interrupt_signal = signal;
+  std::signal(signal, SIG_DFL);  // a second one ends the process
+}
 
 void print_params(const nsb::ParamSpecs& specs) {
   for (const auto& s : specs)
@@ -57,12 +71,26 @@ int run_case(const RunArgs& a) {
   if (!(options.dt > 0.0)) throw nsb::InputError(fmt::format("--dt {}: must be > 0", a.dt));
   if (!(options.t_end > 0.0)) throw nsb::InputError(fmt::format("--t-end {}: must be > 0", a.t_end));
   nsb::ensure_directory(a.out);
+  if (integrator->conditionally_stable() && options.dt > problem->stable_step())
+    fmt::print(stderr, "nsbench: warning: --dt {} is above the stable step {:.4g} of {} for {} (ratio {:.3g}): expect a blow-up\n",
+               options.dt, problem->stable_step(), problem->name(), integrator->name(), options.dt / problem->stable_step());
+  options.progress_every = 3.0;
+  options.interrupt = &interrupt_signal;
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
 
   integrator->init(*problem, problem->initial_state());
   const nsb::RunResult result = nsb::run(*problem, *integrator, options);
   const std::filesystem::path dir(a.out);
   nsb::write_file_atomic(dir / "series.csv", nsb::series_to_csv(result.series));
   nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));
+  if (!integrator->events().empty())  // the references' located events
+    nsb::write_file_atomic(dir / "events.csv", nsb::events_to_csv(integrator->events()));
+  if (interrupt_signal != 0) {  // during the run, or while its files were written
+    fmt::print(stderr, "nsbench: interrupted by signal {}{} (files written to {})\n", static_cast<int>(interrupt_signal),
+               result.status == nsb::RunStatus::Interrupted ? ", " + result.message : std::string(), a.out);
+    return 128 + interrupt_signal;
+  }
   if (result.status != nsb::RunStatus::Ok) {
     fmt::print(stderr, "nsbench: run diverged: {} (files written to {})\n", result.message, a.out);
     return 3;

@@ -76,7 +76,12 @@ void ParamSpec::validate(const std::string& text) const {
       if (c == text) return;
     throw InputError(fmt::format("parameter '{}' = '{}' is not one of {}", name, text, range_text()));
   }
-  const double v = parse_real(text, fmt::format("parameter '{}'", name));
+  double v = 0.0;
+  try {
+    v = parse_real(text, fmt::format("parameter '{}'", name));
+  } catch (const InputError&) {
+    throw InputError(fmt::format("parameter '{}' = '{}' is not a finite number; valid: {}", name, text, range_text()));
+  }
   if (kind == Kind::Integer && v != std::floor(v))
     throw InputError(fmt::format("parameter '{}' = {} is not an integer; valid: {}", name, text,
                                  range_text()));

@@ -46,6 +46,7 @@ class CdLagrange final : public Integrator {
   static ParamSpecs parameters_spec();
 
   std::string name() const override { return "cd-lagrange"; }
+  bool conditionally_stable() const override { return true; }  // explicit central difference
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
   Energy energy() const override;

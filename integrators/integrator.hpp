@@ -2,8 +2,10 @@
 // Time integrator interface. An integrator is bound to one Problem by init() and then
 // advanced by step(). As in MFEM's ODESolver::Step, step() may take another step than the
 // one requested (an adaptive scheme chooses its own) and reports the step it took.
+#include <initializer_list>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "problems/problem.hpp"
 
@@ -27,6 +29,27 @@ struct WorkCounters {
   std::map<std::string, double> extra;  // integrator-specific counters
 };
 
+// A contact event located by an integrator that tracks events (the references): an impact,
+// a release (reaction through zero), the arrival of a massless dof (no impulse), a Zeno
+// stop (a slow rebound replaced by a plastic impact: the contact closes), or a penalty
+// spring switching on or off. rate_* = the normal velocity g' just before and after;
+// impulse: the contact's impulse (impacts and Zeno stops, else 0).
+enum class ContactEventKind { Impact, Release, Arrival, ZenoStop, Switch };
+struct ContactEvent {
+  double t;
+  Index contact;
+  ContactEventKind kind;
+  double rate_before = 0.0, rate_after = 0.0;
+  double impulse = 0.0;
+};
+// The events of the given kinds, in order.
+std::vector<ContactEvent> events_of_kind(const std::vector<ContactEvent>& events,
+                                         std::initializer_list<ContactEventKind> kinds);
+// "impact", "release", "arrival", "zeno-stop", "switch".
+const char* event_kind_name(ContactEventKind kind);
+// The events as CSV: t, contact, kind, rate_before, rate_after, impulse.
+std::string events_to_csv(const std::vector<ContactEvent>& events);
+
 struct Energy {
   double kinetic = 0.0;
   double potential = 0.0;
@@ -46,6 +69,12 @@ class Integrator {
   // The energy the scheme's own balance is written for; the default is
   // v^T M v / 2 + V(u) at the current state.
   virtual Energy energy() const;
+  // Every contact event located since init(), in time order; empty for the schemes that do
+  // not locate events (time-stepping).
+  virtual const std::vector<ContactEvent>& events() const;
+  // True for a scheme that is only conditionally stable at a fixed step dt: dt must stay
+  // below the problem's stable step (Problem::stable_step) or the run blows up.
+  virtual bool conditionally_stable() const { return false; }
 
   const State& state() const { return state_; }
   // Contact impulses Lambda (size p) applied during the last step; >= 0.

@@ -38,6 +38,7 @@ void MoreauJean::init(const Problem& problem, const State& initial) {
   f_ext_next_ = f_ext_now_;
   pattern_analyzed_ = false;
   h_factored_ = 0.0;
+  solver_.setMode(Eigen::CholmodSimplicialLLt);  // no BLAS: see the header
   solver_.cholmod().print = 1;  // errors only: "not positive definite" is handled by the LU fallback
 }
 

@@ -32,10 +32,21 @@
 // discrete energy or angular momentum balance (the block study measures both).
 // W = M + h^2 theta^2 K is symmetric but can be indefinite when K is (compressed
 // hyperelastic material, large h): when CHOLMOD's Cholesky fails, the step falls back to
-// UMFPACK's LU (counted as "lu_fallbacks"). The largest LCP residual over the run is
-// reported as "lcp_max_residual" next to the LCP iteration counts.
+// a sparse LU with partial pivoting (Eigen's SparseLU; counted as "lu_fallbacks"). The
+// largest LCP residual over the run is reported as "lcp_max_residual" next to the LCP
+// iteration counts.
+// No BLAS: CHOLMOD is held to its simplicial LL^T (its automatic mode takes the supernodal
+// one, which calls dgemm/dsyrk/dtrsm/dpotrf, from about 2000 dofs on the block) and the
+// fallback LU is Eigen's (UMFPACK calls BLAS too). Debian's serial OpenBLAS keeps its work
+// buffers in one process-wide table taken without a lock, so two studies' cases factorising
+// at once wrote into each other's buffers and changed each other's results; and the BLAS
+// kernel picked for the CPU changes the rounding from one machine to the next. The price,
+// thread CPU per step of the block (min of 3, a heavily loaded 2-core machine: noisy):
+// 32x32 2.7 ms vs 2.4 ms supernodal (+13%), 64x64 19 ms vs 12.6 ms (+50%); factorisation
+// + solve alone on a lightly loaded machine: 1.9 vs 2.5 ms and 14.2 vs 14.4 ms.
+// tests/integrators/moreau_jean_concurrency_test.cpp guards the race.
 #include <Eigen/CholmodSupport>
-#include <Eigen/UmfPackSupport>
+#include <Eigen/SparseLU>
 
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
@@ -60,7 +71,7 @@ class MoreauJean final : public Integrator {
   LcpOptions lcp_;
   SpMat K_, W_;
   Eigen::CholmodDecomposition<SpMat, Eigen::Lower> solver_;
-  Eigen::UmfPackLU<SpMat> lu_;  // fallback for an indefinite W
+  Eigen::SparseLU<SpMat> lu_;  // fallback for an indefinite W
   bool use_lu_ = false;
   bool pattern_analyzed_ = false;
   double h_factored_ = 0.0;

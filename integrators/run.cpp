@@ -4,6 +4,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -33,6 +34,7 @@ const char* status_name(RunStatus status) {
     case RunStatus::Ok: return "ok";
     case RunStatus::Diverged: return "diverged";
     case RunStatus::OverBudget: return "over budget";
+    case RunStatus::Interrupted: return "interrupted";
   }
   return "?";
 }
@@ -100,8 +102,25 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   sample(0.0);
   const double cpu_start = thread_cpu_seconds();
   StepInfo info;
+  const auto wall_start = std::chrono::steady_clock::now();
+  double next_progress = options.progress_every;  // wall seconds
+  const double t_start = integrator.state().t;
   try {
     while (integrator.state().t < options.t_end * (1.0 - 1e-12)) {
+      if (options.interrupt && *options.interrupt) {
+        result.status = RunStatus::Interrupted;
+        result.message = fmt::format("interrupted at t = {}", integrator.state().t);
+        break;
+      }
+      if (options.progress_every > 0.0 && result.steps % 16 == 0) {
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+        if (elapsed >= next_progress) {
+          const double done = (integrator.state().t - t_start) / (options.t_end - t_start);
+          fmt::print(stderr, "{}: {:.1f}% of t_end, elapsed {:.1f} s, about {:.1f} s left\n", integrator.name(),
+                     100.0 * done, elapsed, done > 0.0 ? elapsed * (1.0 - done) / done : NAN);
+          next_progress += options.progress_every;
+        }
+      }
       info = integrator.step(options.dt);
       ++result.steps;
       result.max_penetration = std::max(result.max_penetration, -min_gap());
@@ -137,7 +156,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   result.t_final = integrator.state().t;
   result.final_energy = integrator.energy().total();
   result.work = integrator.work();
-  if (result.status != RunStatus::Diverged && !finite()) {  // over budget and non-finite: diverged
+  if (result.status != RunStatus::Diverged && result.status != RunStatus::Interrupted && !finite()) {  // over budget and non-finite: diverged
     result.status = RunStatus::Diverged;
     result.message = fmt::format("non-finite state at t = {}", result.t_final);
   }

@@ -4,6 +4,7 @@
 //
 // Generic columns: t, dt, kinetic, potential, total_energy, min_gap, impulse (sum of the
 // contact impulses of the step), active_contacts (contacts with a positive impulse).
+#include <csignal>
 #include <functional>
 #include <string>
 #include <vector>
@@ -23,6 +24,12 @@ struct RunOptions {
   // clock, so the same run stops at the same step on any machine. Checked after each step:
   // a run may overshoot by one step's work (an event-driven step can take many).
   long max_force_evaluations = 0;
+  // When set, the run stops with status Interrupted at the first step after *interrupt
+  // becomes non-zero (a signal handler's flag).
+  const volatile std::sig_atomic_t* interrupt = nullptr;
+  // Progress lines on stderr (percent of t_end, elapsed, estimate left) every
+  // progress_every seconds of wall time, from the first such period on; 0: none.
+  double progress_every = 0.0;
 };
 
 // Samples in row-major order.
@@ -35,8 +42,8 @@ struct Series {
   std::size_t column(const std::string& name) const;
 };
 
-enum class RunStatus { Ok, Diverged, OverBudget };
-// "ok", "diverged", "over budget".
+enum class RunStatus { Ok, Diverged, OverBudget, Interrupted };
+// "ok", "diverged", "over budget", "interrupted".
 const char* status_name(RunStatus status);
 
 struct RunResult {

@@ -48,8 +48,7 @@ void EventDriven::init(const Problem& problem, const State& initial) {
   closed_.assign(contacts_.size(), 0);
   e_ = problem.restitution();
   events_ = releases_ = zeno_stops_ = 0;
-  impact_log_.clear();
-  release_log_.clear();
+  event_log_.clear();
 
   // y = (u, v, Lambda): Lambda_i integrates contact i's reaction while it is closed.
   y_.resize(2 * n + static_cast<Index>(contacts_.size()));
@@ -141,11 +140,12 @@ void EventDriven::handle_events(double t, const std::vector<int>& fired) {
       dof_closed_[contacts_[i].dof] = 0;
       released[i] = 1;
       ++releases_;
-      release_log_.push_back({t, static_cast<Index>(i)});
+      event_log_.push_back({t, static_cast<Index>(i), ContactEventKind::Release});
     }
   // Impacts: open contacts whose root fired or that touch (gap <= atol) while closing.
   std::vector<std::size_t> hit;
   std::vector<double> restitution;
+  std::vector<char> zeno_stop;
   for (std::size_t i = 0; i < p; ++i) {
     if (closed_[i] || released[i]) continue;
     const Contact& c = contacts_[i];
@@ -153,7 +153,8 @@ void EventDriven::handle_events(double t, const std::vector<int>& fired) {
     if ((fired[i] || gap <= settings_.atol) && rate <= 0.0) {
       hit.push_back(i);
       const bool zeno = e_ * -rate < zeno_velocity_;
-      if (zeno && e_ > 0.0 && rate < 0.0) ++zeno_stops_;
+      zeno_stop.push_back(zeno && e_ > 0.0 && rate < 0.0);
+      if (zeno_stop.back()) ++zeno_stops_;
       restitution.push_back(zeno ? 0.0 : e_);
     }
   }
@@ -173,7 +174,8 @@ void EventDriven::handle_events(double t, const std::vector<int>& fired) {
       const Contact& c = contacts_[hit[k]];
       const double before = c.a * y_[n + c.dof];
       y_[n + c.dof] += minv_[c.dof] * c.a * x[k];
-      impact_log_.push_back({t, static_cast<Index>(hit[k]), before, c.a * y_[n + c.dof]});
+      event_log_.push_back({t, static_cast<Index>(hit[k]), zeno_stop[k] ? ContactEventKind::ZenoStop : ContactEventKind::Impact,
+                            before, c.a * y_[n + c.dof], x[k]});
       y_[c.dof] = c.position;  // the gap is zero at the impact, exactly
       impulses_[static_cast<Index>(hit[k])] += x[k];
       if (restitution[k] == 0.0) {
@@ -205,7 +207,7 @@ void EventDriven::handle_events(double t, const std::vector<int>& fired) {
       dof_closed_[c.dof] = 0;
       y_[n + c.dof] = 0.0;  // a plastic impact left it at rest on the obstacle
       ++releases_;
-      release_log_.push_back({t, static_cast<Index>(i)});
+      event_log_.push_back({t, static_cast<Index>(i), ContactEventKind::Release});
     }
   }
   cvode_->restart(t, y_);
@@ -240,7 +242,8 @@ StepInfo EventDriven::step(double dt) {
 void EventDriven::publish_work() {
   cvode_->add_work(work_);
   work_.extra["events"] = static_cast<double>(events_);
-  work_.extra["impacts"] = static_cast<double>(impact_log_.size());
+  work_.extra["impacts"] = static_cast<double>(std::count_if(
+      event_log_.begin(), event_log_.end(), [](const ContactEvent& e) { return e.kind != ContactEventKind::Release; }));
   work_.extra["releases"] = static_cast<double>(releases_);
   work_.extra["zeno_stops"] = static_cast<double>(zeno_stops_);
 }

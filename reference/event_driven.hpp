@@ -61,20 +61,11 @@ class EventDriven final : public Integrator, private OdeSystem {
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
 
-  // Every impact located so far (for reference data and tests).
-  struct Impact {
-    double t;
-    Index contact;
-    double rate_before, rate_after;  // g' just before and just after
-  };
-  const std::vector<Impact>& impacts() const { return impact_log_; }
-  // Every release so far: a closed contact's reaction reaching zero, or a plastic impact's
-  // contact whose reaction would be tensile (it leaves the obstacle from rest).
-  struct Release {
-    double t;
-    Index contact;
-  };
-  const std::vector<Release>& releases() const { return release_log_; }
+  // Every event located so far: impacts (a Zeno stop for a rebound replaced by a plastic
+  // impact) with g' before and after and the impulse, and releases: a closed contact's
+  // reaction reaching zero, or a plastic impact's contact whose reaction would be tensile
+  // (it leaves the obstacle from rest).
+  const std::vector<ContactEvent>& events() const override { return event_log_; }
 
  private:
   using Contact = NodeContact;
@@ -99,8 +90,7 @@ class EventDriven final : public Integrator, private OdeSystem {
   Vec minv_, y_, f_, fext_, g_;
   SpMat K_;
   double e_ = 0.0;
-  std::vector<Impact> impact_log_;
-  std::vector<Release> release_log_;
+  std::vector<ContactEvent> event_log_;
   long events_ = 0, releases_ = 0, zeno_stops_ = 0;
 };
 

@@ -477,6 +477,8 @@ void ModalExact::handle_events(Index fired, bool forced) {
   // A forced event overrules the derivatives: a closed contact opens, an open one is hit
   // plastically and stays closed through the reaction check below.
   const Index forced_closing = forced && !closed_work_[fired] ? fired : -1;
+  // A rebound slower than zeno_velocity becomes a plastic impact: the contact closes.
+  const auto zeno_stop = [&](double rate) { return e_ > 0.0 && rate < 0.0 && e_ * -rate < zeno_velocity_; };
   if (forced) ++forced_events_;
   if (forced && closed_work_[fired]) {
     closed_work_[fired] = 0;
@@ -505,7 +507,7 @@ void ModalExact::handle_events(Index fired, bool forced) {
       continue;
     }
     const bool zeno = e_ * -rate < zeno_velocity_;
-    if (zeno && e_ > 0.0 && rate < 0.0) ++zeno_stops_;
+    if (zeno_stop(rate)) ++zeno_stops_;
     hits_.push_back(i);
     restitution_.push_back(zeno || i == forced_closing ? 0.0 : e_);
     rate_before_.push_back(rate);
@@ -547,7 +549,8 @@ void ModalExact::handle_events(Index fired, bool forced) {
       if (closed_work_[i]) v[c.dof] = 0.0;  // at rest on the obstacle, exactly
       impulses_[i] += lcp_x_[static_cast<Index>(j)];
       ++impacts_;
-      event_log_.push_back({t, i, EventKind::Impact, rate_before_[j], rate_of(i), lcp_x_[static_cast<Index>(j)]});
+      event_log_.push_back({t, i, zeno_stop(rate_before_[j]) ? EventKind::ZenoStop : EventKind::Impact, rate_before_[j],
+                            rate_of(i), lcp_x_[static_cast<Index>(j)]});
     }
     for (Index k = static_cast<Index>(hits_.size()); k < h; ++k) {
       const Index i = lcp_set_[k];

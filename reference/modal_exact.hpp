@@ -108,18 +108,13 @@ class ModalExact final : public Integrator {
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
 
-  // Every event so far: impacts of massive dofs (with impulse), arrivals of massless dofs
-  // (no impulse) and releases (reaction through zero, or a plastic candidate whose reaction
-  // would be tensile). rate_* = g' just before and after (releases: 0, 0).
-  enum class EventKind { Impact, Arrival, Release };
-  struct Event {
-    double t;
-    Index contact;
-    EventKind kind;
-    double rate_before, rate_after;
-    double impulse;
-  };
-  const std::vector<Event>& events() const { return event_log_; }
+  // Every event so far: impacts of massive dofs (with impulse; a Zeno stop for the plastic
+  // impact that ends an accumulation), arrivals of massless dofs (no impulse) and releases
+  // (reaction through zero, or a plastic candidate whose reaction would be tensile).
+  // rate_* = g' just before and after (releases: 0, 0).
+  using EventKind = ContactEventKind;
+  using Event = ContactEvent;
+  const std::vector<Event>& events() const override { return event_log_; }
 
   // Sampling one dof at many times (a study's reference at a scheme's step times) without
   // the O(n m) state reconstruction of step(): advance_to(t) moves the solution to t >= its

@@ -87,6 +87,7 @@ void PenaltyBdf::init(const Problem& problem, const State& initial) {
   problem.external_force(state_.t, fext_);
   problem.tangent_stiffness(state_.u, K_);
   switches_ = missed_switches_ = unconfirmed_roots_ = 0;
+  event_log_.clear();
 
   // Initial modes, looking ahead where the gap is exactly zero (a body resting on the
   // obstacle presses into it: its free gap acceleration is negative).
@@ -219,6 +220,7 @@ StepInfo PenaltyBdf::step(double dt) {
       on_[i] = now;
       changed = true;
       ++switches_;
+      event_log_.push_back({t, i, ContactEventKind::Switch, gdot_[i], gdot_[i], 0.0});
     }
     if (changed) {
       set_directions();

@@ -68,6 +68,9 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
   std::string name() const override { return "penalty-bdf"; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
+  // Every switch of a contact's spring on or off (a root, or a switch found at a CVODE
+  // return), with g' at the switch (continuous: before = after; no impulse).
+  const std::vector<ContactEvent>& events() const override { return event_log_; }
   Energy energy() const override;
 
   // Damping ratio zeta giving restitution e to a clamped spring-dashpot (header formula).
@@ -96,6 +99,7 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
   std::vector<char> on_;
   SpMat K_;
   long switches_ = 0;
+  std::vector<ContactEvent> event_log_;
   long missed_switches_ = 0;  // mode switches found at a CVODE return, not by a root
   long unconfirmed_roots_ = 0;  // roots after which the state kept the contact's mode
 };

@@ -220,7 +220,7 @@ std::vector<Table> bar_tables(const std::vector<Json>& cases, const std::vector<
       table.columns.push_back({fmt::format("order {}", e.key), "", "{:.2f}", "observed order against the previous N"});
   }
   table.columns.push_back({"lost steps", "", "", "steps without impulse inside the exact contact"});
-  table.columns.push_back({"CPU", "s", "{:.2e}", "thread CPU time of the run"});
+  table.columns.push_back({"CPU", "s", "{:.2e}", "thread CPU time of the run", true});
   table.columns.push_back({"note", "", "", "why a case is n/a or diverged"});
   table.metadata = metadata;
   table.figures = {

@@ -309,7 +309,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
       {"LCP it.", "", "", "total LCP iterations"},
       {"LCP res.", "", "{:.1e}", "largest LCP residual (n/a: closed form)"},
       {"steps", "", "", ""},
-      {"CPU", "s", "{:.2e}", "thread CPU time of the run, observer excluded"},
+      {"CPU", "s", "{:.2e}", "thread CPU time of the run, observer excluded", true},
   };
   Table cost;
   cost.id = "block_cost";
@@ -317,7 +317,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
   cost.caption = fmt::format("dt = 1e-4 s to t = {} s (impacts included), observer time excluded; slope: least-squares "
                              "log-log slope of time per step against dofs over the meshes.", t_end);
   cost.columns = {{"integrator", "", "", ""}, {"mesh", "", "", ""}, {"dofs", "", "", ""},
-                  {"time/step", "s", "{:.2e}", ""}, {"slope", "", "{:.2f}", "fitted over all meshes (last row)"}};
+                  {"time/step", "s", "{:.2e}", "", true}, {"slope", "", "{:.2f}", "fitted over all meshes (last row)", true}};
   cases_table.metadata = {{"study", "block"},
                     {"meshes", fmt::format("{}", fmt::join(meshes, " "))},
                     {"steps", fmt::format("{}", fmt::join(steps, " "))},

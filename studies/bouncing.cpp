@@ -155,7 +155,7 @@ std::vector<Table> bouncing_tables(const std::vector<Json>& cases, const std::ve
       {"Zeno err", "s", "{:.2e}", "|detected - exact| accumulation time"},
       {"max pen.", "m", "{:.2e}", "max penetration max(0, -q)"},
       {"steps", "", "", ""},
-      {"CPU", "s", "{:.2e}", "thread CPU time of the run, per-step observation included (timed runs: study precision)"},
+      {"CPU", "s", "{:.2e}", "thread CPU time of the run, per-step observation included (timed runs: study precision)", true},
   };
   table.figures = {
       {"bouncing_convergence", "Bouncing mass: impact-time error against the step", "dt", "max t_i err", {"integrator"}, {"e"}, true, true},

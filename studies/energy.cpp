@@ -228,7 +228,7 @@ std::vector<Table> energy_tables(const std::vector<Json>& cases, const std::vect
                 {"no root", "", "{:.0f}", ""},
                 {"capped", "", "{:.0f}", ""},
                 {"max residual", "", "{:.2e}", ""},
-                {"CPU", "s", "{:.2e}", "thread CPU time, per-step observation included"},
+                {"CPU", "s", "{:.2e}", "thread CPU time, per-step observation included", true},
                 {"status", "", "", ""}};
   Table tg;
   tg.id = "energy_targets";

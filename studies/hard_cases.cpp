@@ -205,7 +205,7 @@ std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector
                {"energy growth", "", "{:.2e}", "max (E - E0) / E scale"},
                {"growth tol", "", "{:.0e}", ""},
                {"final E err", "", "{:.2e}", "|E_end - E0| / E scale"},
-               {"CPU", "s", "{:.2e}", ""},
+               {"CPU", "s", "{:.2e}", "", true},
                {"note", "", "", "why a run diverged, stopped or is n/a"}};
   t.metadata = {{"study", "hard"}};
   // One history table per problem, in the order the cases first use them.

@@ -4,6 +4,9 @@
 //   nsbench-study all|NAME... [--out DIR] [--full]                 run, write the reports
 //   nsbench-study all|NAME... [--out DIR] [--full] --shard I/N     run shard I of N only
 //   nsbench-study all|NAME... [--out DIR] [--full] --merge         merge the N shards, write
+//   nsbench-study all|NAME... [--full] --verify DIR [--rtol R] [--atol A]
+//                                  recompute, compare with the report in DIR (studies/verify.hpp),
+//                                  print the differences; exit 1 when there are any
 //
 // Reports: DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
 // scripts/figures.py) and DIR/index.md linking them, opening with the headline tables (the
@@ -21,6 +24,7 @@
 #include "core/parameters.hpp"
 #include "studies/parallel.hpp"
 #include "studies/study.hpp"
+#include "studies/verify.hpp"
 
 namespace {
 
@@ -81,13 +85,17 @@ std::vector<Json> merge_shards(const nsb::StudyEntry& study, const std::vector<J
 int main(int argc, char** argv) {
   CLI::App app{"nsbench-study: run studies and write citable reports"};
   std::vector<std::string> names;
-  std::string out = "reports", shard_text;
+  std::string out = "reports", shard_text, verify_dir;
   bool full = false, merge = false;
+  nsb::VerifyTolerance tolerance;
   app.add_option("studies", names, "'list', 'all', or study names")->required();
   app.add_option("--out", out, "output directory (default reports)");
   app.add_flag("--full", full, "run the long sweeps");
   app.add_option("--shard", shard_text, "run only shard I of N of the cases (job arrays), e.g. 3/8");
   app.add_flag("--merge", merge, "merge the shards' results in DIR/shards and write the reports");
+  app.add_option("--verify", verify_dir, "recompute and compare with the report in this directory; writes nothing");
+  app.add_option("--rtol", tolerance.rtol, "--verify: relative tolerance on reals (default 1e-9)")->check(CLI::NonNegativeNumber);
+  app.add_option("--atol", tolerance.atol, "--verify: absolute tolerance on reals (default 0)")->check(CLI::NonNegativeNumber);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -102,6 +110,10 @@ int main(int argc, char** argv) {
   try {
     const Shard shard = shard_text.empty() ? Shard{} : parse_shard(shard_text);
     if (shard.count && merge) throw InputError("--shard and --merge: give one of them");
+    const bool verify = !verify_dir.empty();
+    if (verify && (shard.count || merge)) throw InputError("--verify: recomputes whole studies, without --shard or --merge");
+    if (verify && !fs::is_directory(verify_dir)) throw InputError(fmt::format("--verify '{}': no such directory", verify_dir));
+    nsb::VerifyResult verified;
     std::vector<const nsb::StudyEntry*> selected;
     for (const auto& n : names) {
       bool found = false;
@@ -116,7 +128,7 @@ int main(int argc, char** argv) {
         throw InputError(fmt::format("unknown study '{}' (valid: {})", n, fmt::join(valid, ", ")));
       }
     }
-    nsb::ensure_directory(out);
+    if (!verify) nsb::ensure_directory(out);
     const nsb::StudyOptions options{full};
     const auto& b = nsb::build_info();
     std::string index = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}.\n\n", b.git_revision,
@@ -150,6 +162,14 @@ int main(int argc, char** argv) {
         results = computed;
       }
       const auto tables = nsb::study_tables(*s, cases, results, options);
+      if (verify) {
+        for (const auto& t : tables) {
+          auto r = nsb::verify_table(t, fs::path(verify_dir), tolerance);
+          verified.cells_compared += r.cells_compared;
+          for (auto& d : r.differences) verified.differences.push_back(std::move(d));
+        }
+        continue;
+      }
       studies += fmt::format("## {}\n\n{}\n\n", s->name, s->description);
       for (const auto& t : tables) {
         nsb::write_table(t, out);
@@ -167,6 +187,13 @@ int main(int argc, char** argv) {
       studies += "\n";
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       fmt::print(stderr, "study {}: {} cases, {} tables in {:.1f} s\n", s->name, cases.size(), tables.size(), secs);
+    }
+    if (verify) {
+      for (const auto& d : verified.differences) fmt::print("{}\n", d);
+      fmt::print("verify against {}: {} cells compared (reals to rtol {:g}, atol {:g}; integers, statuses and text "
+                 "exactly; CPU-time columns skipped), {} differences\n",
+                 verify_dir, verified.cells_compared, tolerance.rtol, tolerance.atol, verified.differences.size());
+      return verified.differences.empty() ? 0 : 1;
     }
     if (!shard.count) {
       nsb::write_file_atomic(fs::path(out) / "figures.json", nsb::figures_to_json(all_tables));

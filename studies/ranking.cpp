@@ -65,13 +65,13 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
       cost, fmt::join(sources, "; "));
   t.columns = {{"problem", "", "", ""},
                {"target " + error.name, error.unit, "{:.0e}", error.description},
-               {"winner", "", "", "cheapest integrator reaching the target"},
-               {"winner CPU", "s", "{:.2e}", "its CPU time at the target"},
-               {"winner runs", "", "", "the runs its cost is interpolated between"},
-               {"runner-up", "", "", "second cheapest"},
-               {"runner-up CPU", "s", "{:.2e}", ""},
-               {"runner-up runs", "", "", ""},
-               {"ratio", "", "{:.2f}", "runner-up CPU / winner CPU"},
+               {"winner", "", "", "cheapest integrator reaching the target", true},
+               {"winner CPU", "s", "{:.2e}", "its CPU time at the target", true},
+               {"winner runs", "", "", "the runs its cost is interpolated between", true},
+               {"runner-up", "", "", "second cheapest", true},
+               {"runner-up CPU", "s", "{:.2e}", "", true},
+               {"runner-up runs", "", "", "", true},
+               {"ratio", "", "{:.2f}", "runner-up CPU / winner CPU", true},
                {"not reached", "", "", "integrators whose runs never reach the target"}};
   t.headline = true;
   const auto name = [](const WorkCurve& c) { return c.reference ? c.integrator + " (reference)" : c.integrator; };

@@ -206,7 +206,7 @@ std::string table_to_json_text(const Table& t) {
   j["id"] = t.id;
   j["title"] = t.title;
   j["caption"] = t.caption;
-  for (const auto& c : t.columns) j["columns"].push_back({c.name, c.unit, c.format, c.description});
+  for (const auto& c : t.columns) j["columns"].push_back({c.name, c.unit, c.format, c.description, c.timing});
   j["rows"] = nlohmann::json::array();
   for (const auto& row : t.rows) {
     nlohmann::json r = nlohmann::json::array();
@@ -229,7 +229,7 @@ Table table_from_json_text(const std::string& text) {
   t.id = j["id"];
   t.title = j["title"];
   t.caption = j["caption"];
-  for (const auto& c : j["columns"]) t.columns.push_back({c[0], c[1], c[2], c[3]});
+  for (const auto& c : j["columns"]) t.columns.push_back({c[0], c[1], c[2], c[3], c.size() > 4 && c[4].get<bool>()});
   for (const auto& r : j["rows"]) {
     std::vector<Cell> row;
     for (const auto& c : r) row.push_back(cell_from_json(c));

@@ -16,6 +16,7 @@ struct Column {
   std::string unit;      // "" when dimensionless
   std::string format;    // fmt spec for Markdown/LaTeX, e.g. "{:.3e}"; CSV keeps full precision
   std::string description;
+  bool timing = false;   // a CPU time or derived from one (machine, load): not compared by --verify
 };
 
 // Empty cell (monostate) reads "n/a"; a diverged case writes text such as "diverged".

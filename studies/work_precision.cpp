@@ -147,7 +147,7 @@ std::vector<Table> precision_tables(const std::vector<Json>& cases, const std::v
                {"order smooth", "", "{:.2f}", "against the previous dt"},
                {"err all", "", "{:.2e}", "relative displacement error, whole run"},
                {"order all", "", "{:.2f}", "against the previous dt"},
-               {"CPU", "s", "{:.2e}", "median thread CPU time"},
+               {"CPU", "s", "{:.2e}", "median thread CPU time", true},
                {"steps", "", "", ""},
                {"F_int evals", "", "", "internal force evaluations"},
                {"factorizations", "", "", ""},

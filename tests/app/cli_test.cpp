@@ -1,12 +1,22 @@
 // The command line as a user meets it: bad input exits 2 with one line naming the
 // parameter and its valid range; a good run writes series.csv and summary.json.
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include "problems/bouncing_mass.hpp"
+#include "problems/registry.hpp"
+#include "studies/verify.hpp"
 
 namespace {
 
@@ -49,7 +59,7 @@ TEST_CASE("cli: bad input exits 2 with a message naming the parameter and its ra
       {kRun + "--dt 1e-3x" + out, "--dt: '1e-3x' is not a finite number"},
       {kRun + "--dt 1e-3 --set e=1.5" + out, "parameter 'e' = 1.5 is outside its valid range [0, 1]"},
       {kRun + "--dt 1e-3 --set e=-0.1" + out, "parameter 'e' = -0.1 is outside its valid range [0, 1]"},
-      {kRun + "--dt 1e-3 --set m=abc" + out, "parameter 'm': 'abc' is not a finite number"},
+      {kRun + "--dt 1e-3 --set m=abc" + out, "parameter 'm' = 'abc' is not a finite number; valid: (0, inf)"},
       {kRun + "--dt 1e-3 --set bogus=1" + out, "unknown parameter 'bogus'"},
       {"run --problem bouncing-mass --integrator moreau-jean --t-end 1 --dt 1e-3 --set theta=0.3" + out,
        "parameter 'theta' = 0.3 is outside its valid range [0.5, 1]"},
@@ -81,4 +91,89 @@ TEST_CASE("cli: a run writes series.csv and summary.json", "[app]") {
   CHECK_THAT(summary, Catch::Contains("\"e\": 0.8") && Catch::Contains("\"steps\": 500") &&
                           Catch::Contains("\"cpu_seconds\"") && Catch::Contains("\"max_penetration\"") &&
                           Catch::Contains("\"git_revision\""));
+}
+
+TEST_CASE("cli: an integrator that locates events writes events.csv, at the exact impact times", "[app][events]") {
+  const std::string dir = tmpdir("events");
+  std::filesystem::remove_all(dir);
+  const auto r = nsbench("run --problem bouncing-mass --integrator event-driven --dt 0.0137 --t-end 3 --set e=0.8 --out " + dir);
+  REQUIRE(r.code == 0);
+  std::ifstream csv(dir + "/events.csv");
+  REQUIRE(csv);
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line == "t,contact,kind,rate_before,rate_after,impulse");
+  const nsb::BouncingMass exact(nsb::Params(nsb::BouncingMass::parameters_spec(), {{"e", "0.8"}}));
+  int impacts = 0;
+  while (std::getline(csv, line)) {
+    const auto f = nsb::parse_csv(line + "\n").at(0);
+    REQUIRE(f.size() == 6);
+    CHECK(f[1] == "0");
+    CHECK(f[2] == "impact");
+    ++impacts;
+    CAPTURE(impacts);
+    CHECK(std::abs(std::stod(f[0]) - exact.impact_time(impacts)) <= 1e-9);
+    CHECK(std::stod(f[4]) == Approx(-0.8 * std::stod(f[3])).epsilon(1e-9));          // Newton's law
+    CHECK(std::stod(f[5]) == Approx(std::stod(f[4]) - std::stod(f[3])).epsilon(1e-9));  // m = 1
+  }
+  CHECK(impacts >= 3);
+  CHECK(exact.impact_time(impacts + 1) > 3.0);  // all of them
+  // A time-stepping scheme locates no events: no events.csv.
+  std::filesystem::remove_all(dir);
+  REQUIRE(nsbench(kRun + "--dt 1e-3 --out " + dir).code == 0);
+  CHECK_FALSE(std::filesystem::exists(dir + "/events.csv"));
+}
+
+TEST_CASE("cli: an explicit scheme above its stable step gets one warning line and runs", "[app][guardrails]") {
+  const auto bar = nsb::make_problem("signorini-bar");
+  const double dt = 1.5 * bar->stable_step();
+  const std::string dir = tmpdir("unstable");
+  const auto r = nsbench(fmt::format("run --problem signorini-bar --integrator cd-lagrange --dt {} --t-end {} --out {}", dt,
+                                     20 * dt, dir));
+  CHECK((r.code == 0 || r.code == 3));  // it ran (an unstable run may be marked diverged)
+  CHECK_THAT(r.output, Catch::Contains(fmt::format("warning: --dt {} is above the stable step", dt)) &&
+                           Catch::Contains("ratio 1.5"));
+  CHECK(std::filesystem::exists(dir + "/summary.json"));
+  const auto stable = nsbench(fmt::format("run --problem signorini-bar --integrator cd-lagrange --dt {} --t-end {} --out {}",
+                                          0.5 * dt, 20 * dt, dir));
+  CHECK(stable.output.find("warning") == std::string::npos);
+  const auto implicit = nsbench(fmt::format("run --problem signorini-bar --integrator moreau-jean --dt {} --t-end {} --out {}",
+                                            dt, 20 * dt, dir));
+  CHECK(implicit.output.find("warning") == std::string::npos);
+}
+
+TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupted), no temporaries", "[app][guardrails]") {
+  const std::string dir = tmpdir("sigterm");
+  std::filesystem::remove_all(dir);
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {  // a run of 2e8 steps, minutes long
+    const int devnull = open("/dev/null", O_WRONLY);
+    dup2(devnull, STDERR_FILENO);
+    dup2(devnull, STDOUT_FILENO);
+    execl(NSBENCH_CLI, NSBENCH_CLI, "run", "--problem", "bouncing-mass", "--integrator", "cd-lagrange", "--dt", "1e-5",
+          "--t-end", "2000", "--sample-every", "1000000", "--out", dir.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // The output directory is made just before the handlers are installed and the run starts.
+  for (int k = 0; k < 1000 && !std::filesystem::exists(dir); ++k) usleep(10'000);
+  usleep(300'000);
+  kill(child, SIGTERM);
+  int status = 0;
+  pid_t done = 0;
+  for (int k = 0; k < 1000 && done == 0; ++k) {  // up to 10 s
+    done = waitpid(child, &status, WNOHANG);
+    if (done == 0) usleep(10'000);
+  }
+  if (done == 0) kill(child, SIGKILL), waitpid(child, &status, 0);
+  REQUIRE(done == child);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 128 + SIGTERM);
+  std::vector<std::string> files;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) files.push_back(f.path().filename().string());
+  std::sort(files.begin(), files.end());
+  CHECK(files == std::vector<std::string>{"series.csv", "summary.json"});
+  std::ifstream json(dir + "/summary.json");
+  const std::string summary((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  CHECK_THAT(summary, Catch::Contains("\"status\": \"interrupted\"") && Catch::EndsWith("}\n"));
 }

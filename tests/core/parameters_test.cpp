@@ -35,9 +35,9 @@ TEST_CASE("parameters: defaults and overrides are read back typed", "[core]") {
 TEST_CASE("parameters: bad values name the parameter and the valid range", "[core][bad-input]") {
   CHECK(error_of({{"e", "1.5"}}) == "parameter 'e' = 1.5 is outside its valid range [0, 1]");
   CHECK(error_of({{"dt", "0"}}) == "parameter 'dt' = 0 is outside its valid range (0, inf)");
-  CHECK(error_of({{"e", "abc"}}) == "parameter 'e': 'abc' is not a finite number");
-  CHECK(error_of({{"e", "nan"}}) == "parameter 'e': 'nan' is not a finite number");
-  CHECK(error_of({{"e", "0.5x"}}) == "parameter 'e': '0.5x' is not a finite number");
+  CHECK(error_of({{"e", "abc"}}) == "parameter 'e' = 'abc' is not a finite number; valid: [0, 1]");
+  CHECK(error_of({{"e", "nan"}}) == "parameter 'e' = 'nan' is not a finite number; valid: [0, 1]");
+  CHECK(error_of({{"e", "0.5x"}}) == "parameter 'e' = '0.5x' is not a finite number; valid: [0, 1]");
   CHECK(error_of({{"n", "2.5"}}) == "parameter 'n' = 2.5 is not an integer; valid: integer in [1, 1000]");
   CHECK(error_of({{"mass", "heavy"}}) == "parameter 'mass' = 'heavy' is not one of {lumped, singular}");
   CHECK(error_of({{"zz", "1"}}) == "unknown parameter 'zz' (valid: e, dt, n, mass)");
