@@ -6,6 +6,8 @@
 // discontinuous at the nodes (impacts only at t_k), positions continuous:
 //
 //     F_k = F_ext(t_k) - F_int(U_k)          (F_{k+1} of the previous step: one F_int per step)
+//     (the contact stages below are skipped when no contact is closed: the free step is
+//     velocity Verlet in three passes over the dofs)
 //     left   V_{k,1}  = V_k + h M^{-1} F_k + M^{-1} L^T P_1,
 //                       0 <= P_1 _|_ L_i V_{k,1} >= 0  on the contacts closed at U_k (g_i <= 0)
 //            U_{k+1}  = U_k + h/2 (V_k + V_{k,1})
@@ -43,8 +45,9 @@ class D1MinusLinear final : public Integrator {
   ImpulseContact contact_;
   Vec minv_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
-  Vec f_ext_, f_now_, f_next_, f_int_, v1_, v_minus_, u_start_, p1_, p2_, impact_, gap_;
+  Vec f_ext_, a_now_, a_next_, f_int_, v1_, v_minus_, u_start_, p1_, p2_, impact_, gap_;
   bool started_ = false;
+  bool closed_start_ = false;  // some contact closed at U_k (g <= 0)
 };
 
 }  // namespace nsb

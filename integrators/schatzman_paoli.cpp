@@ -101,9 +101,14 @@ StepInfo SchatzmanPaoli::step(double h) {
   // U_free = 2 U_k - U_{k-1} + s W^{-1} (F_ext,k - F_int(U_k)); the first step takes
   // U_{-1} = U_0 - h v_0 and s = h^2 / 2 (the Taylor start, see the header).
   if (!started_) u_prev_ = state_.u - h * state_.v;
-  rhs_ = (started_ ? h * h : 0.5 * h * h) * (f_ext_ - f_int_);
-  solve_in_place(rhs_);
-  u_next_ = 2.0 * state_.u - u_prev_ + rhs_;
+  const double s = started_ ? h * h : 0.5 * h * h;
+  if (explicit_()) {
+    u_next_.noalias() = 2.0 * state_.u - u_prev_ + s * minv_.cwiseProduct(f_ext_ - f_int_);  // one pass
+  } else {
+    rhs_ = s * (f_ext_ - f_int_);
+    solve_in_place(rhs_);
+    u_next_.noalias() = 2.0 * state_.u - u_prev_ + rhs_;
+  }
 
   solve_contacts(h, info);
 
