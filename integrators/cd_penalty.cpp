@@ -43,7 +43,8 @@ void CdPenalty::init(const Problem& problem, const State& initial) {
   v_prev_ = state_.v;
   f_int_ = Vec::Zero(n);
   f_ext_ = Vec::Zero(n);
-  gap_ = Vec::Zero(L_.rows());
+  gap_ = L_ * state_.u + problem.gap_offset();
+  gap_prev_ = gap_;
   problem.external_force(state_.t, f_ext_);
   tau_ = 0.0;
   started_ = false;
@@ -78,6 +79,7 @@ StepInfo CdPenalty::step(double tau) {
   // Penalty forces, contact by contact (H diagonal: independent; otherwise one Gauss-Seidel
   // sweep, each contact seeing the velocity the previous ones left).
   const Vec& g0 = problem_->gap_offset();
+  std::swap(gap_prev_, gap_);
   gap_.noalias() = L_ * state_.u;
   gap_ += g0;
   impulses_.setZero();
@@ -101,7 +103,7 @@ Energy CdPenalty::energy() const {
   if (!started_) return Integrator::energy();
   Energy E{0.5 * v_prev_.dot(m_.cwiseProduct(v_prev_)), 0.5 * (problem_->potential(u_prev_) + problem_->potential(state_.u))};
   for (Index i = 0; i < gap_.size(); ++i)
-    if (gap_[i] < 0.0) E.potential += 0.5 * factor_ / (h_diag_[i] * tau_ * tau_) * gap_[i] * gap_[i];
+    if (gap_[i] < 0.0 && gap_prev_[i] < 0.0) E.potential += 0.5 * factor_ / (h_diag_[i] * tau_ * tau_) * gap_prev_[i] * gap_[i];
   return E;
 }
 

@@ -112,8 +112,10 @@ StepInfo SchatzmanPaoli::step(double h) {
 
   solve_contacts(h, info);
 
-  // v_{k+1}: second-order backward difference (trapezoidal on the first step).
-  if (started_) state_.v = (1.5 * u_next_ - 2.0 * state_.u + 0.5 * u_prev_) / h;
+  // v_{k+1}: second-order backward difference (trapezoidal on the first step); after a
+  // step with an impulse the last difference alone (BDF2 would extrapolate the jump).
+  if (impulses_.size() > 0 && impulses_.maxCoeff() > 0.0) state_.v = (u_next_ - state_.u) / h;
+  else if (started_) state_.v = (1.5 * u_next_ - 2.0 * state_.u + 0.5 * u_prev_) / h;
   else state_.v = 2.0 * (u_next_ - state_.u) / h - state_.v;
   std::swap(u_prev_, state_.u);
   std::swap(state_.u, u_next_);
