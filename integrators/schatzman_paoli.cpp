@@ -58,6 +58,7 @@ void SchatzmanPaoli::init(const Problem& problem, const State& initial) {
   u_next_ = Vec::Zero(n);
   problem.external_force(state_.t, f_ext_);
   started_ = false;
+  impulse_before_ = false;
 }
 
 void SchatzmanPaoli::factorize(double h) {
@@ -112,11 +113,13 @@ StepInfo SchatzmanPaoli::step(double h) {
 
   solve_contacts(h, info);
 
-  // v_{k+1}: second-order backward difference (trapezoidal on the first step); after a
-  // step with an impulse the last difference alone (BDF2 would extrapolate the jump).
-  if (impulses_.size() > 0 && impulses_.maxCoeff() > 0.0) state_.v = (u_next_ - state_.u) / h;
+  // v_{k+1}: second-order backward difference (trapezoidal on the first step); in and just
+  // after a step with an impulse the last difference alone (BDF2 would extrapolate the jump).
+  const bool impulse = impulses_.size() > 0 && impulses_.maxCoeff() > 0.0;
+  if (impulse || impulse_before_) state_.v = (u_next_ - state_.u) / h;
   else if (started_) state_.v = (1.5 * u_next_ - 2.0 * state_.u + 0.5 * u_prev_) / h;
   else state_.v = 2.0 * (u_next_ - state_.u) / h - state_.v;
+  impulse_before_ = impulse;
   std::swap(u_prev_, state_.u);
   std::swap(state_.u, u_next_);
   state_.t += h;

@@ -29,8 +29,8 @@
 // the Taylor start U_0 + h v_0 + h^2/2 M^{-1} F_0 + O(h^4) without forming M^{-1}; its
 // reported velocity is the trapezoidal 2 (U_1 - U_0) / h - v_0.
 // Reported velocity at t_{k+1}: the second-order backward difference
-// (3 U_{k+1} - 4 U_k + U_{k-1}) / 2h (no M^{-1} needed); after a step with an impulse,
-// (U_{k+1} - U_k) / h (BDF2 would extrapolate the jump: on the bouncing mass with e = 1 it
+// (3 U_{k+1} - 4 U_k + U_{k-1}) / 2h (no M^{-1} needed); in and after a step with an
+// impulse, (U_{k+1} - U_k) / h (BDF2 would extrapolate the jump: on the bouncing mass with e = 1 it
 // reported energies 2.3 E0). Energy: v^T M v / 2 + V(u) at that state.
 // Declines (InputError): theta = 0 with a non-diagonal mass or a massless dof (M^{-1});
 // theta > 0 on a nonlinear problem (K is factorised once). Massless dofs (the singular-mass
@@ -77,6 +77,7 @@ class SchatzmanPaoli final : public Integrator {
   Vec u_prev_, u_next_, f_int_, f_ext_, rhs_;
   std::vector<Index> active_;
   bool started_ = false;
+  bool impulse_before_ = false;  // the previous step had an impulse
 };
 
 }  // namespace nsb
