@@ -116,8 +116,9 @@ StepInfo SchatzmanPaoli::step(double h) {
   // v_{k+1}: second-order backward difference (trapezoidal on the first step); in and just
   // after a step with an impulse the last difference alone (BDF2 would extrapolate the jump).
   const bool impulse = impulses_.size() > 0 && impulses_.maxCoeff() > 0.0;
-  if (impulse || impulse_before_) state_.v = (u_next_ - state_.u) / h;
-  else if (started_) state_.v = (1.5 * u_next_ - 2.0 * state_.u + 0.5 * u_prev_) / h;
+  const double rh = 1.0 / h;
+  if (impulse || impulse_before_) state_.v.noalias() = rh * (u_next_ - state_.u);
+  else if (started_) state_.v.noalias() = (1.5 * rh) * u_next_ - (2.0 * rh) * state_.u + (0.5 * rh) * u_prev_;
   else state_.v = 2.0 * (u_next_ - state_.u) / h - state_.v;
   impulse_before_ = impulse;
   std::swap(u_prev_, state_.u);
