@@ -16,8 +16,12 @@ ImpulseContact::ImpulseContact(const Problem& problem, const Vec& minv, LcpOptio
 
 long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef impulses, StepInfo& info,
                            WorkCounters& work) {
+  return apply(u, v_prev, v, impulses, info, work, problem_->restitution());
+}
+
+long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef impulses, StepInfo& info,
+                           WorkCounters& work, double e) {
   const Vec& g0 = problem_->gap_offset();
-  const double e = problem_->restitution();
   gap_.noalias() = L_ * u;
   impulses.setZero();
   if (h_is_diagonal_) {

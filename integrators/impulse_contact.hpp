@@ -25,6 +25,10 @@ class ImpulseContact {
   // iterations (0 for a diagonal H); counts unconverged LCPs in `work`.
   long apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef impulses, StepInfo& info,
              WorkCounters& work);
+  // The same with restitution e instead of the problem's (e = 0: the velocity-level
+  // constraint g' >= 0 of a closed contact, as d1_minus_linear.hpp needs).
+  long apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef impulses, StepInfo& info,
+             WorkCounters& work, double e);
 
  private:
   const Problem* problem_ = nullptr;

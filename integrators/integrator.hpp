@@ -56,6 +56,19 @@ struct Energy {
   double total() const { return kinetic + potential; }
 };
 
+// What a scheme's own impact law lets one expect of its impacts, derived from the law (not
+// measured): the generic contact-law test (tests/integrators/contact_law_test.cpp) holds
+// every scheme to it.
+struct ImpactAccuracy {
+  // Bound on the phase lag one impact adds, in steps. 2 for a one-step impulse law: the
+  // impact is seen at the end of the step that closes the gap (<= 1 step late) and rebounds
+  // from a penetration of at most one step of travel (<= 1 more).
+  double lag_steps = 2.0;
+  // The rebound speed is e times the impact speed up to O(dt) (false for a compliant
+  // contact resolved over a few steps, whose restitution depends on the impact's phase).
+  bool restitution_exact = true;
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -75,6 +88,8 @@ class Integrator {
   // True for a scheme that is only conditionally stable at a fixed step dt: dt must stay
   // below the problem's stable step (Problem::stable_step) or the run blows up.
   virtual bool conditionally_stable() const { return false; }
+  // See ImpactAccuracy; valid after init().
+  virtual ImpactAccuracy impact_accuracy() const { return {}; }
 
   const State& state() const { return state_; }
   // Contact impulses Lambda (size p) applied during the last step; >= 0.

@@ -3,7 +3,10 @@
 #include "core/registry.hpp"
 #include "integrators/cd_lagrange.hpp"
 #include "integrators/cd_lagrange_adaptive.hpp"
+#include "integrators/cd_penalty.hpp"
+#include "integrators/d1_minus_linear.hpp"
 #include "integrators/moreau_jean.hpp"
+#include "integrators/schatzman_paoli.hpp"
 #include "reference/event_driven.hpp"
 #include "reference/modal_exact.hpp"
 #include "reference/penalty.hpp"
@@ -15,6 +18,9 @@ const std::vector<IntegratorEntry>& integrator_registry() {
       {"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>, false},
       {"cd-lagrange-adaptive", "CD-Lagrange with the step chosen from the discrete energy balance (KMOW variable step), CFL-capped", &CdLagrangeAdaptive::parameters_spec, &make_from_params<Integrator, CdLagrangeAdaptive>, false},
       {"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false},
+      {"schatzman-paoli", "Schatzman-Paoli two-step scheme, position-level impact law (theta = 0: explicit, Carpenter-Taylor-Katona for e = 0)", &SchatzmanPaoli::parameters_spec, &make_from_params<Integrator, SchatzmanPaoli>, false},
+      {"cd-penalty", "explicit central difference with penalty contact (spring-dashpot, kappa = penalty_factor m / dt^2)", &CdPenalty::parameters_spec, &make_from_params<Integrator, CdPenalty>, false},
+      {"d1-minus-linear", "Schindler-Acary D1MinusLinear, half-explicit velocity level, impacts at the step's end", &D1MinusLinear::parameters_spec, &make_from_params<Integrator, D1MinusLinear>, false},
       {"event-driven", "reference: CVODE with root finding, Newton impacts, closed-contact mode (node-to-rigid contacts)", &EventDriven::parameters_spec, &make_from_params<Integrator, EventDriven>, true},
       {ModalExact::kName, "reference: exact modal solution of linear problems between contact events, closed-form event signals (node-to-rigid contacts)", &ModalExact::parameters_spec, &make_from_params<Integrator, ModalExact>, true},
       {"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>, true},

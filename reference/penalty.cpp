@@ -3,7 +3,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <numbers>
+
+#include "integrators/spring_dashpot.hpp"
 
 namespace nsb {
 
@@ -38,30 +39,9 @@ PenaltyBdf::PenaltyBdf(const Params& params)
   settings_.atol = params.real("atol");
 }
 
-double PenaltyBdf::restitution(double zeta) {
-  if (zeta == 0.0) return 1.0;
-  if (zeta < 1.0) {
-    const double wd = std::sqrt(1.0 - zeta * zeta);
-    const double t = (std::numbers::pi - std::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta)) / wd;
-    return std::exp(-zeta * t) * std::abs(std::cos(wd * t) - zeta / wd * std::sin(wd * t));
-  }
-  if (zeta == 1.0) return std::exp(-2.0);  // critical: x = t e^-t, force zero at t* = 2
-  const double s = std::sqrt(zeta * zeta - 1.0), r1 = -zeta + s, r2 = -zeta - s;
-  const double t = std::log((1.0 + 2.0 * zeta * r2) / (1.0 + 2.0 * zeta * r1)) / (r1 - r2);
-  return std::abs((r1 * std::exp(r1 * t) - r2 * std::exp(r2 * t)) / (r1 - r2));
-}
+double PenaltyBdf::restitution(double zeta) { return spring_dashpot_restitution(zeta); }
 
-double PenaltyBdf::damping_ratio(double e) {
-  if (e >= 1.0) return 0.0;
-  // e(zeta) decreases from 1 (zeta = 0) to 0 (zeta -> inf): bisection in log zeta.
-  double lo = 1e-12, hi = kMaxDampingRatio;
-  if (restitution(hi) >= e) return hi;
-  for (int it = 0; it < 200 && hi / lo > 1.0 + 1e-15; ++it) {
-    const double mid = std::sqrt(lo * hi);
-    (restitution(mid) > e ? lo : hi) = mid;
-  }
-  return std::sqrt(lo * hi);
-}
+double PenaltyBdf::damping_ratio(double e) { return spring_dashpot_damping_ratio(e, kMaxDampingRatio); }
 
 void PenaltyBdf::init(const Problem& problem, const State& initial) {
   bind(problem, initial);

@@ -6,6 +6,11 @@
 //                         yardstick in the same binary
 //   BM_MoreauJeanStep/N   one Moreau-Jean step (lumped mass, in contact; factorised once in
 //                         setup), with Google Benchmark's O(N) fit (coefficient and RMS)
+//   BM_CdPenaltyStep/N, BM_D1MinusLinearStep/N, BM_SchatzmanPaoliStep/N   the explicit field
+//                         schemes (lumped mass, in contact), against BM_CdLagrangeLumpedStep
+//                         (CD-Lagrange on the same lumped bar)
+//   BM_SchatzmanPaoliImplicitStep/N   schatzman-paoli theta = 1/4 (lumped, factorised once in
+//                         setup), against BM_MoreauJeanStep
 // Counter time_per_dof: CPU time per step (per triad pass) divided by N + 1. The triad also
 // runs at N = 1e7 (240 MB, beyond any cache): the DRAM bandwidth; at N = 1e6 its 24 MB may
 // still sit in a large L3 while the step's 10 arrays (80 MB) do not.
@@ -18,8 +23,11 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <map>
+#include <string>
 
 #include "integrators/cd_lagrange.hpp"
+#include "integrators/registry.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "problems/signorini_bar.hpp"
 
@@ -83,8 +91,37 @@ void BM_MoreauJeanStep(benchmark::State& state) {
   per_dof(state, N + 1);
 }
 
+// One step of a registered integrator on the lumped bar at 0.9 h/c (0.7 h/c for cd-penalty,
+// whose contact spring lowers the stable step to 0.71 h/c), after 10 steps into the contact.
+void registered_step(benchmark::State& state, const std::string& name, const std::map<std::string, std::string>& params, double alpha) {
+  const long N = state.range(0);
+  const auto bar = make_bar(N, "lumped");
+  auto integ = nsb::make_integrator(name, params);
+  integ->init(bar, bar.initial_state());
+  const double dt = alpha * bar.stable_step();
+  for (int k = 0; k < 10; ++k) integ->step(dt);
+  for (auto _ : state) {
+    integ->step(dt);
+    benchmark::DoNotOptimize(integ->state().v.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetComplexityN(N + 1);
+  per_dof(state, N + 1);
+}
+
+void BM_CdLagrangeLumpedStep(benchmark::State& state) { registered_step(state, "cd-lagrange", {}, 0.9); }
+void BM_CdPenaltyStep(benchmark::State& state) { registered_step(state, "cd-penalty", {}, 0.7); }
+void BM_D1MinusLinearStep(benchmark::State& state) { registered_step(state, "d1-minus-linear", {}, 0.9); }
+void BM_SchatzmanPaoliStep(benchmark::State& state) { registered_step(state, "schatzman-paoli", {}, 0.9); }
+void BM_SchatzmanPaoliImplicitStep(benchmark::State& state) { registered_step(state, "schatzman-paoli", {{"theta", "0.25"}}, 0.9); }
+
 }  // namespace
 
+BENCHMARK(BM_CdLagrangeLumpedStep)->RangeMultiplier(10)->Range(1000, 1000000)->ComputeStatistics("min", min_of);
+BENCHMARK(BM_CdPenaltyStep)->RangeMultiplier(10)->Range(1000, 1000000)->ComputeStatistics("min", min_of);
+BENCHMARK(BM_D1MinusLinearStep)->RangeMultiplier(10)->Range(1000, 1000000)->ComputeStatistics("min", min_of);
+BENCHMARK(BM_SchatzmanPaoliStep)->RangeMultiplier(10)->Range(1000, 1000000)->ComputeStatistics("min", min_of);
+BENCHMARK(BM_SchatzmanPaoliImplicitStep)->RangeMultiplier(10)->Range(1000, 1000000)->Complexity(benchmark::oN)->ComputeStatistics("min", min_of);
 BENCHMARK(BM_CdLagrangeStep)->RangeMultiplier(10)->Range(1000, 1000000)->ComputeStatistics("min", min_of);
 BENCHMARK(BM_Triad)->RangeMultiplier(10)->Range(1000, 10000000)->ComputeStatistics("min", min_of);
 BENCHMARK(BM_MoreauJeanStep)->RangeMultiplier(10)->Range(1000, 1000000)->Complexity(benchmark::oN)->ComputeStatistics("min", min_of);

@@ -1,0 +1,110 @@
+#include "integrators/cd_penalty.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "integrators/spring_dashpot.hpp"
+
+namespace nsb {
+
+namespace {
+constexpr double kMaxDampingRatio = 1e3;
+}
+
+ParamSpecs CdPenalty::parameters_spec() {
+  return {
+      ParamSpec::real("penalty_factor", 2.0, 0.0, 4.0,
+                      "kappa_i tau^2 / m_i (dimensionless); stable below 4, contact resolved in ~2 steps at 2", true, true),
+  };
+}
+
+CdPenalty::CdPenalty(const Params& params) : Integrator(params), factor_(params.real("penalty_factor")) {}
+
+void CdPenalty::init(const Problem& problem, const State& initial) {
+  bind(problem, initial);
+  const auto m = diagonal_mass(mass_);
+  if (!m || !(m->minCoeff() > 0.0))
+    throw InputError(fmt::format("integrator cd-penalty needs a diagonal mass with positive entries (M^{{-1}} in the update); problem {} has {}",
+                                 problem.name(), m ? "a massless dof" : "a non-diagonal mass"));
+  m_ = *m;
+  minv_ = m_.cwiseInverse();
+  L_ = problem.gap_operator();
+  h_diag_ = Vec::Zero(L_.rows());
+  for (Index i = 0; i < L_.rows(); ++i) {
+    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) h_diag_[i] += it.value() * it.value() * minv_[it.col()];
+    if (!(h_diag_[i] > 0.0)) throw InputError(fmt::format("integrator cd-penalty: problem {} has a contact ({}) with an empty row of L", problem.name(), i));
+  }
+  zeta_ = spring_dashpot_damping_ratio(problem.restitution(), kMaxDampingRatio);
+  const Index n = problem.ndof();
+  u_prev_ = state_.u;
+  v_prev_ = state_.v;
+  f_int_ = Vec::Zero(n);
+  f_ext_ = Vec::Zero(n);
+  gap_ = L_ * state_.u + problem.gap_offset();
+  gap_prev_ = gap_;
+  problem.external_force(state_.t, f_ext_);
+  tau_ = 0.0;
+  started_ = false;
+  if (std::isfinite(stable_step_with_contacts())) work_.extra["stable_step_with_contacts"] = stable_step_with_contacts();
+}
+
+double CdPenalty::stable_step_with_contacts() const { return problem_->stable_step() * std::sqrt(1.0 - factor_ / 4.0); }
+
+ImpactAccuracy CdPenalty::impact_accuracy() const {
+  return {std::numbers::pi / (2.0 * std::asin(std::sqrt(factor_) / 2.0)) + 1.0, false};
+}
+
+StepInfo CdPenalty::step(double tau) {
+  StepInfo info;
+  info.dt = tau;
+  tau_ = tau;
+  if (!started_) {
+    problem_->internal_force(state_.u, f_int_);
+    ++work_.force_evaluations;
+    state_.v += 0.5 * tau * minv_.cwiseProduct(f_ext_ - f_int_);
+    started_ = true;
+  }
+  std::swap(u_prev_, state_.u);
+  state_.u.noalias() = u_prev_ + tau * state_.v;
+  state_.t += tau;
+  problem_->internal_force(state_.u, f_int_);
+  ++work_.force_evaluations;
+  if (!problem_->external_force_is_constant()) problem_->external_force(state_.t, f_ext_);
+  std::swap(v_prev_, state_.v);
+  state_.v.noalias() = v_prev_ + tau * minv_.cwiseProduct(f_ext_ - f_int_);
+
+  // Penalty forces, contact by contact (H diagonal: independent; otherwise one Gauss-Seidel
+  // sweep, each contact seeing the velocity the previous ones left).
+  const Vec& g0 = problem_->gap_offset();
+  std::swap(gap_prev_, gap_);
+  gap_.noalias() = L_ * state_.u;
+  gap_ += g0;
+  impulses_.setZero();
+  for (Index i = 0; i < L_.rows(); ++i) {
+    if (!(gap_[i] < 0.0)) continue;
+    const double mi = 1.0 / h_diag_[i];
+    const double kappa = factor_ * mi / (tau * tau);
+    const double c = 2.0 * zeta_ * std::sqrt(kappa * mi);
+    double gdot = 0.0;
+    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) gdot += it.value() * state_.v[it.col()];
+    const double f = std::max(0.0, (-kappa * gap_[i] - c * gdot) / (1.0 + c * tau * h_diag_[i]));
+    if (f == 0.0) continue;
+    impulses_[i] = tau * f;
+    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) state_.v[it.col()] += minv_[it.col()] * it.value() * tau * f;
+  }
+  ++work_.steps;
+  return info;
+}
+
+Energy CdPenalty::energy() const {
+  if (!started_) return Integrator::energy();
+  Energy E{0.5 * v_prev_.dot(m_.cwiseProduct(v_prev_)), 0.5 * (problem_->potential(u_prev_) + problem_->potential(state_.u))};
+  for (Index i = 0; i < gap_.size(); ++i)
+    if (gap_[i] < 0.0 && gap_prev_[i] < 0.0) E.potential += 0.5 * factor_ / (h_diag_[i] * tau_ * tau_) * gap_prev_[i] * gap_[i];
+  return E;
+}
+
+}  // namespace nsb

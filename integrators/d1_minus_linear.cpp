@@ -1,0 +1,108 @@
+#include "integrators/d1_minus_linear.hpp"
+
+#include <fmt/format.h>
+
+namespace nsb {
+
+ParamSpecs D1MinusLinear::parameters_spec() {
+  return {
+      ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "LCP tolerance when H is not diagonal", true),
+      ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap when H is not diagonal"),
+  };
+}
+
+D1MinusLinear::D1MinusLinear(const Params& params) : Integrator(params) {
+  lcp_.tolerance = params.real("lcp_tol");
+  lcp_.max_iterations = params.integer("lcp_max_iter");
+}
+
+void D1MinusLinear::init(const Problem& problem, const State& initial) {
+  bind(problem, initial);
+  const auto m = diagonal_mass(mass_);
+  if (!m || !(m->minCoeff() > 0.0))
+    throw InputError(fmt::format("integrator d1-minus-linear needs a diagonal mass with positive entries (M^{{-1}} in every stage); problem {} has {}",
+                                 problem.name(), m ? "a massless dof" : "a non-diagonal mass"));
+  minv_ = m->cwiseInverse();
+  L_ = problem.gap_operator();
+  contact_ = ImpulseContact(problem, minv_, lcp_);
+  const Index n = problem.ndof(), p = L_.rows();
+  for (Vec* x : {&f_ext_, &a_now_, &a_next_, &f_int_, &v1_, &v_minus_, &u_start_}) *x = Vec::Zero(n);
+  for (Vec* x : {&p1_, &p2_, &impact_, &gap_}) *x = Vec::Zero(p);
+  problem.external_force(state_.t, f_ext_);
+  started_ = false;
+}
+
+void D1MinusLinear::add_impulses(const Vec& impulse, double scale, VecRef v) const {
+  for (Index i = 0; i < L_.rows(); ++i)
+    if (impulse[i] != 0.0)
+      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v[it.col()] += scale * minv_[it.col()] * it.value() * impulse[i];
+}
+
+StepInfo D1MinusLinear::step(double h) {
+  StepInfo info;
+  info.dt = h;
+  if (!started_) {
+    problem_->internal_force(state_.u, f_int_);
+    ++work_.force_evaluations;
+    a_now_ = minv_.cwiseProduct(f_ext_ - f_int_);
+    gap_.noalias() = L_ * state_.u;
+    gap_ += problem_->gap_offset();
+    closed_start_ = (gap_.array() <= 0.0).any();
+    started_ = true;
+  }
+  // Left: V_{k,1} = V_k + h A_k, needed in full only on the contacts' dofs (the contact
+  // solves read and write nothing else); U_{k+1} = U_k + h V_k + h^2/2 A_k + h/2 M^{-1} L^T P_1.
+  for (Index i = 0; i < L_.rows(); ++i)
+    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v1_[it.col()] = state_.v[it.col()] + h * a_now_[it.col()];
+  long iterations = 0;
+  p1_.setZero();
+  if (closed_start_) iterations += contact_.apply(state_.u, v1_, v1_, p1_, info, work_, 0.0);  // e = 0: v_prev unused
+  std::swap(u_start_, state_.u);
+  state_.u.noalias() = u_start_ + h * state_.v + (0.5 * h * h) * a_now_;
+  add_impulses(p1_, 0.5 * h, state_.u);
+  state_.t += h;
+
+  // Right: A_{k+1}, V^- = V_k + h/2 (A_k + A_{k+1}).
+  if (!problem_->external_force_is_constant()) problem_->external_force(state_.t, f_ext_);
+  problem_->internal_force(state_.u, f_int_);
+  ++work_.force_evaluations;
+  a_next_.noalias() = minv_.cwiseProduct(f_ext_ - f_int_);
+  v_minus_.noalias() = state_.v + (0.5 * h) * (a_now_ + a_next_);
+
+  gap_.noalias() = L_ * state_.u;
+  gap_ += problem_->gap_offset();
+  bool impact = false, closed_end = false;
+  for (Index i = 0; i < L_.rows(); ++i) {
+    if (gap_[i] > 0.0) continue;
+    closed_end = true;
+    double gdot = 0.0;
+    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) gdot += it.value() * v1_[it.col()];
+    impact = impact || gdot < 0.0;
+  }
+  p2_.setZero();
+  if (impact) {
+    p1_.setZero();
+  } else if (closed_start_) {
+    add_impulses(p1_, 0.5, v_minus_);
+    iterations += contact_.apply(u_start_, v_minus_, v_minus_, p2_, info, work_, 0.0);
+  }
+  // Impact at t_{k+1}, Newton's law against V^-.
+  impact_.setZero();
+  std::swap(state_.v, v_minus_);
+  if (closed_end) {
+    // V^- on the contacts' dofs (all the impact law reads of it) into v1_, no longer needed.
+    for (Index i = 0; i < L_.rows(); ++i)
+      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v1_[it.col()] = state_.v[it.col()];
+    iterations += contact_.apply(state_.u, v1_, state_.v, impact_, info, work_, problem_->restitution());
+  }
+  impulses_ = impact_ + 0.5 * p1_ + p2_;
+
+  std::swap(a_now_, a_next_);
+  closed_start_ = closed_end;
+  info.iterations = iterations;
+  work_.lcp_iterations += iterations;
+  ++work_.steps;
+  return info;
+}
+
+}  // namespace nsb
