@@ -4,6 +4,8 @@
 #include "integrators/cd_lagrange.hpp"
 #include "integrators/cd_lagrange_adaptive.hpp"
 #include "integrators/moreau_jean.hpp"
+#include "integrators/newmark_lm.hpp"
+#include "integrators/nsga.hpp"
 #include "reference/event_driven.hpp"
 #include "reference/modal_exact.hpp"
 #include "reference/penalty.hpp"
@@ -15,6 +17,8 @@ const std::vector<IntegratorEntry>& integrator_registry() {
       {"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>, false},
       {"cd-lagrange-adaptive", "CD-Lagrange with the step chosen from the discrete energy balance (KMOW variable step), CFL-capped", &CdLagrangeAdaptive::parameters_spec, &make_from_params<Integrator, CdLagrangeAdaptive>, false},
       {"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false},
+      {"nsga", "nonsmooth generalised-alpha (Bruls-Acary-Cardona 2014): position correction and velocity impact law, rho_inf", &Nsga::parameters_spec, &make_from_params<Integrator, Nsga>, false},
+      {"newmark-lm", "Newmark (beta, gamma) with position-level Lagrange multipliers; mass redistribution with a singular mass", &NewmarkLm::parameters_spec, &make_from_params<Integrator, NewmarkLm>, false},
       {"event-driven", "reference: CVODE with root finding, Newton impacts, closed-contact mode (node-to-rigid contacts)", &EventDriven::parameters_spec, &make_from_params<Integrator, EventDriven>, true},
       {ModalExact::kName, "reference: exact modal solution of linear problems between contact events, closed-form event signals (node-to-rigid contacts)", &ModalExact::parameters_spec, &make_from_params<Integrator, ModalExact>, true},
       {"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>, true},
