@@ -34,6 +34,12 @@
 // Nonlinear F_int: the smooth step is solved by Newton (newton_tol on the increment, see
 // implicit_contact.hpp), refactorising S each iteration; the corrections use the last S.
 // impulses() = Lambda, the velocity jump's impulse (nu is a position correction, no momentum).
+// Measured cost of the position level (hard study, bouncing mass, e = 1): the correction
+// lifts the smooth step's penetration back to g = 0 while the impact law restores the
+// pre-step speed |g'_k|, so each impact loses m g_grav g_k (g_k in [0, h |g'_k|], the height
+// at the start of the step): O(h) per impact, a loss Moreau-Jean (which leaves U at g_k)
+// does not have. 50 s of bouncing (about 55 impacts) from E = 9.81 J: 8.09 J at h = 1e-3,
+// 9.69 J at h = 1e-4; the 10^4-impact case at h = 1e-3 comes to rest after ~800 impacts.
 #include "integrators/implicit_contact.hpp"
 
 namespace nsb {
