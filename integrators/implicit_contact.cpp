@@ -58,7 +58,8 @@ void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, b
     if (!linear || c != c_factored_) factorize(c);
     problem_->internal_force(u, f_int_);
     ++work_->force_evaluations;
-    r_.noalias() = *M_ * (u - u_hat);
+    du_ = u - u_hat;
+    r_.noalias() = *M_ * du_;
     r_ += c * (f_int_ - f_ext);
     solve(r_, du_);
     du_ = u - du_;  // the next iterate before the contact correction
