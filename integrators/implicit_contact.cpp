@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace nsb {
@@ -72,7 +73,10 @@ void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, b
     std::swap(u, du_);
     if (linear) return;
     ++info.iterations;
-    if (change <= newton_.tolerance * (u - u_hat).lpNorm<Eigen::Infinity>()) return;
+    // The increment cannot fall below the round-off of U: |U - U_hat| = O(h^2) can be far
+    // smaller than eps |U| (a small step on a body away from the origin).
+    const double floor = 100.0 * std::numeric_limits<double>::epsilon() * u.lpNorm<Eigen::Infinity>();
+    if (change <= newton_.tolerance * (u - u_hat).lpNorm<Eigen::Infinity>() + floor) return;
     if (it + 1 >= newton_.max_iterations) {
       info.converged = false;
       ++work_->extra["newton_unconverged"];
@@ -148,7 +152,7 @@ LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu
 
 void add_implicit_contact_specs(ParamSpecs& specs) {
   specs.push_back(ParamSpec::real("newton_tol", 1e-10, 0.0, 1e-2,
-                                  "Newton tolerance (nonlinear F_int): |dU|_inf <= tol |U - U_hat|_inf", true));
+                                  "Newton tolerance (nonlinear F_int): |dU|_inf <= tol |U - U_hat|_inf + 100 eps |U|_inf", true));
   specs.push_back(ParamSpec::integer("newton_max_iter", 25, 1, 1000, "Newton iteration cap (nonlinear F_int)"));
   specs.push_back(ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "LCP tolerance (relative natural-map residual)", true));
   specs.push_back(ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap"));

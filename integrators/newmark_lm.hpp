@@ -11,9 +11,9 @@
 // Solved for U_{k+1} (displacement form): with U_pred = U_k + h V_k + h^2 (1/2 - beta) A_k,
 //     M (U - U_pred) + beta h^2 (F_int(U) - F_ext,k+1) = L^T mu,   mu = beta h^2 lambda,
 // by Newton on U where each iterate solves the linearised step with its contact LCP
-// (a Josephy-Newton / sequential-LCP iteration, S = M + beta h^2 K(U_i)), stopped when
-// |U_{i+1} - U_i|_inf <= newton_tol |U_{i+1} - U_pred|_inf; linear K: one iteration, S
-// factorised once per step size (implicit_contact.hpp).
+// (a Josephy-Newton / sequential-LCP iteration, S = M + beta h^2 K(U_i)), stopped on the
+// increment (newton_tol, implicit_contact.hpp); linear K: one iteration, S factorised once
+// per step size.
 // A_{k+1} = (U_{k+1} - U_pred) / (beta h^2). Impulse of the step (impulses()):
 // h [(1 - gamma) lambda_k + gamma lambda_{k+1}], the momentum the multipliers transfer.
 //
