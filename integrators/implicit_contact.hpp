@@ -10,7 +10,8 @@
 // |U_{i+1} - U_hat|_inf + 100 eps |U_{i+1}|_inf (the second term: round-off of U, which
 // |U - U_hat| = O(h^2) can be far below); a linear K takes one iteration and one
 // factorisation per c. Measured on block-2d 32x32, dt = 1e-4: without the round-off term
-// 561 of 1500 steps hit the iteration cap (11 factorisations per step).
+// 561 of 1500 steps hit the iteration cap (11 factorisations per step; now 2.5).
+//
 //     S = M + c K                          iteration matrix (c = beta h^2 for Newmark,
 //                                          beta h^2 (1 - alpha_f) / (1 - alpha_m) for gen.-alpha)
 //     x <- x + S^{-1} L_A^T mu,   0 <= mu  _|_  b_A + L_A x >= 0        (contact correction)
