@@ -12,10 +12,12 @@ ParamSpecs MoreauJean::parameters_spec() {
       ParamSpec::real("theta", 0.5, 0.5, 1.0, "theta of the theta-method"),
       ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "LCP tolerance (relative natural-map residual)", true),
       ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap"),
+      ParamSpec::choice("projection", "none", {"none", "position"}, "position: project U_{k+1} onto g >= 0 after the step (Acary 2013)"),
   };
 }
 
-MoreauJean::MoreauJean(const Params& params) : Integrator(params), theta_(params.real("theta")) {
+MoreauJean::MoreauJean(const Params& params)
+    : Integrator(params), theta_(params.real("theta")), project_positions_(params.choice("projection") == "position") {
   lcp_.tolerance = params.real("lcp_tol");
   lcp_.max_iterations = params.integer("lcp_max_iter");
 }
@@ -132,6 +134,12 @@ StepInfo MoreauJean::step(double h) {
     }
   }
   state_.u.noalias() += h * (theta_ * v_next_ + (1.0 - theta_) * state_.v);
+  if (project_positions_) {
+    const LcpResult res = contact_correction(L_, g0, state_.u, nu_, {}, true,
+                                             [this](Index i) -> const Vec& { return contact_response(i); }, lcp_, work_);
+    info.iterations += res.iterations;
+    if (!res.converged) info.converged = false;
+  }
   std::swap(state_.v, v_next_);
   state_.t += h;
   std::swap(f_ext_now_, f_ext_next_);

@@ -48,6 +48,7 @@ void SchatzmanPaoli::init(const Problem& problem, const State& initial) {
           theta_, problem.name()));
     problem.tangent_stiffness(state_.u, K_);
     ++work_.tangent_evaluations;
+    solver_.setMode(Eigen::CholmodSimplicialLLt);  // no BLAS: see moreau_jean.hpp
     solver_.cholmod().print = 1;
   }
   response_.assign(static_cast<std::size_t>(L_.rows()), Vec());

@@ -1,0 +1,192 @@
+#include "integrators/implicit_contact.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace nsb {
+
+void ImplicitContact::bind(const Problem& problem, const SpMat& M, const Vec& u0, WorkCounters& work, const LcpOptions& lcp,
+                           const NewtonOptions& newton, const char* who) {
+  problem_ = &problem;
+  M_ = &M;
+  work_ = &work;
+  who_ = who;
+  lcp_ = lcp;
+  newton_ = newton;
+  c_factored_ = 0.0;
+  problem.tangent_stiffness(u0, K_);  // the pattern; values refilled per step if nonlinear
+  ++work.tangent_evaluations;
+  f_int_ = Vec::Zero(problem.ndof());
+  L_ = problem.gap_operator();
+  response_.assign(L_.rows(), Vec());
+  unit_ = Vec::Zero(problem.ndof());
+  gap_ = Vec::Zero(L_.rows());
+  analyzed_ = false;
+  chol_.setMode(Eigen::CholmodSimplicialLLt);  // no BLAS: see moreau_jean.hpp
+  chol_.cholmod().print = 1;  // errors only: "not positive definite" is handled by the LU fallback
+}
+
+void ImplicitContact::factorize(double c) {
+  S_ = *M_ + c * K_;
+  if (!analyzed_) {
+    chol_.analyzePattern(S_);
+    analyzed_ = true;
+  }
+  chol_.factorize(S_);
+  ++work_->factorizations;
+  use_lu_ = chol_.info() != Eigen::Success;
+  if (use_lu_) {
+    lu_.compute(S_);
+    ++work_->extra["lu_fallbacks"];
+    if (lu_.info() != Eigen::Success) throw std::runtime_error(fmt::format("{}: iteration matrix M + c K is singular", who_));
+  }
+  c_factored_ = c;
+  for (auto& r : response_) r.resize(0);
+}
+
+void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, bool with_contact, Vec& u, Vec& mu,
+                                 StepInfo& info) {
+  const bool linear = problem_->is_linear();
+  u = u_hat;
+  mu = Vec::Zero(L_.rows());
+  for (long it = 0;; ++it) {
+    if (!linear) {
+      problem_->tangent_stiffness(u, K_);
+      ++work_->tangent_evaluations;
+    }
+    if (!linear || c != c_factored_) factorize(c);
+    problem_->internal_force(u, f_int_);
+    ++work_->force_evaluations;
+    du_ = u - u_hat;
+    r_.noalias() = *M_ * du_;
+    r_ += c * (f_int_ - f_ext);
+    solve(r_, du_);
+    du_ = u - du_;  // the next iterate before the contact correction
+    if (with_contact) {
+      const LcpResult res = correct(problem_->gap_offset(), du_, mu, {}, true);
+      info.iterations += res.iterations;
+      if (!res.converged) info.converged = false;
+    }
+    const double change = (du_ - u).lpNorm<Eigen::Infinity>();
+    std::swap(u, du_);
+    if (linear) return;
+    ++info.iterations;
+    // The increment cannot fall below the round-off of U: |U - U_hat| = O(h^2) can be far
+    // smaller than eps |U| (a small step on a body away from the origin).
+    const double floor = 100.0 * std::numeric_limits<double>::epsilon() * u.lpNorm<Eigen::Infinity>();
+    if (change <= newton_.tolerance * (u - u_hat).lpNorm<Eigen::Infinity>() + floor) return;
+    if (it + 1 >= newton_.max_iterations) {
+      info.converged = false;
+      ++work_->extra["newton_unconverged"];
+      return;
+    }
+  }
+}
+
+void ImplicitContact::solve(const Vec& rhs, Vec& x) {
+  if (use_lu_)
+    x = lu_.solve(rhs);
+  else
+    x = chol_.solve(rhs);
+  ++work_->linear_solves;
+}
+
+const Vec& ImplicitContact::response(Index i) {
+  Vec& r = response_[i];
+  if (r.size() == 0) {
+    unit_.setZero();
+    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) unit_[it.col()] = it.value();
+    solve(unit_, r);
+  }
+  return r;
+}
+
+LcpResult ImplicitContact::correct(const Vec& b, Vec& x, Vec& mu, std::vector<Index> active, bool grow) {
+  return contact_correction(L_, b, x, mu, std::move(active), grow, [this](Index i) -> const Vec& { return response(i); },
+                            lcp_, *work_);
+}
+
+LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu, std::vector<Index> active, bool grow,
+                             const std::function<const Vec&(Index)>& response, const LcpOptions& lcp,
+                             WorkCounters& work) {
+  const Index p = L.rows();
+  mu = Vec::Zero(p);
+  LcpResult total;
+  auto violated = [&](Index i) { return b[i] + L.row(i).dot(x) < 0.0; };
+  if (grow)
+    for (Index i = 0; i < p; ++i)
+      if (violated(i)) active.push_back(i);
+  if (active.empty()) return total;
+  const Vec x0 = x;
+  // Each further pass adds at least one contact, so at most p + 1 passes.
+  for (;;) {
+    const Index a = static_cast<Index>(active.size());
+    Eigen::MatrixXd D(a, a);
+    Vec q(a), z(a);
+    for (Index c = 0; c < a; ++c) {
+      const Vec& r = response(active[c]);
+      for (Index row = 0; row < a; ++row) D(row, c) = L.row(active[row]).dot(r);
+      q[c] = b[active[c]] + L.row(active[c]).dot(x0);
+      z[c] = mu[active[c]];
+    }
+    const LcpResult res = solve_lcp(D, q, z, lcp);
+    total.iterations += res.iterations;
+    total.residual = res.residual;
+    total.converged = res.converged;
+    x = x0;
+    for (Index c = 0; c < a; ++c) {
+      mu[active[c]] = z[c];
+      if (z[c] != 0.0) x.noalias() += z[c] * response(active[c]);
+    }
+    if (!grow) break;
+    for (Index i = 0; i < p; ++i)
+      if (violated(i) && std::find(active.begin(), active.end(), i) == active.end()) active.push_back(i);
+    if (static_cast<Index>(active.size()) == a) break;
+  }
+  work.lcp_iterations += total.iterations;
+  if (!total.converged) ++work.lcp_unconverged;
+  return total;
+}
+
+void add_implicit_contact_specs(ParamSpecs& specs) {
+  specs.push_back(ParamSpec::real("newton_tol", 1e-10, 0.0, 1e-2,
+                                  "Newton tolerance (nonlinear F_int): |dU|_inf <= tol |U - U_hat|_inf + 100 eps |U|_inf", true));
+  specs.push_back(ParamSpec::integer("newton_max_iter", 25, 1, 1000, "Newton iteration cap (nonlinear F_int)"));
+  specs.push_back(ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "LCP tolerance (relative natural-map residual)", true));
+  specs.push_back(ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap"));
+}
+
+NewtonOptions newton_options(const Params& params) {
+  return {params.real("newton_tol"), params.integer("newton_max_iter")};
+}
+
+LcpOptions lcp_options(const Params& params) {
+  return {params.real("lcp_tol"), params.integer("lcp_max_iter")};
+}
+
+Vec initial_acceleration(const Problem& problem, const State& s, const SpMat& M, const char* who) {
+  const Index n = problem.ndof();
+  Vec f_ext(n), f_int(n);
+  problem.external_force(s.t, f_ext);
+  problem.internal_force(s.u, f_int);
+  const Vec r = f_ext - f_int;
+  if (const auto m = diagonal_mass(M)) {
+    Vec a = Vec::Zero(n);
+    for (Index i = 0; i < n; ++i)
+      if ((*m)[i] > 0.0) a[i] = r[i] / (*m)[i];
+    return a;
+  }
+  Eigen::CholmodDecomposition<SpMat, Eigen::Lower> chol;
+  chol.setMode(Eigen::CholmodSimplicialLLt);
+  chol.cholmod().print = 1;
+  chol.compute(M);
+  if (chol.info() != Eigen::Success)
+    throw InputError(fmt::format("{}: problem '{}' has a non-diagonal mass matrix that is not positive definite "
+                                 "(massless dofs are handled only with a diagonal mass)", who, problem.name()));
+  return chol.solve(r);
+}
+
+}  // namespace nsb

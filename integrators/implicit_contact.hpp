@@ -1,0 +1,97 @@
+#pragma once
+// Shared parts of the implicit Newmark-type schemes with contact (nsga, newmark-lm):
+//
+//     M (U - U_hat) + c (F_int(U) - F_ext) = L^T mu    [0 <= mu _|_ g(U) >= 0, or mu = 0]
+//
+// solved for U by Newton from U_hat: S = M + c K(U_i),
+//     U_{i+1} = U_i - S^{-1} R(U_i)   (R without the contact term), then corrected below,
+// with the contact a Josephy-Newton (sequential LCP) iteration: each iterate solves the
+// linearised step with its LCP. Stopped when |U_{i+1} - U_i|_inf <= newton_tol
+// |U_{i+1} - U_hat|_inf + 100 eps |U_{i+1}|_inf (the second term: round-off of U, which
+// |U - U_hat| = O(h^2) can be far below); a linear K takes one iteration and one
+// factorisation per c. Measured on block-2d 32x32, dt = 1e-4: without the round-off term
+// 561 of 1500 steps hit the iteration cap (11 factorisations per step; now 2.5).
+//
+//     S = M + c K                          iteration matrix (c = beta h^2 for Newmark,
+//                                          beta h^2 (1 - alpha_f) / (1 - alpha_m) for gen.-alpha)
+//     x <- x + S^{-1} L_A^T mu,   0 <= mu  _|_  b_A + L_A x >= 0        (contact correction)
+//
+// S is factorised by CHOLMOD's simplicial LL^T (symbolic analysis kept across
+// refactorisations; no BLAS, see moreau_jean.hpp), with Eigen's sparse LU as the fallback when S is indefinite; the responses S^{-1} L_i^T are cached
+// per contact while S is unchanged. S is regular for a singular (massless-dof) M when K
+// holds those dofs, which is why the corrections go along S^{-1} L^T and not M^{-1} L^T
+// (the two agree to O(c) on massive dofs).
+// The correction is one LCP on the contact set A with Delassus D = L_A S^{-1} L_A^T (see
+// lcp.hpp). With grow = true, A starts as the violated rows (b + L x < 0) and contacts that
+// the correction pushes into violation are added until none is left (position level:
+// no penetration at the step's end beyond the LCP tolerance).
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseLU>
+#include <functional>
+#include <vector>
+
+#include "integrators/integrator.hpp"
+#include "integrators/lcp.hpp"
+
+namespace nsb {
+
+using ContactRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// The correction above for any iteration matrix: response(i) = S^{-1} L_i^T (cached by the
+// caller). Adds the LCP iterations to work (and an unconverged LCP to lcp_unconverged).
+LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu, std::vector<Index> active, bool grow,
+                             const std::function<const Vec&(Index)>& response, const LcpOptions& lcp,
+                             WorkCounters& work);
+
+struct NewtonOptions {
+  double tolerance = 1e-10;
+  long max_iterations = 25;
+};
+
+class ImplicitContact {
+ public:
+  // M must outlive this object (the integrator's mass_).
+  void bind(const Problem& problem, const SpMat& M, const Vec& u0, WorkCounters& work, const LcpOptions& lcp,
+            const NewtonOptions& newton, const char* who);
+  // The step equation above; with_contact selects the LCP inside the Newton iteration
+  // (mu, size p, is returned; zero without contact). info gets iterations and convergence.
+  void solve_step(const Vec& u_hat, const Vec& f_ext, double c, bool with_contact, Vec& u, Vec& mu, StepInfo& info);
+  // Corrects x on the contact set (fixed `active`, or grown from the violated rows when
+  // `grow`): x += S^{-1} L^T mu, mu (size p, zero off the set) returned in `mu`.
+  LcpResult correct(const Vec& b, Vec& x, Vec& mu, std::vector<Index> active, bool grow);
+
+ private:
+  const Vec& response(Index contact);
+  void factorize(double c);
+  void solve(const Vec& rhs, Vec& x);
+
+  const Problem* problem_ = nullptr;
+  const SpMat* M_ = nullptr;
+  WorkCounters* work_ = nullptr;
+  const char* who_ = "";
+  LcpOptions lcp_;
+  NewtonOptions newton_;
+  SpMat K_;
+  double c_factored_ = 0.0;
+  Vec f_int_, r_, du_;
+  ContactRows L_;
+  SpMat S_;
+  Eigen::CholmodDecomposition<SpMat, Eigen::Lower> chol_;
+  Eigen::SparseLU<SpMat> lu_;  // no BLAS (UMFPACK calls it): see moreau_jean.hpp
+  bool use_lu_ = false, analyzed_ = false;
+  std::vector<Vec> response_;
+  Vec unit_, gap_;
+};
+
+// The Newton and LCP parameters (newton_tol, newton_max_iter, lcp_tol, lcp_max_iter) shared
+// by the schemes, appended to their specs, and read back.
+void add_implicit_contact_specs(ParamSpecs& specs);
+NewtonOptions newton_options(const Params& params);
+LcpOptions lcp_options(const Params& params);
+
+// Initial acceleration M A_0 = F_ext(t_0) - F_int(U_0) on the massive dofs; massless dofs
+// (zero diagonal of a diagonal M) get 0: their acceleration never enters the schemes'
+// equations, which see M A only. A non-diagonal M must be positive definite (InputError).
+Vec initial_acceleration(const Problem& problem, const State& s, const SpMat& M, const char* who);
+
+}  // namespace nsb

@@ -1,0 +1,72 @@
+#include "integrators/nsga.hpp"
+
+namespace nsb {
+
+ParamSpecs Nsga::parameters_spec() {
+  ParamSpecs specs = {
+      ParamSpec::real("rho_inf", 1.0, 0.0, 1.0, "spectral radius at infinity (1: no numerical dissipation)"),
+  };
+  add_implicit_contact_specs(specs);
+  return specs;
+}
+
+Nsga::Nsga(const Params& params) : Integrator(params) {
+  const double rho = params.real("rho_inf");
+  alpha_m_ = (2.0 * rho - 1.0) / (rho + 1.0);
+  alpha_f_ = rho / (rho + 1.0);
+  gamma_ = 0.5 + alpha_f_ - alpha_m_;
+  beta_ = 0.25 * (gamma_ + 0.5) * (gamma_ + 0.5);
+}
+
+void Nsga::init(const Problem& problem, const State& initial) {
+  bind(problem, initial);
+  a_ = initial_acceleration(problem, state_, mass_, "nsga");
+  ++work_.force_evaluations;
+  abar_ = a_;
+  implicit_.bind(problem, mass_, state_.u, work_, lcp_options(params_), newton_options(params_), "nsga");
+  f_ext_ = Vec::Zero(problem.ndof());
+}
+
+StepInfo Nsga::step(double h) {
+  StepInfo info;
+  info.dt = h;
+  const double bh2 = beta_ * h * h;
+  const double c = bh2 * (1.0 - alpha_f_) / (1.0 - alpha_m_);
+  // Smooth step: M (Q - U_hat) + c (F_int(Q) - F_ext) = 0, the equation of motion at t_{k+1}
+  // multiplied by c, with a_{k+1} and abar_{k+1} eliminated through Q.
+  u_pred_ = state_.u + h * state_.v + (h * h * (0.5 - beta_)) * abar_;
+  u_hat_ = u_pred_ - (bh2 / (1.0 - alpha_m_)) * (alpha_m_ * abar_ - alpha_f_ * a_);
+  problem_->external_force(state_.t + h, f_ext_);
+  implicit_.solve_step(u_hat_, f_ext_, c, false, q_, nu_, info);
+  abar_next_ = (q_ - u_pred_) / bh2;
+  a_ = ((1.0 - alpha_m_) * abar_next_ + alpha_m_ * abar_ - alpha_f_ * a_) / (1.0 - alpha_f_);
+  w_ = state_.v + h * ((1.0 - gamma_) * abar_ + gamma_ * abar_next_);
+  std::swap(abar_, abar_next_);
+
+  // Contacts the smooth step closes, before the position correction opens them.
+  const SpMat& L = problem_->gap_operator();
+  const Vec& g0 = problem_->gap_offset();
+  b_ = g0 + L * q_;
+  closing_.clear();
+  for (Index i = 0; i < L.rows(); ++i)
+    if (b_[i] <= 0.0) closing_.push_back(i);
+
+  const LcpResult pos = implicit_.correct(g0, q_, nu_, {}, true);
+  info.iterations += pos.iterations;
+  if (!pos.converged) info.converged = false;
+  if (closing_.empty()) {
+    impulses_.setZero();
+  } else {
+    b_ = problem_->restitution() * (L * state_.v);
+    const LcpResult vel = implicit_.correct(b_, w_, impulses_, closing_, false);
+    info.iterations += vel.iterations;
+    if (!vel.converged) info.converged = false;
+  }
+  std::swap(state_.u, q_);
+  std::swap(state_.v, w_);
+  state_.t += h;
+  ++work_.steps;
+  return info;
+}
+
+}  // namespace nsb
