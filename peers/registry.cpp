@@ -18,4 +18,12 @@ std::vector<IntegratorEntry> peer_integrators() {
   };
 }
 
+std::string peer_versions() {
+#ifdef NSBENCH_HAVE_SICONOS
+  return "Siconos kernel " + siconos_version();
+#else
+  return "none";
+#endif
+}
+
 }  // namespace nsb
