@@ -72,9 +72,10 @@ Json peers_case(const Json& c) {
   const PeerPair& pair = kPairs[c["pair"].get<std::size_t>()];
   const PeerProblem& pp = kProblems[c["problem"].get<std::size_t>()];
   auto problem = make_problem(pp.problem, pp.params);
-  auto ours = make_integrator(pair.ours, pair.ours_params);
-  auto peer = make_integrator(pair.peer, pair.peer_params);
-  try {
+  std::unique_ptr<Integrator> ours, peer;
+  try {  // a pair's parameters not taken, or a problem declined: n/a, with the reason
+    ours = make_integrator(pair.ours, pair.ours_params);
+    peer = make_integrator(pair.peer, pair.peer_params);
     ours->init(*problem, problem->initial_state());
     peer->init(*problem, problem->initial_state());
   } catch (const InputError& e) {
