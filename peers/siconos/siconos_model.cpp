@@ -1,7 +1,22 @@
 // Compiled as C++17 (see siconos_model.hpp).
 #include "peers/siconos/siconos_model.hpp"
 
-#include <siconos/kernel/SiconosKernel.hpp>
+// The kernel's headers one by one: SiconosKernel.hpp (everything) doubles the compile time.
+#include <siconos/kernel/D1MinusLinearOSI.hpp>
+#include <siconos/kernel/Interaction.hpp>
+#include <siconos/kernel/LCP.hpp>
+#include <siconos/kernel/LagrangianLinearTIDS.hpp>
+#include <siconos/kernel/LagrangianLinearTIR.hpp>
+#include <siconos/kernel/MoreauJeanOSI.hpp>
+#include <siconos/kernel/NewtonImpactNSL.hpp>
+#include <siconos/kernel/NonSmoothDynamicalSystem.hpp>
+#include <siconos/kernel/SchatzmanPaoliOSI.hpp>
+#include <siconos/kernel/SiconosVector.hpp>
+#include <siconos/kernel/SimpleMatrix.hpp>
+#include <siconos/kernel/TimeDiscretisation.hpp>
+#include <siconos/kernel/TimeStepping.hpp>
+#include <siconos/kernel/TimeSteppingD1Minus.hpp>
+#include <siconos/numerics/lcp_cst.h>
 #include <siconos/numerics/SolverOptions.h>
 
 #include <stdexcept>
