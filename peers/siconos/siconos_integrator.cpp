@@ -32,7 +32,7 @@ ParamSpecs SiconosIntegrator::parameters_spec(siconos::Scheme scheme) {
   if (scheme == siconos::Scheme::SchatzmanPaoli)
     specs.push_back(ParamSpec::real("theta", 0.0, 0.0, 1.0, "theta of SchatzmanPaoliOSI (W = M + h^2 theta^2 K; 0: explicit)"));
   specs.push_back(ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "tolerance of Siconos' Lemke LCP solver", true));
-  specs.push_back(ParamSpec::integer("max_dofs", 256, 1, 100000, "largest problem accepted (Siconos gets dense M, K and W: O(n^2) per step)"));
+  specs.push_back(ParamSpec::integer("max_dofs", 128, 1, 100000, "largest problem accepted (Siconos gets dense M, K and W: O(n^2) per step)"));
   return specs;
 }
 

@@ -70,13 +70,15 @@ TEST_CASE("siconos peers: siconos-moreau-jean agrees with moreau-jean on the lum
   CHECK(dE <= 1e-10);
 }
 
-TEST_CASE("siconos peers: nonlinear problems and massless dofs are declined", "[peers][siconos]") {
+TEST_CASE("siconos peers: nonlinear problems, massless dofs and big problems are declined", "[peers][siconos]") {
   for (const char* name : kPeers) {
     auto integrator = nsb::make_integrator(name);
     auto block = nsb::make_problem("block-2d");
     CHECK_THROWS_AS(integrator->init(*block, block->initial_state()), nsb::InputError);
     auto singular = nsb::make_problem("signorini-bar", {{"mass", "singular"}});
     CHECK_THROWS_AS(integrator->init(*singular, singular->initial_state()), nsb::InputError);
+    auto big = nsb::make_problem("signorini-bar", {{"N", "200"}});  // 201 dofs > max_dofs = 128
+    CHECK_THROWS_AS(integrator->init(*big, big->initial_state()), nsb::InputError);
   }
 }
 
