@@ -16,7 +16,8 @@
 namespace nsb {
 
 const std::vector<IntegratorEntry>& integrator_registry() {
-  static const std::vector<IntegratorEntry> entries = {
+  static const std::vector<IntegratorEntry> entries = [] {
+    std::vector<IntegratorEntry> list = {
       {"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>, false},
       {"cd-lagrange-adaptive", "CD-Lagrange with the step chosen from the discrete energy balance (KMOW variable step), CFL-capped", &CdLagrangeAdaptive::parameters_spec, &make_from_params<Integrator, CdLagrangeAdaptive>, false},
       {"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false},
@@ -28,7 +29,10 @@ const std::vector<IntegratorEntry>& integrator_registry() {
       {"event-driven", "reference: CVODE with root finding, Newton impacts, closed-contact mode (node-to-rigid contacts)", &EventDriven::parameters_spec, &make_from_params<Integrator, EventDriven>, true},
       {ModalExact::kName, "reference: exact modal solution of linear problems between contact events, closed-form event signals (node-to-rigid contacts)", &ModalExact::parameters_spec, &make_from_params<Integrator, ModalExact>, true},
       {"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>, true},
-  };
+    };
+    for (auto& peer : peer_integrators()) list.push_back(std::move(peer));
+    return list;
+  }();
   return entries;
 }
 

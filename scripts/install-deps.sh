@@ -6,6 +6,8 @@ packages=(
   libeigen3-dev libsundials-dev libsuitesparse-dev
   catch2 libbenchmark-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   python3 python3-matplotlib
+  # Siconos kernel: the optional peers (siconos-* integrators, CMake option NSBENCH_SICONOS).
+  libsiconos-kernel-dev
   # CHOLMOD's supernodal factorisation calls BLAS: the serial OpenBLAS takes over the
   # libblas.so.3 alternative and halves Moreau-Jean's step on the 64x64 block (26 -> 14 ms)
   # against the reference BLAS; serial keeps results deterministic and free of thread overhead.

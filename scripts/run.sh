@@ -15,6 +15,8 @@ case "$what" in
   *) echo "usage: scripts/run.sh studies|tests|sanitize" >&2; exit 2 ;;
 esac
 jobs="${JOBS:-$(nproc)}"
+# Single-threaded BLAS for the cost tables (Siconos' dense algebra calls OpenBLAS).
+export OPENBLAS_NUM_THREADS=1
 
 bash scripts/install-deps.sh
 cmake -S . -B "$build" "${config[@]}"

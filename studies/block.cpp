@@ -348,7 +348,8 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
   std::size_t k = kRefCases;
   while (k < cases.size()) {
     const std::string integrator = cases[k]["integrator"];
-    WorkCurve curve{integrator, find_integrator(integrator).reference, {}};
+    const IntegratorEntry& entry = find_integrator(integrator);
+    WorkCurve curve{integrator, entry.reference, {}, entry.peer};
     std::vector<double> dofs, time_per_step;
     for (long n : meshes) {
       const Block2d b = make_block(n);

@@ -74,7 +74,9 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
                {"ratio", "", "{:.2f}", "runner-up CPU / winner CPU", true},
                {"not reached", "", "", "integrators whose runs never reach the target"}};
   t.headline = true;
-  const auto name = [](const WorkCurve& c) { return c.reference ? c.integrator + " (reference)" : c.integrator; };
+  const auto name = [](const WorkCurve& c) {
+    return c.reference ? c.integrator + " (reference)" : c.peer ? c.integrator + " (peer)" : c.integrator;
+  };
   for (const auto& p : problems)
     for (double target : p.targets) {
       if (target < p.floor) {

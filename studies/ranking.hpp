@@ -29,6 +29,7 @@ struct WorkCurve {
   std::string integrator;
   bool reference = false;  // a reference integrator (IntegratorEntry::reference)
   std::vector<WorkPoint> points;
+  bool peer = false;  // another code's implementation (IntegratorEntry::peer)
 };
 
 struct TargetCost {
@@ -60,7 +61,7 @@ struct RankingProblem {
 // runner-up, its cost and runs, their cost ratio, and the integrators not reaching the target
 // (a curve without points is an integrator that declined the problem, n/a: not listed).
 // References are ranked with the others (they are peers in cost against error) and marked
-// "(reference)". A target below the problem's floor is not ranked (its row says so).
+// "(reference)", peers (other codes' implementations) "(peer)". A target below the problem's floor is not ranked (its row says so).
 // `error` names the error column (name, unit, format, description); `cost` says what the
 // CPU time is. The table is a headline table (index.md shows it first).
 Table ranking_table(const std::string& id, const std::string& title, const Column& error, const std::string& cost,

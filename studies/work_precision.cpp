@@ -197,7 +197,8 @@ std::vector<Table> precision_tables(const std::vector<Json>& cases, const std::v
                  r["lcp_iterations"].get<long>(), status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
     }
     const std::string integrator = cases[begin]["integrator"];
-    WorkCurve curve{integrator, find_integrator(integrator).reference, {}};
+    const IntegratorEntry& entry = find_integrator(integrator);
+    WorkCurve curve{integrator, entry.reference, {}, entry.peer};
     for (std::size_t i = 0; i < dts.size(); ++i)
       if (results[begin + i]["status"] != "n/a") curve.points.push_back({fmt::format("dt = {:.1e}", dts[i]), cpu[i], all[i]});
     ranking[cases[begin]["problem"].get<std::size_t>()].curves.push_back(curve);

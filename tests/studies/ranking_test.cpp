@@ -106,3 +106,13 @@ TEST_CASE("ranking: the table names the winner, the runner-up, their ratio and w
   const nsb::Table declined = nsb::ranking_table("rank", "Ranking", {"err", "", "", ""}, "CPU", {hard});
   CHECK(text(declined.rows[0][9]) == "a");
 }
+
+TEST_CASE("ranking: a peer (another code's implementation) is ranked and marked", "[studies][ranking]") {
+  nsb::WorkCurve peer = curve("other", {{1.0, 1e-3}});
+  peer.peer = true;
+  nsb::RankingProblem p{"problem", "the exact solution", 0.0, {1e-2}, {curve("a", {{3.0, 1e-3}}), peer}};
+  const nsb::Table t = nsb::ranking_table("rank", "Ranking", {"err", "", "", ""}, "CPU", {p});
+  REQUIRE(t.rows.size() == 1);
+  CHECK(text(t.rows[0][2]) == "other (peer)");
+  CHECK(text(t.rows[0][5]) == "a");
+}

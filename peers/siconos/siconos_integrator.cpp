@@ -1,0 +1,109 @@
+#include "peers/siconos/siconos_integrator.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#ifndef NSBENCH_SICONOS_VERSION
+#define NSBENCH_SICONOS_VERSION "unknown"
+#endif
+
+namespace nsb {
+
+std::string siconos_version() { return NSBENCH_SICONOS_VERSION; }
+
+namespace {
+
+std::vector<double> dense(const SpMat& A) {
+  std::vector<double> out(static_cast<std::size_t>(A.rows() * A.cols()), 0.0);
+  for (Index k = 0; k < A.outerSize(); ++k)
+    for (SpMat::InnerIterator it(A, k); it; ++it) out[static_cast<std::size_t>(it.row() * A.cols() + it.col())] = it.value();
+  return out;
+}
+
+std::vector<double> to_std(const Vec& x) { return {x.data(), x.data() + x.size()}; }
+
+}  // namespace
+
+ParamSpecs SiconosIntegrator::parameters_spec(siconos::Scheme scheme) {
+  ParamSpecs specs;
+  if (scheme == siconos::Scheme::MoreauJean)
+    specs.push_back(ParamSpec::real("theta", 0.5, 0.5, 1.0, "theta of MoreauJeanOSI"));
+  if (scheme == siconos::Scheme::SchatzmanPaoli)
+    specs.push_back(ParamSpec::real("theta", 0.0, 0.0, 1.0, "theta of SchatzmanPaoliOSI (W = M + h^2 theta^2 K; 0: explicit)"));
+  specs.push_back(ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "tolerance of Siconos' Lemke LCP solver", true));
+  specs.push_back(ParamSpec::integer("max_dofs", 128, 1, 100000, "largest problem accepted (Siconos gets dense M, K and W: O(n^2) per step)"));
+  return specs;
+}
+
+SiconosIntegrator::SiconosIntegrator(const Params& params, siconos::Scheme scheme)
+    : Integrator(params), scheme_(scheme) {}
+
+SiconosIntegrator::~SiconosIntegrator() = default;
+
+std::string SiconosIntegrator::name() const {
+  switch (scheme_) {
+    case siconos::Scheme::MoreauJean: return "siconos-moreau-jean";
+    case siconos::Scheme::SchatzmanPaoli: return "siconos-schatzman-paoli";
+    case siconos::Scheme::D1MinusLinear: return "siconos-d1-minus-linear";
+  }
+  return "siconos";
+}
+
+void SiconosIntegrator::init(const Problem& problem, const State& initial) {
+  const std::string who = fmt::format("--integrator {}", name());
+  if (!problem.is_linear())
+    throw InputError(fmt::format("{}: problem '{}' has a nonlinear F_int; the Siconos peers run linear problems only (LagrangianLinearTIDS)", who, problem.name()));
+  if (!problem.external_force_is_constant())
+    throw InputError(fmt::format("{}: problem '{}' has a time-dependent F_ext; the Siconos peers take a constant one", who, problem.name()));
+  const long max_dofs = params_.integer("max_dofs");
+  if (problem.ndof() > max_dofs)
+    throw InputError(fmt::format("{}: problem '{}' has {} dofs, above max_dofs = {} (Siconos gets dense matrices)", who, problem.name(), problem.ndof(), max_dofs));
+  bind(problem, initial);
+  if ((mass_.diagonal().array() <= 0.0).any())
+    throw InputError(fmt::format("{}: problem '{}' has massless dofs (a zero diagonal mass, e.g. mass=singular); Siconos' LagrangianDS needs an invertible M (valid: mass=lumped|consistent)", who, problem.name()));
+  model_.reset();
+  h_ = 0.0;
+}
+
+void SiconosIntegrator::build(double h) {
+  const Problem& problem = *problem_;
+  siconos::ModelSpec spec;
+  spec.scheme = scheme_;
+  if (scheme_ != siconos::Scheme::D1MinusLinear) spec.theta = params_.real("theta");
+  spec.lcp_tol = params_.real("lcp_tol");
+  spec.h = h;
+  spec.t0 = state_.t;
+  spec.restitution = problem.restitution();
+  spec.ndof = static_cast<int>(problem.ndof());
+  spec.mass = dense(mass_);
+  SpMat K;
+  problem.tangent_stiffness(state_.u, K);
+  ++work_.tangent_evaluations;
+  spec.stiffness = dense(K);
+  Vec f_ext = Vec::Zero(problem.ndof());
+  problem.external_force(state_.t, f_ext);
+  if (f_ext.squaredNorm() > 0.0) spec.f_ext = to_std(f_ext);
+  spec.q0 = to_std(state_.u);
+  spec.v0 = to_std(state_.v);
+  const SpMat& L = problem.gap_operator();
+  for (Index i = 0; i < L.rows(); ++i) spec.gap_rows.push_back(dense(SpMat(L.row(i))));
+  spec.gap_offset = to_std(problem.gap_offset());
+  model_ = std::make_unique<siconos::Model>(spec);
+  h_ = h;
+}
+
+StepInfo SiconosIntegrator::step(double h) {
+  if (!model_) build(h);
+  if (h != h_)
+    throw InputError(fmt::format("--dt: {} takes one fixed step (Siconos' TimeDiscretisation, built with {}); got {}", name(), h_, h));
+  model_->step(state_.u.data(), state_.v.data(), impulses_.data());
+  state_.t += h;
+  ++work_.steps;
+  ++work_.force_evaluations;  // one K q product per step, inside Siconos
+  StepInfo info;
+  info.dt = h;
+  return info;
+}
+
+}  // namespace nsb

@@ -1,0 +1,71 @@
+#pragma once
+// Siconos' time-stepping schemes run as nsbench integrators: the peers of DESIGN.md section 2,
+// "Peers run side by side" (Siconos 4.4 kernel, Debian libsiconos-kernel-dev). A linear
+// Problem is handed to Siconos (siconos_model.hpp) as
+//
+//     LagrangianLinearTIDS      M q'' + K q = F_ext          (dense M, K; constant F_ext)
+//     LagrangianLinearTIR       y_i = L_i q + g0_i           (one Interaction per contact)
+//     NewtonImpactNSL(e)        0 <= Lambda _|_ y'(+) + e y'(-) >= 0
+//     LCP one-step NS problem   Lemke pivoting (SICONOS_LCP_LEMKE), tolerance `lcp_tol`
+//
+// with one of Siconos' one-step integrators:
+//   siconos-moreau-jean      MoreauJeanOSI(theta), TimeStepping; velocity-level LCP on the
+//                            contacts with y_k + gamma h y'_k <= 0 (Siconos: gamma = 1/2 when
+//                            unset); impulses() = lambda(1), the impulse of the step
+//   siconos-schatzman-paoli  SchatzmanPaoliOSI(theta), TimeStepping; position-level LCP
+//                              W (q_{k+1} - q_k) = M (q_k - q_{k-1}) + h^2 (F_ext - K q_k) + L^T R,
+//                              W = M + h^2 theta^2 K,  0 <= R _|_ g0 + L q_{k+1} + e (g0 + L q_{k-1}) >= 0;
+//                            Siconos starts from q_{-1} = q_0, q_0 <- q_0 + h v_0 (one step ahead)
+//                            and reports v = (q_{k+1} - q_{k-1}) / 2h; impulses() = R / h.
+//                            theta = 0 is the explicit central difference (Paoli & Schatzman 2002);
+//                            theta > 0 is Siconos' own linearly implicit variant, not DESIGN's
+//                            K (theta q_{k+1} + (1 - 2 theta) q_k + theta q_{k-1}).
+//   siconos-d1-minus-linear  D1MinusLinearOSI (half-explicit, acceleration level),
+//                            TimeSteppingD1Minus with an impact LCP and a contact-force LCP
+//                            (Schindler & Acary, Math. Comput. Simul. 95, 2014);
+//                            impulses() = lambda(1) + h lambda(2).
+// References: V. Acary, B. Brogliato, Numerical Methods for Nonsmooth Dynamical Systems,
+// Springer 2008; the Siconos kernel sources (MoreauJeanOSI.cpp, SchatzmanPaoliOSI.cpp,
+// D1MinusLinearOSI*.cpp), read, not copied.
+//
+// Declined with an InputError: nonlinear F_int (Siconos' LagrangianDS would need plugins),
+// a time-dependent F_ext, massless dofs (LagrangianDS inverts M), more than `max_dofs` dofs
+// (dense matrices). The step is fixed at the first call of step() (Siconos'
+// TimeDiscretisation); a later different step is refused.
+#include <memory>
+
+#include "integrators/integrator.hpp"
+#include "peers/siconos/siconos_model.hpp"
+
+namespace nsb {
+
+class SiconosIntegrator : public Integrator {
+ public:
+  SiconosIntegrator(const Params& params, siconos::Scheme scheme);
+  ~SiconosIntegrator() override;
+  // Parameters of a scheme (theta only where Siconos' OSI has one).
+  static ParamSpecs parameters_spec(siconos::Scheme scheme);
+
+  std::string name() const override;
+  void init(const Problem& problem, const State& initial) override;
+  StepInfo step(double dt_requested) override;
+
+ private:
+  void build(double h);  // the Siconos model, once h is known
+
+  siconos::Scheme scheme_;
+  std::unique_ptr<siconos::Model> model_;
+  double h_ = 0.0;
+};
+
+template <siconos::Scheme S>
+class SiconosPeer final : public SiconosIntegrator {
+ public:
+  explicit SiconosPeer(const Params& params) : SiconosIntegrator(params, S) {}
+  static ParamSpecs parameters_spec() { return SiconosIntegrator::parameters_spec(S); }
+};
+
+// The Debian version of the Siconos kernel built against (e.g. "4.4.0+dfsg-2").
+std::string siconos_version();
+
+}  // namespace nsb

@@ -1,0 +1,148 @@
+// Compiled as C++17 (see siconos_model.hpp).
+#include "peers/siconos/siconos_model.hpp"
+
+// The kernel's headers one by one: SiconosKernel.hpp (everything) doubles the compile time.
+#include <siconos/kernel/D1MinusLinearOSI.hpp>
+#include <siconos/kernel/Interaction.hpp>
+#include <siconos/kernel/LCP.hpp>
+#include <siconos/kernel/LagrangianLinearTIDS.hpp>
+#include <siconos/kernel/LagrangianLinearTIR.hpp>
+#include <siconos/kernel/MoreauJeanOSI.hpp>
+#include <siconos/kernel/NewtonImpactNSL.hpp>
+#include <siconos/kernel/NonSmoothDynamicalSystem.hpp>
+#include <siconos/kernel/SchatzmanPaoliOSI.hpp>
+#include <siconos/kernel/SiconosVector.hpp>
+#include <siconos/kernel/SimpleMatrix.hpp>
+#include <siconos/kernel/TimeDiscretisation.hpp>
+#include <siconos/kernel/TimeStepping.hpp>
+#include <siconos/kernel/TimeSteppingD1Minus.hpp>
+#include <siconos/numerics/lcp_cst.h>
+#include <siconos/numerics/SolverOptions.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace nsb::siconos {
+
+namespace {
+
+SP::SiconosVector vector(const std::vector<double>& x) {
+  auto out = std::make_shared<SiconosVector>(static_cast<unsigned>(x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i) out->setValue(static_cast<unsigned>(i), x[i]);
+  return out;
+}
+
+SP::SimpleMatrix matrix(const std::vector<double>& a, std::size_t rows, std::size_t cols) {
+  auto out = std::make_shared<SimpleMatrix>(static_cast<unsigned>(rows), static_cast<unsigned>(cols));
+  for (std::size_t i = 0; i < rows; ++i)
+    for (std::size_t j = 0; j < cols; ++j) out->setValue(static_cast<unsigned>(i), static_cast<unsigned>(j), a[i * cols + j]);
+  return out;
+}
+
+SP::LCP lemke(double tol) {
+  auto p = std::make_shared<LCP>(SICONOS_LCP_LEMKE);
+  p->numericsSolverOptions()->dparam[SICONOS_DPARAM_TOL] = tol;
+  return p;
+}
+
+}  // namespace
+
+struct Model::Impl {
+  ModelSpec spec;
+  SP::LagrangianLinearTIDS ds;
+  std::vector<SP::Interaction> contacts;
+  SP::NonSmoothDynamicalSystem nsds;
+  SP::TimeStepping time_stepping;            // Moreau-Jean, Schatzman-Paoli
+  SP::TimeSteppingD1Minus d1_time_stepping;  // D1MinusLinear
+};
+
+Model::Model(const ModelSpec& spec) : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.spec = spec;
+  const std::size_t n = static_cast<std::size_t>(spec.ndof);
+  try {
+    m.ds = std::make_shared<LagrangianLinearTIDS>(vector(spec.q0), vector(spec.v0), matrix(spec.mass, n, n));
+    m.ds->setKPtr(matrix(spec.stiffness, n, n));
+    if (!spec.f_ext.empty()) m.ds->setFExtPtr(vector(spec.f_ext));
+    // The nsbench run driver decides when to stop: Siconos' horizon only has to lie beyond.
+    m.nsds = std::make_shared<NonSmoothDynamicalSystem>(spec.t0, spec.t0 + 1e12 * spec.h);
+    m.nsds->insertDynamicalSystem(m.ds);
+    auto law = std::make_shared<NewtonImpactNSL>(spec.restitution);
+    for (std::size_t i = 0; i < spec.gap_rows.size(); ++i) {
+      auto b = std::make_shared<SiconosVector>(1);
+      b->setValue(0, spec.gap_offset[i]);
+      auto relation = std::make_shared<LagrangianLinearTIR>(matrix(spec.gap_rows[i], 1, n), b);
+      auto inter = std::make_shared<Interaction>(law, relation);
+      m.nsds->link(inter, m.ds);
+      m.contacts.push_back(inter);
+    }
+    auto td = std::make_shared<TimeDiscretisation>(spec.t0, spec.h);
+    switch (spec.scheme) {
+      case Scheme::MoreauJean:
+        m.time_stepping = std::make_shared<TimeStepping>(m.nsds, td, std::make_shared<MoreauJeanOSI>(spec.theta), lemke(spec.lcp_tol));
+        m.time_stepping->initialize();
+        break;
+      case Scheme::SchatzmanPaoli:
+        m.time_stepping = std::make_shared<TimeStepping>(m.nsds, td, std::make_shared<SchatzmanPaoliOSI>(spec.theta), lemke(spec.lcp_tol));
+        m.time_stepping->initialize();
+        break;
+      case Scheme::D1MinusLinear:
+        m.d1_time_stepping = std::make_shared<TimeSteppingD1Minus>(m.nsds, td, 2);
+        m.d1_time_stepping->insertIntegrator(std::make_shared<D1MinusLinearOSI>());
+        m.d1_time_stepping->insertNonSmoothProblem(lemke(spec.lcp_tol), SICONOS_OSNSP_TS_VELOCITY);
+        m.d1_time_stepping->insertNonSmoothProblem(lemke(spec.lcp_tol), SICONOS_OSNSP_TS_VELOCITY + 1);
+        m.d1_time_stepping->initialize();
+        break;
+    }
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("Siconos model: ") + e.what());
+  }
+}
+
+Model::~Model() = default;
+
+void Model::step(double* q, double* v, double* impulses) {
+  Impl& m = *impl_;
+  try {
+    // Read between the step and the switch to the next one: the latter resets the
+    // multipliers of the contacts it drops from the active set.
+    if (m.time_stepping) {
+      m.time_stepping->computeOneStep();
+      read(q, v, impulses);
+      m.time_stepping->nextStep();
+    } else {
+      m.d1_time_stepping->advanceToEvent();
+      read(q, v, impulses);
+      m.d1_time_stepping->processEvents();
+    }
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("Siconos step: ") + e.what());
+  }
+}
+
+void Model::read(double* q, double* v, double* impulses) const {
+  const SiconosVector& sq = *impl_->ds->q();
+  const SiconosVector& sv = *impl_->ds->velocity();
+  for (unsigned i = 0; i < sq.size(); ++i) {
+    q[i] = sq.getValue(i);
+    v[i] = sv.getValue(i);
+  }
+  const Impl& m = *impl_;
+  const double h = m.spec.h;
+  for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+    const Interaction& inter = *m.contacts[i];
+    switch (m.spec.scheme) {
+      case Scheme::MoreauJean:  // lambda(1): the impulse of the step
+        impulses[i] = inter.lambda(1)->getValue(0);
+        break;
+      case Scheme::SchatzmanPaoli:  // lambda(0) = R, with W (q - q_free) = L^T R: R / h
+        impulses[i] = inter.lambda(0)->getValue(0) / h;
+        break;
+      case Scheme::D1MinusLinear:  // impact impulse, plus the contact force over the step
+        impulses[i] = inter.lambda(1)->getValue(0) + (inter.lambda(2) ? h * inter.lambda(2)->getValue(0) : 0.0);
+        break;
+    }
+  }
+}
+
+}  // namespace nsb::siconos
