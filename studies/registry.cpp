@@ -9,6 +9,7 @@ extern const StudyEntry energy_study;
 extern const StudyEntry reference_study;
 extern const StudyEntry bar_study;
 extern const StudyEntry block_study;
+extern const StudyEntry bouncing_bar_study;
 
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
@@ -19,6 +20,7 @@ const std::vector<StudyEntry>& study_registry() {
       reference_study,
       bar_study,
       block_study,
+      bouncing_bar_study,
   };
   return entries;
 }
