@@ -10,7 +10,8 @@ namespace nsb {
 namespace {
 
 struct Defaults {
-  double L, E, rho, A, v0, g0;
+  double L, E, rho, A, v0, g0, g = 0.0;
+  Index N = 100;
 };
 
 ParamSpecs bar_spec(const Defaults& d) {
@@ -20,10 +21,10 @@ ParamSpecs bar_spec(const Defaults& d) {
       ParamSpec::real("E", d.E, 0.0, inf, "Young's modulus [Pa]", true),
       ParamSpec::real("rho", d.rho, 0.0, inf, "density [kg/m^3]", true),
       ParamSpec::real("A", d.A, 0.0, inf, "cross-section area [m^2]", true),
-      ParamSpec::real("v0", d.v0, 0.0, inf, "initial speed towards the wall [m/s]", true),
+      ParamSpec::real("v0", d.v0, 0.0, inf, "initial speed towards the wall [m/s] (0: a drop from rest, under gravity g)"),
       ParamSpec::real("g0", d.g0, 0.0, inf, "initial gap to the wall [m]"),
-      ParamSpec::real("g", 0.0, 0.0, inf, "gravity towards the wall [m/s^2] (repeated bouncing; no exact solution when > 0)"),
-      ParamSpec::integer("N", 100, 1, 100'000'000, "number of linear elements"),
+      ParamSpec::real("g", d.g, 0.0, inf, "gravity towards the wall [m/s^2] (repeated bouncing; exact solution: problems/bouncing_bar.hpp)"),
+      ParamSpec::integer("N", d.N, 1, 100'000'000, "number of linear elements"),
       ParamSpec::choice("mass", "lumped", {"lumped", "consistent", "singular"},
                         "mass model (singular: massless contact node, Khenous-Laborde-Renard 2008)"),
       ParamSpec::real("stiff_ratio", 1.0, 0.0, 1e12,
@@ -47,6 +48,12 @@ std::unique_ptr<Problem> SignoriniBar::make_steel(const Params& params) {
   return std::make_unique<SignoriniBar>(params, "signorini-bar-steel");
 }
 
+ParamSpecs SignoriniBar::bouncing_parameters_spec() { return bar_spec({10.0, 900.0, 1.0, 1.0, 0.0, 5.0, 10.0, 100}); }
+
+std::unique_ptr<Problem> SignoriniBar::make_bouncing(const Params& params) {
+  return std::make_unique<SignoriniBar>(params, "bouncing-bar");
+}
+
 SignoriniBar::SignoriniBar(const Params& params, std::string name)
     : name_(std::move(name)),
       params_(params),
@@ -61,7 +68,7 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
       model_(parse_model(params.choice("mass"))),
       stiff_ratio_(params.real("stiff_ratio")) {
   c_ = std::sqrt(young_ / rho_);
-  t0_ = gap0_ / v0_;
+  t0_ = v0_ > 0.0 ? gap0_ / v0_ : (gap0_ > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);  // at rest: never / now
   const double h = element_size();
   ke_.resize(static_cast<std::size_t>(n_));
   for (Index e = 0; e < n_; ++e)

@@ -5,9 +5,10 @@
 //     g(t) = g0 + u(0, t) >= 0,   lambda >= 0,   g lambda = 0,   E A u_x(0, t) = -lambda
 //     u(x, 0) = 0,   u_t(x, 0) = -v0                 (rigid motion towards the wall)
 //
-// The wall is at x = -g0. Parameters: L, E, rho, A, v0 > 0, g0 >= 0, g >= 0 (gravity towards
+// The wall is at x = -g0. Parameters: L, E, rho, A, v0 >= 0, g0 >= 0, g >= 0 (gravity towards
 // the wall, default 0), N (linear elements), mass = lumped | consistent | singular,
-// stiff_ratio r > 0. c = sqrt(E / rho), T = 2 L / c, t0 = g0 / v0.
+// stiff_ratio r > 0. c = sqrt(E / rho), T = 2 L / c, t0 = g0 / v0 (v0 = 0: never, or
+// at once when g0 = 0 too).
 // Stiff/soft bar (hard cases): the elements of the half at the wall (centre x < L/2) have
 // Young's modulus r E. The stable step is then set by the stiffer half and the slow
 // dynamics by the softer one, a contrast of max(r, 1/r) in M^{-1} K. For r != 1 waves
@@ -15,7 +16,8 @@
 // gives nothing and the exact observables are NaN (exact_* describe the bar with r = 1).
 //
 // Exact solution (d'Alembert) for g = 0 only (exact_state returns nullopt when g > 0; the
-// exact_* functions and the *_exact observables describe g = 0 and read NaN when g > 0),
+// exact_* functions and the *_exact observables describe g = 0 and read NaN when g > 0;
+// with g > 0 the exact solution is BouncingBarExact, problems/bouncing_bar.hpp),
 // s = t - t0 (contact starts at t0 and lasts exactly T):
 //     s <= x/c                 u = -v0 t                          v = -v0   sigma = 0
 //     x/c < s < (2L - x)/c     u = -g0 - v0 x / c                 v = 0     sigma = -rho c v0
@@ -93,6 +95,10 @@ class SignoriniBar final : public Problem {
   // g0 = 5e-5 m (registry line signorini-bar-steel).
   static ParamSpecs steel_parameters_spec();
   static std::unique_ptr<Problem> make_steel(const Params& params);
+  // Doyen-Ern-Piperno defaults (problems/bouncing_bar.hpp): L = 10, E = 900, rho = A = 1,
+  // v0 = 0, g0 = 5, g = 10, N = 100 (registry line bouncing-bar).
+  static ParamSpecs bouncing_parameters_spec();
+  static std::unique_ptr<Problem> make_bouncing(const Params& params);
 
   std::string name() const override { return name_; }
   const Params& parameters() const override { return params_; }

@@ -10,6 +10,7 @@ extern const StudyEntry reference_study;
 extern const StudyEntry bar_study;
 extern const StudyEntry block_study;
 extern const StudyEntry peers_study;
+extern const StudyEntry bouncing_bar_study;
 
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
@@ -21,6 +22,7 @@ const std::vector<StudyEntry>& study_registry() {
       bar_study,
       block_study,
       peers_study,
+      bouncing_bar_study,
   };
   return entries;
 }

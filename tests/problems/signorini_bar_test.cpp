@@ -170,7 +170,12 @@ TEST_CASE("signorini bar: registry, steel preset and bad input", "[problems][sig
   CHECK(nsb::make_problem("signorini-bar")->name() == "signorini-bar");
   CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"N", "0"}}), nsb::InputError);
   CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"mass", "diagonal"}}), nsb::InputError);
-  CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"v0", "0"}}), nsb::InputError);
+  CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"v0", "-1"}}), nsb::InputError);
+  // v0 = 0 is a bar at rest (a drop under gravity: bouncing-bar); without gravity it stays put.
+  const auto rest = nsb::make_problem("signorini-bar", {{"v0", "0"}});
+  const auto& r = dynamic_cast<const SignoriniBar&>(*rest);
+  CHECK(r.exact_displacement(0.5, 1.0) == 0.0);
+  CHECK(r.exact_contact_force(1.0) == 0.0);
   CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"g0", "-1"}}), nsb::InputError);
 }
 
