@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "core/threads.hpp"
+
 namespace nsb {
 
 ParamSpecs CdLagrange::parameters_spec() {
@@ -84,7 +86,9 @@ StepInfo CdLagrange::step(double tau) {
     started_ = true;
   }
   std::swap(u_prev_, state_.u);
-  state_.u.noalias() = u_prev_ + tau * state_.v;
+  parallel_ranges(state_.u.size(), [&](Index b, Index e) {
+    state_.u.segment(b, e - b).noalias() = u_prev_.segment(b, e - b) + tau * state_.v.segment(b, e - b);
+  });
   state_.t += tau;
 
   problem_->internal_force(state_.u, f_int_);
@@ -94,7 +98,11 @@ StepInfo CdLagrange::step(double tau) {
   if (!massless_.empty()) solve_massless(tau);
 
   std::swap(v_prev_, state_.v);
-  state_.v.noalias() = v_prev_ + tau * minv_.cwiseProduct(f_ext_ - f_int_);  // v_free
+  parallel_ranges(state_.v.size(), [&](Index b, Index e) {  // v_free
+    const Index k = e - b;
+    state_.v.segment(b, k).noalias() =
+        v_prev_.segment(b, k) + tau * minv_.segment(b, k).cwiseProduct(f_ext_.segment(b, k) - f_int_.segment(b, k));
+  });
 
   info.iterations = contact_.apply(state_.u, v_prev_, state_.v, impulses_, info, work_);
   for (std::size_t q = 0; q < massless_.size(); ++q) {

@@ -8,15 +8,21 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/threads.hpp"
+
 namespace nsb {
 
 namespace {
 
-double thread_cpu_seconds() {
+double clock_seconds(clockid_t clock) {
   timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  clock_gettime(clock, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
+
+// CPU time of this run: its thread's when it runs single-threaded (alone or as one case of a
+// parallel study), the process's when its loops use more threads.
+double cpu_seconds() { return clock_seconds(run_threads() > 1 ? CLOCK_PROCESS_CPUTIME_ID : CLOCK_THREAD_CPUTIME_ID); }
 
 const std::vector<std::string> kGenericColumns = {
     "t", "dt", "kinetic", "potential", "total_energy", "min_gap", "impulse", "active_contacts"};
@@ -100,7 +106,8 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
 
   result.initial_energy = integrator.energy().total();
   sample(0.0);
-  const double cpu_start = thread_cpu_seconds();
+  const double cpu_start = cpu_seconds();
+  const double wall_start = clock_seconds(CLOCK_MONOTONIC);
   StepInfo info;
   const auto wall_start = std::chrono::steady_clock::now();
   double next_progress = options.progress_every;  // wall seconds
@@ -152,7 +159,8 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     result.status = RunStatus::Diverged;
     result.message = ex.what();
   }
-  result.cpu_seconds = thread_cpu_seconds() - cpu_start;
+  result.cpu_seconds = cpu_seconds() - cpu_start;
+  result.wall_seconds = clock_seconds(CLOCK_MONOTONIC) - wall_start;
   result.t_final = integrator.state().t;
   result.final_energy = integrator.energy().total();
   result.work = integrator.work();
@@ -226,6 +234,8 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
       {"steps", result.steps},
       {"t_final", result.t_final},
       {"cpu_seconds", result.cpu_seconds},
+      {"wall_seconds", result.wall_seconds},
+      {"threads", run_threads()},
       {"initial_energy", result.initial_energy},
       {"final_energy", result.final_energy},
       {"final_energy_error", relative_error(result.final_energy, result.initial_energy)},

@@ -52,7 +52,9 @@ struct RunResult {
   Series series;
   long steps = 0;
   double t_final = 0.0;
-  double cpu_seconds = 0.0;      // thread CPU time of the stepping loop (sampling included)
+  double cpu_seconds = 0.0;      // CPU time of the stepping loop (sampling included): the
+                                 // thread's, or the process's when run_threads() > 1
+  double wall_seconds = 0.0;     // elapsed time of the same loop
   double initial_energy = 0.0;
   double final_energy = 0.0;
   double max_energy_error = 0.0;  // max |E - E0| / |E0| over the samples; NaN when E0 = 0

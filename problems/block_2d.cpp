@@ -8,6 +8,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/threads.hpp"
+
 namespace nsb {
 
 namespace {
@@ -15,6 +17,9 @@ namespace {
 constexpr double kXi[4] = {-1.0, 1.0, 1.0, -1.0};
 constexpr double kEta[4] = {-1.0, -1.0, 1.0, 1.0};
 const double kGp = 1.0 / std::sqrt(3.0);
+// Elements per thread below which one thread is faster (a step of the parallel loops costs
+// a few microseconds; 2048 elements take about 50).
+constexpr Index kMinElementsPerThread = 2048;
 // Voigt index pairs (11, 22, 12).
 constexpr int kI[3] = {0, 1, 0};
 constexpr int kJ[3] = {0, 1, 1};
@@ -66,52 +71,32 @@ Block2d::Block2d(const Params& p)
   X_.row(1).array() += lift;
   centre_ = Eigen::Vector2d(0.0, lift);
 
-  // Elements, Gauss data, lumped mass.
-  const Index ne = nx_ * ny_;
-  conn_.resize(ne);
-  gauss_.resize(4 * ne);
-  m_ = Vec::Zero(ndof());
-  for (Index j = 0; j < ny_; ++j)
-    for (Index i = 0; i < nx_; ++i) {
-      const Index e = i + nx_ * j, n0 = i + (nx_ + 1) * j;
-      conn_[e] = {n0, n0 + 1, n0 + nx_ + 2, n0 + nx_ + 1};
-      Eigen::Matrix<double, 2, 4> Xe;
-      for (int k = 0; k < 4; ++k) Xe.col(k) = X_.col(conn_[e][k]);
-      for (int q = 0; q < 4; ++q) {
-        const double xi = kXi[q] * kGp, eta = kEta[q] * kGp;
-        Mat42 dxi;
-        Eigen::Vector4d N;
-        for (int k = 0; k < 4; ++k) {
-          N[k] = 0.25 * (1 + kXi[k] * xi) * (1 + kEta[k] * eta);
-          dxi(k, 0) = 0.25 * kXi[k] * (1 + kEta[k] * eta);
-          dxi(k, 1) = 0.25 * kEta[k] * (1 + kXi[k] * xi);
-        }
-        const Eigen::Matrix2d Jac = Xe * dxi;  // dX/dxi
-        Gauss& G = gauss_[4 * e + q];
-        G.dN = dxi * Jac.inverse();
-        G.wj = Jac.determinant();
-        for (int k = 0; k < 4; ++k) m_.segment<2>(2 * conn_[e][k]).array() += rho_ * G.wj * N[k];
-      }
+  // Gauss data of the one element shape: the rectangle hx x hy rotated by R, so
+  // dX/dxi = R diag(hx, hy) / 2 everywhere.
+  const Eigen::Matrix2d Jac = R * Eigen::Vector2d(W / nx_, H / ny_).asDiagonal() * 0.5;
+  std::array<double, 4> me{};  // lumped mass of each element node
+  for (int q = 0; q < 4; ++q) {
+    const double xi = kXi[q] * kGp, eta = kEta[q] * kGp;
+    Mat42 dxi;
+    for (int k = 0; k < 4; ++k) {
+      dxi(k, 0) = 0.25 * kXi[k] * (1 + kEta[k] * eta);
+      dxi(k, 1) = 0.25 * kEta[k] * (1 + kXi[k] * xi);
     }
-
-  // Sparsity pattern of K and, per element, the position of each entry in K's values.
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(64 * ne);
-  for (Index e = 0; e < ne; ++e)
-    for (int r = 0; r < 8; ++r)
-      for (int c = 0; c < 8; ++c) triplets.emplace_back(2 * conn_[e][r / 2] + r % 2, 2 * conn_[e][c / 2] + c % 2, 0.0);
-  pattern_.resize(ndof(), ndof());
-  pattern_.setFromTriplets(triplets.begin(), triplets.end());
-  pattern_.makeCompressed();
-  slot_.resize(ne);
-  for (Index e = 0; e < ne; ++e)
-    for (int r = 0; r < 8; ++r)
-      for (int c = 0; c < 8; ++c) {
-        const Index row = 2 * conn_[e][r / 2] + r % 2, col = 2 * conn_[e][c / 2] + c % 2;
-        const auto* begin = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col];
-        const auto* end = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col + 1];
-        slot_[e][8 * r + c] = std::lower_bound(begin, end, row) - pattern_.innerIndexPtr();
-      }
+    Gauss& G = gauss_[q];
+    G.dN = dxi * Jac.inverse();
+    G.wj = Jac.determinant();
+    for (int k = 0; k < 4; ++k) {
+      me[k] += rho_ * G.wj * 0.25 * (1 + kXi[k] * xi) * (1 + kEta[k] * eta);
+      wgrad_.x[k][q] = G.wj * G.dN(k, 0);
+      wgrad_.y[k][q] = G.wj * G.dN(k, 1);
+    }
+  }
+  const Index ne = nx_ * ny_;
+  m_ = Vec::Zero(ndof());
+  for (Index e = 0; e < ne; ++e) {
+    const auto nodes = element_nodes(e);
+    for (int k = 0; k < 4; ++k) m_.segment<2>(2 * nodes[k]).array() += me[k];
+  }
 
   // Contacts: every boundary node, on its y dof.
   for (Index j = 0; j <= ny_; ++j)
@@ -125,26 +110,14 @@ Block2d::Block2d(const Params& p)
   }
   L_.makeCompressed();
 
-  // Element eigenvalue bound at U = 0: omega_max^2 <= max_e lambda_max(M_e^{-1/2} K_e M_e^{-1/2}).
-  double w2 = 0.0;
-  const Vec u0 = Vec::Zero(ndof());
+  // Element eigenvalue bound at U = 0: omega_max^2 <= lambda_max(M_e^{-1/2} K_e M_e^{-1/2}),
+  // the same for every element.
   Mat8 Ke;
-  for (Index e = 0; e < ne; ++e) {
-    element_tangent(e, u0, Ke);
-    Eigen::Matrix<double, 8, 1> s;
-    for (int r = 0; r < 8; ++r) {
-      double me = 0.0;
-      for (int q = 0; q < 4; ++q) {
-        const Gauss& G = gauss_[4 * e + q];
-        const double xi = kXi[q] * kGp, eta = kEta[q] * kGp;
-        me += rho_ * G.wj * 0.25 * (1 + kXi[r / 2] * xi) * (1 + kEta[r / 2] * eta);
-      }
-      s[r] = 1.0 / std::sqrt(me);
-    }
-    const Mat8 A = s.asDiagonal() * Ke * s.asDiagonal();
-    w2 = std::max(w2, Eigen::SelfAdjointEigenSolver<Mat8>(A, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff());
-  }
-  stable_step_ = 2.0 / std::sqrt(w2);
+  element_tangent(0, Vec::Zero(ndof()), Ke);
+  Eigen::Matrix<double, 8, 1> s;
+  for (int r = 0; r < 8; ++r) s[r] = 1.0 / std::sqrt(me[r / 2]);
+  const Mat8 A = s.asDiagonal() * Ke * s.asDiagonal();
+  stable_step_ = 2.0 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat8>(A, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff());
 }
 
 double Block2d::material(const Eigen::Matrix2d& F, Eigen::Vector3d& S, Eigen::Matrix3d* D) const {
@@ -176,9 +149,15 @@ double Block2d::material(const Eigen::Matrix2d& F, Eigen::Vector3d& S, Eigen::Ma
   return W;
 }
 
+std::array<Index, 4> Block2d::element_nodes(Index e) const {
+  const Index n0 = e % nx_ + (nx_ + 1) * (e / nx_);
+  return {n0, n0 + 1, n0 + nx_ + 2, n0 + nx_ + 1};
+}
+
 Eigen::Matrix<double, 8, 1> Block2d::element_dofs(Index e, ConstVecRef u) const {
+  const auto nodes = element_nodes(e);
   Eigen::Matrix<double, 8, 1> ue;
-  for (int k = 0; k < 4; ++k) ue.segment<2>(2 * k) = u.segment<2>(2 * conn_[e][k]);
+  for (int k = 0; k < 4; ++k) ue.segment<2>(2 * k) = u.segment<2>(2 * nodes[k]);
   return ue;
 }
 
@@ -197,22 +176,87 @@ void kinematics(const Eigen::Matrix<double, 8, 1>& ue, const Mat42& dN, Eigen::M
 }
 }  // namespace
 
+template <bool kNeoHookean>
+bool Block2d::add_row_forces(Index j, const double* u, double* f) const {
+  // Local copies: the compiler then knows f does not alias them and keeps them in registers.
+  const KernelGradients g = wgrad_;
+  double G[2][4][4];  // unweighted gradients, for H = grad U
+  for (int a = 0; a < 4; ++a)
+    for (int q = 0; q < 4; ++q) {
+      G[0][a][q] = gauss_[q].dN(a, 0);
+      G[1][a][q] = gauss_[q].dN(a, 1);
+    }
+  const double lambda = lambda_, mu = mu_;
+  bool ok = true;
+  for (Index i = 0; i < nx_; ++i) {
+    const Index n0 = i + (nx_ + 1) * j, n3 = n0 + nx_ + 1;
+    const double* corner[4] = {u + 2 * n0, u + 2 * n0 + 2, u + 2 * n3 + 2, u + 2 * n3};
+    double ux[4], uy[4];
+    for (int a = 0; a < 4; ++a) {
+      ux[a] = corner[a][0];
+      uy[a] = corner[a][1];
+    }
+    double P00[4], P01[4], P10[4], P11[4];  // first Piola-Kirchhoff stress F S per Gauss point
+    for (int q = 0; q < 4; ++q) {
+      double H00 = 0.0, H01 = 0.0, H10 = 0.0, H11 = 0.0;
+      for (int a = 0; a < 4; ++a) {
+        H00 += ux[a] * G[0][a][q];
+        H01 += ux[a] * G[1][a][q];
+        H10 += uy[a] * G[0][a][q];
+        H11 += uy[a] * G[1][a][q];
+      }
+      const double E00 = H00 + 0.5 * (H00 * H00 + H10 * H10);
+      const double E11 = H11 + 0.5 * (H01 * H01 + H11 * H11);
+      const double E01 = 0.5 * (H01 + H10 + H00 * H01 + H10 * H11);
+      double S00, S11, S01;
+      if constexpr (kNeoHookean) {
+        const double J = (1.0 + H00) * (1.0 + H11) - H01 * H10;
+        ok = ok && J > 0.0;
+        const double lnJ = std::log(J), r = 1.0 / (J * J);
+        // C^{-1} = adj(C) / J^2 with C = I + 2E.
+        const double Ci00 = (1.0 + 2.0 * E11) * r, Ci11 = (1.0 + 2.0 * E00) * r, Ci01 = -2.0 * E01 * r;
+        const double c = lambda * lnJ - mu;
+        S00 = mu + c * Ci00;
+        S11 = mu + c * Ci11;
+        S01 = c * Ci01;
+      } else {
+        const double lt = lambda * (E00 + E11);
+        S00 = lt + 2.0 * mu * E00;
+        S11 = lt + 2.0 * mu * E11;
+        S01 = 2.0 * mu * E01;
+      }
+      P00[q] = S00 + H00 * S00 + H01 * S01;
+      P01[q] = S01 + H00 * S01 + H01 * S11;
+      P10[q] = S01 + H10 * S00 + H11 * S01;
+      P11[q] = S11 + H10 * S01 + H11 * S11;
+    }
+    for (int a = 0; a < 4; ++a) {
+      double fx = 0.0, fy = 0.0;
+      for (int q = 0; q < 4; ++q) {
+        fx += P00[q] * g.x[a][q] + P01[q] * g.y[a][q];
+        fy += P10[q] * g.x[a][q] + P11[q] * g.y[a][q];
+      }
+      double* fa = f + (corner[a] - u);
+      fa[0] += fx;
+      fa[1] += fy;
+    }
+  }
+  return ok;
+}
+
 void Block2d::internal_force(ConstVecRef u, VecRef f) const {
   f.setZero();
-  Eigen::Matrix2d F;
-  Eigen::Matrix<double, 3, 8> B;
-  Eigen::Vector3d S;
-  for (Index e = 0; e < static_cast<Index>(conn_.size()); ++e) {
-    const auto ue = element_dofs(e, u);
-    Eigen::Matrix<double, 8, 1> fe = Eigen::Matrix<double, 8, 1>::Zero();
-    for (int q = 0; q < 4; ++q) {
-      const Gauss& G = gauss_[4 * e + q];
-      kinematics(ue, G.dN, F, B);
-      material(F, S, nullptr);
-      fe.noalias() += G.wj * B.transpose() * S;
-    }
-    for (int k = 0; k < 4; ++k) f.segment<2>(2 * conn_[e][k]) += fe.segment<2>(2 * k);
+  const double* pu = u.data();
+  double* pf = f.data();
+  const int threads = threads_for(nx_ * ny_, kMinElementsPerThread);
+  bool ok = true;
+  // Even element rows, then odd ones: rows of one parity share no node.
+  for (Index parity = 0; parity < 2; ++parity) {
+#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static) reduction(&& : ok)
+    for (Index j = parity; j < ny_; j += 2)
+      ok = (neo_hookean_ ? add_row_forces<true>(j, pu, pf) : add_row_forces<false>(j, pu, pf)) && ok;
   }
+  if (!ok) throw std::runtime_error("block-2d: inverted element (det F <= 0) in the neo-Hookean law");
 }
 
 void Block2d::element_tangent(Index e, ConstVecRef u, Mat8& Ke) const {
@@ -223,7 +267,7 @@ void Block2d::element_tangent(Index e, ConstVecRef u, Mat8& Ke) const {
   Eigen::Matrix3d D;
   Ke.setZero();
   for (int q = 0; q < 4; ++q) {
-    const Gauss& G = gauss_[4 * e + q];
+    const Gauss& G = gauss_[q];
     kinematics(ue, G.dN, F, B);
     material(F, S, &D);
     Ke.noalias() += G.wj * B.transpose() * D * B;
@@ -238,38 +282,90 @@ void Block2d::element_tangent(Index e, ConstVecRef u, Mat8& Ke) const {
   }
 }
 
+template <class Visit>
+void Block2d::for_each_pattern_entry(Visit&& visit) const {
+  // Dofs couple when their nodes share an element: the 3 x 3 node neighbourhood.
+  for (Index jb = 0; jb <= ny_; ++jb)
+    for (Index ib = 0; ib <= nx_; ++ib)
+      for (int k = 0; k < 2; ++k)
+        for (Index jn = std::max<Index>(jb - 1, 0); jn <= std::min(jb + 1, ny_); ++jn)
+          for (Index in = std::max<Index>(ib - 1, 0); in <= std::min(ib + 1, nx_); ++in)
+            for (int l = 0; l < 2; ++l) visit(2 * (ib + (nx_ + 1) * jb) + k, 2 * (in + (nx_ + 1) * jn) + l);
+}
+
 void Block2d::tangent_stiffness(ConstVecRef u, SpMat& K) const {
-  const bool same_pattern =
-      K.rows() == pattern_.rows() && K.cols() == pattern_.cols() && K.isCompressed() &&
-      K.nonZeros() == pattern_.nonZeros() &&
-      std::equal(K.outerIndexPtr(), K.outerIndexPtr() + K.cols() + 1, pattern_.outerIndexPtr()) &&
-      std::equal(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros(), pattern_.innerIndexPtr());
-  if (same_pattern)
+  Index nnz = 0;
+  for_each_pattern_entry([&](Index, Index) { ++nnz; });
+  bool same_pattern = K.rows() == ndof() && K.cols() == ndof() && K.isCompressed() && K.nonZeros() == nnz;
+  if (same_pattern) {
+    Index k = 0;
+    for_each_pattern_entry([&](Index col, Index row) {
+      same_pattern = same_pattern && K.innerIndexPtr()[k] == row && K.outerIndexPtr()[col] <= k &&
+                     k < K.outerIndexPtr()[col + 1];
+      ++k;
+    });
+  }
+  if (same_pattern) {
     K.coeffs().setZero();
-  else
-    K = pattern_;
-  Mat8 Ke;
+  } else {
+    K.resize(ndof(), ndof());
+    K.resizeNonZeros(nnz);
+    Index k = 0;
+    for_each_pattern_entry([&](Index col, Index row) {
+      K.innerIndexPtr()[k] = row;
+      K.outerIndexPtr()[col + 1] = ++k;
+    });
+    K.outerIndexPtr()[0] = 0;
+    K.coeffs().setZero();
+  }
   double* values = K.valuePtr();
-  for (Index e = 0; e < static_cast<Index>(conn_.size()); ++e) {
-    element_tangent(e, u, Ke);
-    for (int r = 0; r < 8; ++r)
-      for (int c = 0; c < 8; ++c) values[slot_[e][8 * r + c]] += Ke(r, c);
+  const auto* inner = K.innerIndexPtr();
+  const auto* outer = K.outerIndexPtr();
+  const int threads = threads_for(nx_ * ny_, kMinElementsPerThread);
+  // Element rows of one parity share no node, hence no entry of K.
+  for (Index parity = 0; parity < 2; ++parity) {
+#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
+    for (Index j = parity; j < ny_; j += 2) {
+      Mat8 Ke;
+      for (Index e = j * nx_; e < (j + 1) * nx_; ++e) {
+        element_tangent(e, u, Ke);
+        const auto nodes = element_nodes(e);
+        for (int c = 0; c < 8; ++c) {
+          // A column's rows are sorted: nodes 0, 1 of the element are adjacent there, so are 3, 2.
+          const Index col = 2 * nodes[c / 2] + c % 2;
+          const auto* begin = inner + outer[col];
+          const auto* end = inner + outer[col + 1];
+          const Index lower = std::lower_bound(begin, end, 2 * nodes[0]) - inner;
+          const Index upper = std::lower_bound(begin, end, 2 * nodes[3]) - inner;
+          const Index slot[8] = {lower, lower + 1, lower + 2, lower + 3, upper + 2, upper + 3, upper, upper + 1};
+          for (int r = 0; r < 8; ++r) values[slot[r]] += Ke(r, c);
+        }
+      }
+    }
   }
 }
 
 double Block2d::strain_energy(ConstVecRef u) const {
-  double W = 0.0;
-  Eigen::Matrix2d F;
-  Eigen::Matrix<double, 3, 8> B;
-  Eigen::Vector3d S;
-  for (Index e = 0; e < static_cast<Index>(conn_.size()); ++e) {
-    const auto ue = element_dofs(e, u);
-    for (int q = 0; q < 4; ++q) {
-      const Gauss& G = gauss_[4 * e + q];
-      kinematics(ue, G.dN, F, B);
-      W += G.wj * material(F, S, nullptr);
+  // Per element row, then summed in row order: the same sum for any thread count.
+  std::vector<double> row(static_cast<std::size_t>(ny_), 0.0);
+  const int threads = threads_for(nx_ * ny_, kMinElementsPerThread);
+#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
+  for (Index j = 0; j < ny_; ++j) {
+    Eigen::Matrix2d F;
+    Eigen::Matrix<double, 3, 8> B;
+    Eigen::Vector3d S;
+    double W = 0.0;
+    for (Index e = j * nx_; e < (j + 1) * nx_; ++e) {
+      const auto ue = element_dofs(e, u);
+      for (int q = 0; q < 4; ++q) {
+        kinematics(ue, gauss_[q].dN, F, B);
+        W += gauss_[q].wj * material(F, S, nullptr);
+      }
     }
+    row[static_cast<std::size_t>(j)] = W;
   }
+  double W = 0.0;
+  for (const double w : row) W += w;
   return W;
 }
 

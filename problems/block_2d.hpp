@@ -20,8 +20,12 @@
 //     K = sum_gp w_gp j_gp (B^T D B + (grad N_a . S grad N_b) I),   D = dS/dE (Voigt, engineering shear)
 //     D_IJKL = lambda A_IJ A_KL + m (A_IK A_JL + A_IL A_JK)
 //              SVK: A = I, m = mu;   neo-Hookean: A = C^{-1}, m = mu - lambda ln J
-// K is assembled into a pattern built once (each element keeps the positions of its 8x8
-// entries in K's value array), so refilling it allocates nothing.
+// K's pattern (node neighbours on the structured mesh) is built when K does not hold it yet;
+// refilling it allocates nothing. The mesh is regular, so the Gauss data (grad_X N_a, w j)
+// are computed once for all elements; the force kernel runs the four Gauss points as SIMD
+// lanes and works with H = grad U (E = (H + H^T + H^T H) / 2, no cancellation of I).
+// Threads (core/threads.hpp): element rows of one parity at a time, so no two rows in
+// flight share a node: the sums into each node follow the mesh, not the thread count.
 //
 // Mass: lumped by row sums of the consistent mass, m_a = sum_e int rho N_a (diagonal, so
 // CD-Lagrange's Delassus operator L M^{-1} L^T is diagonal: one contact per y dof).
@@ -93,18 +97,30 @@ class Block2d final : public Problem {
   // Second Piola-Kirchhoff stress (Voigt 11, 22, 12), energy density and D = dS/dE at C.
   double material(const Eigen::Matrix2d& F, Eigen::Vector3d& S, Eigen::Matrix3d* D) const;
   void element_tangent(Index e, ConstVecRef u, Mat8& Ke) const;
+  // Nodes of element e, counter-clockwise from its lower-left corner.
+  std::array<Index, 4> element_nodes(Index e) const;
   Eigen::Matrix<double, 8, 1> element_dofs(Index e, ConstVecRef u) const;
+  // F_int of element row j added into f; false when an element inverted (neo-Hookean).
+  template <bool kNeoHookean>
+  bool add_row_forces(Index j, const double* u, double* f) const;
+  // K's sparsity pattern: column c's rows, in increasing order, passed to visit(c, row).
+  template <class Visit>
+  void for_each_pattern_entry(Visit&& visit) const;
 
   Params params_;
   Index nx_, ny_;
   double lambda_, mu_, rho_, g_, e_;
   bool neo_hookean_;
   Eigen::Matrix2Xd X_;                     // reference positions
-  std::vector<std::array<Index, 4>> conn_; // element nodes, counter-clockwise
-  std::vector<Gauss> gauss_;               // 4 per element
+  // The mesh is regular: every element is the same rectangle, rotated by the tilt, so one
+  // set of Gauss data serves all of them.
+  std::array<Gauss, 4> gauss_;
+  // The same gradients for the force kernel, laid out [node a][Gauss point q] (the four
+  // Gauss points are the SIMD lanes), times w j.
+  struct alignas(32) KernelGradients {
+    double x[4][4], y[4][4];
+  } wgrad_;
   Vec m_;                                  // lumped mass per dof
-  SpMat pattern_;                          // K's sparsity pattern (values zero)
-  std::vector<std::array<Index, 64>> slot_;  // per element: index into K's values
   SpMat L_;
   Vec g0_;
   std::vector<Index> boundary_;            // node of each contact row

@@ -9,6 +9,8 @@
 #include <mutex>
 #include <thread>
 
+#include "core/threads.hpp"
+
 namespace nsb {
 
 int study_jobs() {
@@ -28,6 +30,7 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& task, c
   auto last_report = start;
 
   const auto worker = [&]() {
+    const ThreadScope serial(1);  // the cases are the parallelism: each runs on one thread
     for (std::size_t i = next++; i < n; i = next++) {
       try {
         task(i);

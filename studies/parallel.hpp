@@ -3,7 +3,8 @@
 // so tables come out in the same order whatever the scheduling (deterministic output);
 // each case's CPU time is its own thread's (run() uses CLOCK_THREAD_CPUTIME_ID).
 // Progress goes to stderr at most once a second: "label: case k/n, elapsed, eta".
-// Cores: NSBENCH_JOBS if set, else std::thread::hardware_concurrency().
+// Cores: NSBENCH_JOBS if set, else std::thread::hardware_concurrency(). Each case runs
+// single-threaded (a ThreadScope(1) per worker, core/threads.hpp): no oversubscription.
 #include <functional>
 #include <string>
 #include <vector>
