@@ -5,6 +5,7 @@ packages=(
   build-essential cmake git pkg-config
   libeigen3-dev libsundials-dev libsuitesparse-dev
   catch2 libbenchmark-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+  libtomlplusplus-dev  # study files (nsbench-study run FILE.toml)
   python3 python3-matplotlib
   # CHOLMOD's supernodal factorisation calls BLAS: the serial OpenBLAS takes over the
   # libblas.so.3 alternative and halves Moreau-Jean's step on the 64x64 block (26 -> 14 ms)

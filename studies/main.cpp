@@ -4,6 +4,8 @@
 //   nsbench-study all|NAME... [--out DIR] [--full]                 run, write the reports
 //   nsbench-study all|NAME... [--out DIR] [--full] --shard I/N     run shard I of N only
 //   nsbench-study all|NAME... [--out DIR] [--full] --merge         merge the N shards, write
+//   nsbench-study run FILE.toml [--out DIR] [--shard I/N | --merge]  a study from a file
+//                                                                  (studies/study_file.hpp)
 //
 // Reports: DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
 // scripts/figures.py) and DIR/index.md linking them, opening with the headline tables (the
@@ -14,13 +16,16 @@
 #include <chrono>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <regex>
 
 #include "core/build_info.hpp"
+#include "core/environment.hpp"
 #include "core/output.hpp"
 #include "core/parameters.hpp"
 #include "studies/parallel.hpp"
 #include "studies/study.hpp"
+#include "studies/study_file.hpp"
 
 namespace {
 
@@ -79,6 +84,7 @@ std::vector<Json> merge_shards(const nsb::StudyEntry& study, const std::vector<J
 }  // namespace
 
 int main(int argc, char** argv) {
+  nsb::set_command_line(argc, argv);
   CLI::App app{"nsbench-study: run studies and write citable reports"};
   std::vector<std::string> names;
   std::string out = "reports", shard_text;
@@ -103,7 +109,15 @@ int main(int argc, char** argv) {
     const Shard shard = shard_text.empty() ? Shard{} : parse_shard(shard_text);
     if (shard.count && merge) throw InputError("--shard and --merge: give one of them");
     std::vector<const nsb::StudyEntry*> selected;
-    for (const auto& n : names) {
+    std::optional<nsb::StudyEntry> file_study;  // nsbench-study run FILE
+    if (names[0] == "run") {
+      if (names.size() != 2) throw InputError("run: give one study file (nsbench-study run FILE.toml)");
+      const nsb::StudySpec spec = nsb::read_study_file(names[1]);
+      nsb::write_study_copy(spec, out);
+      file_study = nsb::file_study(spec);
+      selected.push_back(&*file_study);
+    }
+    for (const auto& n : file_study ? std::vector<std::string>{} : names) {
       bool found = false;
       for (const auto& s : registry)
         if (n == "all" || s.name == n) {
@@ -169,6 +183,9 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "study {}: {} cases, {} tables in {:.1f} s\n", s->name, cases.size(), tables.size(), secs);
     }
     if (!shard.count) {
+      const auto& env = nsb::environment();
+      studies += fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, revision {}. Rerun: `{}`</sub>\n", env.cpu,
+                             env.cores, env.libraries, b.build_type, b.compiler, b.git_revision, nsb::command_line());
       nsb::write_file_atomic(fs::path(out) / "figures.json", nsb::figures_to_json(all_tables));
       if (!headline.empty())
         index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
