@@ -96,7 +96,7 @@ std::size_t column(const nsb::Table& t, const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("fit_order: slope and 95% interval by hand on three points; t quantiles", "[studies][study_file]") {
+TEST_CASE("fit_order: slope and 95% interval by hand on three points and t quantiles", "[studies][study_file]") {
   // x = log h = 0, 1, 2; y = 2x + (0, 0.1, 0): slope 2, SSR = 1/150, SE = sqrt(SSR / 1 / 2).
   const std::vector<double> h{1.0, std::exp(1.0), std::exp(2.0)};
   const std::vector<double> e{1.0, std::exp(2.1), std::exp(4.0)};
@@ -134,7 +134,7 @@ TEST_CASE("fit_order: the 95% interval covers a known slope in about 95% of nois
   CHECK(covered / double(trials) == Approx(0.95).margin(0.014));
 }
 
-TEST_CASE("study file: a minimal TOML file reads; JSON with the same schema too", "[studies][study_file]") {
+TEST_CASE("study file: a minimal TOML file reads and so does JSON with the same schema too", "[studies][study_file]") {
   const nsb::StudySpec s = nsb::parse_study_text(kMinimal, "min.toml", false);
   CHECK(s.name == "min");
   CHECK(s.t_end == 0.6);
@@ -157,7 +157,7 @@ TEST_CASE("study file: a minimal TOML file reads; JSON with the same schema too"
   CHECK_THAT(error_of(replaced(json, "[0.01, 0.005]", "[]"), true), Catch::StartsWith("f.toml:3: integrator[0].steps: empty list"));
 }
 
-TEST_CASE("study file: errors name FILE:LINE, the key path, what is wrong and the valid choices", "[studies][study_file]") {
+TEST_CASE("study file: errors name FILE:LINE and the key path and what is wrong and the valid choices", "[studies][study_file]") {
   using Catch::Contains;
   using Catch::StartsWith;
   CHECK_THAT(error_of(replaced(kMinimal, "t_end", "t_ned")),
@@ -255,7 +255,7 @@ TEST_CASE("study file examples: spring-chain orders against the cached modal-exa
   for (const auto& row : wp.rows) CHECK(std::get<double>(row[column(wp, "momentum residual")]) < 1e-9);
 }
 
-TEST_CASE("study file examples: bar energy study runs (reduced); an over-budget run is a row with its reason", "[studies][study_file]") {
+TEST_CASE("study file examples: bar energy study runs (reduced) and an over-budget run is a row with its reason", "[studies][study_file]") {
   const nsb::StudySpec spec = nsb::reduced_study(nsb::read_study_file(kExamples / "bar_energy.toml"), 0.2, 1, 20000);
   const auto tables = run_all(spec);
   const nsb::Table& wp = table(tables, "_work_precision");
@@ -317,7 +317,7 @@ TEST_CASE("study file: fuzz over mutated example files: each reads and runs or f
   CHECK(rejected > 10);
 }
 
-TEST_CASE("nsbench-study run: writes the tables, the file and its hash; shards merge; a bad file exits 2", "[studies][study_file]") {
+TEST_CASE("nsbench-study run writes the tables and the file and its hash and merges shards and exits 2 on a bad file", "[studies][study_file]") {
   TempCache cache;
   const fs::path dir = cache.dir / "cli";
   fs::create_directories(dir);
