@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> names;
   std::string out = "reports", shard_text;
   bool full = false, merge = false;
-  app.add_option("studies", names, "'list', 'all', or study names")->required();
+  app.add_option("studies", names, "'list', 'all', study names, or 'run FILE.toml' (a study file, README)")->required();
   app.add_option("--out", out, "output directory (default reports)");
   app.add_flag("--full", full, "run the long sweeps");
   app.add_option("--shard", shard_text, "run only shard I of N of the cases (job arrays), e.g. 3/8");

@@ -258,7 +258,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   Table t;
   t.id = spec.name + "_work_precision";
   t.title = spec.title + ": work-precision";
-  t.caption = fmt::format("Errors against {}; CPU: {}. Diverged, over-budget and declined runs are rows with their reason.",
+  t.caption = fmt::format("Errors against {}; CPU: {}. Errors of an observable are relative to its largest reference value "
+                          "over the run; an impact time is the end of the step holding the impact (resolution: the step, for "
+                          "event-driven the output step dt). Diverged, over-budget and declined runs are rows with their reason.",
                           against, cpu);
   t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
                {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
