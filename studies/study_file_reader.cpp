@@ -353,7 +353,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     c.keys(*r, "reference", {"solution", "integrator", "parameters", "dt", "sample_every", "floor"});
     spec.has_reference = true;
     FileReference& ref = spec.reference;
-    if (c.find(*r, "solution") == c.find(*r, "integrator") || (c.find(*r, "solution") && c.find(*r, "integrator")))
+    if (!c.find(*r, "solution") == !c.find(*r, "integrator"))
       c.fail("reference", "give one of solution = \"exact\" or integrator = NAME");
     if (const Json* v = c.find(*r, "solution")) {
       c.choice(*v, "reference.solution", {"exact"});
