@@ -80,14 +80,16 @@ double state_observable(const Problem& problem, const SpMat& M, const State& s, 
 class Reference {
  public:
   Reference(const StudySpec& spec, const Problem& problem, const SpMat& M, const FileProblem& fp)
-      : problem_(problem), M_(M) {
-    if (spec.has_reference && !spec.reference.exact) {
-      run_ = cached_reference(reference_cache_dir(), reference_request(spec, fp));
-      t_ = run_.series.column("t");
-    }
+      : problem_(problem), M_(M), exact_(!spec.has_reference || spec.reference.exact) {
+    if (exact_) return;
+    run_ = cached_reference(reference_cache_dir(), reference_request(spec, fp));
+    if (run_.summary["status"] != "ok" || run_.series.rows() == 0)
+      throw InputError(fmt::format("reference {} on {} failed: {} {}", spec.reference.integrator, fp.label,
+                                   run_.summary["status"].dump(), run_.summary["message"].dump()));
+    t_ = run_.series.column("t");
   }
   double observable(double t, const std::string& name, std::span<double> buffer) const {
-    if (run_.series.rows() == 0) {
+    if (exact_) {
       const State exact = *problem_.exact_state(t);
       return state_observable(problem_, M_, exact, Vec::Zero(problem_.ncontacts()), 0.0, name, buffer, nullptr);
     }
@@ -107,6 +109,7 @@ class Reference {
  private:
   const Problem& problem_;
   const SpMat& M_;
+  bool exact_;
   CachedReference run_;
   std::size_t t_ = 0;
 };
