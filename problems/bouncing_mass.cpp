@@ -61,6 +61,12 @@ double BouncingMass::impact_time(int i) const {
   return t1_ + 2.0 * w1_ / g_ * flights;
 }
 
+std::vector<double> BouncingMass::impact_times(double t_end) const {
+  std::vector<double> times;
+  for (int i = 1; i <= 1000 && impact_time(i) <= t_end && impact_time(i) < zeno_time(); ++i) times.push_back(impact_time(i));
+  return times;
+}
+
 double BouncingMass::zeno_time() const {
   if (e_ == 1.0) return std::numeric_limits<double>::infinity();
   return t1_ + 2.0 * e_ * w1_ / (g_ * (1.0 - e_));

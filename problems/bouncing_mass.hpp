@@ -42,6 +42,7 @@ class BouncingMass final : public Problem {
   std::vector<std::string> observable_names() const override;
   void observe(const State& s, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
+  std::vector<double> impact_times(double t_end) const override;  // up to 1000, before the Zeno time
 
   // Exact impact sequence.
   double initial_energy() const { return 0.5 * m_ * w1_ * w1_; }

@@ -91,6 +91,9 @@ class Problem {
 
   // Exact solution where one is known.
   virtual std::optional<State> exact_state(double /*t*/) const { return std::nullopt; }
+  // Exact times of the impacts in [0, t_end], in order, where the problem knows them
+  // (impact-time errors of study files); empty otherwise.
+  virtual std::vector<double> impact_times(double /*t_end*/) const { return {}; }
 };
 
 // The diagonal of M when M is diagonal; nullopt otherwise.

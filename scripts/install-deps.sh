@@ -5,6 +5,7 @@ packages=(
   build-essential cmake git pkg-config
   libeigen3-dev libsundials-dev libsuitesparse-dev
   catch2 libbenchmark-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+  libtomlplusplus-dev  # study files (nsbench-study run FILE.toml)
   python3 python3-matplotlib
   # Siconos kernel: the optional peers (siconos-* integrators, CMake option NSBENCH_SICONOS).
   libsiconos-kernel-dev

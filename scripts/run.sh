@@ -30,7 +30,9 @@ else
   # From scratch into reports.new, swapped in only when every study and figure succeeded.
   rm -rf reports.new
   "$build"/studies/nsbench-study all --out reports.new
+  "$build"/studies/nsbench-study run studies/examples/bouncing_quick.toml --out reports.new/bouncing_quick
   /usr/bin/python3 scripts/figures.py reports.new  # Debian python: matplotlib from python3-matplotlib
+  /usr/bin/python3 scripts/figures.py reports.new/bouncing_quick
   rm -rf reports
   mv reports.new reports
 fi

@@ -7,6 +7,8 @@
 //   nsbench-study all|NAME... [--full] --verify DIR [--rtol R] [--atol A]
 //                                  recompute, compare with the report in DIR (studies/verify.hpp),
 //                                  print the differences; exit 1 when there are any
+//   nsbench-study run FILE.toml [--out DIR] [--shard I/N | --merge]  a study from a file
+//                                                                  (studies/study_file.hpp)
 //
 // Reports: DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
 // scripts/figures.py) and DIR/index.md linking them, opening with the headline tables (the
@@ -17,14 +19,17 @@
 #include <chrono>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <regex>
 
 #include "core/build_info.hpp"
+#include "core/environment.hpp"
 #include "core/output.hpp"
 #include "core/parameters.hpp"
 #include "studies/parallel.hpp"
 #include "studies/study.hpp"
 #include "studies/verify.hpp"
+#include "studies/study_file.hpp"
 
 namespace {
 
@@ -83,12 +88,13 @@ std::vector<Json> merge_shards(const nsb::StudyEntry& study, const std::vector<J
 }  // namespace
 
 int main(int argc, char** argv) {
+  nsb::set_command_line(argc, argv);
   CLI::App app{"nsbench-study: run studies and write citable reports"};
   std::vector<std::string> names;
   std::string out = "reports", shard_text, verify_dir;
   bool full = false, merge = false;
   nsb::VerifyTolerance tolerance;
-  app.add_option("studies", names, "'list', 'all', or study names")->required();
+  app.add_option("studies", names, "'list', 'all', study names, or 'run FILE.toml' (a study file, README)")->required();
   app.add_option("--out", out, "output directory (default reports)");
   app.add_flag("--full", full, "run the long sweeps");
   app.add_option("--shard", shard_text, "run only shard I of N of the cases (job arrays), e.g. 3/8");
@@ -115,7 +121,15 @@ int main(int argc, char** argv) {
     if (verify && !fs::is_directory(verify_dir)) throw InputError(fmt::format("--verify '{}': no such directory", verify_dir));
     nsb::VerifyResult verified;
     std::vector<const nsb::StudyEntry*> selected;
-    for (const auto& n : names) {
+    std::optional<nsb::StudyEntry> file_study;  // nsbench-study run FILE
+    if (names[0] == "run") {
+      if (names.size() != 2) throw InputError("run: give one study file (nsbench-study run FILE.toml)");
+      const nsb::StudySpec spec = nsb::read_study_file(names[1]);
+      if (!verify) nsb::write_study_copy(spec, out);
+      file_study = nsb::file_study(spec);
+      selected.push_back(&*file_study);
+    }
+    for (const auto& n : file_study ? std::vector<std::string>{} : names) {
       bool found = false;
       for (const auto& s : registry)
         if (n == "all" || s.name == n) {
@@ -196,6 +210,9 @@ int main(int argc, char** argv) {
       return verified.differences.empty() ? 0 : 1;
     }
     if (!shard.count) {
+      const auto& env = nsb::environment();
+      studies += fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, revision {}. Rerun: `{}`</sub>\n", env.cpu,
+                             env.cores, env.libraries, b.build_type, b.compiler, b.git_revision, nsb::command_line());
       nsb::write_file_atomic(fs::path(out) / "figures.json", nsb::figures_to_json(all_tables));
       if (!headline.empty())
         index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "

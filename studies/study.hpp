@@ -8,7 +8,9 @@
 // Studies are listed in studies/registry.cpp, one line each. A study written as a single
 // function returning tables (`run`) is a study of one case.
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -28,12 +30,13 @@ struct StudyEntry {
   std::string name;
   std::string description;
   // Either a single function...
-  std::vector<Table> (*run)(const StudyOptions&) = nullptr;
+  // (std::function: a study read from a file carries its definition in them.)
+  std::function<std::vector<Table>(const StudyOptions&)> run;
   // ...or cases, a case runner and a table builder.
-  std::vector<Json> (*cases)(const StudyOptions&) = nullptr;
-  Json (*run_case)(const Json& the_case) = nullptr;
-  std::vector<Table> (*tables)(const std::vector<Json>& cases, const std::vector<Json>& results,
-                               const StudyOptions&) = nullptr;
+  std::function<std::vector<Json>(const StudyOptions&)> cases;
+  std::function<Json(const Json& the_case)> run_case;
+  std::function<std::vector<Table>(const std::vector<Json>& cases, const std::vector<Json>& results,
+                                   const StudyOptions&)> tables;
 };
 
 const std::vector<StudyEntry>& study_registry();
@@ -89,5 +92,18 @@ double observed_order(double h1, double e1, double h2, double e2);
 // Least-squares slope of log e against log h over the points with positive finite error;
 // NaN with fewer than two such points.
 double fitted_order(const std::vector<double>& h, const std::vector<double>& e);
+
+// The same fit with its 95% confidence interval: slope +- t_{0.975, n-2} * its standard error
+// (residual variance s^2 = SSR / (n - 2), SE = s / sqrt(Sxx)). The interval is NaN with fewer
+// than three points (no residual degree of freedom).
+struct OrderFit {
+  double order = std::numeric_limits<double>::quiet_NaN();
+  double low = std::numeric_limits<double>::quiet_NaN();
+  double high = std::numeric_limits<double>::quiet_NaN();
+  int points = 0;
+};
+OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& e);
+// Two-sided 97.5% quantile of Student's t with `dof` >= 1 degrees of freedom.
+double student_t975(int dof);
 
 }  // namespace nsb

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/build_info.hpp"
+#include "core/environment.hpp"
 #include "core/output.hpp"
 
 #include <nlohmann/json.hpp>
@@ -28,6 +29,10 @@ std::vector<std::pair<std::string, std::string>> stamp(const Table& t) {
   s.emplace_back("git_revision", b.git_revision);
   s.emplace_back("build_type", b.build_type);
   s.emplace_back("compiler", b.compiler);
+  const Environment& env = environment();
+  s.emplace_back("machine", fmt::format("{}, {} cores", env.cpu, env.cores));
+  s.emplace_back("libraries", env.libraries);
+  if (!command_line().empty()) s.emplace_back("command", command_line());
   return s;
 }
 

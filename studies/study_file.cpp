@@ -1,0 +1,381 @@
+// A study file as a StudyEntry: its cases, the runner of one case and its tables.
+//
+// Measures (each a column; a run's error against the reference, sampled every sample_every
+// steps and at the last step):
+//   error        u: ||u - u_ref||_inf, an observable: |o - o_ref|, divided by the largest
+//                |u_ref| (|o_ref|) over the run (absolute when that is 0); norm final (last
+//                step), max (over the samples) or l2 (sqrt of the time-weighted mean square).
+//                A reference integrator's samples are interpolated linearly in time.
+//   impact-time  max over the first `count` impacts of |t_i (scheme) - t_i (exact)|, t_i the
+//                end of the first step with an impulse after a step without one [s].
+//   energy       (E - E0)/|E0|, E the scheme's own energy: max |.|, final, or drift (its
+//                least-squares slope in time, 1/s).
+//   momentum     max over the samples of |P - P0 - sum_k (1^T F_ext(t_k) dt_k + 1^T L^T Lambda_k)|
+//                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
+//                balances momentum exactly when the internal forces sum to zero.
+//   penetration  max over the steps of max(0, -g).
+#include "studies/study_file.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/output.hpp"
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+#include "reference/cache.hpp"
+#include "studies/ranking.hpp"
+
+namespace nsb {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kHistoryIntervals = 200;
+// Errors below this are round-off: left out of the order fits (as in the precision study).
+constexpr double kRoundOff = 1e-11;
+
+ReferenceRequest reference_request(const StudySpec& spec, const FileProblem& p) {
+  const FileReference& r = spec.reference;
+  return {p.name, p.parameters, r.integrator, r.parameters, r.dt, spec.t_end, r.sample_every};
+}
+
+std::vector<Json> file_cases(const StudySpec& spec) {
+  std::vector<Json> cases;
+  for (std::size_t p = 0; p < spec.problems.size(); ++p)
+    for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
+      const FileSweep& s = spec.integrators[i].sweep_for(spec.problems[p].label);
+      const bool tol = !s.tolerances.empty();
+      for (double x : tol ? s.tolerances : s.steps)
+        cases.push_back({{"problem", p}, {"integrator", i}, {"dt", tol ? s.dt : x}, {"tol", tol ? Json(x) : Json(nullptr)},
+                         {"file_hash", spec.hash}});
+    }
+  // A reference integrator runs once per problem, here, before the cases that read it.
+  if (spec.has_reference && !spec.reference.exact)
+    for (const auto& p : spec.problems) try {
+        cached_reference(reference_cache_dir(), reference_request(spec, p));
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("study {}, reference run on {}: {}", spec.name, p.label, e.what()));
+      }
+  return cases;
+}
+
+// Observables of a state: the problem's own or the run driver's generic kinetic, potential,
+// total_energy, min_gap (series columns of integrators/run.hpp). `energy`: the scheme's own
+// (Integrator::energy), else v^T M v / 2 + V(u).
+double state_observable(const Problem& problem, const SpMat& M, const State& s, const Vec& impulses, double dt,
+                        const std::string& name, std::span<double> buffer, const Energy* energy) {
+  const auto& names = problem.observable_names();
+  if (const auto k = std::find(names.begin(), names.end(), name); k != names.end()) {
+    problem.observe_step(s, impulses, dt, buffer);
+    return buffer[k - names.begin()];
+  }
+  if (name == "min_gap") return (problem.gap_offset() + problem.gap_operator() * s.u).minCoeff();
+  const Energy e = energy ? *energy : Energy{0.5 * s.v.dot(M * s.v), problem.potential(s.u)};
+  return name == "kinetic" ? e.kinetic : name == "potential" ? e.potential : e.total();
+}
+
+// The reference of one case: the exact solution, or the cached run interpolated in time.
+class Reference {
+ public:
+  Reference(const StudySpec& spec, const Problem& problem, const SpMat& M, const FileProblem& fp)
+      : problem_(problem), M_(M), exact_(!spec.has_reference || spec.reference.exact) {
+    if (exact_) return;
+    run_ = cached_reference(reference_cache_dir(), reference_request(spec, fp));
+    if (run_.summary["status"] != "ok" || run_.series.rows() == 0)
+      throw InputError(fmt::format("reference {} on {} failed: {} {}", spec.reference.integrator, fp.label,
+                                   run_.summary["status"].dump(), run_.summary["message"].dump()));
+    t_ = run_.series.column("t");
+  }
+  double observable(double t, const std::string& name, std::span<double> buffer) const {
+    if (exact_) {
+      const State exact = *problem_.exact_state(t);
+      return state_observable(problem_, M_, exact, Vec::Zero(problem_.ncontacts()), 0.0, name, buffer, nullptr);
+    }
+    const Series& s = run_.series;
+    const std::size_t col = s.column(name);
+    std::size_t lo = 0, hi = s.rows() - 1;
+    if (t >= s.at(hi, t_)) return s.at(hi, col);
+    while (hi - lo > 1) {
+      const std::size_t mid = (lo + hi) / 2;
+      (s.at(mid, t_) <= t ? lo : hi) = mid;
+    }
+    const double t0 = s.at(lo, t_), t1 = s.at(hi, t_), w = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
+    return (1 - w) * s.at(lo, col) + w * s.at(hi, col);
+  }
+  Vec u(double t) const { return problem_.exact_state(t)->u; }
+
+ private:
+  const Problem& problem_;
+  const SpMat& M_;
+  bool exact_;
+  CachedReference run_;
+  std::size_t t_ = 0;
+};
+
+// One measure's running figures.
+struct Accumulator {
+  double scale = 0.0, largest = 0.0, square = 0.0, last = kNaN, t_prev = 0.0;
+  double st = 0, se = 0, stt = 0, ste = 0, n = 0;  // drift fit
+  std::vector<double> impacts;
+  bool in_contact = false;
+};
+
+Json run_file_case(const StudySpec& spec, const Json& c) {
+  const FileProblem& fp = spec.problems[c["problem"].get<std::size_t>()];
+  const FileIntegrator& fi = spec.integrators[c["integrator"].get<std::size_t>()];
+  auto problem = make_problem(fp.name, fp.parameters);
+  Overrides params = fi.sweep_for(fp.label).parameters;
+  if (!c["tol"].is_null()) params[fi.sweep_for(fp.label).tolerance_parameter] = fmt::format("{}", c["tol"].get<double>());
+  RunOptions options;
+  options.dt = c["dt"];
+  options.t_end = spec.t_end;
+  options.record_series = false;
+  options.max_force_evaluations = spec.max_force_evaluations;
+  auto integrator = make_integrator(fi.name, params);
+  try {
+    integrator->init(*problem, problem->initial_state());
+  } catch (const InputError& e) {  // the scheme declines the problem
+    return {{"status", "n/a"}, {"message", e.what()}, {"steps", 0}, {"force_evaluations", 0}};
+  }
+  const SpMat M = problem->mass_matrix();
+  const Reference reference(spec, *problem, M, fp);
+  const std::size_t nobs = problem->observable_names().size();
+  std::vector<double> obs(nobs), obs_ref(nobs);
+  std::vector<Accumulator> acc(spec.measures.size());
+  const Vec ones = Vec::Ones(problem->ndof());
+  const Vec mass_row = M.transpose() * ones, gap_row = problem->gap_operator() * ones;
+  Vec f_ext(problem->ndof());
+  const double p0 = mass_row.dot(integrator->state().v);
+  const double e0 = integrator->energy().total();
+  double impulse_sum = 0.0, t_prev = 0.0;
+  IntervalMax history(spec.t_end, kHistoryIntervals, 1);
+  const auto history_measure = std::find_if(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) {
+    return m.kind == MeasureKind::Energy && m.history;
+  });
+
+  // The measures at a sample: every sample_every steps, and the last step.
+  const auto sample = [&](const Integrator& it) {
+    const State& s = it.state();
+    for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+      const FileMeasure& fm = spec.measures[m];
+      Accumulator& a = acc[m];
+      double e = kNaN;
+      if (fm.kind == MeasureKind::Error) {
+        if (fm.observable == "u") {
+          const Vec u_ref = reference.u(s.t);
+          e = (s.u - u_ref).lpNorm<Eigen::Infinity>();
+          a.scale = std::max(a.scale, u_ref.lpNorm<Eigen::Infinity>());
+        } else {
+          const Energy energy = it.energy();
+          const double value = state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy);
+          const double ref = reference.observable(s.t, fm.observable, obs_ref);
+          e = std::abs(value - ref);
+          a.scale = std::max(a.scale, std::abs(ref));
+        }
+      } else if (fm.kind == MeasureKind::Energy) {
+        e = (it.energy().total() - e0) / std::abs(e0);
+        a.st += s.t, a.se += e, a.stt += s.t * s.t, a.ste += s.t * e, a.n += 1;
+        e = fm.norm == "final" ? e : std::abs(e);
+      } else if (fm.kind == MeasureKind::Momentum) {
+        const double p = mass_row.dot(s.v);
+        e = std::abs(p - p0 - impulse_sum);
+        a.scale = std::max({a.scale, std::abs(p), std::abs(p0)});
+      }
+      a.largest = std::max(a.largest, std::abs(e));
+      a.square += e * e * (s.t - a.t_prev);
+      a.t_prev = s.t;
+      a.last = e;
+    }
+  };
+  long step = 0;
+  const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo& info) {
+    const State& s = it.state();
+    problem->external_force(s.t - info.dt, f_ext);
+    impulse_sum += ones.dot(f_ext) * info.dt + gap_row.dot(it.impulses());
+    const bool contact = it.impulses().sum() > 0.0;
+    for (std::size_t m = 0; m < spec.measures.size(); ++m)
+      if (spec.measures[m].kind == MeasureKind::ImpactTime) {
+        if (contact && !acc[m].in_contact) acc[m].impacts.push_back(s.t);
+        acc[m].in_contact = contact;
+      }
+    if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(it.energy().total() - e0) / std::abs(e0)});
+    if (++step % spec.sample_every == 0) sample(it);
+    t_prev = s.t;
+  });
+  Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps},
+              {"force_evaluations", r.work.force_evaluations}};
+  if (r.status != RunStatus::Ok) return out;
+  if (step % spec.sample_every != 0) sample(*integrator);
+  history.finish();
+  Json values = Json::array();
+  for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+    const FileMeasure& fm = spec.measures[m];
+    const Accumulator& a = acc[m];
+    const double scale = a.scale > 0.0 ? a.scale : 1.0;
+    double v = kNaN;
+    switch (fm.kind) {
+      case MeasureKind::Error:
+        v = (fm.norm == "final" ? a.last : fm.norm == "max" ? a.largest : std::sqrt(a.square / spec.t_end)) / scale;
+        break;
+      case MeasureKind::ImpactTime: {
+        const auto exact = problem->impact_times(spec.t_end);
+        const std::size_t n = std::min<std::size_t>(fm.count, exact.size());
+        v = a.impacts.size() < n ? kNaN : 0.0;  // an impact missed: no error to report
+        for (std::size_t i = 0; i < n && i < a.impacts.size(); ++i) v = std::max(v, std::abs(a.impacts[i] - exact[i]));
+        break;
+      }
+      case MeasureKind::Energy: {
+        const double det = a.n * a.stt - a.st * a.st;
+        v = fm.norm == "max" ? a.largest : fm.norm == "final" ? a.last : (det > 0 ? (a.n * a.ste - a.st * a.se) / det : kNaN);
+        break;
+      }
+      case MeasureKind::Momentum: v = a.largest / scale; break;
+      case MeasureKind::Penetration: v = r.max_penetration; break;
+    }
+    values.push_back(real(v));
+  }
+  out["values"] = values;
+  out["cpu"] = spec.cpu_repeats > 0 ? median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats) : r.cpu_seconds;
+  if (history_measure != spec.measures.end())
+    out["history"] = {{"t", reals(history.times())}, {"e", reals(history.largest(0))}};
+  return out;
+}
+
+double number(const Json& r, const char* key) { return r.contains(key) ? real(r[key]) : kNaN; }
+
+std::string run_label(const Json& c) {
+  return c["tol"].is_null() ? fmt::format("dt = {:.2e}", c["dt"].get<double>()) : fmt::format("tol = {:.1e}", c["tol"].get<double>());
+}
+
+std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& cases, const std::vector<Json>& results) {
+  const std::vector<std::pair<std::string, std::string>> meta = {
+      {"study", spec.name}, {"study_file", spec.file}, {"study_file_fnv1a64", spec.hash}, {"t_end", fmt::format("{}", spec.t_end)}};
+  const std::string against = !spec.has_reference ? "no reference"
+                              : spec.reference.exact ? "the exact solution"
+                                                     : fmt::format("{} (dt = {}, cached)", spec.reference.integrator, spec.reference.dt);
+  const std::string cpu = spec.cpu_repeats > 0
+                              ? fmt::format("median thread CPU time of {} unobserved runs after a warm-up", spec.cpu_repeats)
+                              : "thread CPU time of the observed run";
+  Table t;
+  t.id = spec.name + "_work_precision";
+  t.title = spec.title + ": work-precision";
+  t.caption = fmt::format("Errors against {}; CPU: {}. Errors of an observable are relative to its largest reference value "
+                          "over the run; an impact time is the end of the step holding the impact (resolution: the step, for "
+                          "event-driven the output step dt). Diverged, over-budget and declined runs are rows with their reason.",
+                          against, cpu);
+  t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
+               {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
+  for (const auto& m : spec.measures)
+    t.columns.push_back({m.label, m.kind == MeasureKind::ImpactTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" ? "1/s" : "",
+                         "{:.3e}", ""});
+  t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", ""}, {"steps", "", "", ""},
+                                     {"F_int evals", "", "", "internal force evaluations"}, {"status", "", "", ""}});
+  t.metadata = meta;
+  Table orders;
+  orders.id = spec.name + "_orders";
+  orders.title = spec.title + ": fitted orders";
+  orders.caption = "Least-squares slope of log(error) against log(dt) (log(tol) for a tolerance sweep) with its 95% "
+                   "confidence interval (Student t, n - 2 degrees of freedom); errors below 1e-11 are round-off and left out.";
+  orders.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"measure", "", "", ""}, {"against", "", "", ""},
+                    {"order", "", "{:.2f}", ""}, {"CI low", "", "{:.2f}", "95% confidence interval"},
+                    {"CI high", "", "{:.2f}", ""}, {"points", "", "", ""}};
+  orders.metadata = meta;
+  Table history;
+  history.id = spec.name + "_energy_history";
+  history.title = spec.title + ": energy error history";
+  history.caption = fmt::format("max |E - E0| / |E0| over each of {} equal intervals of [0, t_end]", kHistoryIntervals);
+  history.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"run", "", "", ""}, {"t", "s", "", ""},
+                     {"energy err", "", "", ""}};
+  history.csv_only = true;
+  history.metadata = meta;
+  history.figures = {{spec.name + "_energy_history", spec.title + ": energy error", "t", "energy err", {"integrator", "run"}, {"problem"}, false, true}};
+
+  const auto primary = std::find_if(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Error; });
+  if (primary != spec.measures.end()) {
+    t.figures = {{spec.name + "_work_precision", spec.title + ": " + primary->label + " against CPU time", "CPU", primary->label, {"integrator"}, {"problem"}, true, true},
+                 {spec.name + "_work_precision_evals", spec.title + ": " + primary->label + " against F_int evaluations", "F_int evals", primary->label, {"integrator"}, {"problem"}, true, true}};
+  }
+  for (const auto& m : spec.measures)
+    if (m.kind == MeasureKind::Error || m.kind == MeasureKind::ImpactTime)
+      t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
+                           "dt", m.label, {"integrator"}, {"problem"}, true, true});
+
+  std::vector<RankingProblem> ranking;
+  for (const auto& p : spec.problems)
+    ranking.push_back({p.label, against, spec.reference.floor, spec.targets, {}});
+  std::size_t k = 0;
+  while (k < cases.size()) {
+    const std::size_t begin = k;
+    const std::size_t pi = cases[k]["problem"], ii = cases[k]["integrator"];
+    const std::string& plabel = spec.problems[pi].label;
+    const FileIntegrator& fi = spec.integrators[ii];
+    WorkCurve curve{fi.label, find_integrator(fi.name).reference, {}};
+    std::vector<double> xs;
+    std::vector<std::vector<double>> ys(spec.measures.size());
+    for (; k < cases.size() && cases[k]["problem"] == pi && cases[k]["integrator"] == ii; ++k) {
+      const Json& r = results[k];
+      const bool tol = !cases[k]["tol"].is_null();
+      xs.push_back(tol ? cases[k]["tol"].get<double>() : cases[k]["dt"].get<double>());
+      std::vector<Cell> row = {plabel, fi.label, cases[k]["dt"].get<double>(), number_cell(cases[k]["tol"])};
+      for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+        const double v = r.contains("values") ? real(r["values"][m]) : kNaN;
+        ys[m].push_back(v);
+        row.push_back(number_cell(v));
+      }
+      const std::string status = r["status"];
+      row.insert(row.end(), {number_cell(number(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
+                             status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
+      t.add_row(std::move(row));
+      if (primary != spec.measures.end() && status != "n/a")
+        curve.points.push_back({run_label(cases[k]), number(r, "cpu"), ys[primary - spec.measures.begin()].back()});
+      if (r.contains("history"))
+        for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
+          history.add_row({plabel, fi.label, run_label(cases[k]), number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
+    }
+    ranking[pi].curves.push_back(curve);
+    for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+      if (spec.measures[m].kind != MeasureKind::Error && spec.measures[m].kind != MeasureKind::ImpactTime) continue;
+      std::vector<double> e = ys[m];
+      for (double& x : e)
+        if (spec.measures[m].kind == MeasureKind::Error && !(x > kRoundOff)) x = kNaN;
+      const OrderFit fit = fit_order(xs, e);
+      orders.add_row({plabel, fi.label, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
+                      number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});
+    }
+  }
+  std::vector<Table> tables{t};
+  if (!orders.rows.empty()) tables.push_back(orders);
+  if (primary != spec.measures.end()) {
+    Table rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error",
+                               {primary->label, "", "{:.1e}", primary->label + " of " + t.id}, cpu, ranking);
+    rank.metadata = meta;
+    tables.push_back(rank);
+  }
+  if (!history.rows.empty()) tables.push_back(history);
+  return tables;
+}
+
+}  // namespace
+
+StudyEntry file_study(const StudySpec& spec) {
+  StudyEntry e;
+  e.name = spec.name;
+  e.description = fmt::format("{} (study file {}, FNV-1a 64 {})", spec.title, spec.file, spec.hash);
+  e.cases = [spec](const StudyOptions&) { return file_cases(spec); };
+  e.run_case = [spec](const Json& c) { return run_file_case(spec, c); };
+  e.tables = [spec](const std::vector<Json>& cases, const std::vector<Json>& results, const StudyOptions&) {
+    return file_tables(spec, cases, results);
+  };
+  return e;
+}
+
+void write_study_copy(const StudySpec& spec, const std::filesystem::path& out) {
+  ensure_directory(out);
+  const std::string ext = std::filesystem::path(spec.file).extension() == ".json" ? "json" : "toml";
+  write_file_atomic(out / fmt::format("{}.study.{}", spec.name, ext), spec.text);
+  write_file_atomic(out / fmt::format("{}.study.hash", spec.name), fmt::format("FNV-1a 64 {}  {}\n", spec.hash, spec.file));
+}
+
+}  // namespace nsb

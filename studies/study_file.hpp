@@ -1,0 +1,98 @@
+#pragma once
+// Studies read from a file (`nsbench-study run FILE.toml`, or FILE.json with the same schema):
+// problems with their parameters, integrators with their step (or tolerance) sweeps, a
+// reference (the exact solution or a reference integrator, cached by reference/cache.hpp) and
+// measures. The file becomes a StudyEntry whose cases (one per problem, integrator and step)
+// run in the built-in studies' driver (parallel, --shard, --merge) and whose tables go
+// through the same writers: work-precision table and figures, fitted orders with their 95%
+// confidence intervals, energy histories, the headline ranking. Schema: README.md, "Studies
+// from a file"; examples: studies/examples/.
+//
+// Every error in the file is an InputError "FILE:LINE: key.path: what is wrong; valid: ...".
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "studies/study.hpp"
+
+namespace nsb {
+
+using Overrides = std::map<std::string, std::string>;
+
+struct FileProblem {
+  std::string name, label;
+  Overrides parameters;
+};
+
+// What an integrator runs on one problem: its parameters and either a list of steps or a
+// list of tolerances (set as `tolerance_parameter`, each run with the fixed step `dt`).
+struct FileSweep {
+  Overrides parameters;
+  std::vector<double> steps;
+  std::vector<double> tolerances;
+  std::string tolerance_parameter = "rtol";
+  double dt = 0.0;
+};
+
+struct FileIntegrator {
+  std::string name, label;
+  FileSweep sweep;
+  std::map<std::string, FileSweep> per_problem;  // by problem label: the sweep, overrides applied
+  const FileSweep& sweep_for(const std::string& problem_label) const;
+};
+
+struct FileReference {
+  bool exact = true;       // the problem's exact solution; else `integrator`
+  std::string integrator;  // a reference integrator, its run cached
+  Overrides parameters;
+  double dt = 0.0;
+  long sample_every = 1;
+  double floor = 0.0;      // the reference's own error in the measures' norm (ranking)
+};
+
+enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration };
+
+struct FileMeasure {
+  MeasureKind kind = MeasureKind::Error;
+  std::string label;             // the column's name
+  std::string observable = "u";  // Error: "u" or one of the problem's observables
+  std::string norm = "max";      // Error: final|max|l2; Energy: max|final|drift
+  int count = 3;                 // ImpactTime: the first `count` impacts
+  bool history = false;          // Energy: also a history table and figure
+};
+
+struct StudySpec {
+  std::string file;   // as given
+  std::string name;   // the file's stem, [a-z0-9_] only: table ids and shard files
+  std::string title;
+  std::string text;   // the file itself
+  std::string hash;   // FNV-1a 64 of text, hex
+  double t_end = 0.0;
+  long sample_every = 1;
+  int cpu_repeats = 3;
+  long max_force_evaluations = 10'000'000;
+  std::vector<double> targets{1e-2, 1e-4};
+  std::vector<FileProblem> problems;
+  std::vector<FileIntegrator> integrators;
+  FileReference reference;
+  bool has_reference = false;
+  std::vector<FileMeasure> measures;
+};
+
+// Reads and checks a study file (.json: JSON, anything else: TOML).
+StudySpec read_study_file(const std::filesystem::path& path);
+// The same from text; `file` names it in errors.
+StudySpec parse_study_text(const std::string& text, const std::string& file, bool json);
+
+// A reduced copy for tests and smoke runs: t_end scaled by `t_scale`, each sweep cut to its
+// first `max_runs` entries, one CPU run, at most `budget` F_int evaluations per run.
+StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, long budget);
+
+// The study as the driver runs it.
+StudyEntry file_study(const StudySpec& spec);
+
+// Writes <out>/<name>.study.<ext> (the file as read) and <out>/<name>.study.hash.
+void write_study_copy(const StudySpec& spec, const std::filesystem::path& out);
+
+}  // namespace nsb

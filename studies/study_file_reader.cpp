@@ -1,0 +1,450 @@
+// Reading and checking a study file (schema: studies/study_file.hpp, README.md). TOML and JSON
+// are both read into one JSON tree with the line of each key path, then checked against the
+// schema here, so both formats give the same errors: "FILE:LINE: key.path: what; valid: ...".
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+#include "studies/study_file.hpp"
+
+namespace nsb {
+
+namespace {
+
+using Lines = std::map<std::string, long>;
+
+std::string child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
+std::string element(const std::string& path, std::size_t i) { return fmt::format("{}[{}]", path, i); }
+
+void toml_to_json(const toml::node& node, const std::string& path, Json& out, Lines& lines) {
+  if (node.source().begin.line) lines.emplace(path, node.source().begin.line);
+  if (const auto* t = node.as_table()) {
+    out = Json::object();
+    for (const auto& [k, v] : *t) {
+      const std::string p = child(path, std::string(k.str()));
+      if (k.source().begin.line) lines[p] = k.source().begin.line;
+      toml_to_json(v, p, out[std::string(k.str())], lines);
+    }
+  } else if (const auto* a = node.as_array()) {
+    out = Json::array();
+    for (std::size_t i = 0; i < a->size(); ++i) toml_to_json((*a)[i], element(path, i), out[i], lines);
+  } else if (const auto* s = node.as_string()) {
+    out = s->get();
+  } else if (const auto* i = node.as_integer()) {
+    out = i->get();
+  } else if (const auto* f = node.as_floating_point()) {
+    out = f->get();
+  } else if (const auto* b = node.as_boolean()) {
+    out = b->get();
+  } else {
+    out = Json::object({{"<date or time>", true}});  // no such value in the schema: a wrong type
+  }
+}
+
+// JSON gives no positions: the line of a key path is found by looking for each of its keys
+// in turn, from where the previous one was found.
+long json_line(const std::string& text, const std::string& path) {
+  std::size_t pos = 0;
+  std::stringstream parts(path);
+  for (std::string part; std::getline(parts, part, '.');) {
+    const std::string key = part.substr(0, part.find('['));
+    const std::size_t at = text.find("\"" + key + "\"", pos);
+    if (at != std::string::npos) pos = at;
+  }
+  return 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string nearest(const std::string& word, const std::vector<std::string>& valid) {
+  std::string best;
+  std::size_t d = std::string::npos;
+  for (const auto& v : valid)
+    if (edit_distance(word, v) < d) {
+      d = edit_distance(word, v);
+      best = v;
+    }
+  return best;
+}
+
+std::string type_name(const Json& j) {
+  if (j.is_object()) return "a table";
+  if (j.is_array()) return "an array";
+  if (j.is_string()) return "a string";
+  if (j.is_boolean()) return "a boolean";
+  if (j.is_number_integer()) return "an integer";
+  return "a number";
+}
+
+class Checker {
+ public:
+  Checker(std::string file, Lines lines, const std::string* json_text)
+      : file_(std::move(file)), lines_(std::move(lines)), json_text_(json_text) {}
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what, const std::string& valid = "") const {
+    throw InputError(fmt::format("{}:{}: {}: {}{}", file_, line(path), path, what, valid.empty() ? "" : "; valid: " + valid));
+  }
+
+  // Fails on a key of `obj` not in `valid`, naming the nearest valid one.
+  void keys(const Json& obj, const std::string& path, const std::vector<std::string>& valid) const {
+    for (const auto& [k, v] : obj.items())
+      if (std::find(valid.begin(), valid.end(), k) == valid.end())
+        fail(child(path, k), fmt::format("unknown key (nearest valid key: {})", nearest(k, valid)),
+             fmt::format("{}", fmt::join(valid, ", ")));
+  }
+
+  const Json* find(const Json& obj, const std::string& key) const {
+    return obj.contains(key) ? &obj[key] : nullptr;
+  }
+  const Json& require(const Json& obj, const std::string& path, const std::string& key) const {
+    if (!obj.contains(key)) fail(path, fmt::format("missing key '{}'", key));
+    return obj[key];
+  }
+  void expect(const Json& j, const std::string& path, bool ok, const std::string& wanted) const {
+    if (!ok) fail(path, fmt::format("expected {}, got {}", wanted, type_name(j)));
+  }
+  std::string string(const Json& j, const std::string& path) const {
+    expect(j, path, j.is_string(), "a string");
+    return j.get<std::string>();
+  }
+  double positive(const Json& j, const std::string& path) const {
+    expect(j, path, j.is_number(), "a number");
+    const double v = j.get<double>();
+    if (!(v > 0.0) || !std::isfinite(v)) fail(path, fmt::format("{} is not positive and finite", v), "(0, inf)");
+    return v;
+  }
+  long integer(const Json& j, const std::string& path, long lo, long hi) const {
+    expect(j, path, j.is_number_integer(), "an integer");
+    const long v = j.get<long>();
+    if (v < lo || v > hi) fail(path, fmt::format("{} is out of range", v), fmt::format("[{}, {}]", lo, hi));
+    return v;
+  }
+  bool boolean(const Json& j, const std::string& path) const {
+    expect(j, path, j.is_boolean(), "a boolean");
+    return j.get<bool>();
+  }
+  std::vector<double> positive_list(const Json& j, const std::string& path) const {
+    expect(j, path, j.is_array(), "an array of positive numbers");
+    if (j.empty()) fail(path, "empty list", "one or more positive numbers");
+    std::vector<double> v;
+    for (std::size_t i = 0; i < j.size(); ++i) v.push_back(positive(j[i], element(path, i)));
+    return v;
+  }
+  std::string choice(const Json& j, const std::string& path, const std::vector<std::string>& valid) const {
+    const std::string s = string(j, path);
+    if (std::find(valid.begin(), valid.end(), s) == valid.end())
+      fail(path, fmt::format("'{}' is not valid (nearest: {})", s, nearest(s, valid)), fmt::format("{}", fmt::join(valid, ", ")));
+    return s;
+  }
+  // A problem's or integrator's parameters, each checked against its declaration.
+  Overrides parameters(const Json& j, const std::string& path, const ParamSpecs& specs) const {
+    expect(j, path, j.is_object(), "a table of parameters");
+    std::vector<std::string> names;
+    for (const auto& s : specs) names.push_back(s.name);
+    Overrides out;
+    for (const auto& [k, v] : j.items()) {
+      const std::string p = child(path, k);
+      const auto spec = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == k; });
+      if (spec == specs.end())
+        fail(p, fmt::format("unknown parameter (nearest: {})", nearest(k, names)),
+             names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", ")));
+      expect(v, p, v.is_string() || v.is_number(), "a number or a string");
+      const std::string text = v.is_string() ? v.get<std::string>() : v.dump();
+      try {
+        spec->validate(text);
+      } catch (const InputError& e) {
+        fail(p, e.what(), spec->range_text());
+      }
+      out[k] = text;
+    }
+    return out;
+  }
+
+ private:
+  long line(std::string path) const {
+    if (json_text_) return json_line(*json_text_, path);
+    while (true) {
+      if (const auto it = lines_.find(path); it != lines_.end()) return it->second;
+      const auto cut = path.find_last_of(".[");
+      if (cut == std::string::npos) return 1;
+      path = path.substr(0, cut);
+    }
+  }
+  std::string file_;
+  Lines lines_;
+  const std::string* json_text_;
+};
+
+std::vector<std::string> names_of(const auto& registry) {
+  std::vector<std::string> names;
+  for (const auto& e : registry) names.push_back(e.name);
+  return names;
+}
+
+FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, const IntegratorEntry& entry,
+                     const FileSweep* base) {
+  FileSweep s = base ? *base : FileSweep{};
+  if (const Json* p = c.find(j, "parameters"))
+    for (const auto& [k, v] : c.parameters(*p, child(path, "parameters"), entry.parameters())) s.parameters[k] = v;
+  if (const Json* v = c.find(j, "steps")) {
+    s.steps = c.positive_list(*v, child(path, "steps"));
+    s.tolerances.clear();
+  }
+  if (const Json* v = c.find(j, "tolerances")) {
+    s.tolerances = c.positive_list(*v, child(path, "tolerances"));
+    if (!c.find(j, "steps")) s.steps.clear();
+  }
+  if (const Json* v = c.find(j, "tolerance_parameter")) {
+    std::vector<std::string> reals;
+    for (const auto& p : entry.parameters())
+      if (p.kind == ParamSpec::Kind::Real) reals.push_back(p.name);
+    s.tolerance_parameter = c.choice(*v, child(path, "tolerance_parameter"), reals);
+  }
+  if (const Json* v = c.find(j, "dt")) s.dt = c.positive(*v, child(path, "dt"));
+  if (!s.steps.empty() && !s.tolerances.empty()) c.fail(path, "give steps or tolerances, not both");
+  if (s.steps.empty() && s.tolerances.empty()) c.fail(path, "no sweep", "steps = [dt, ...] or tolerances = [tol, ...] with dt");
+  if (!s.tolerances.empty()) {
+    if (!(s.dt > 0.0)) c.fail(path, "a tolerance sweep needs its step: dt = ...");
+    const auto specs = entry.parameters();
+    const auto spec = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& p) { return p.name == s.tolerance_parameter; });
+    if (spec == specs.end())
+      c.fail(child(path, "tolerances"), fmt::format("integrator '{}' has no parameter '{}'", entry.name, s.tolerance_parameter),
+             "tolerance_parameter = one of its real parameters");
+    for (std::size_t i = 0; i < s.tolerances.size(); ++i) try {
+        spec->validate(fmt::format("{}", s.tolerances[i]));
+      } catch (const InputError& e) {
+        c.fail(element(child(path, "tolerances"), i), e.what(), spec->range_text());
+      }
+  }
+  return s;
+}
+
+std::string stem_name(const std::string& file) {
+  std::string name;
+  for (char ch : std::filesystem::path(file).stem().string())
+    name += std::isalnum(static_cast<unsigned char>(ch)) ? static_cast<char>(std::tolower(ch)) : '_';
+  return name.empty() ? "study" : name;
+}
+
+}  // namespace
+
+const FileSweep& FileIntegrator::sweep_for(const std::string& problem_label) const {
+  const auto it = per_problem.find(problem_label);
+  return it == per_problem.end() ? sweep : it->second;
+}
+
+StudySpec parse_study_text(const std::string& text, const std::string& file, bool json) {
+  Json root;
+  Lines lines;
+  if (json) {
+    try {
+      root = Json::parse(text);
+    } catch (const Json::parse_error& e) {
+      throw InputError(fmt::format("{}: not valid JSON: {}", file, e.what()));
+    }
+  } else {
+    try {
+      toml_to_json(toml::parse(text, file), "", root, lines);
+    } catch (const toml::parse_error& e) {
+      throw InputError(fmt::format("{}:{}: not valid TOML: {}", file, e.source().begin.line, e.description()));
+    }
+  }
+  const Checker c(file, lines, json ? &text : nullptr);
+  c.expect(root, "(file)", root.is_object(), "a table");
+  c.keys(root, "", {"study", "problem", "integrator", "reference", "measure"});
+
+  StudySpec spec;
+  spec.file = file;
+  spec.name = stem_name(file);
+  spec.text = text;
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64
+  for (unsigned char ch : text) h = (h ^ ch) * 1099511628211ull;
+  spec.hash = fmt::format("{:016x}", h);
+
+  const Json& study = c.require(root, "", "study");
+  c.expect(study, "study", study.is_object(), "a table");
+  c.keys(study, "study", {"title", "t_end", "sample_every", "cpu_repeats", "max_force_evaluations", "targets"});
+  spec.title = c.string(c.require(study, "study", "title"), "study.title");
+  spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
+  if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
+  if (const Json* v = c.find(study, "cpu_repeats")) spec.cpu_repeats = static_cast<int>(c.integer(*v, "study.cpu_repeats", 0, 100));
+  if (const Json* v = c.find(study, "max_force_evaluations"))
+    spec.max_force_evaluations = c.integer(*v, "study.max_force_evaluations", 0, 1L << 50);
+  if (const Json* v = c.find(study, "targets")) spec.targets = c.positive_list(*v, "study.targets");
+
+  const auto list = [&](const char* key) -> const Json& {
+    const Json& a = c.require(root, "", key);
+    c.expect(a, key, a.is_array() && !a.empty(), fmt::format("one or more [[{}]] tables", key));
+    for (std::size_t i = 0; i < a.size(); ++i) c.expect(a[i], element(key, i), a[i].is_object(), "a table");
+    return a;
+  };
+  std::vector<std::unique_ptr<Problem>> instances;
+  const Json& problems = list("problem");
+  for (std::size_t i = 0; i < problems.size(); ++i) {
+    const Json& j = problems[i];
+    const std::string path = element("problem", i);
+    c.keys(j, path, {"name", "label", "parameters"});
+    FileProblem p;
+    p.name = c.choice(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()));
+    p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
+    const auto& entry = find_problem(p.name);
+    if (const Json* v = c.find(j, "parameters")) p.parameters = c.parameters(*v, child(path, "parameters"), entry.parameters());
+    for (const auto& q : spec.problems)
+      if (q.label == p.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", p.label), "distinct labels");
+    try {
+      instances.push_back(make_problem(p.name, p.parameters));
+    } catch (const InputError& e) {
+      c.fail(child(path, "parameters"), e.what());
+    }
+    spec.problems.push_back(p);
+  }
+
+  const Json& integrators = list("integrator");
+  const std::vector<std::string> sweep_keys{"parameters", "steps", "tolerances", "tolerance_parameter", "dt"};
+  for (std::size_t i = 0; i < integrators.size(); ++i) {
+    const Json& j = integrators[i];
+    const std::string path = element("integrator", i);
+    auto keys = sweep_keys;
+    keys.insert(keys.end(), {"name", "label", "per_problem"});
+    c.keys(j, path, keys);
+    FileIntegrator it;
+    it.name = c.choice(c.require(j, path, "name"), child(path, "name"), names_of(integrator_registry()));
+    it.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : it.name;
+    for (const auto& q : spec.integrators)
+      if (q.label == it.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", it.label), "distinct labels");
+    const auto& entry = find_integrator(it.name);
+    it.sweep = read_sweep(c, j, path, entry, nullptr);
+    if (const Json* pp = c.find(j, "per_problem")) {
+      const std::string pp_path = child(path, "per_problem");
+      c.expect(*pp, pp_path, pp->is_object(), "a table keyed by problem label");
+      std::vector<std::string> labels;
+      for (const auto& p : spec.problems) labels.push_back(p.label);
+      c.keys(*pp, pp_path, labels);
+      for (const auto& [label, o] : pp->items()) {
+        c.expect(o, child(pp_path, label), o.is_object(), "a table");
+        c.keys(o, child(pp_path, label), sweep_keys);
+        it.per_problem[label] = read_sweep(c, o, child(pp_path, label), entry, &it.sweep);
+      }
+    }
+    spec.integrators.push_back(it);
+  }
+
+  if (const Json* r = c.find(root, "reference")) {
+    c.expect(*r, "reference", r->is_object(), "a table");
+    c.keys(*r, "reference", {"solution", "integrator", "parameters", "dt", "sample_every", "floor"});
+    spec.has_reference = true;
+    FileReference& ref = spec.reference;
+    if (!c.find(*r, "solution") == !c.find(*r, "integrator"))
+      c.fail("reference", "give one of solution = \"exact\" or integrator = NAME");
+    if (const Json* v = c.find(*r, "solution")) {
+      c.choice(*v, "reference.solution", {"exact"});
+      for (std::size_t i = 0; i < instances.size(); ++i)
+        if (!instances[i]->exact_state(0.0))
+          c.fail("reference.solution", fmt::format("problem '{}' ({}) has no exact solution", spec.problems[i].label, spec.problems[i].name),
+                 "integrator = a reference integrator");
+    } else {
+      ref.exact = false;
+      ref.integrator = c.choice((*r)["integrator"], "reference.integrator", names_of(integrator_registry()));
+      if (const Json* v = c.find(*r, "parameters"))
+        ref.parameters = c.parameters(*v, "reference.parameters", find_integrator(ref.integrator).parameters());
+      ref.dt = c.positive(c.require(*r, "reference", "dt"), "reference.dt");
+      if (const Json* v = c.find(*r, "sample_every")) ref.sample_every = c.integer(*v, "reference.sample_every", 1, 1L << 40);
+    }
+    if (const Json* v = c.find(*r, "floor")) {
+      c.expect(*v, "reference.floor", v->is_number() && v->get<double>() >= 0.0, "a number >= 0");
+      ref.floor = v->get<double>();
+    }
+  }
+
+  const Json& measures = list("measure");
+  const std::vector<std::string> kinds{"error", "impact-time", "energy", "momentum", "penetration"};
+  for (std::size_t i = 0; i < measures.size(); ++i) {
+    const Json& j = measures[i];
+    const std::string path = element("measure", i);
+    FileMeasure m;
+    const std::string kind = c.choice(c.require(j, path, "kind"), child(path, "kind"), kinds);
+    m.kind = static_cast<MeasureKind>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
+    if (m.kind == MeasureKind::Error) {
+      c.keys(j, path, {"kind", "label", "observable", "norm"});
+      if (!spec.has_reference) c.fail(path, "an error needs a [reference]", "[reference] solution = \"exact\" or integrator = NAME");
+      if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2"});
+      if (const Json* v = c.find(j, "observable")) m.observable = c.string(*v, child(path, "observable"));
+      for (std::size_t p = 0; p < instances.size(); ++p) {
+        std::vector<std::string> valid = instances[p]->observable_names();
+        valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
+        if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
+        if (spec.reference.exact) valid.insert(valid.begin(), "u");
+        if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
+          c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'{}", m.observable, spec.problems[p].label,
+                                                        spec.reference.exact ? "" : " recorded by its reference run"),
+                 fmt::format("{}", fmt::join(valid, ", ")));
+      }
+      m.label = fmt::format("err {} {}", m.observable, m.norm);
+    } else if (m.kind == MeasureKind::ImpactTime) {
+      c.keys(j, path, {"kind", "label", "count"});
+      if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));
+      for (std::size_t p = 0; p < instances.size(); ++p)
+        if (instances[p]->impact_times(spec.t_end).empty())
+          c.fail(child(path, "kind"), fmt::format("problem '{}' knows no impact times before t_end", spec.problems[p].label),
+                 "problems with known impacts (bouncing-mass)");
+      m.label = "impact time err";
+    } else if (m.kind == MeasureKind::Energy) {
+      c.keys(j, path, {"kind", "label", "norm", "history"});
+      if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "final", "drift"});
+      if (const Json* v = c.find(j, "history")) m.history = c.boolean(*v, child(path, "history"));
+      m.label = fmt::format("energy err {}", m.norm);
+    } else {
+      c.keys(j, path, {"kind", "label"});
+      m.label = kind == "momentum" ? "momentum residual" : "penetration";
+    }
+    if (const Json* v = c.find(j, "label")) m.label = c.string(*v, child(path, "label"));
+    for (const auto& q : spec.measures)
+      if (q.label == m.label) c.fail(path, fmt::format("a second measure labelled '{}'", m.label), "distinct labels (label = ...)");
+    spec.measures.push_back(m);
+  }
+  return spec;
+}
+
+StudySpec read_study_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read the study file", path.string()));
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_study_text(text.str(), path.string(), path.extension() == ".json");
+}
+
+StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, long budget) {
+  spec.t_end *= t_scale;
+  spec.cpu_repeats = 0;
+  spec.max_force_evaluations = budget;
+  const auto cut = [&](FileSweep& s) {
+    if (s.steps.size() > max_runs) s.steps.resize(max_runs);
+    if (s.tolerances.size() > max_runs) s.tolerances.resize(max_runs);
+  };
+  for (auto& it : spec.integrators) {
+    cut(it.sweep);
+    for (auto& [label, s] : it.per_problem) cut(s);
+  }
+  return spec;
+}
+
+}  // namespace nsb

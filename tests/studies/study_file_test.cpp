@@ -1,0 +1,345 @@
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "studies/study.hpp"
+#include "studies/study_file.hpp"
+
+using Catch::Detail::Approx;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kMinimal = R"([study]
+title = "t"
+t_end = 0.6
+
+[[problem]]
+name = "bouncing-mass"
+parameters = { e = 0.5 }
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2, 5e-3]
+
+[reference]
+solution = "exact"
+
+[[measure]]
+kind = "error"
+)";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+std::string error_of(const std::string& text, bool json = false) {
+  try {
+    nsb::parse_study_text(text, "f.toml", json);
+  } catch (const nsb::InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+const fs::path kExamples = fs::path(NSBENCH_SOURCE_DIR) / "studies" / "examples";
+
+// The reference cache of these tests: a fresh directory, not the user's.
+struct TempCache {
+  fs::path dir = fs::temp_directory_path() / fmt::format("nsbench-study-file-test-{}", ::getpid());
+  TempCache() { setenv("NSBENCH_REFERENCE_CACHE", dir.c_str(), 1); }
+  ~TempCache() {
+    unsetenv("NSBENCH_REFERENCE_CACHE");
+    fs::remove_all(dir);
+  }
+};
+
+// Runs every case of a study in this thread and builds its tables.
+std::vector<nsb::Table> run_all(const nsb::StudySpec& spec, std::vector<nsb::Json>* results_out = nullptr) {
+  const nsb::StudyEntry entry = nsb::file_study(spec);
+  const auto cases = nsb::study_cases(entry, {});
+  std::vector<nsb::Json> results;
+  for (const auto& c : cases) results.push_back(nsb::run_study_case(entry, c, {}));
+  if (results_out) *results_out = results;
+  return nsb::study_tables(entry, cases, results, {});
+}
+
+const nsb::Table& table(const std::vector<nsb::Table>& tables, const std::string& suffix) {
+  for (const auto& t : tables)
+    if (t.id.size() >= suffix.size() && t.id.compare(t.id.size() - suffix.size(), suffix.size(), suffix) == 0) return t;
+  FAIL("no table " << suffix);
+  throw;
+}
+
+std::size_t column(const nsb::Table& t, const std::string& name) {
+  for (std::size_t i = 0; i < t.columns.size(); ++i)
+    if (t.columns[i].name == name) return i;
+  FAIL("no column " << name);
+  throw;
+}
+
+}  // namespace
+
+TEST_CASE("fit_order: slope and 95% interval by hand on three points and t quantiles", "[studies][study_file]") {
+  // x = log h = 0, 1, 2; y = 2x + (0, 0.1, 0): slope 2, SSR = 1/150, SE = sqrt(SSR / 1 / 2).
+  const std::vector<double> h{1.0, std::exp(1.0), std::exp(2.0)};
+  const std::vector<double> e{1.0, std::exp(2.1), std::exp(4.0)};
+  const nsb::OrderFit fit = nsb::fit_order(h, e);
+  CHECK(fit.points == 3);
+  CHECK(fit.order == Approx(2.0).epsilon(1e-12));
+  const double half = 12.7062047 * std::sqrt(1.0 / 150.0 / 2.0);
+  CHECK(fit.low == Approx(2.0 - half).epsilon(1e-9));
+  CHECK(fit.high == Approx(2.0 + half).epsilon(1e-9));
+  CHECK(nsb::fitted_order(h, e) == Approx(2.0).epsilon(1e-12));
+  // Exact power law: a zero-width interval; two points: no interval.
+  const nsb::OrderFit exact = nsb::fit_order({1e-3, 2e-3, 4e-3, 8e-3}, {3e-6, 12e-6, 48e-6, 192e-6});
+  CHECK(exact.order == Approx(2.0).epsilon(1e-12));
+  CHECK(exact.high - exact.low < 1e-9);
+  CHECK(std::isnan(nsb::fit_order({1.0, 2.0}, {1.0, 2.0}).low));
+  CHECK(nsb::student_t975(1) == Approx(12.7062047));
+  CHECK(nsb::student_t975(10) == Approx(2.2281389));
+  CHECK(nsb::student_t975(60) == Approx(2.0002978).epsilon(1e-6));
+  CHECK(nsb::student_t975(1000) == Approx(1.9623391).epsilon(1e-6));
+}
+
+TEST_CASE("fit_order: the 95% interval covers a known slope in about 95% of noisy samples", "[studies][study_file]") {
+  std::mt19937_64 rng(12345);
+  std::normal_distribution<double> noise(0.0, 0.2);
+  const std::vector<double> h{1e-3, 2e-3, 4e-3, 8e-3, 1.6e-2};
+  int covered = 0;
+  const int trials = 4000;
+  for (int k = 0; k < trials; ++k) {
+    std::vector<double> e;
+    for (double x : h) e.push_back(0.7 * std::pow(x, 1.5) * std::exp(noise(rng)));
+    const nsb::OrderFit fit = nsb::fit_order(h, e);
+    covered += fit.low <= 1.5 && 1.5 <= fit.high;
+  }
+  // Binomial standard deviation at 95%: 0.34% of 4000 trials; 4 of them either side.
+  CHECK(covered / double(trials) == Approx(0.95).margin(0.014));
+}
+
+TEST_CASE("study file: a minimal TOML file reads and so does JSON with the same schema too", "[studies][study_file]") {
+  const nsb::StudySpec s = nsb::parse_study_text(kMinimal, "min.toml", false);
+  CHECK(s.name == "min");
+  CHECK(s.t_end == 0.6);
+  REQUIRE(s.problems.size() == 1);
+  CHECK(s.problems[0].label == "bouncing-mass");
+  CHECK(s.problems[0].parameters.at("e") == "0.5");
+  CHECK(s.integrators[0].sweep.steps == std::vector<double>{1e-2, 5e-3});
+  CHECK(s.reference.exact);
+  CHECK(s.measures[0].label == "err u max");
+  const std::string json = R"({"study": {"title": "t", "t_end": 0.6},
+  "problem": [{"name": "bouncing-mass", "parameters": {"e": 0.5}}],
+  "integrator": [{"name": "cd-lagrange", "steps": [0.01, 0.005]}],
+  "reference": {"solution": "exact"},
+  "measure": [{"kind": "error"}]})";
+  const nsb::StudySpec j = nsb::parse_study_text(json, "min.json", true);
+  CHECK(j.integrators[0].sweep.steps == s.integrators[0].sweep.steps);
+  CHECK(j.problems[0].parameters == s.problems[0].parameters);
+  CHECK_THAT(error_of(replaced(json, "\"t_end\"", "\"t_ned\""), true),
+             Catch::StartsWith("f.toml:1: study.t_ned: unknown key (nearest valid key: t_end)"));
+  CHECK_THAT(error_of(replaced(json, "[0.01, 0.005]", "[]"), true), Catch::StartsWith("f.toml:3: integrator[0].steps: empty list"));
+}
+
+TEST_CASE("study file: errors name FILE:LINE and the key path and what is wrong and the valid choices", "[studies][study_file]") {
+  using Catch::Contains;
+  using Catch::StartsWith;
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end", "t_ned")),
+             StartsWith("f.toml:3: study.t_ned: unknown key (nearest valid key: t_end); valid: title, t_end,"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = \"0.6\"")),
+             StartsWith("f.toml:3: study.t_end: expected a number, got a string"));
+  CHECK_THAT(error_of(replaced(kMinimal, "\"bouncing-mass\"", "\"bouncing-mas\"")),
+             StartsWith("f.toml:6: problem[0].name: 'bouncing-mas' is not valid (nearest: bouncing-mass); valid: ") &&
+                 Contains("spring-chain"));
+  CHECK_THAT(error_of(replaced(kMinimal, "\"cd-lagrange\"", "\"cd-lagrang\"")),
+             StartsWith("f.toml:10: integrator[0].name: 'cd-lagrang' is not valid (nearest: cd-lagrange); valid: ") &&
+                 Contains("moreau-jean"));
+  CHECK_THAT(error_of(replaced(kMinimal, "{ e = 0.5 }", "{ ee = 0.5 }")),
+             StartsWith("f.toml:7: problem[0].parameters.ee: unknown parameter (nearest: e); valid: m, g, e, h0, v0"));
+  CHECK_THAT(error_of(replaced(kMinimal, "{ e = 0.5 }", "{ e = 1.5 }")),
+             StartsWith("f.toml:7: problem[0].parameters.e: ") && Contains("valid: [0, 1]"));
+  CHECK_THAT(error_of(replaced(kMinimal, "[1e-2, 5e-3]", "[]")),
+             StartsWith("f.toml:11: integrator[0].steps: empty list; valid: one or more positive numbers"));
+  CHECK_THAT(error_of(replaced(kMinimal, "[1e-2, 5e-3]", "[1e-2, -5e-3]")),
+             StartsWith("f.toml:11: integrator[0].steps[1]: -0.005 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(error_of(replaced(kMinimal, "[1e-2, 5e-3]", "[1e-2, 0]")),
+             StartsWith("f.toml:11: integrator[0].steps[1]: 0 is not positive and finite"));
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"eror\"")),
+             StartsWith("f.toml:17: measure[0].kind: 'eror' is not valid (nearest: error); valid: error, impact-time, energy,"));
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nobservable = \"w\"")),
+             StartsWith("f.toml:18: measure[0].observable: 'w' is not an observable of problem 'bouncing-mass'; valid: u, q, v,"));
+  CHECK_THAT(error_of(replaced(kMinimal, "solution = \"exact\"", "integrator = \"event-driven\"")),
+             StartsWith("f.toml:13: reference: missing key 'dt'"));
+  CHECK_THAT(error_of(replaced(kMinimal, "name = \"bouncing-mass\"", "name = \"spring-chain\"")),
+             StartsWith("f.toml:14: reference.solution: problem 'spring-chain' (spring-chain) has no exact solution"));
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "tolerances = [1e-6]")),
+             StartsWith("f.toml:9: integrator[0]: a tolerance sweep needs its step: dt = ..."));
+  CHECK_THAT(error_of(replaced(kMinimal, "[study]", "[studdy]")),
+             StartsWith("f.toml:1: studdy: unknown key (nearest valid key: study)"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = ")), StartsWith("f.toml:3: not valid TOML: "));
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2]\nper_problem = { chain = { steps = [1e-3] } }")),
+             StartsWith("f.toml:12: integrator[0].per_problem.chain: unknown key (nearest valid key: bouncing-mass)"));
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"energy\"\nnorm = \"l2\"")),
+             StartsWith("f.toml:18: measure[0].norm: 'l2' is not valid") && Contains("valid: max, final, drift"));
+  CHECK_THAT(error_of("[study]\ntitle = 1\n"), StartsWith("f.toml:2: study.title: expected a string, got an integer"));
+}
+
+TEST_CASE("study file: per-problem overrides replace the sweep and merge the parameters", "[studies][study_file]") {
+  const std::string text = replaced(kMinimal, "steps = [1e-2, 5e-3]",
+                                    "steps = [1e-2, 5e-3]\nparameters = { lcp_tol = 1e-10 }\n"
+                                    "[integrator.per_problem.bouncing-mass]\nsteps = [2e-3]\nparameters = { lcp_max_iter = 50 }\n");
+  const nsb::StudySpec s = nsb::parse_study_text(text, "o.toml", false);
+  const nsb::FileSweep& sw = s.integrators[0].sweep_for("bouncing-mass");
+  CHECK(sw.steps == std::vector<double>{2e-3});
+  CHECK(sw.parameters.at("lcp_tol") == "1e-10");
+  CHECK(sw.parameters.at("lcp_max_iter") == "50");
+  CHECK(s.integrators[0].sweep_for("other").steps.size() == 2);
+}
+
+TEST_CASE("study file examples: the quick bouncing-mass comparison runs (reduced)", "[studies][study_file]") {
+  const nsb::StudySpec spec = nsb::reduced_study(nsb::read_study_file(kExamples / "bouncing_quick.toml"), 0.5, 3, 200000);
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(spec, &results);
+  const nsb::Table& wp = table(tables, "_work_precision");
+  CHECK(wp.rows.size() == 3 * 3 + 3);
+  const std::size_t err = column(wp, "err u max"), impact = column(wp, "impact time err"), pen = column(wp, "penetration");
+  for (const auto& row : wp.rows) {
+    REQUIRE(std::holds_alternative<double>(row[err]));
+    CHECK(std::get<double>(row[err]) < 0.5);  // against the exact solution, all runs track it
+    CHECK(std::get<double>(row[impact]) < 2e-2);
+    CHECK(std::get<double>(row[pen]) >= 0.0);
+  }
+  // Time-stepping: first order with impacts; the fitted interval holds the fit.
+  const nsb::Table& orders = table(tables, "_orders");
+  const std::size_t order = column(orders, "order"), low = column(orders, "CI low"), high = column(orders, "CI high");
+  for (const auto& row : orders.rows)
+    if (std::get<std::string>(row[1]) == "CD-Lagrange" && std::get<std::string>(row[2]) == "err u max") {
+      CHECK(std::get<double>(row[order]) == Approx(1.0).margin(0.3));
+      CHECK(std::get<double>(row[low]) <= std::get<double>(row[order]));
+      CHECK(std::get<double>(row[order]) <= std::get<double>(row[high]));
+    }
+  CHECK(table(tables, "_ranking").headline);
+  CHECK(wp.figures.size() == 2 + 3);  // work-precision (CPU, F_int), convergence of 2 errors and the impact time
+}
+
+TEST_CASE("study file examples: spring-chain orders against the cached modal-exact reference (reduced)", "[studies][study_file]") {
+  TempCache cache;
+  // Up to t = 0.1: before the first impact (0.133), both chains are smooth: CD-Lagrange is of order 2.
+  nsb::StudySpec spec = nsb::reduced_study(nsb::read_study_file(kExamples / "chain_orders.toml"), 0.1, 3, 200000);
+  const auto tables = run_all(spec);
+  const nsb::Table& orders = table(tables, "_orders");
+  int checked = 0;
+  for (const auto& row : orders.rows)
+    if (std::get<std::string>(row[1]) == "CD-Lagrange" && std::get<std::string>(row[2]) == "err min_gap max") {
+      CHECK(std::get<double>(row[column(orders, "order")]) == Approx(2.0).margin(0.15));
+      ++checked;
+    }
+  CHECK(checked == 2);
+  const nsb::Table& wp = table(tables, "_work_precision");
+  for (const auto& row : wp.rows) CHECK(std::get<double>(row[column(wp, "momentum residual")]) < 1e-9);
+}
+
+TEST_CASE("study file examples: bar energy study runs (reduced) and an over-budget run is a row with its reason", "[studies][study_file]") {
+  const nsb::StudySpec spec = nsb::reduced_study(nsb::read_study_file(kExamples / "bar_energy.toml"), 0.2, 1, 20000);
+  const auto tables = run_all(spec);
+  const nsb::Table& wp = table(tables, "_work_precision");
+  CHECK(wp.rows.size() == 4);
+  int over = 0;
+  for (const auto& row : wp.rows) {
+    const std::string status = std::get<std::string>(row.back());
+    if (status.rfind("over budget", 0) == 0) {
+      ++over;
+      CHECK(std::holds_alternative<std::monostate>(row[column(wp, "energy err max")]));
+    } else {
+      CHECK(status == "ok");
+    }
+  }
+  CHECK(over == 1);
+  const nsb::Table& h = table(tables, "_energy_history");
+  CHECK(h.csv_only);
+  CHECK(h.rows.size() >= 3 * 100);
+}
+
+TEST_CASE("study file: fuzz over mutated example files: each reads and runs or fails as an InputError", "[studies][study_file]") {
+  TempCache cache;
+  std::vector<std::string> texts;
+  for (const char* f : {"bouncing_quick.toml", "chain_orders.toml", "bar_energy.toml"}) texts.push_back(read(kExamples / f));
+  const std::vector<std::string> values{"0", "-1", "1e-300", "1e300", "\"x\"", "nan", "inf", "true", "[]", "{}", "[1e-3, 0]", "\"exact\""};
+  std::mt19937 rng(2026);
+  int ran = 0, rejected = 0;
+  for (int k = 0; k < 120; ++k) {
+    std::string text = texts[rng() % texts.size()];
+    std::vector<std::string> lines;
+    std::stringstream in(text);
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+    const std::size_t i = rng() % lines.size();
+    switch (rng() % 5) {
+      case 0: lines.erase(lines.begin() + static_cast<long>(i)); break;
+      case 1: lines.insert(lines.begin() + static_cast<long>(i), lines[i]); break;
+      case 2:
+        if (const auto eq = lines[i].find("= "); eq != std::string::npos) lines[i] = lines[i].substr(0, eq + 2) + values[rng() % values.size()];
+        break;
+      case 3:
+        if (!lines[i].empty()) lines[i][rng() % lines[i].size()] = "x_=[]\"{}.1"[rng() % 10];
+        break;
+      default: lines.resize(i); break;
+    }
+    std::string mutated;
+    for (const auto& l : lines) mutated += l + "\n";
+    INFO(mutated);
+    try {
+      nsb::StudySpec spec = nsb::reduced_study(nsb::parse_study_text(mutated, "fuzz.toml", false), 1.0, 1, 5000);
+      spec.t_end = std::min(spec.t_end, 0.05);  // bounded runs whatever t_end says
+      run_all(spec);
+      ++ran;
+    } catch (const nsb::InputError& e) {
+      CHECK_THAT(e.what(), Catch::StartsWith("fuzz.toml") || Catch::StartsWith("study "));
+      ++rejected;
+    }
+  }
+  CHECK(ran > 10);
+  CHECK(rejected > 10);
+}
+
+TEST_CASE("nsbench-study run writes the tables and the file and its hash and merges shards and exits 2 on a bad file", "[studies][study_file]") {
+  TempCache cache;
+  const fs::path dir = cache.dir / "cli";
+  fs::create_directories(dir);
+  const fs::path file = dir / "mini.toml";
+  std::ofstream(file) << replaced(kMinimal, "[[measure]]", "[[measure]]\nkind = \"penetration\"\n[[measure]]");
+  const auto study = [&](const std::string& args) {
+    return std::system(fmt::format("NSBENCH_JOBS=2 '{}' run '{}' --out '{}' {} 2>'{}'", NSBENCH_STUDY_CLI, file.string(),
+                                   (dir / "out").string(), args, (dir / "stderr").string()).c_str());
+  };
+  REQUIRE(study("") == 0);
+  CHECK_THAT(read(dir / "out" / "mini_work_precision.md"), Catch::Contains("| bouncing-mass | cd-lagrange | 1.00e-02 |") &&
+                                                               Catch::Contains("libraries = Eigen ") && Catch::Contains("command = "));
+  CHECK(read(dir / "out" / "mini.study.toml") == read(file));
+  CHECK_THAT(read(dir / "out" / "mini.study.hash"), Catch::StartsWith("FNV-1a 64 "));
+  CHECK_THAT(read(dir / "out" / "index.md"), Catch::Contains("Rerun: `") && Catch::Contains(" run "));
+  CHECK_THAT(read(dir / "stderr"), Catch::Contains("mini: case 2/2"));
+  fs::remove(dir / "out" / "mini_work_precision.md");
+  REQUIRE(study("--shard 1/2") == 0);
+  REQUIRE(study("--shard 2/2") == 0);
+  REQUIRE(study("--merge") == 0);
+  CHECK(fs::exists(dir / "out" / "mini_work_precision.md"));
+  std::ofstream(file) << replaced(kMinimal, "t_end", "tend");
+  CHECK(WEXITSTATUS(study("")) == 2);
+  CHECK_THAT(read(dir / "stderr"), Catch::Contains("mini.toml:3: study.tend: unknown key (nearest valid key: t_end)"));
+}
