@@ -1,26 +1,25 @@
 #include "integrators/registry.hpp"
 
-#include "core/registry.hpp"
-#include "integrators/cd_lagrange.hpp"
-#include "integrators/cd_lagrange_adaptive.hpp"
-#include "integrators/moreau_jean.hpp"
-#include "reference/event_driven.hpp"
-#include "reference/modal_exact.hpp"
-#include "reference/penalty.hpp"
-
 namespace nsb {
 
-const std::vector<IntegratorEntry>& integrator_registry() {
-  static const std::vector<IntegratorEntry> entries = {
-      {"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>, false},
-      {"cd-lagrange-adaptive", "CD-Lagrange with the step chosen from the discrete energy balance (KMOW variable step), CFL-capped", &CdLagrangeAdaptive::parameters_spec, &make_from_params<Integrator, CdLagrangeAdaptive>, false},
-      {"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false},
-      {"event-driven", "reference: CVODE with root finding, Newton impacts, closed-contact mode (node-to-rigid contacts)", &EventDriven::parameters_spec, &make_from_params<Integrator, EventDriven>, true},
-      {ModalExact::kName, "reference: exact modal solution of linear problems between contact events, closed-form event signals (node-to-rigid contacts)", &ModalExact::parameters_spec, &make_from_params<Integrator, ModalExact>, true},
-      {"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>, true},
-  };
-  return entries;
+namespace {
+
+struct SchemesThenReferences {
+  bool operator()(const IntegratorEntry& a, const IntegratorEntry& b) const {
+    return a.reference != b.reference ? b.reference : a.name < b.name;
+  }
+};
+
+Registry<IntegratorEntry, SchemesThenReferences>& integrators() {
+  static Registry<IntegratorEntry, SchemesThenReferences> registry;
+  return registry;
 }
+
+}  // namespace
+
+bool register_integrator(const IntegratorEntry& entry, int abi) { return integrators().add(entry, abi, "integrator"); }
+
+const std::vector<IntegratorEntry>& integrator_registry() { return integrators().entries(); }
 
 const IntegratorEntry& find_integrator(const std::string& name) {
   return find_entry(integrator_registry(), name, "--integrator", "integrator");

@@ -1,6 +1,7 @@
 // nsbench-study: runs the registered studies and writes their reports.
 //
 //   nsbench-study list
+// Every form takes --plugin FILE (repeatable) and reads NSBENCH_PLUGINS (core/plugin.hpp).
 //   nsbench-study all|NAME... [--out DIR] [--full]                 run, write the reports
 //   nsbench-study all|NAME... [--out DIR] [--full] --shard I/N     run shard I of N only
 //   nsbench-study all|NAME... [--out DIR] [--full] --merge         merge the N shards, write
@@ -19,6 +20,7 @@
 #include "core/build_info.hpp"
 #include "core/output.hpp"
 #include "core/parameters.hpp"
+#include "core/plugin.hpp"
 #include "studies/parallel.hpp"
 #include "studies/study.hpp"
 
@@ -83,11 +85,13 @@ int main(int argc, char** argv) {
   std::vector<std::string> names;
   std::string out = "reports", shard_text;
   bool full = false, merge = false;
+  std::vector<std::string> plugins;
   app.add_option("studies", names, "'list', 'all', or study names")->required();
   app.add_option("--out", out, "output directory (default reports)");
   app.add_flag("--full", full, "run the long sweeps");
   app.add_option("--shard", shard_text, "run only shard I of N of the cases (job arrays), e.g. 3/8");
   app.add_flag("--merge", merge, "merge the shards' results in DIR/shards and write the reports");
+  app.add_option("--plugin", plugins, "load integrators/problems from a plugin module (repeatable; also NSBENCH_PLUGINS)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -100,6 +104,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   try {
+    nsb::load_plugins(plugins);
     const Shard shard = shard_text.empty() ? Shard{} : parse_shard(shard_text);
     if (shard.count && merge) throw InputError("--shard and --merge: give one of them");
     std::vector<const nsb::StudyEntry*> selected;
@@ -119,8 +124,10 @@ int main(int argc, char** argv) {
     nsb::ensure_directory(out);
     const nsb::StudyOptions options{full};
     const auto& b = nsb::build_info();
-    std::string index = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}.\n\n", b.git_revision,
-                                    b.build_type, b.compiler, full ? ", full sweeps" : "");
+    const std::string plugged = nsb::plugins_stamp();
+    std::string index = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}{}.\n\n", b.git_revision,
+                                    b.build_type, b.compiler, full ? ", full sweeps" : "",
+                                    plugged.empty() ? "" : ", plugins " + plugged);
     std::string studies;   // a section per study, after the headline
     std::string headline;  // the headline tables, shown first
     std::vector<nsb::Table> all_tables;
