@@ -1,30 +1,18 @@
 // The command line as a user meets it: bad input exits 2 with one line naming the
 // parameter and its valid range; a good run writes series.csv and summary.json.
-#include <sys/wait.h>
-
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "run_cli.hpp"
+
 namespace {
 
-struct Outcome {
-  int code;
-  std::string output;
-};
+using nsb::test::Outcome;
 
-Outcome nsbench(const std::string& args) {
-  const std::string cmd = std::string(NSBENCH_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::string out;
-  char buf[512];
-  while (fgets(buf, sizeof buf, pipe)) out += buf;
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Outcome nsbench(const std::string& args) { return nsb::test::run_command(std::string(NSBENCH_CLI) + " " + args); }
 
 std::string tmpdir(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("nsbench_cli_test_" + name)).string();
