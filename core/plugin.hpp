@@ -16,9 +16,10 @@
 #define NSBENCH_UNIQUE(prefix) NSBENCH_CONCAT(prefix, __COUNTER__)
 
 // The marker the loader looks for (dlsym): defined, weak, in every translation unit of a
-// plugin that includes a registry header. libnsbench itself is compiled with NSBENCH_BUILTIN
-// and does not define it, so a library merely linked against nsbench is not taken for a plugin.
-#ifndef NSBENCH_BUILTIN
+// plugin that includes a registry header. nsbench's own code (NSBENCH_BUILTIN, set for the
+// library and, in the build tree, for its users) does not define it, so a library merely
+// linked against nsbench is not taken for a plugin; nsbench_add_plugin sets NSBENCH_PLUGIN.
+#if defined(NSBENCH_PLUGIN) || !defined(NSBENCH_BUILTIN)
 extern "C" __attribute__((weak, visibility("default"))) const int nsbench_plugin_abi_version = NSBENCH_PLUGIN_ABI;
 #endif
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # One entry point for a fresh Debian machine:
 #   scripts/run.sh studies   install dependencies, build, run the default studies into reports/
-#   scripts/run.sh tests     install dependencies, build, run the test suite (CTest)
+#   scripts/run.sh tests     install dependencies, build, run the test suite (CTest), then
+#                            the out-of-tree plugin walkthrough (scripts/plugin-example.sh)
 #   scripts/run.sh sanitize  the test suite built with AddressSanitizer + UBSan (build-asan/)
 # Environment: BUILD_DIR (default build), JOBS (default: number of cores).
 set -euo pipefail
@@ -21,6 +22,8 @@ cmake --build "$build" -j "$jobs"
 
 if [ "$what" != studies ]; then
   ctest --test-dir "$build" --output-on-failure -j "$jobs"
+  # The sanitizer build's tests already load the example plugin (tests/main.cpp).
+  if [ "$what" = tests ]; then BUILD_DIR="$build" bash scripts/plugin-example.sh; fi
 else
   # From scratch into reports.new, swapped in only when every study and figure succeeded.
   rm -rf reports.new
