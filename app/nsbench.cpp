@@ -1,7 +1,8 @@
 // nsbench: list the problems and integrators, run one case.
 //
-//   nsbench list
-//   nsbench run --problem P --integrator I --dt DT --t-end T [--set key=value]... --out DIR
+//   nsbench [--plugin FILE]... list
+//   nsbench [--plugin FILE]... run --problem P --integrator I --dt DT --t-end T [--set key=value]... --out DIR
+// Plugins (core/plugin.hpp) also come from NSBENCH_PLUGINS (colon-separated).
 //
 // Exit codes: 0 ok, 2 bad input (one line on stderr naming the parameter and its valid
 // range), 3 the run diverged (its files are still written, with status "diverged"),
@@ -18,6 +19,7 @@
 #include <iostream>
 
 #include "core/output.hpp"
+#include "core/plugin.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
 #include "problems/registry.hpp"
@@ -107,6 +109,9 @@ int run_case(const RunArgs& a) {
 int main(int argc, char** argv) {
   CLI::App app{"nsbench: benchmark and verification of time integrators for non-smooth dynamics"};
   app.require_subcommand(1);
+  app.fallthrough();  // --plugin before or after the subcommand
+  std::vector<std::string> plugins;
+  app.add_option("--plugin", plugins, "load integrators/problems from a plugin module (repeatable; also NSBENCH_PLUGINS)");
   auto* list_cmd = app.add_subcommand("list", "list problems and integrators with their parameters");
   auto* run_cmd = app.add_subcommand("run", "run one integrator on one problem");
   RunArgs a;
@@ -124,6 +129,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
   try {
+    nsb::load_plugins(plugins);
     if (list_cmd->parsed()) {
       list();
       return 0;

@@ -1,18 +1,25 @@
 #pragma once
-// Lookup shared by the explicit registries (problems, integrators): an entry has a `name`,
-// its `parameters()` and a `make(Params)` factory.
+// The registry shared by problems and integrators: an entry has a `name`, its
+// `parameters()` and a `make(Params)` factory. Entries are added by the registration macros
+// (NSBENCH_INTEGRATOR, NSBENCH_PROBLEM) from the built-ins' and the plugins' sources, in
+// whatever order static initialisation and plugin loading run; the listing is kept sorted
+// (Registry's `Before`), so studies that iterate it are deterministic.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/parameters.hpp"
+#include "core/plugin.hpp"
 
 namespace nsb {
 
-// Factory of a registry line: builds T from its validated parameters.
+// Factory of a registry entry: builds T from its validated parameters.
 template <class Base, class T>
 std::unique_ptr<Base> make_from_params(const Params& p) {
   return std::make_unique<T>(p);
@@ -34,5 +41,40 @@ template <class Entry>
 auto make_entry(const Entry& entry, const std::map<std::string, std::string>& overrides) {
   return entry.make(Params(entry.parameters(), overrides));
 }
+
+template <class Entry, class Before>
+class Registry {
+ public:
+  // `abi`: the NSBENCH_PLUGIN_ABI the caller was compiled with; on a mismatch `e` is not
+  // read (its layout may differ). A refused plugin entry is reported through the loader; two
+  // built-ins of one name are a bug of nsbench itself, stopped at start-up.
+  bool add(const Entry& e, int abi, const char* kind) {
+    const std::string* plugin = detail::loading_plugin();
+    if (abi != NSBENCH_PLUGIN_ABI) {
+      detail::registration_error(fmt::format("built for plugin ABI {}, this nsbench has ABI {}", abi, NSBENCH_PLUGIN_ABI));
+      return false;
+    }
+    for (std::size_t i = 0; i < entries_.size(); ++i) {
+      if (entries_[i].name != e.name) continue;
+      const std::string msg = fmt::format("{} '{}' is already registered by {}", kind, e.name,
+                                          origins_[i].empty() ? "nsbench (built-in)" : "plugin " + origins_[i]);
+      if (!plugin) {
+        std::fprintf(stderr, "nsbench: internal error: built-in %s\n", msg.c_str());
+        std::abort();
+      }
+      detail::registration_error(msg);
+      return false;
+    }
+    const auto pos = std::upper_bound(entries_.begin(), entries_.end(), e, Before{});
+    origins_.insert(origins_.begin() + (pos - entries_.begin()), plugin ? *plugin : std::string());
+    entries_.insert(pos, e);
+    return true;
+  }
+  const std::vector<Entry>& entries() const { return entries_; }
+
+ private:
+  std::vector<Entry> entries_;
+  std::vector<std::string> origins_;  // plugin file of each entry; empty: built-in
+};
 
 }  // namespace nsb

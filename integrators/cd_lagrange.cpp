@@ -1,4 +1,5 @@
 #include "integrators/cd_lagrange.hpp"
+#include "integrators/registry.hpp"
 
 #include <fmt/format.h>
 
@@ -139,5 +140,7 @@ Energy CdLagrange::energy() const {
   return {0.5 * v_prev_.dot(m_.cwiseProduct(v_prev_)),
           0.5 * (problem_->potential(u_prev_) + problem_->potential(state_.u))};
 }
+
+NSBENCH_INTEGRATOR({"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>, false});
 
 }  // namespace nsb

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "integrators/cd_lagrange.hpp"
+#include "integrators/registry.hpp"
 
 namespace nsb {
 
@@ -257,5 +258,7 @@ Energy CdLagrangeAdaptive::energy() const {
   if (!started_) return Integrator::energy();
   return {kinetic_, 0.5 * (pot_prev_ + pot_cur_)};
 }
+
+NSBENCH_INTEGRATOR({"cd-lagrange-adaptive", "CD-Lagrange with the step chosen from the discrete energy balance (KMOW variable step), CFL-capped", &CdLagrangeAdaptive::parameters_spec, &make_from_params<Integrator, CdLagrangeAdaptive>, false});
 
 }  // namespace nsb

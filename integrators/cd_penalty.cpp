@@ -1,4 +1,5 @@
 #include "integrators/cd_penalty.hpp"
+#include "integrators/registry.hpp"
 
 #include <fmt/format.h>
 
@@ -106,5 +107,7 @@ Energy CdPenalty::energy() const {
     if (gap_[i] < 0.0 && gap_prev_[i] < 0.0) E.potential += 0.5 * factor_ / (h_diag_[i] * tau_ * tau_) * gap_prev_[i] * gap_[i];
   return E;
 }
+
+NSBENCH_INTEGRATOR({"cd-penalty", "explicit central difference with penalty contact (spring-dashpot, kappa = penalty_factor m / dt^2)", &CdPenalty::parameters_spec, &make_from_params<Integrator, CdPenalty>, false});
 
 }  // namespace nsb

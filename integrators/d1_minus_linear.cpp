@@ -1,4 +1,5 @@
 #include "integrators/d1_minus_linear.hpp"
+#include "integrators/registry.hpp"
 
 #include <fmt/format.h>
 
@@ -104,5 +105,7 @@ StepInfo D1MinusLinear::step(double h) {
   ++work_.steps;
   return info;
 }
+
+NSBENCH_INTEGRATOR({"d1-minus-linear", "Schindler-Acary D1MinusLinear, half-explicit velocity level, impacts at the step's end", &D1MinusLinear::parameters_spec, &make_from_params<Integrator, D1MinusLinear>, false});
 
 }  // namespace nsb

@@ -1,4 +1,5 @@
 #include "integrators/moreau_jean.hpp"
+#include "integrators/registry.hpp"
 
 #include <fmt/format.h>
 
@@ -147,5 +148,7 @@ StepInfo MoreauJean::step(double h) {
   ++work_.steps;
   return info;
 }
+
+NSBENCH_INTEGRATOR({"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false});
 
 }  // namespace nsb

@@ -1,4 +1,5 @@
 #include "integrators/newmark_lm.hpp"
+#include "integrators/registry.hpp"
 
 #include <fmt/format.h>
 
@@ -62,5 +63,7 @@ StepInfo NewmarkLm::step(double h) {
   ++work_.steps;
   return info;
 }
+
+NSBENCH_INTEGRATOR({"newmark-lm", "Newmark (beta, gamma) with position-level Lagrange multipliers; mass redistribution with a singular mass", &NewmarkLm::parameters_spec, &make_from_params<Integrator, NewmarkLm>, false});
 
 }  // namespace nsb

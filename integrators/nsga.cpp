@@ -1,4 +1,5 @@
 #include "integrators/nsga.hpp"
+#include "integrators/registry.hpp"
 
 namespace nsb {
 
@@ -68,5 +69,7 @@ StepInfo Nsga::step(double h) {
   ++work_.steps;
   return info;
 }
+
+NSBENCH_INTEGRATOR({"nsga", "nonsmooth generalised-alpha (Bruls-Acary-Cardona 2014): position correction and velocity impact law, rho_inf", &Nsga::parameters_spec, &make_from_params<Integrator, Nsga>, false});
 
 }  // namespace nsb

@@ -1,11 +1,17 @@
 #pragma once
-// Explicit list of the integrators, by name (integrators/registry.cpp, one line each).
-// Adding an integrator: one .hpp/.cpp pair and one line there.
+// The integrators, by name. Each registers itself in its own .cpp (built-in or plugin):
+//
+//   NSBENCH_INTEGRATOR({"name", "one-line description", &T::parameters_spec,
+//                       &make_from_params<Integrator, T>, /*reference=*/false});
+//
+// at namespace scope (inside or outside namespace nsb; outside, qualify nsb::). The listing
+// is sorted: the schemes by name, then the peers by name, then the reference solvers by name.
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "core/registry.hpp"
 #include "integrators/integrator.hpp"
 
 namespace nsb {
@@ -23,10 +29,9 @@ struct IntegratorEntry {
   bool peer = false;
 };
 
+// What NSBENCH_INTEGRATOR calls (`abi`: the caller's NSBENCH_PLUGIN_ABI).
+bool register_integrator(const IntegratorEntry& entry, int abi);
 const std::vector<IntegratorEntry>& integrator_registry();
-// The peers' entries (peers/registry.cpp, library nsbench_peers; empty when the optional
-// peers are not built). integrator_registry() lists them after its own.
-std::vector<IntegratorEntry> peer_integrators();
 // The peers built in and their versions, e.g. "Siconos kernel 4.4.0+dfsg-2"; "none".
 std::string peer_versions();
 // Throws InputError listing the valid names when `name` is unknown.
@@ -35,3 +40,7 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name,
                                             const std::map<std::string, std::string>& overrides = {});
 
 }  // namespace nsb
+
+#define NSBENCH_INTEGRATOR(...)                                  \
+  [[maybe_unused]] static const bool NSBENCH_UNIQUE(nsbench_integrator_) = \
+      ::nsb::register_integrator(::nsb::IntegratorEntry __VA_ARGS__, NSBENCH_PLUGIN_ABI)

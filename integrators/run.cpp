@@ -192,6 +192,7 @@ std::string series_to_csv(const Series& series) {
 #include <nlohmann/json.hpp>
 
 #include "core/build_info.hpp"
+#include "core/plugin.hpp"
 
 namespace nsb {
 
@@ -244,6 +245,11 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
       {"work", work},
       {"build", {{"git_revision", b.git_revision}, {"build_type", b.build_type}, {"compiler", b.compiler}}},
   };
+  if (!loaded_plugins().empty()) {
+    json plugins = json::array();
+    for (const auto& p : loaded_plugins()) plugins.push_back({{"file", p.file}, {"hash", p.hash}});
+    j["build"]["plugins"] = plugins;
+  }
   return j.dump(2) + "\n";
 }
 

@@ -1,4 +1,5 @@
 #include "integrators/schatzman_paoli.hpp"
+#include "integrators/registry.hpp"
 
 #include <fmt/format.h>
 
@@ -174,5 +175,7 @@ void SchatzmanPaoli::solve_contacts(double h, StepInfo& info) {
     u_next_.noalias() += R[c] * contact_response(active_[c]);
   }
 }
+
+NSBENCH_INTEGRATOR({"schatzman-paoli", "Schatzman-Paoli two-step scheme, position-level impact law (theta = 0: explicit, Carpenter-Taylor-Katona for e = 0)", &SchatzmanPaoli::parameters_spec, &make_from_params<Integrator, SchatzmanPaoli>, false});
 
 }  // namespace nsb

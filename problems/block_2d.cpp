@@ -1,4 +1,5 @@
 #include "problems/block_2d.hpp"
+#include "problems/registry.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -429,5 +430,7 @@ void Block2d::observe(const State& s, std::span<double> out) const {
   out[4] = angular_momentum(s.u, s.v);
   out[5] = static_cast<double>(closed);
 }
+
+NSBENCH_PROBLEM({"block-2d", "hyperelastic Q4 block (plane strain) dropped tilted on a rigid frictionless floor", &Block2d::parameters_spec, &make_from_params<Problem, Block2d>});
 
 }  // namespace nsb

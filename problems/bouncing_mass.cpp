@@ -1,4 +1,5 @@
 #include "problems/bouncing_mass.hpp"
+#include "problems/registry.hpp"
 
 #include <cmath>
 #include <limits>
@@ -117,5 +118,7 @@ void BouncingMass::observe(const State& s, std::span<double> out) const {
   out[2] = ex.u[0];
   out[3] = ex.v[0];
 }
+
+NSBENCH_PROBLEM({"bouncing-mass", "point mass bouncing on a rigid floor under gravity (exact solution)", &BouncingMass::parameters_spec, &make_from_params<Problem, BouncingMass>});
 
 }  // namespace nsb

@@ -1,4 +1,5 @@
 #include "problems/signorini_bar.hpp"
+#include "problems/registry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -213,5 +214,9 @@ void SignoriniBar::observe_step(const State& s, const Vec& impulses, double dt, 
   observe(s, out);
   if (dt > 0.0) out[2] = impulses[0] / dt;
 }
+
+NSBENCH_PROBLEM({"signorini-bar", "1D elastic bar hitting a rigid wall, nondimensional; mass lumped|consistent|singular (exact d'Alembert solution)", &SignoriniBar::parameters_spec, &make_from_params<Problem, SignoriniBar>});
+NSBENCH_PROBLEM({"signorini-bar-steel", "the Signorini bar with steel defaults (L 1 m, E 210 GPa, rho 7800, A 3.14e-4 m^2, v0 0.1 m/s, g0 5e-5 m)", &SignoriniBar::steel_parameters_spec, &SignoriniBar::make_steel});
+NSBENCH_PROBLEM({"bouncing-bar", "Doyen-Ern-Piperno bouncing bar: the Signorini bar (L 10, E 900, rho 1) dropped from rest 5 m above the wall, g 10 (exact solution, period 16 L/c)", &SignoriniBar::bouncing_parameters_spec, &SignoriniBar::make_bouncing});
 
 }  // namespace nsb

@@ -1,4 +1,5 @@
 #include "problems/spring_chain.hpp"
+#include "problems/registry.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <vector>
@@ -82,5 +83,7 @@ State SpringChain::initial_state() const {
 }
 
 void SpringChain::observe(const State& s, std::span<double> out) const { out[0] = momentum(s.v); }
+
+NSBENCH_PROBLEM({"spring-chain", "masses joined by linear springs, no external force, optional rigid wall (momentum and energy test bed)", &SpringChain::parameters_spec, &make_from_params<Problem, SpringChain>});
 
 }  // namespace nsb

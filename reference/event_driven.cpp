@@ -1,4 +1,5 @@
 #include "reference/event_driven.hpp"
+#include "integrators/registry.hpp"
 
 #include <fmt/format.h>
 
@@ -247,5 +248,7 @@ void EventDriven::publish_work() {
   work_.extra["releases"] = static_cast<double>(releases_);
   work_.extra["zeno_stops"] = static_cast<double>(zeno_stops_);
 }
+
+NSBENCH_INTEGRATOR({"event-driven", "reference: CVODE with root finding, Newton impacts, closed-contact mode (node-to-rigid contacts)", &EventDriven::parameters_spec, &make_from_params<Integrator, EventDriven>, true});
 
 }  // namespace nsb

@@ -1,4 +1,5 @@
 #include "reference/modal_exact.hpp"
+#include "integrators/registry.hpp"
 
 #include <fmt/format.h>
 
@@ -635,5 +636,7 @@ void ModalExact::publish_work() {
   work_.factorizations = decompositions_ + cholesky_;
   for (const auto& [slot, counter] : published_) *slot = static_cast<double>(*counter);
 }
+
+NSBENCH_INTEGRATOR({ModalExact::kName, "reference: exact modal solution of linear problems between contact events, closed-form event signals (node-to-rigid contacts)", &ModalExact::parameters_spec, &make_from_params<Integrator, ModalExact>, true});
 
 }  // namespace nsb

@@ -1,4 +1,5 @@
 #include "reference/penalty.hpp"
+#include "integrators/registry.hpp"
 
 #include <fmt/format.h>
 
@@ -232,5 +233,7 @@ void PenaltyBdf::publish_work() {
   work_.extra["unconfirmed_roots"] = static_cast<double>(unconfirmed_roots_);
   work_.extra["restitution_floor"] = restitution_floored_ ? restitution(kMaxDampingRatio) : 0.0;
 }
+
+NSBENCH_INTEGRATOR({"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>, true});
 
 }  // namespace nsb

@@ -1,6 +1,7 @@
 // nsbench-study: runs the registered studies and writes their reports.
 //
 //   nsbench-study list
+// Every form takes --plugin FILE (repeatable) and reads NSBENCH_PLUGINS (core/plugin.hpp).
 //   nsbench-study all|NAME... [--out DIR] [--full]                 run, write the reports
 //   nsbench-study all|NAME... [--out DIR] [--full] --shard I/N     run shard I of N only
 //   nsbench-study all|NAME... [--out DIR] [--full] --merge         merge the N shards, write
@@ -26,6 +27,7 @@
 #include "core/environment.hpp"
 #include "core/output.hpp"
 #include "core/parameters.hpp"
+#include "core/plugin.hpp"
 #include "studies/parallel.hpp"
 #include "studies/study.hpp"
 #include "studies/verify.hpp"
@@ -95,6 +97,7 @@ int main(int argc, char** argv) {
   bool full = false, merge = false;
   nsb::VerifyTolerance tolerance;
   app.add_option("studies", names, "'list', 'all', study names, or 'run FILE.toml' (a study file, README)")->required();
+  std::vector<std::string> plugins;
   app.add_option("--out", out, "output directory (default reports)");
   app.add_flag("--full", full, "run the long sweeps");
   app.add_option("--shard", shard_text, "run only shard I of N of the cases (job arrays), e.g. 3/8");
@@ -102,6 +105,7 @@ int main(int argc, char** argv) {
   app.add_option("--verify", verify_dir, "recompute and compare with the report in this directory; writes nothing");
   app.add_option("--rtol", tolerance.rtol, "--verify: relative tolerance on reals (default 1e-9)")->check(CLI::NonNegativeNumber);
   app.add_option("--atol", tolerance.atol, "--verify: absolute tolerance on reals (default 0)")->check(CLI::NonNegativeNumber);
+  app.add_option("--plugin", plugins, "load integrators/problems from a plugin module (repeatable; also NSBENCH_PLUGINS)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -114,6 +118,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   try {
+    nsb::load_plugins(plugins);
     const Shard shard = shard_text.empty() ? Shard{} : parse_shard(shard_text);
     if (shard.count && merge) throw InputError("--shard and --merge: give one of them");
     const bool verify = !verify_dir.empty();
@@ -145,8 +150,10 @@ int main(int argc, char** argv) {
     if (!verify) nsb::ensure_directory(out);
     const nsb::StudyOptions options{full};
     const auto& b = nsb::build_info();
-    std::string index = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}.\n\n", b.git_revision,
-                                    b.build_type, b.compiler, full ? ", full sweeps" : "");
+    const std::string plugged = nsb::plugins_stamp();
+    std::string index = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}{}.\n\n", b.git_revision,
+                                    b.build_type, b.compiler, full ? ", full sweeps" : "",
+                                    plugged.empty() ? "" : ", plugins " + plugged);
     std::string studies;   // a section per study, after the headline
     std::string headline;  // the headline tables, shown first
     std::vector<nsb::Table> all_tables;

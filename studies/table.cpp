@@ -8,6 +8,7 @@
 #include "core/build_info.hpp"
 #include "core/environment.hpp"
 #include "core/output.hpp"
+#include "core/plugin.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -33,6 +34,7 @@ std::vector<std::pair<std::string, std::string>> stamp(const Table& t) {
   s.emplace_back("machine", fmt::format("{}, {} cores", env.cpu, env.cores));
   s.emplace_back("libraries", env.libraries);
   if (!command_line().empty()) s.emplace_back("command", command_line());
+  if (const std::string plugins = plugins_stamp(); !plugins.empty()) s.emplace_back("plugins", plugins);
   return s;
 }
 
@@ -131,9 +133,10 @@ std::string to_latex(const Table& t) {
     for (std::size_t i = 0; i < row.size(); ++i) cells.push_back(latex_escape(cell_text(row[i], t.columns[i].format)));
     out += fmt::format("{} \\\\\n", fmt::join(cells, " & "));
   }
-  out += fmt::format("\\bottomrule\n\\end{{tabular}}\n\\par\\smallskip\\footnotesize Revision {}, {} build, {}.\n\\end{{table}}\n",
+  const std::string plugins = plugins_stamp();
+  out += fmt::format("\\bottomrule\n\\end{{tabular}}\n\\par\\smallskip\\footnotesize Revision {}, {} build, {}{}.\n\\end{{table}}\n",
                      latex_escape(build_info().git_revision), latex_escape(build_info().build_type),
-                     latex_escape(build_info().compiler));
+                     latex_escape(build_info().compiler), plugins.empty() ? "" : ", plugins " + latex_escape(plugins));
   return out;
 }
 

@@ -17,24 +17,13 @@
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
 #include "studies/verify.hpp"
+#include "run_cli.hpp"
 
 namespace {
 
-struct Outcome {
-  int code;
-  std::string output;
-};
+using nsb::test::Outcome;
 
-Outcome nsbench(const std::string& args) {
-  const std::string cmd = std::string(NSBENCH_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::string out;
-  char buf[512];
-  while (fgets(buf, sizeof buf, pipe)) out += buf;
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Outcome nsbench(const std::string& args) { return nsb::test::run_command(std::string(NSBENCH_CLI) + " " + args); }
 
 std::string tmpdir(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("nsbench_cli_test_" + name)).string();

@@ -1,0 +1,106 @@
+#include "core/plugin.hpp"
+
+#include <dlfcn.h>
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "core/parameters.hpp"
+
+namespace nsb {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Loader {
+  const std::string* loading = nullptr;  // set while a plugin's static registrations run
+  std::vector<std::string> errors;       // of the plugin being loaded
+  std::vector<PluginInfo> loaded;
+};
+
+Loader& loader() {
+  static Loader l;
+  return l;
+}
+
+// FNV-1a, 64 bit: identifies the file a table came from (not a security hash).
+std::string file_hash(const fs::path& path, const std::string& name) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("plugin {}: cannot be read", name));
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      h ^= static_cast<unsigned char>(buf[i]);
+      h *= 0x100000001b3ull;
+    }
+  }
+  return fmt::format("fnv1a64:{:016x}", h);
+}
+
+}  // namespace
+
+namespace detail {
+const std::string* loading_plugin() { return loader().loading; }
+void registration_error(std::string message) { loader().errors.push_back(std::move(message)); }
+}  // namespace detail
+
+void load_plugin(const std::string& path) {
+  const auto fail = [&](const std::string& why) { throw InputError(fmt::format("plugin {}: {}", path, why)); };
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail("no such file");
+  if (!fs::is_regular_file(path, ec)) fail("not a regular file");
+  const fs::path canonical = fs::canonical(path, ec);
+  if (ec) fail(fmt::format("cannot resolve its path ({})", ec.message()));
+  Loader& l = loader();
+  for (const auto& p : l.loaded)
+    if (p.path == canonical.string()) return;  // named twice (flag and environment)
+  const std::string hash = file_hash(canonical, path);
+
+  // The plugin's registrations run inside dlopen (static initialisation).
+  l.loading = &path;
+  l.errors.clear();
+  void* handle = dlopen(canonical.c_str(), RTLD_NOW | RTLD_LOCAL);
+  l.loading = nullptr;
+  if (!handle) {
+    const char* why = dlerror();
+    fail(fmt::format("not a loadable shared library ({})", why ? why : "dlopen failed"));
+  }
+  // Never dlclose'd: the registry keeps pointers to its functions.
+  const auto* abi = static_cast<const int*>(dlsym(handle, "nsbench_plugin_abi_version"));
+  if (!abi)
+    fail("not an nsbench plugin (no nsbench_plugin_abi_version symbol: it registers nothing with "
+         "NSBENCH_INTEGRATOR or NSBENCH_PROBLEM)");
+  if (*abi != NSBENCH_PLUGIN_ABI)
+    fail(fmt::format("built for plugin ABI {}, this nsbench has ABI {}: rebuild it against this nsbench", *abi,
+                     NSBENCH_PLUGIN_ABI));
+  if (!l.errors.empty()) fail(l.errors.front());
+  l.loaded.push_back({canonical.string(), canonical.filename().string(), hash});
+}
+
+void load_plugins(const std::vector<std::string>& paths) {
+  if (const char* env = std::getenv("NSBENCH_PLUGINS")) {
+    const std::string list = env;
+    std::size_t begin = 0;
+    while (begin <= list.size()) {
+      const std::size_t end = std::min(list.find(':', begin), list.size());
+      if (end > begin) load_plugin(list.substr(begin, end - begin));
+      begin = end + 1;
+    }
+  }
+  for (const auto& p : paths) load_plugin(p);
+}
+
+const std::vector<PluginInfo>& loaded_plugins() { return loader().loaded; }
+
+std::string plugins_stamp() {
+  std::vector<std::string> parts;
+  for (const auto& p : loaded_plugins()) parts.push_back(fmt::format("{} ({})", p.file, p.hash));
+  return fmt::format("{}", fmt::join(parts, ", "));
+}
+
+}  // namespace nsb

@@ -1,0 +1,51 @@
+#pragma once
+// Plugins: shared modules loaded at run time (`--plugin FILE`, NSBENCH_PLUGINS) that register
+// integrators and problems with the same macros as the built-ins (NSBENCH_INTEGRATOR in
+// integrators/registry.hpp, NSBENCH_PROBLEM in problems/registry.hpp). Their registrations
+// run while the loader holds the plugin's file name, so a clash or a wrong ABI is reported
+// against that file; the loader then checks the marker every plugin exports.
+#include <string>
+#include <vector>
+
+// Bumped whenever an installed header changes what a plugin compiled against it sees
+// (the layout of Problem, Integrator, Params, the registry entries).
+#define NSBENCH_PLUGIN_ABI 1
+
+#define NSBENCH_CONCAT_(a, b) a##b
+#define NSBENCH_CONCAT(a, b) NSBENCH_CONCAT_(a, b)
+#define NSBENCH_UNIQUE(prefix) NSBENCH_CONCAT(prefix, __COUNTER__)
+
+// The marker the loader looks for (dlsym): defined, weak, in every translation unit of a
+// plugin that includes a registry header. nsbench's own code (NSBENCH_BUILTIN, set for the
+// library and, in the build tree, for its users) does not define it, so a library merely
+// linked against nsbench is not taken for a plugin; nsbench_add_plugin sets NSBENCH_PLUGIN.
+#if defined(NSBENCH_PLUGIN) || !defined(NSBENCH_BUILTIN)
+extern "C" __attribute__((weak, visibility("default"))) const int nsbench_plugin_abi_version = NSBENCH_PLUGIN_ABI;
+#endif
+
+namespace nsb {
+
+struct PluginInfo {
+  std::string path;  // canonical path of the file loaded
+  std::string file;  // its file name, as the reports print it
+  std::string hash;  // "fnv1a64:<16 hex digits>" of the file's bytes
+};
+
+// Loads one plugin. Throws InputError "plugin FILE: reason" when the file is missing, is
+// not a shared library, is not an nsbench plugin, was built for another ABI, or registers
+// a name already taken (by a built-in or another plugin). A file already loaded is skipped.
+void load_plugin(const std::string& path);
+// The plugins named in NSBENCH_PLUGINS (colon-separated), then `paths` (the --plugin flags).
+void load_plugins(const std::vector<std::string>& paths);
+const std::vector<PluginInfo>& loaded_plugins();
+// "file (hash), ..." of the loaded plugins, for the reports' stamps; empty when none.
+std::string plugins_stamp();
+
+namespace detail {
+// The plugin whose registrations are running (nullptr: a built-in one).
+const std::string* loading_plugin();
+// A registration refused while a plugin loads; the loader reports the first.
+void registration_error(std::string message);
+}  // namespace detail
+
+}  // namespace nsb

@@ -1,0 +1,82 @@
+// Plugins as a user meets them: the example plugin (examples/plugin) is listed, runs, and
+// is stamped into summary.json; every bad plugin gives one line naming the file and the
+// reason, exit 2.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "run_cli.hpp"
+
+namespace {
+
+using nsb::test::run_command;
+namespace fs = std::filesystem;
+
+const std::string kPlugin = NSBENCH_EXAMPLE_PLUGIN;
+std::string test_plugin(const std::string& name) { return std::string(NSBENCH_TEST_PLUGIN_DIR) + "/" + name + ".so"; }
+
+std::string nsbench(const std::string& args) { return std::string(NSBENCH_CLI) + " " + args; }
+
+long lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
+
+}  // namespace
+
+TEST_CASE("plugin: the example's integrator is listed, runs, and summary.json names the plugin file and hash",
+          "[app][plugin]") {
+  const auto listed = run_command(nsbench("--plugin " + kPlugin + " list"));
+  CHECK(listed.code == 0);
+  CHECK_THAT(listed.output, Catch::Contains("symplectic-euler") && Catch::Contains("cd-lagrange"));
+  // Without the plugin it is unknown.
+  CHECK_THAT(run_command(nsbench("list")).output, !Catch::Contains("symplectic-euler"));
+
+  const fs::path out = fs::temp_directory_path() / "nsbench_plugin_test_run";
+  fs::remove_all(out);
+  const auto ran = run_command(nsbench("run --plugin " + kPlugin +
+                                       " --problem bouncing-mass --integrator symplectic-euler --dt 1e-3 --t-end 1 --out " +
+                                       out.string()));
+  REQUIRE(ran.code == 0);
+  std::ifstream in(out / "summary.json");
+  const auto summary = nlohmann::json::parse(in);
+  CHECK(summary["integrator"] == "symplectic-euler");
+  REQUIRE(summary["build"]["plugins"].size() == 1);
+  CHECK(summary["build"]["plugins"][0]["file"] == "symplectic_euler.so");
+  CHECK_THAT(summary["build"]["plugins"][0]["hash"].get<std::string>(), Catch::StartsWith("fnv1a64:"));
+  CHECK(summary["build"]["plugins"][0]["hash"].get<std::string>().size() == 8 + 16);
+
+  const auto by_env = run_command("NSBENCH_PLUGINS=" + kPlugin + ": " + nsbench("list"));
+  CHECK(by_env.code == 0);
+  CHECK_THAT(by_env.output, Catch::Contains("symplectic-euler"));
+  // Named twice (environment and flag): loaded once, no clash with itself.
+  CHECK(run_command("NSBENCH_PLUGINS=" + kPlugin + " " + nsbench("--plugin " + kPlugin + " list")).code == 0);
+}
+
+TEST_CASE("plugin: a bad plugin gives one line naming the file and the reason, exit 2", "[app][plugin][bad-input]") {
+  const std::string not_elf = (fs::temp_directory_path() / "nsbench_plugin_test_not_elf.so").string();
+  std::ofstream(not_elf) << "not a shared library\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"/nonexistent/plugin.so", "plugin /nonexistent/plugin.so: no such file"},
+      {fs::temp_directory_path().string(), "not a regular file"},
+      {not_elf, "plugin " + not_elf + ": not a loadable shared library"},
+      {test_plugin("not_a_plugin"), "not_a_plugin.so: not an nsbench plugin"},
+      {test_plugin("wrong_abi"), "wrong_abi.so: built for plugin ABI 999, this nsbench has ABI 1"},
+      {test_plugin("clash_builtin"), "clash_builtin.so: integrator 'cd-lagrange' is already registered by nsbench (built-in)"},
+      {kPlugin + " --plugin " + test_plugin("clash_example"),
+       "clash_example.so: integrator 'symplectic-euler' is already registered by plugin "},
+  };
+  for (const auto& [plugin, message] : cases) {
+    for (const std::string& tool : {std::string(NSBENCH_CLI) + " list", std::string(NSBENCH_STUDY_CLI) + " bouncing"}) {
+      const auto r = run_command(tool + " --plugin " + plugin);
+      INFO(tool << " --plugin " << plugin << "\n" << r.output);
+      CHECK(r.code == 2);
+      CHECK(lines(r.output) == 1);
+      CHECK_THAT(r.output, Catch::Contains(message));
+    }
+  }
+  const auto r = run_command("NSBENCH_PLUGINS=" + test_plugin("wrong_abi") + " " + nsbench("list"));
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Contains("wrong_abi.so: built for plugin ABI 999"));
+}
