@@ -107,7 +107,6 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   result.initial_energy = integrator.energy().total();
   sample(0.0);
   const double cpu_start = cpu_seconds();
-  const double wall_start = clock_seconds(CLOCK_MONOTONIC);
   StepInfo info;
   const auto wall_start = std::chrono::steady_clock::now();
   double next_progress = options.progress_every;  // wall seconds
@@ -160,7 +159,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     result.message = ex.what();
   }
   result.cpu_seconds = cpu_seconds() - cpu_start;
-  result.wall_seconds = clock_seconds(CLOCK_MONOTONIC) - wall_start;
+  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   result.t_final = integrator.state().t;
   result.final_energy = integrator.energy().total();
   result.work = integrator.work();
