@@ -53,6 +53,8 @@ class CdPenalty final : public Integrator {
   std::string name() const override { return "cd-penalty"; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
+  // Explicit, and its stable step is below the problem's (stable_step_with_contacts).
+  bool conditionally_stable() const override { return true; }
   Energy energy() const override;
   // The contact lasts n_c = pi / (2 asin(sqrt(penalty_factor) / 2)) steps (the discrete
   // spring's half period) plus the entry step; its restitution depends on the impact's

@@ -37,6 +37,7 @@ class D1MinusLinear final : public Integrator {
   std::string name() const override { return "d1-minus-linear"; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
+  bool conditionally_stable() const override { return true; }  // explicit in the smooth forces
 
  private:
   void add_impulses(const Vec& impulse, double scale, VecRef v) const;  // v += scale M^{-1} L^T impulse

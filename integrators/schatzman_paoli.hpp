@@ -52,6 +52,7 @@ class SchatzmanPaoli final : public Integrator {
   std::string name() const override { return "schatzman-paoli"; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
+  bool conditionally_stable() const override { return explicit_(); }  // theta = 0: central difference
   // With e > 0 the law spans U_{k-1}..U_{k+1}: the discrete motion rebounds from up to two
   // steps of travel past the obstacle (U_{k+1} = -U_{k-1} for e = 1), one step more than a
   // one-step law.
