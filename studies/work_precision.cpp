@@ -102,7 +102,12 @@ Json precision_case(const Json& c) {
             {"factorizations", 0}, {"lcp_iterations", 0}};
   // Observed run: errors.
   auto integrator = make_integrator(c["integrator"]);
-  integrator->init(*problem, problem->initial_state());
+  try {
+    integrator->init(*problem, problem->initial_state());
+  } catch (const InputError& e) {  // the scheme declines the problem: n/a, with its reason
+    return {{"status", "n/a"}, {"message", e.what()}, {"steps", 0}, {"force_evaluations", 0},
+            {"factorizations", 0}, {"lcp_iterations", 0}};
+  }
   std::unique_ptr<Integrator> reference;
   if (!pp.reference.empty()) {
     reference = make_integrator(pp.reference);
