@@ -9,17 +9,9 @@
 
 namespace nsb {
 
-ParamSpecs CdLagrange::parameters_spec() {
-  return {
-      ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "LCP tolerance when H is not diagonal", true),
-      ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap when H is not diagonal"),
-  };
-}
+ParamSpecs CdLagrange::parameters_spec() { return lcp_parameter_specs(); }
 
-CdLagrange::CdLagrange(const Params& params) : Integrator(params) {
-  lcp_.tolerance = params.real("lcp_tol");
-  lcp_.max_iterations = params.integer("lcp_max_iter");
-}
+CdLagrange::CdLagrange(const Params& params) : Integrator(params), lcp_(lcp_options(params)) {}
 
 void CdLagrange::init(const Problem& problem, const State& initial) {
   bind(problem, initial);

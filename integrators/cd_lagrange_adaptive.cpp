@@ -40,8 +40,7 @@ CdLagrangeAdaptive::CdLagrangeAdaptive(const Params& params)
       tau_max_ratio_(params.real("tau_max_ratio")),
       cfl_fraction_(params.real("cfl_fraction")),
       max_iter_(params.integer("max_iter")) {
-  lcp_.tolerance = params.real("lcp_tol");
-  lcp_.max_iterations = params.integer("lcp_max_iter");
+  lcp_ = lcp_options(params);
 }
 
 void CdLagrangeAdaptive::init(const Problem& problem, const State& initial) {

@@ -5,17 +5,9 @@
 
 namespace nsb {
 
-ParamSpecs D1MinusLinear::parameters_spec() {
-  return {
-      ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "LCP tolerance when H is not diagonal", true),
-      ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap when H is not diagonal"),
-  };
-}
+ParamSpecs D1MinusLinear::parameters_spec() { return lcp_parameter_specs(); }
 
-D1MinusLinear::D1MinusLinear(const Params& params) : Integrator(params) {
-  lcp_.tolerance = params.real("lcp_tol");
-  lcp_.max_iterations = params.integer("lcp_max_iter");
-}
+D1MinusLinear::D1MinusLinear(const Params& params) : Integrator(params), lcp_(lcp_options(params)) {}
 
 void D1MinusLinear::init(const Problem& problem, const State& initial) {
   bind(problem, initial);

@@ -155,16 +155,12 @@ void add_implicit_contact_specs(ParamSpecs& specs) {
   specs.push_back(ParamSpec::real("newton_tol", 1e-10, 0.0, 1e-2,
                                   "Newton tolerance (nonlinear F_int): |dU|_inf <= tol |U - U_hat|_inf + 100 eps |U|_inf", true));
   specs.push_back(ParamSpec::integer("newton_max_iter", 25, 1, 1000, "Newton iteration cap (nonlinear F_int)"));
-  specs.push_back(ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "LCP tolerance (relative natural-map residual)", true));
-  specs.push_back(ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap"));
+  const ParamSpecs lcp = lcp_parameter_specs();
+  specs.insert(specs.end(), lcp.begin(), lcp.end());
 }
 
 NewtonOptions newton_options(const Params& params) {
   return {params.real("newton_tol"), params.integer("newton_max_iter")};
-}
-
-LcpOptions lcp_options(const Params& params) {
-  return {params.real("lcp_tol"), params.integer("lcp_max_iter")};
 }
 
 Vec initial_acceleration(const Problem& problem, const State& s, const SpMat& M, const char* who) {

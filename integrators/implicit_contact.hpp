@@ -87,7 +87,6 @@ class ImplicitContact {
 // by the schemes, appended to their specs, and read back.
 void add_implicit_contact_specs(ParamSpecs& specs);
 NewtonOptions newton_options(const Params& params);
-LcpOptions lcp_options(const Params& params);
 
 // Initial acceleration M A_0 = F_ext(t_0) - F_int(U_0) on the massive dofs; massless dofs
 // (zero diagonal of a diagonal M) get 0: their acceleration never enters the schemes'

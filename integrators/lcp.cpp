@@ -41,4 +41,14 @@ LcpResult solve_lcp(const Eigen::MatrixXd& D, const Eigen::VectorXd& q, Eigen::V
   return result;
 }
 
+ParamSpecs lcp_parameter_specs() {
+  return {
+      ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2,
+                      "LCP tolerance (relative natural-map residual; unused when the Delassus operator is diagonal)", true),
+      ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap"),
+  };
+}
+
+LcpOptions lcp_options(const Params& params) { return {params.real("lcp_tol"), params.integer("lcp_max_iter")}; }
+
 }  // namespace nsb

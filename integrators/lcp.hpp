@@ -13,6 +13,8 @@
 // being below the tolerance.
 #include <Eigen/Core>
 
+#include "core/parameters.hpp"
+
 namespace nsb {
 
 struct LcpOptions {
@@ -31,5 +33,10 @@ LcpResult solve_lcp(const Eigen::MatrixXd& D, const Eigen::VectorXd& q, Eigen::V
 
 // The relative natural-map residual above, for checks and reports.
 double lcp_residual(const Eigen::MatrixXd& D, const Eigen::VectorXd& q, const Eigen::VectorXd& x);
+
+// The parameters lcp_tol and lcp_max_iter of every scheme that solves contact LCPs, and the
+// options they set.
+ParamSpecs lcp_parameter_specs();
+LcpOptions lcp_options(const Params& params);
 
 }  // namespace nsb

@@ -9,18 +9,18 @@
 namespace nsb {
 
 ParamSpecs MoreauJean::parameters_spec() {
-  return {
+  ParamSpecs specs = {
       ParamSpec::real("theta", 0.5, 0.5, 1.0, "theta of the theta-method"),
-      ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "LCP tolerance (relative natural-map residual)", true),
-      ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap"),
       ParamSpec::choice("projection", "none", {"none", "position"}, "position: project U_{k+1} onto g >= 0 after the step (Acary 2013)"),
   };
+  const ParamSpecs lcp = lcp_parameter_specs();
+  specs.insert(specs.end(), lcp.begin(), lcp.end());
+  return specs;
 }
 
 MoreauJean::MoreauJean(const Params& params)
     : Integrator(params), theta_(params.real("theta")), project_positions_(params.choice("projection") == "position") {
-  lcp_.tolerance = params.real("lcp_tol");
-  lcp_.max_iterations = params.integer("lcp_max_iter");
+  lcp_ = lcp_options(params);
 }
 
 void MoreauJean::init(const Problem& problem, const State& initial) {

@@ -9,16 +9,16 @@
 namespace nsb {
 
 ParamSpecs SchatzmanPaoli::parameters_spec() {
-  return {
+  ParamSpecs specs = {
       ParamSpec::real("theta", 0.0, 0.0, 0.5, "stiffness weight: 0 explicit (diagonal mass), 1/4 or 1/2 implicit (linear K)"),
-      ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "LCP tolerance when L W^{-1} L^T is not diagonal", true),
-      ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap"),
   };
+  const ParamSpecs lcp = lcp_parameter_specs();
+  specs.insert(specs.end(), lcp.begin(), lcp.end());
+  return specs;
 }
 
 SchatzmanPaoli::SchatzmanPaoli(const Params& params) : Integrator(params), theta_(params.real("theta")) {
-  lcp_.tolerance = params.real("lcp_tol");
-  lcp_.max_iterations = params.integer("lcp_max_iter");
+  lcp_ = lcp_options(params);
 }
 
 void SchatzmanPaoli::init(const Problem& problem, const State& initial) {

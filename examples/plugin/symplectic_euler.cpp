@@ -30,16 +30,8 @@ using namespace nsb;
 
 class SymplecticEuler final : public Integrator {
  public:
-  explicit SymplecticEuler(const Params& params) : Integrator(params) {
-    lcp_.tolerance = params.real("lcp_tol");
-    lcp_.max_iterations = params.integer("lcp_max_iter");
-  }
-  static ParamSpecs parameters_spec() {
-    return {
-        ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "LCP tolerance when H is not diagonal", true),
-        ParamSpec::integer("lcp_max_iter", 10000, 1, 100000000, "LCP iteration cap when H is not diagonal"),
-    };
-  }
+  explicit SymplecticEuler(const Params& params) : Integrator(params), lcp_(lcp_options(params)) {}
+  static ParamSpecs parameters_spec() { return lcp_parameter_specs(); }
 
   std::string name() const override { return "symplectic-euler"; }
 
