@@ -9,9 +9,8 @@ packages=(
   python3 python3-matplotlib
   # Siconos kernel: the optional peers (siconos-* integrators, CMake option NSBENCH_SICONOS).
   libsiconos-kernel-dev
-  # CHOLMOD's supernodal factorisation calls BLAS: the serial OpenBLAS takes over the
-  # libblas.so.3 alternative and halves Moreau-Jean's step on the 64x64 block (26 -> 14 ms)
-  # against the reference BLAS; serial keeps results deterministic and free of thread overhead.
+  # BLAS: nsbench's own numerics call none (moreau_jean.hpp says why); the Siconos peers do.
+  # The serial OpenBLAS takes over the libblas.so.3 alternative: fast, and no thread pool.
   libopenblas0-serial
 )
 missing=()
