@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <mutex>
 #include <stdexcept>
 
 #ifndef NSBENCH_SICONOS_VERSION
@@ -14,6 +15,16 @@ namespace nsb {
 std::string siconos_version() { return NSBENCH_SICONOS_VERSION; }
 
 namespace {
+
+// Siconos calls BLAS (dgemm, dgemv: uBLAS products routed to it, Lemke), and Debian's serial
+// OpenBLAS is not safe to call from two threads at once (moreau_jean.hpp: its buffer table is
+// taken without a lock). A study runs cases in parallel, so every use of a Siconos model
+// (building, stepping, destroying) holds this one lock. ThreadSanitizer on the peers study
+// with 2 jobs found the race in dgemm_oncopy under SiconosIntegrator::step before it.
+std::mutex& siconos_mutex() {
+  static std::mutex m;
+  return m;
+}
 
 std::vector<double> dense(const SpMat& A) {
   std::vector<double> out(static_cast<std::size_t>(A.rows() * A.cols()), 0.0);
@@ -40,7 +51,10 @@ ParamSpecs SiconosIntegrator::parameters_spec(siconos::Scheme scheme) {
 SiconosIntegrator::SiconosIntegrator(const Params& params, siconos::Scheme scheme)
     : Integrator(params), scheme_(scheme) {}
 
-SiconosIntegrator::~SiconosIntegrator() = default;
+SiconosIntegrator::~SiconosIntegrator() {
+  const std::lock_guard lock(siconos_mutex());
+  model_.reset();
+}
 
 std::string SiconosIntegrator::name() const {
   switch (scheme_) {
@@ -63,7 +77,10 @@ void SiconosIntegrator::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
   if ((mass_.diagonal().array() <= 0.0).any())
     throw InputError(fmt::format("{}: problem '{}' has massless dofs (a zero diagonal mass, e.g. mass=singular); Siconos' LagrangianDS needs an invertible M (valid: mass=lumped|consistent)", who, problem.name()));
-  model_.reset();
+  {
+    const std::lock_guard lock(siconos_mutex());
+    model_.reset();
+  }
   h_ = 0.0;
 }
 
@@ -90,6 +107,7 @@ void SiconosIntegrator::build(double h) {
   const SpMat& L = problem.gap_operator();
   for (Index i = 0; i < L.rows(); ++i) spec.gap_rows.push_back(dense(SpMat(L.row(i))));
   spec.gap_offset = to_std(problem.gap_offset());
+  const std::lock_guard lock(siconos_mutex());
   model_ = std::make_unique<siconos::Model>(spec);
   h_ = h;
 }
@@ -98,7 +116,10 @@ StepInfo SiconosIntegrator::step(double h) {
   if (!model_) build(h);
   if (h != h_)
     throw InputError(fmt::format("--dt: {} takes one fixed step (Siconos' TimeDiscretisation, built with {}); got {}", name(), h_, h));
-  model_->step(state_.u.data(), state_.v.data(), impulses_.data());
+  {
+    const std::lock_guard lock(siconos_mutex());
+    model_->step(state_.u.data(), state_.v.data(), impulses_.data());
+  }
   state_.t += h;
   ++work_.steps;
   ++work_.force_evaluations;  // one K q product per step, inside Siconos
