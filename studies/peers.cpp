@@ -152,9 +152,9 @@ std::vector<Table> peers_tables(const std::vector<Json>& cases, const std::vecto
                {"dE", "", "{:.2e}", "max |E_ours - E_peer| / |E0|"},
                {"dE end", "", "{:.2e}", "|E_ours - E_peer| / |E0| at t_end"},
                {"dLambda", "", "{:.2e}", "max |Lambda_ours - Lambda_peer| / max Lambda_ours"},
-               {"ours/step", "us", "{:.3g}", "CPU per step of ours"},
-               {"peer/step", "us", "{:.3g}", "CPU per step of the peer"},
-               {"peer/ours", "", "{:.3g}", "cost ratio"}};
+               {"ours/step", "us", "{:.3g}", "CPU per step of ours", true},
+               {"peer/step", "us", "{:.3g}", "CPU per step of the peer", true},
+               {"peer/ours", "", "{:.3g}", "cost ratio", true}};
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const PeerPair& pair = kPairs[cases[i]["pair"].get<std::size_t>()];
     const PeerProblem& pp = kProblems[cases[i]["problem"].get<std::size_t>()];
