@@ -21,7 +21,10 @@ cp -r examples/plugin "$work/my-plugin"
 cmake -S "$work/my-plugin" -B "$work/my-plugin/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build "$work/my-plugin/build" > /dev/null
 plugin="$work/my-plugin/build/symplectic_euler.so"
-"$prefix/bin/nsbench" --plugin "$plugin" list | grep -q '^  symplectic-euler '
+# Captured, not piped: `grep -q` stops reading at its match, and under pipefail the
+# writer's SIGPIPE (exit 141) would fail the script on a correct listing.
+listing="$("$prefix/bin/nsbench" --plugin "$plugin" list)"
+grep -q '^  symplectic-euler ' <<< "$listing" || { echo "symplectic-euler not in nsbench list" >&2; exit 1; }
 "$prefix/bin/nsbench" --plugin "$plugin" run --problem bouncing-mass --integrator symplectic-euler \
   --dt 1e-3 --t-end 2 --out "$work/run"
 NSBENCH_PLUGINS="$plugin" "$prefix/bin/nsbench-study" bouncing --out "$work/reports"
