@@ -82,11 +82,9 @@ Json bouncing_bar_case(const Json& c) {
   const double dt = c["alpha"].get<double>() * p.stable_step();
   Json out = {{"dt", dt}, {"status", "ok"}, {"message", ""}};
   auto integrator = make_integrator(c["integrator"]);
-  try {
-    integrator->init(p, p.initial_state());
-  } catch (const InputError& e) {
+  if (const auto declined = init_or_decline(*integrator, p)) {
     out["status"] = "n/a";
-    out["message"] = e.what();
+    out["message"] = *declined;
     return out;
   }
   const double g0 = params.real("g0");

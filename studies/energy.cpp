@@ -115,11 +115,8 @@ Json energy_case(const Json& c) {
   const EnergyProblem& ep = kProblems[c["problem"].get<std::size_t>()];
   auto problem = make_problem(ep.problem, c["params"].get<std::map<std::string, std::string>>());
   auto integrator = make_integrator(c["integrator"], c["variant"].get<std::map<std::string, std::string>>());
-  try {
-    integrator->init(*problem, problem->initial_state());
-  } catch (const InputError& e) {
-    return {{"status", "n/a"}, {"message", e.what()}, {"t_end", c["t_end"]}};
-  }
+  if (const auto declined = init_or_decline(*integrator, *problem))
+    return {{"status", "n/a"}, {"message", *declined}, {"t_end", c["t_end"]}};
   const auto* bouncing = dynamic_cast<const BouncingMass*>(problem.get());
   RunOptions options;
   options.dt = c["dt"];

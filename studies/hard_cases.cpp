@@ -111,11 +111,9 @@ Outcome run_hard_case(const HardCase& c, const std::string& integrator_name) {
   auto integrator = make_integrator(integrator_name);
   Outcome o;
   o.dt = c.in_cfl ? c.step * problem->stable_step() : c.step;
-  try {
-    integrator->init(*problem, problem->initial_state());
-  } catch (const InputError& e) {  // the scheme declines the problem (e.g. a massless dof)
+  if (const auto declined = init_or_decline(*integrator, *problem)) {
     o.status = "n/a";
-    o.message = e.what();
+    o.message = *declined;
     return o;
   }
   RunOptions options;

@@ -72,6 +72,15 @@ void IntervalMax::close() {
   open_ = false;
 }
 
+std::optional<std::string> init_or_decline(Integrator& integrator, const Problem& problem) {
+  try {
+    integrator.init(problem, problem.initial_state());
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return std::nullopt;
+}
+
 Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOptions& options) {
   if (!study.run) {
     try {

@@ -12,6 +12,7 @@
 #include <initializer_list>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,11 @@ class IntervalMax {
   std::vector<std::vector<double>> largest_;
   void close();
 };
+
+// Binds `integrator` to `problem` (init at its initial state). When the scheme declines the
+// problem (an InputError from init, e.g. a massless dof) the reason, which a study writes as
+// an n/a row; nullopt when the scheme took it.
+std::optional<std::string> init_or_decline(Integrator& integrator, const Problem& problem);
 
 // Observed order between two refinements: log(e1/e2) / log(h1/h2); NaN when an error is
 // not positive and finite.

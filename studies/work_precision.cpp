@@ -102,12 +102,9 @@ Json precision_case(const Json& c) {
             {"factorizations", 0}, {"lcp_iterations", 0}};
   // Observed run: errors.
   auto integrator = make_integrator(c["integrator"]);
-  try {
-    integrator->init(*problem, problem->initial_state());
-  } catch (const InputError& e) {  // the scheme declines the problem: n/a, with its reason
-    return {{"status", "n/a"}, {"message", e.what()}, {"steps", 0}, {"force_evaluations", 0},
+  if (const auto declined = init_or_decline(*integrator, *problem))
+    return {{"status", "n/a"}, {"message", *declined}, {"steps", 0}, {"force_evaluations", 0},
             {"factorizations", 0}, {"lcp_iterations", 0}};
-  }
   std::unique_ptr<Integrator> reference;
   if (!pp.reference.empty()) {
     reference = make_integrator(pp.reference);
