@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # One entry point for a fresh Debian machine:
-#   scripts/run.sh studies   install dependencies, build, run the default studies into reports/
+#   scripts/run.sh studies   install dependencies, build, run the default studies into reports/,
+#                            then the benchmarks and their performance table (scripts/benchmarks.sh)
 #   scripts/run.sh tests     install dependencies, build, run the test suite (CTest), verify
 #                            the bouncing study against reports/, then the out-of-tree plugin
 #                            walkthrough (scripts/plugin-example.sh)
@@ -36,6 +37,7 @@ else
   "$build"/studies/nsbench-study run studies/examples/bouncing_quick.toml --out reports.new/bouncing_quick
   /usr/bin/python3 scripts/figures.py reports.new  # Debian python: matplotlib from python3-matplotlib
   /usr/bin/python3 scripts/figures.py reports.new/bouncing_quick
+  BUILD_DIR="$build" bash scripts/benchmarks.sh reports.new
   rm -rf reports
   mv reports.new reports
 fi

@@ -10,6 +10,8 @@
 //                                  print the differences; exit 1 when there are any
 //   nsbench-study run FILE.toml [--out DIR] [--shard I/N | --merge]  a study from a file
 //                                                                  (studies/study_file.hpp)
+//   nsbench-study performance BENCH.json... [--out DIR]  the performance table from the
+//                                  benchmarks' JSON output (studies/performance.hpp)
 //
 // Reports: DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
 // scripts/figures.py) and DIR/index.md linking them, opening with the headline tables (the
@@ -29,6 +31,7 @@
 #include "core/parameters.hpp"
 #include "core/plugin.hpp"
 #include "studies/parallel.hpp"
+#include "studies/performance.hpp"
 #include "studies/study.hpp"
 #include "studies/verify.hpp"
 #include "studies/study_file.hpp"
@@ -87,6 +90,24 @@ std::vector<Json> merge_shards(const nsb::StudyEntry& study, const std::vector<J
   return results;
 }
 
+// Writes the performance table into `out` and lists it in out/index.md when that exists
+// (written by the studies before the benchmarks run).
+void write_performance(const std::vector<std::string>& files, const fs::path& out) {
+  const nsb::Table table = nsb::performance_table(std::vector<fs::path>(files.begin(), files.end()));
+  nsb::ensure_directory(out);
+  nsb::write_table(table, out);
+  const fs::path index = out / "index.md";
+  if (!fs::exists(index)) return;
+  std::ifstream in(index);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string entry = fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", table.title, table.id, table.id, table.id);
+  if (text.find(entry) != std::string::npos) return;
+  const std::string section = "## performance\n\nThe benchmarks (nsbench-bench-*), each step against its limit.\n\n" + entry + "\n";
+  const auto footer = text.rfind("---\n");  // the environment footer stays last
+  text.insert(footer == std::string::npos ? text.size() : footer, section);
+  nsb::write_file_atomic(index, text);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -96,7 +117,8 @@ int main(int argc, char** argv) {
   std::string out = "reports", shard_text, verify_dir;
   bool full = false, merge = false;
   nsb::VerifyTolerance tolerance;
-  app.add_option("studies", names, "'list', 'all', study names, or 'run FILE.toml' (a study file, README)")->required();
+  app.add_option("studies", names, "'list', 'all', study names, 'run FILE.toml' (a study file, README), or "
+                                   "'performance BENCH.json...' (the benchmarks' table)")->required();
   std::vector<std::string> plugins;
   app.add_option("--out", out, "output directory (default reports)");
   app.add_flag("--full", full, "run the long sweeps");
@@ -119,6 +141,11 @@ int main(int argc, char** argv) {
   }
   try {
     nsb::load_plugins(plugins);
+    if (names[0] == "performance") {
+      if (names.size() < 2) throw InputError("performance: give the benchmarks' JSON files (nsbench-study performance BENCH.json...)");
+      write_performance({names.begin() + 1, names.end()}, out);
+      return 0;
+    }
     const Shard shard = shard_text.empty() ? Shard{} : parse_shard(shard_text);
     if (shard.count && merge) throw InputError("--shard and --merge: give one of them");
     const bool verify = !verify_dir.empty();

@@ -1,30 +1,41 @@
-// Benchmark: the 2D block (problems/block_2d.hpp) on an n x n mesh, n = 64 .. 256.
+// Benchmark: the 2D block (problems/block_2d.hpp, Saint Venant-Kirchhoff) on an n x n mesh,
+// n = 64 .. 256, each against its limit (limit.hpp):
 //
-//   BM_BlockInternalForce/n   one F_int evaluation (the element loop: the explicit schemes'
-//                             compute-bound kernel)
-//   BM_BlockCdLagrangeStep/n  one CD-Lagrange step (F_int plus the vector update)
-// Counter time_per_element: time per call divided by the n^2 elements. Threads: as
-// NSBENCH_THREADS (default all cores); the one-core kernel figure is NSBENCH_THREADS=1.
-// The machine is shared: run with --benchmark_repetitions=5 and read the min rows.
+//   BM_Block/internal-force/n   one F_int evaluation, the explicit schemes' compute-bound
+//                               kernel; limit: its floating-point operations at the peak
+//                               rate of this build (peak_flops_per_ns, same threads)
+//   BM_Block/cd-lagrange/n      one CD-Lagrange step; limit: the bare F_int evaluation above
+//                               on the same mesh (the step adds two vector updates and the
+//                               contact)
+//
+// Flops per element, as block_2d.cpp's add_row_forces writes them (4 Gauss points, 4 nodes):
+//   grad U at a point   4 nodes x 4 entries x (mul + add)            32
+//   Green-Lagrange E    E00 5, E11 5, E01 7                          17
+//   SVK stress S        lambda tr E 2, S00 2, S11 2, S01 1            7
+//   P = (I + H) S       4 entries x (2 mul + 2 add)                  16
+//   per point 72, x 4 points                                        288
+//   nodal forces        4 nodes x 4 points x 2 comps x (2 mul + 2 add) 128, scatter 8
+//   per element                                                     424
+// Threads: as NSBENCH_THREADS (default all cores); the one-core kernel figure is
+// NSBENCH_THREADS=1. The machine may be shared: run with --benchmark_repetitions=5 and read
+// the min rows.
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
+#include <cmath>
 
 #include "integrators/cd_lagrange.hpp"
 #include "problems/block_2d.hpp"
+#include "studies/benchmarks/limit.hpp"
 
 namespace {
+
+using nsb::bench::min_of;
+
+constexpr double kFlopsPerElement = 424.0;
 
 nsb::Block2d make_block(long n) {
   return nsb::Block2d(nsb::Params(nsb::Block2d::parameters_spec(),
                                   {{"nx", std::to_string(n)}, {"ny", std::to_string(n)}, {"H", "1"}}));
-}
-
-double min_of(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
-
-void per_element(benchmark::State& state, long elements) {
-  state.counters["time_per_element"] = benchmark::Counter(
-      static_cast<double>(elements), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 // A deformed state (strains ~1e-3, all Gauss points different), so no branch is trivial.
@@ -39,12 +50,14 @@ void BM_BlockInternalForce(benchmark::State& state) {
   const auto block = make_block(n);
   const nsb::Vec u = deformed(block);
   nsb::Vec f(block.ndof());
+  const double elements = static_cast<double>(n * n);
+  const double limit_ns = kFlopsPerElement * elements / (nsb::bench::peak_flops_per_ns() * nsb::run_threads());
   for (auto _ : state) {
     block.internal_force(u, f);
     benchmark::DoNotOptimize(f.data());
     benchmark::ClobberMemory();
   }
-  per_element(state, n * n);
+  nsb::bench::report_limit(state, elements, limit_ns, "424 flops per element at the peak multiply-add rate");
 }
 
 void BM_BlockCdLagrangeStep(benchmark::State& state) {
@@ -53,17 +66,26 @@ void BM_BlockCdLagrangeStep(benchmark::State& state) {
   nsb::CdLagrange integ(nsb::Params(nsb::CdLagrange::parameters_spec()));
   integ.init(block, block.initial_state());
   const double dt = 0.9 * block.stable_step();
+  const nsb::Vec u = deformed(block);
+  nsb::Vec f(block.ndof());
+  const double limit_ns = nsb::bench::least_ns([&] {
+    block.internal_force(u, f);
+    benchmark::DoNotOptimize(f.data());
+    benchmark::ClobberMemory();
+  });
   for (auto _ : state) {
     integ.step(dt);
     benchmark::DoNotOptimize(integ.state().v.data());
     benchmark::ClobberMemory();
   }
-  per_element(state, n * n);
+  nsb::bench::report_limit(state, static_cast<double>(n * n), limit_ns, "bare F_int on the same mesh");
 }
 
 }  // namespace
 
-BENCHMARK(BM_BlockInternalForce)->RangeMultiplier(2)->Range(64, 256)->ComputeStatistics("min", min_of)->UseRealTime();
-BENCHMARK(BM_BlockCdLagrangeStep)->RangeMultiplier(2)->Range(64, 256)->ComputeStatistics("min", min_of)->UseRealTime();
+BENCHMARK(BM_BlockInternalForce)->Name("BM_Block/internal-force")->RangeMultiplier(2)->Range(64, 256)
+    ->ComputeStatistics("min", min_of)->UseRealTime();
+BENCHMARK(BM_BlockCdLagrangeStep)->Name("BM_Block/cd-lagrange")->RangeMultiplier(2)->Range(64, 256)
+    ->ComputeStatistics("min", min_of)->UseRealTime();
 
 BENCHMARK_MAIN();

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# The benchmarks behind the `performance` report: every nsbench-bench-* binary of BUILD_DIR
+# (default build, already built) with JSON output into OUT/benchmarks (default
+# reports/benchmarks), the block also on one thread for the speed-up, then
+# `nsbench-study performance` writes OUT/performance.{csv,md,tex}. Run on a quiet machine:
+# the table reads the least of the repetitions. About 3 minutes on 2 cores.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${BUILD_DIR:-build}"
+out="${1:-reports}"
+mkdir -p "$out/benchmarks"
+flags=(--benchmark_repetitions=3 --benchmark_report_aggregates_only=true --benchmark_min_time=0.2
+       --benchmark_out_format=json)
+run() {  # run NAME THREADS
+  local name="$1" threads="$2"
+  echo "benchmarks: nsbench-bench-$name, $threads thread(s)" >&2
+  NSBENCH_THREADS="$threads" "$build/studies/nsbench-bench-$name" "${flags[@]}" \
+    --benchmark_out="$out/benchmarks/$name-$threads.json" > /dev/null
+}
+cores="$(nproc)"
+run bar "$cores"
+run block 1
+[ "$cores" -eq 1 ] || run block "$cores"
+run implicit "$cores"
+files=()
+for f in "$out"/benchmarks/*.json; do files+=("$f"); done
+"$build/studies/nsbench-study" performance "${files[@]}" --out "$out"
