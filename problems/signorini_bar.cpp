@@ -6,6 +6,8 @@
 #include <limits>
 #include <vector>
 
+#include "core/threads.hpp"
+
 namespace nsb {
 
 namespace {
@@ -116,8 +118,11 @@ void SignoriniBar::internal_force(ConstVecRef u, VecRef f) const {
   const double* k = ke_.data();
   double* y = f.data();
   y[0] = k[0] * (x[0] - x[1]);
-  for (Index i = 1; i < n; ++i) y[i] = k[i - 1] * (x[i] - x[i - 1]) + k[i] * (x[i] - x[i + 1]);
   y[n] = k[n - 1] * (x[n] - x[n - 1]);
+  // Each node's force from its two elements: every entry written once, whatever the split.
+  parallel_ranges(n - 1, [&](Index begin, Index end) {
+    for (Index i = begin + 1; i < end + 1; ++i) y[i] = k[i - 1] * (x[i] - x[i - 1]) + k[i] * (x[i] - x[i + 1]);
+  });
 }
 
 void SignoriniBar::tangent_stiffness(ConstVecRef, SpMat& K) const {
