@@ -35,6 +35,7 @@
 // of the coming step). Reported energy: the scheme's discrete energy
 //     E_{k+1/2} = 1/2 P_{k+1/2}^T M^{-1} P_{k+1/2} + 1/2 (V(U_k) + V(U_{k+1})),
 // which is constant in free flight under a constant force.
+#include "integrators/central_difference.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/impulse_contact.hpp"
 
@@ -54,10 +55,7 @@ class CdLagrange final : public Integrator {
  private:
   LcpOptions lcp_;
   ImpulseContact contact_;
-  Vec m_, minv_;
-  Vec u_prev_, v_prev_;   // U_k and M^{-1} P_{k+1/2}
-  Vec f_int_, f_ext_;
-  bool started_ = false;
+  CentralDifference cd_;
 
   // Quasi-static (massless) dofs; K's column i is stored as entries [begin, end) of
   // column_rows_/column_values_, so the update touches only i's neighbours.

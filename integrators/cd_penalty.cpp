@@ -30,25 +30,18 @@ void CdPenalty::init(const Problem& problem, const State& initial) {
   if (!m || !(m->minCoeff() > 0.0))
     throw InputError(fmt::format("integrator cd-penalty needs a diagonal mass with positive entries (M^{{-1}} in the update); problem {} has {}",
                                  problem.name(), m ? "a massless dof" : "a non-diagonal mass"));
-  m_ = *m;
-  minv_ = m_.cwiseInverse();
+  cd_.reset(problem, state_, *m);
+  const Vec& minv = cd_.minv;
   L_ = problem.gap_operator();
   h_diag_ = Vec::Zero(L_.rows());
   for (Index i = 0; i < L_.rows(); ++i) {
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) h_diag_[i] += it.value() * it.value() * minv_[it.col()];
+    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) h_diag_[i] += it.value() * it.value() * minv[it.col()];
     if (!(h_diag_[i] > 0.0)) throw InputError(fmt::format("integrator cd-penalty: problem {} has a contact ({}) with an empty row of L", problem.name(), i));
   }
   zeta_ = spring_dashpot_damping_ratio(problem.restitution(), kMaxDampingRatio);
-  const Index n = problem.ndof();
-  u_prev_ = state_.u;
-  v_prev_ = state_.v;
-  f_int_ = Vec::Zero(n);
-  f_ext_ = Vec::Zero(n);
   gap_ = L_ * state_.u + problem.gap_offset();
   gap_prev_ = gap_;
-  problem.external_force(state_.t, f_ext_);
   tau_ = 0.0;
-  started_ = false;
   if (std::isfinite(stable_step_with_contacts())) work_.extra["stable_step_with_contacts"] = stable_step_with_contacts();
 }
 
@@ -62,20 +55,8 @@ StepInfo CdPenalty::step(double tau) {
   StepInfo info;
   info.dt = tau;
   tau_ = tau;
-  if (!started_) {
-    problem_->internal_force(state_.u, f_int_);
-    ++work_.force_evaluations;
-    state_.v += 0.5 * tau * minv_.cwiseProduct(f_ext_ - f_int_);
-    started_ = true;
-  }
-  std::swap(u_prev_, state_.u);
-  state_.u.noalias() = u_prev_ + tau * state_.v;
-  state_.t += tau;
-  problem_->internal_force(state_.u, f_int_);
-  ++work_.force_evaluations;
-  if (!problem_->external_force_is_constant()) problem_->external_force(state_.t, f_ext_);
-  std::swap(v_prev_, state_.v);
-  state_.v.noalias() = v_prev_ + tau * minv_.cwiseProduct(f_ext_ - f_int_);
+  cd_.drift(*problem_, state_, tau, work_);
+  cd_.kick(state_, tau);
 
   // Penalty forces, contact by contact (H diagonal: independent; otherwise one Gauss-Seidel
   // sweep, each contact seeing the velocity the previous ones left).
@@ -94,15 +75,15 @@ StepInfo CdPenalty::step(double tau) {
     const double f = std::max(0.0, (-kappa * gap_[i] - c * gdot) / (1.0 + c * tau * h_diag_[i]));
     if (f == 0.0) continue;
     impulses_[i] = tau * f;
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) state_.v[it.col()] += minv_[it.col()] * it.value() * tau * f;
+    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * tau * f;
   }
   ++work_.steps;
   return info;
 }
 
 Energy CdPenalty::energy() const {
-  if (!started_) return Integrator::energy();
-  Energy E{0.5 * v_prev_.dot(m_.cwiseProduct(v_prev_)), 0.5 * (problem_->potential(u_prev_) + problem_->potential(state_.u))};
+  if (!cd_.started) return Integrator::energy();
+  Energy E = cd_.energy(*problem_, state_);
   for (Index i = 0; i < gap_.size(); ++i)
     if (gap_[i] < 0.0 && gap_prev_[i] < 0.0) E.potential += 0.5 * factor_ / (h_diag_[i] * tau_ * tau_) * gap_prev_[i] * gap_[i];
   return E;

@@ -41,6 +41,7 @@
 // Start: the half kick of cd_lagrange.hpp. Declines (InputError): a non-diagonal mass or a
 // massless dof (M^{-1} in the update; CD-Lagrange's quasi-static treatment of massless dofs
 // is an impulse law, not a penalty).
+#include "integrators/central_difference.hpp"
 #include "integrators/integrator.hpp"
 
 namespace nsb {
@@ -67,11 +68,11 @@ class CdPenalty final : public Integrator {
  private:
   double factor_;
   double zeta_ = 0.0;
-  Vec m_, minv_, h_diag_;
+  CentralDifference cd_;
+  Vec h_diag_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
-  Vec u_prev_, v_prev_, f_int_, f_ext_, gap_, gap_prev_;  // gaps at U_{k+1}, U_k
-  double tau_ = 0.0;  // last step (the springs' stiffness depends on it)
-  bool started_ = false;
+  Vec gap_, gap_prev_;  // gaps at U_{k+1}, U_k
+  double tau_ = 0.0;    // last step (the springs' stiffness depends on it)
 };
 
 }  // namespace nsb
