@@ -80,13 +80,9 @@ Json bouncing_bar_case(const Json& c) {
   const SignoriniBar p(params, "bouncing-bar");
   const int K = c["periods"];
   const double dt = c["alpha"].get<double>() * p.stable_step();
-  Json out = {{"dt", dt}, {"status", "ok"}, {"message", ""}};
   auto integrator = make_integrator(c["integrator"]);
-  if (const auto declined = init_or_decline(*integrator, p)) {
-    out["status"] = "n/a";
-    out["message"] = *declined;
-    return out;
-  }
+  if (const auto declined = init_or_decline(*integrator, p)) return {{"dt", dt}, {"status", "n/a"}, {"message", *declined}};
+  Json out = {{"dt", dt}, {"status", "ok"}, {"message", ""}};
   const double g0 = params.real("g0");
   RunOptions options;
   options.dt = dt;
