@@ -52,11 +52,17 @@ std::vector<Measured> read_file(const std::filesystem::path& file, std::vector<s
                                  "with --benchmark_out=FILE --benchmark_out_format=json)", file.string()));
   const Json& ctx = j["context"];
   const std::string family = family_of(ctx);
-  if (machine.empty())
+  if (machine.empty()) {
+    std::string caches;
+    for (const Json& c : ctx.value("caches", Json::array()))
+      caches += fmt::format("{}L{} {} {} KiB{}", caches.empty() ? "" : ", ", c.value("level", 0),
+                            c.value("type", std::string("?")), c.value("size", 0L) / 1024,
+                            c.value("num_sharing", 1) > 1 ? fmt::format(" (shared by {})", c.value("num_sharing", 1)) : "");
     machine = {{"benchmark_host", ctx.value("host_name", std::string("?"))},
                {"benchmark_cpus", fmt::format("{} at {} MHz", ctx.value("num_cpus", 0), ctx.value("mhz_per_cpu", 0))},
-               {"benchmark_date", ctx.value("date", std::string("?"))},
-               {"benchmark_library_build", ctx.value("library_build_type", std::string("?"))}};
+               {"benchmark_caches", caches.empty() ? "?" : caches},
+               {"benchmark_date", ctx.value("date", std::string("?"))}};
+  }
   std::vector<Measured> rows;
   std::map<std::string, std::size_t> index;  // run name -> row
   std::map<std::string, bool> from_min;      // that row is the min aggregate
