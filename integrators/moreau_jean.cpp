@@ -130,7 +130,8 @@ StepInfo MoreauJean::step(double h) {
   state_.u.noalias() += h * (theta_ * v_next_ + (1.0 - theta_) * state_.v);
   if (project_positions_) {
     const LcpResult res = contact_correction(L_, g0, state_.u, nu_, {}, true,
-                                             [this](Index i) -> const Vec& { return contact_response(i); }, lcp_, work_);
+                                             [this](Index i) -> const Vec& { return contact_response(i); }, lcp_, work_,
+                                             correction_);
     info.iterations += res.iterations;
     if (!res.converged) info.converged = false;
   }

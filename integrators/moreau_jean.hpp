@@ -88,6 +88,7 @@ class MoreauJean final : public Integrator {
   Vec q_, x_;
   double* lcp_max_residual_ = nullptr;  // work_.extra's entry, once created
   std::vector<Index> active_;
+  CorrectionBuffers correction_;  // projection = position
 };
 
 }  // namespace nsb

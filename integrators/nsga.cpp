@@ -47,7 +47,8 @@ StepInfo Nsga::step(double h) {
   // Contacts the smooth step closes, before the position correction opens them.
   const SpMat& L = problem_->gap_operator();
   const Vec& g0 = problem_->gap_offset();
-  b_ = g0 + L * q_;
+  b_.noalias() = L * q_;
+  b_ += g0;
   closing_.clear();
   for (Index i = 0; i < L.rows(); ++i)
     if (b_[i] <= 0.0) closing_.push_back(i);
@@ -58,7 +59,7 @@ StepInfo Nsga::step(double h) {
   if (closing_.empty()) {
     impulses_.setZero();
   } else {
-    b_ = problem_->restitution() * (L * state_.v);
+    b_.noalias() = problem_->restitution() * (L * state_.v);
     const LcpResult vel = implicit_.correct(b_, w_, impulses_, closing_, false);
     info.iterations += vel.iterations;
     if (!vel.converged) info.converged = false;
