@@ -135,6 +135,13 @@ void SparseCholesky::solve(const Vec& b, Vec& x) {
   rhs.x = const_cast<double*>(b.data());
   rhs.xtype = CHOLMOD_REAL;
   rhs.dtype = CHOLMOD_DOUBLE;
+  // The simplicial solve leaves its workspace Y shaped 1 x n, and the next call reallocates
+  // it unless it is 4 x n again (cholmod_ensure_dense checks the shape, not the room):
+  // restore the shape it was allocated with.
+  if (y_ && y_->nzmax >= 4 * rhs.nrow) {
+    y_->nrow = y_->d = 4;
+    y_->ncol = rhs.nrow;
+  }
   if (!cholmod_solve2(CHOLMOD_A, factor_, &rhs, nullptr, &x_, nullptr, &y_, &e_, &common_))
     throw std::runtime_error(fmt::format("{}: CHOLMOD's solve with {} failed (status {})", who_, matrix_, common_.status));
   x.resize(b.size());
