@@ -99,9 +99,10 @@ void SparseCholesky::analyze(const SpMat& A, const std::string& who, const std::
   who_ = who;
   matrix_ = matrix;
   const double n = static_cast<double>(A.rows()), lnz = common_.lnz;
-  const double entry = sizeof(double) + sizeof(int);
-  estimated_bytes_ = 1.2 * (1.2 * lnz + 5.0 * n) * entry + 6.0 * n * sizeof(int) +
-                     2.0 * (static_cast<double>(A.nonZeros()) * entry + (n + 1.0) * sizeof(int));
+  const double entry = sizeof(double) + sizeof(int), anz = static_cast<double>(A.nonZeros());
+  estimated_bytes_ = lnz * entry + 6.0 * n * sizeof(int)  // the factor
+                     + 2.0 * (anz * entry + n * sizeof(int))  // CHOLMOD's permuted copy of A, the scheme's A
+                     + 5.0 * n * sizeof(double);              // CHOLMOD's workspace
   std::string source;
   const double available = memory_available(source);
   if (estimated_bytes_ > available)

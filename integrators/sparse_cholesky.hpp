@@ -16,9 +16,11 @@
 // solves allocate; counted by the schemes as "lu_fallbacks").
 //
 // analyze() refuses (InputError) an A whose factor would not fit in memory: CHOLMOD's
-// symbolic analysis gives nnz(L) exactly; the estimate is the simplicial factor as CHOLMOD
-// allocates it (room for growth: 1.2 (1.2 nnz(L) + 5 n) entries of a double and an int,
-// and 6 ints per column) plus A itself and the scheme's copy of it, against MemAvailable
+// symbolic analysis gives nnz(L) exactly, and the packed simplicial factor takes a double and
+// an int per entry plus 6 ints per column (measured: 12 nnz(L) + 24 n bytes, tridiagonal and
+// 2D five-point patterns); with CHOLMOD's permuted copy of A and the scheme's A (a double
+// and an int per entry, an int per column, each) and CHOLMOD's workspace (about 5 doubles per
+// column), the estimate is 12 nnz(L) + 24 nnz(A) + 72 n bytes, against MemAvailable
 // (/proc/meminfo) or NSBENCH_MEMORY_LIMIT (bytes, or with a K, M or G suffix: powers of 1024).
 #include <Eigen/SparseLU>
 #include <cholmod.h>
