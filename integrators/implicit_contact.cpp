@@ -111,11 +111,7 @@ LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu
   // Each further pass adds at least one contact, so at most p + 1 passes.
   for (;;) {
     const Index a = static_cast<Index>(active.size());
-    Eigen::MatrixXd& D = buffers.D;
-    Vec &q = buffers.q, &z = buffers.z;
-    D.resize(a, a);
-    q.resize(a);
-    z.resize(a);
+    auto& [D, q, z] = buffers.lcp.of_size(a);
     for (Index c = 0; c < a; ++c) {
       const Vec& r = response(active[c]);
       for (Index row = 0; row < a; ++row) D(row, c) = L.row(active[row]).dot(r);

@@ -40,8 +40,8 @@ using ContactRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 // The correction's storage, kept by the caller from step to step (no allocation per step).
 struct CorrectionBuffers {
   std::vector<Index> active;
-  Vec x0, q, z;
-  Eigen::MatrixXd D;
+  Vec x0;
+  LcpStorage lcp;
 };
 
 // The correction above for any iteration matrix: response(i) = S^{-1} L_i^T (cached by the

@@ -103,16 +103,14 @@ StepInfo MoreauJean::step(double h) {
   impulses_.setZero();
   if (!active_.empty()) {
     const Index a = static_cast<Index>(active_.size());
-    D_.resize(a, a);
-    q_.resize(a);
-    x_.setZero(a);
+    auto& [D, q, x] = lcp_storage_.of_size(a);
     for (Index c = 0; c < a; ++c) {
       const Vec& r = contact_response(active_[c]);
-      for (Index row = 0; row < a; ++row) D_(row, c) = L_.row(active_[row]).dot(r);
+      for (Index row = 0; row < a; ++row) D(row, c) = L_.row(active_[row]).dot(r);
     }
     for (Index row = 0; row < a; ++row)
-      q_[row] = L_.row(active_[row]).dot(v_next_) + e * gdot_[active_[row]];
-    const LcpResult res = solve_lcp(D_, q_, x_, lcp_);
+      q[row] = L_.row(active_[row]).dot(v_next_) + e * gdot_[active_[row]];
+    const LcpResult res = solve_lcp(D, q, x, lcp_);
     info.iterations = res.iterations;
     work_.lcp_iterations += res.iterations;
     if (!lcp_max_residual_) lcp_max_residual_ = &work_.extra["lcp_max_residual"];
@@ -122,9 +120,9 @@ StepInfo MoreauJean::step(double h) {
       ++work_.lcp_unconverged;
     }
     for (Index c = 0; c < a; ++c) {
-      if (x_[c] == 0.0) continue;
-      impulses_[active_[c]] = x_[c];
-      v_next_.noalias() += x_[c] * contact_response(active_[c]);
+      if (x[c] == 0.0) continue;
+      impulses_[active_[c]] = x[c];
+      v_next_.noalias() += x[c] * contact_response(active_[c]);
     }
   }
   state_.u.noalias() += h * (theta_ * v_next_ + (1.0 - theta_) * state_.v);

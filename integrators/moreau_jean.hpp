@@ -84,8 +84,7 @@ class MoreauJean final : public Integrator {
   std::vector<Vec> response_;         // per contact; storage kept across refactorisations
   std::vector<char> response_valid_;  // computed for the current W
   Vec f_int_, f_ext_now_, f_ext_next_, rhs_, v_next_, gap_, gdot_, nu_, unit_;
-  Eigen::MatrixXd D_;  // the LCP on the active set, storage kept from step to step
-  Vec q_, x_;
+  LcpStorage lcp_storage_;  // the LCP on the active set
   double* lcp_max_residual_ = nullptr;  // work_.extra's entry, once created
   std::vector<Index> active_;
   CorrectionBuffers correction_;  // projection = position

@@ -154,15 +154,13 @@ void SchatzmanPaoli::solve_contacts(double h, StepInfo& info) {
     if (q_of(i) <= 0.0) active_.push_back(i);
   if (active_.empty()) return;
   const Index a = static_cast<Index>(active_.size());
-  D_.resize(a, a);
-  q_.resize(a);
-  R_.setZero(a);
+  auto& [D, q, R] = lcp_storage_.of_size(a);
   for (Index c = 0; c < a; ++c) {
     const Vec& r = contact_response(active_[c]);
-    for (Index row = 0; row < a; ++row) D_(row, c) = L_.row(active_[row]).dot(r);
-    q_[c] = q_of(active_[c]);
+    for (Index row = 0; row < a; ++row) D(row, c) = L_.row(active_[row]).dot(r);
+    q[c] = q_of(active_[c]);
   }
-  const LcpResult res = solve_lcp(D_, q_, R_, lcp_);
+  const LcpResult res = solve_lcp(D, q, R, lcp_);
   info.iterations = res.iterations;
   work_.lcp_iterations += res.iterations;
   if (!res.converged) {
@@ -170,9 +168,9 @@ void SchatzmanPaoli::solve_contacts(double h, StepInfo& info) {
     ++work_.lcp_unconverged;
   }
   for (Index c = 0; c < a; ++c) {
-    if (R_[c] == 0.0) continue;
-    impulses_[active_[c]] = R_[c] / h;
-    u_next_.noalias() += R_[c] * contact_response(active_[c]);
+    if (R[c] == 0.0) continue;
+    impulses_[active_[c]] = R[c] / h;
+    u_next_.noalias() += R[c] * contact_response(active_[c]);
   }
 }
 

@@ -77,8 +77,7 @@ class SchatzmanPaoli final : public Integrator {
   std::vector<Vec> response_;         // storage kept across refactorisations
   std::vector<char> response_valid_;  // computed for the current W
   Vec u_prev_, u_next_, f_int_, f_ext_, rhs_;
-  Eigen::MatrixXd D_;  // the LCP on the active set, storage kept from step to step
-  Vec q_, R_;
+  LcpStorage lcp_storage_;  // the LCP on the active set
   std::vector<Index> active_;
   bool started_ = false;
   bool impulse_before_ = false;  // the previous step had an impulse

@@ -87,11 +87,13 @@ SparseCholesky::~SparseCholesky() {
   cholmod_free_dense(&y_, &common_);
   cholmod_free_dense(&e_, &common_);
   if (factor_) cholmod_free_factor(&factor_, &common_);
+  if (permuted_) cholmod_free_sparse(&permuted_, &common_);
   cholmod_finish(&common_);
 }
 
 void SparseCholesky::analyze(const SpMat& A, const std::string& who, const std::string& matrix) {
   if (factor_) cholmod_free_factor(&factor_, &common_);
+  if (permuted_) cholmod_free_sparse(&permuted_, &common_);
   cholmod_sparse a = view(A);
   factor_ = cholmod_analyze(&a, &common_);
   if (!factor_) throw std::runtime_error(fmt::format("{}: CHOLMOD's analysis of {} failed (status {})", who, matrix, common_.status));
@@ -112,9 +114,25 @@ void SparseCholesky::analyze(const SpMat& A, const std::string& who, const std::
 }
 
 bool SparseCholesky::factorize(const SpMat& A, bool lu_fallback) {
+  // cholmod_factorize's simplicial path for a lower-stored A, step by step, so that its
+  // permuted copy triu(A(p,p)') is refilled in place instead of allocated on every call:
+  // transpose into it, rowfac (LL^T as final_ll asks), change_factor to the final form.
   cholmod_sparse a = view(A);
-  const double shift[2] = {0.0, 0.0};
-  cholmod_factorize_p(&a, const_cast<double*>(shift), nullptr, 0, factor_, &common_);
+  const std::size_t n = a.nrow;
+  if (!permuted_) permuted_ = cholmod_allocate_sparse(n, n, a.nzmax, 1, 1, 1, CHOLMOD_REAL, &common_);
+  common_.status = CHOLMOD_OK;
+  cholmod_allocate_work(n, 2 * n, 0, &common_);  // nothing once allocated
+  int* perm = factor_->ordering == CHOLMOD_NATURAL ? nullptr : static_cast<int*>(factor_->Perm);
+  if (!permuted_ || common_.status < CHOLMOD_OK || !cholmod_transpose_sym(&a, 2, perm, permuted_, &common_))
+    throw std::runtime_error(fmt::format("{}: CHOLMOD could not permute {} (status {})", who_, matrix_, common_.status));
+  const std::size_t grow2 = common_.grow2;
+  factor_->is_ll = common_.final_ll;
+  if (factor_->xtype == CHOLMOD_PATTERN && common_.final_pack) common_.grow2 = 0;  // the exact space
+  double zero[2] = {0.0, 0.0};
+  cholmod_rowfac(permuted_, nullptr, zero, 0, n, factor_, &common_);
+  common_.grow2 = grow2;
+  if (common_.status >= CHOLMOD_OK)
+    cholmod_change_factor(factor_->xtype, factor_->is_ll, 0, common_.final_pack, common_.final_monotonic, factor_, &common_);
   use_lu_ = factor_->minor != factor_->n;
   if (!use_lu_) return true;
   if (!lu_fallback) return false;

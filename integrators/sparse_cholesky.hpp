@@ -8,9 +8,11 @@
 //
 // configured as Eigen's CholmodDecomposition in CholmodSimplicialLLt mode (final_asis = 0,
 // final_ll = 1): no BLAS, see moreau_jean.hpp. analyze() once per pattern, factorize() per
-// matrix (keeps the analysis), solve() per right-hand side: cholmod_solve2 with its
-// workspace kept, so a solve allocates nothing after the first (Eigen's wrapper allocates
-// the result and CHOLMOD's workspace on every solve).
+// matrix (keeps the analysis), solve() per right-hand side. Neither allocates after its
+// first call: factorize() runs cholmod_factorize's simplicial steps itself, with the permuted
+// copy of A kept (cholmod_factorize allocates and frees it each time), and solve() calls
+// cholmod_solve2 with its workspace kept (Eigen's wrapper allocates the result and the
+// workspace on every solve).
 // With lu_fallback, an A that is not positive definite (indefinite W of a compressed
 // hyperelastic material, moreau_jean.hpp) is factorised by Eigen's SparseLU instead (its
 // solves allocate; counted by the schemes as "lu_fallbacks").
@@ -56,6 +58,7 @@ class SparseCholesky {
  private:
   cholmod_common common_;
   cholmod_factor* factor_ = nullptr;
+  cholmod_sparse* permuted_ = nullptr;  // triu(A(p,p)'), the matrix CHOLMOD's rowfac reads
   cholmod_dense *x_ = nullptr, *y_ = nullptr, *e_ = nullptr;  // cholmod_solve2's workspace
   Eigen::SparseLU<SpMat> lu_;
   bool use_lu_ = false;
