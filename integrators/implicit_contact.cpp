@@ -39,30 +39,38 @@ void ImplicitContact::factorize(double c) {
 void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, bool with_contact, Vec& u, Vec& mu,
                                  StepInfo& info) {
   const bool linear = problem_->is_linear();
-  u = u_hat;
   mu.setZero(L_.rows());
   for (long it = 0;; ++it) {
+    // The iterate: U_hat itself on the first iteration (no copy), where M (U - U_hat) = 0.
+    const Vec& x = it == 0 ? u_hat : u;
     if (!linear) {
-      problem_->tangent_stiffness(u, K_);
+      problem_->tangent_stiffness(x, K_);
       ++work_->tangent_evaluations;
     }
     if (!linear || c != c_factored_) factorize(c);
-    problem_->internal_force(u, f_int_);
+    problem_->internal_force(x, f_int_);
     ++work_->force_evaluations;
-    du_ = u - u_hat;
-    r_.noalias() = *M_ * du_;
-    r_ += c * (f_int_ - f_ext);
+    if (it == 0) {
+      r_.noalias() = c * (f_int_ - f_ext);
+    } else {
+      du_ = u - u_hat;
+      r_.noalias() = *M_ * du_;
+      r_ += c * (f_int_ - f_ext);
+    }
     chol_.solve(r_, du_);
     ++work_->linear_solves;
-    du_ = u - du_;  // the next iterate before the contact correction
+    du_ = x - du_;  // the next iterate before the contact correction
     if (with_contact) {
       const LcpResult res = correct(problem_->gap_offset(), du_, mu, {}, true);
       info.iterations += res.iterations;
       if (!res.converged) info.converged = false;
     }
-    const double change = (du_ - u).lpNorm<Eigen::Infinity>();
+    if (linear) {
+      std::swap(u, du_);
+      return;
+    }
+    const double change = (du_ - x).lpNorm<Eigen::Infinity>();
     std::swap(u, du_);
-    if (linear) return;
     ++info.iterations;
     // The increment cannot fall below the round-off of U: |U - U_hat| = O(h^2) can be far
     // smaller than eps |U| (a small step on a body away from the origin).
