@@ -11,7 +11,10 @@ inline void note() {
 }  // namespace
 
 #if defined(__SANITIZE_ADDRESS__)
-#include <sanitizer/allocator_interface.h>
+// The sanitizer runtime's hook interface (sanitizer/allocator_interface.h, not shipped with
+// every compiler package): called on every allocation the sanitizer's allocator makes.
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*, std::size_t),
+                                                         void (*free_hook)(const volatile void*));
 
 namespace {
 void on_malloc(const volatile void*, std::size_t) { note(); }
