@@ -21,6 +21,15 @@
 // parameters: moreau-jean h^2 theta^2 (theta = 1/2), nsga beta h^2 (1 - alpha_f) / (1 -
 // alpha_m) (rho_inf = 1), newmark-lm beta h^2 (beta = 1/4), schatzman-paoli theta h^2
 // (theta = 1/4): all h^2 / 4, but computed per scheme. units = dofs.
+// Measured (min of 5, 2-core machine shared with other work, default NSBENCH_THREADS = 2),
+// step / limit: on the bar at N = 1e3, 1e4, 1e5 moreau-jean 1.23, 1.25, 1.29 (projected
+// 1.24, 1.26, 1.30), nsga lumped 1.27, 1.37, 1.46 (singular 1.26, 1.36, 1.45), newmark-lm
+// lumped 1.18, 1.18, 1.21 (singular 1.17, 1.19, 1.25), schatzman-paoli 1/4 1.12, 1.13, 1.15;
+// the bare solve alone costs 15.5 ns per dof (CHOLMOD's simplicial solve of a tridiagonal
+// W: permutation, forward and backward sweeps on a 4-wide workspace), the factorisation
+// 20 ns. moreau-jean on block-2d: 32x32 2.39 ms against 1.87 (1.28), 64x64 16.5 ms
+// against 14.8 (1.11). Before the shared solver (sparse_cholesky.hpp), moreau-jean at
+// N = 1e5 took 1.40x and nsga 1.59x the same limit.
 // The machine is shared: run with --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // and read the min rows.
 #include <benchmark/benchmark.h>
