@@ -28,8 +28,8 @@
 // the bare solve alone costs 15.5 ns per dof (CHOLMOD's simplicial solve of a tridiagonal
 // W: permutation, forward and backward sweeps on a 4-wide workspace), the factorisation
 // 20 ns. moreau-jean on block-2d: 32x32 2.39 ms against 1.87 (1.28), 64x64 16.5 ms
-// against 14.8 (1.11). Before the shared solver (sparse_cholesky.hpp), moreau-jean at
-// N = 1e5 took 1.40x and nsga 1.59x the same limit.
+// against 14.8 (1.11). Before this work (Eigen's CholmodDecomposition, allocating on every
+// solve, and more vector passes) moreau-jean at N = 1e5 took 2.05 ms (1.32x).
 // The machine is shared: run with --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // and read the min rows.
 #include <benchmark/benchmark.h>
