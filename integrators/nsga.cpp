@@ -24,11 +24,6 @@ void Nsga::init(const Problem& problem, const State& initial) {
   a_ = initial_acceleration(problem, state_, mass_, "nsga");
   ++work_.force_evaluations;
   abar_ = a_;
-  const Index n = problem.ndof();
-  abar_next_ = Vec::Zero(n);
-  u_pred_ = Vec::Zero(n);
-  u_hat_ = Vec::Zero(n);
-  w_ = Vec::Zero(n);
   implicit_.bind(problem, mass_, state_.u, work_, lcp_options(params_), newton_options(params_), "nsga");
   f_ext_ = Vec::Zero(problem.ndof());
   problem.external_force(state_.t, f_ext_);  // kept as is when constant
@@ -41,24 +36,13 @@ StepInfo Nsga::step(double h) {
   const double c = bh2 * (1.0 - alpha_f_) / (1.0 - alpha_m_);
   // Smooth step: M (Q - U_hat) + c (F_int(Q) - F_ext) = 0, the equation of motion at t_{k+1}
   // multiplied by c, with a_{k+1} and abar_{k+1} eliminated through Q.
-  // One pass each for the predictors and the updates below (same operations, element by
-  // element, as the vector expressions they replace).
-  const Index n = problem_->ndof();
-  {
-    const double s = h * h * (0.5 - beta_), t = bh2 / (1.0 - alpha_m_);
-    for (Index i = 0; i < n; ++i) {
-      u_pred_[i] = state_.u[i] + h * state_.v[i] + s * abar_[i];
-      u_hat_[i] = u_pred_[i] - t * (alpha_m_ * abar_[i] - alpha_f_ * a_[i]);
-    }
-  }
+  u_pred_ = state_.u + h * state_.v + (h * h * (0.5 - beta_)) * abar_;
+  u_hat_ = u_pred_ - (bh2 / (1.0 - alpha_m_)) * (alpha_m_ * abar_ - alpha_f_ * a_);
   if (!problem_->external_force_is_constant()) problem_->external_force(state_.t + h, f_ext_);
   implicit_.solve_step(u_hat_, f_ext_, c, false, q_, nu_, info);
-  for (Index i = 0; i < n; ++i) {
-    const double next = (q_[i] - u_pred_[i]) / bh2;
-    a_[i] = ((1.0 - alpha_m_) * next + alpha_m_ * abar_[i] - alpha_f_ * a_[i]) / (1.0 - alpha_f_);
-    w_[i] = state_.v[i] + h * ((1.0 - gamma_) * abar_[i] + gamma_ * next);
-    abar_next_[i] = next;
-  }
+  abar_next_ = (q_ - u_pred_) / bh2;
+  a_ = ((1.0 - alpha_m_) * abar_next_ + alpha_m_ * abar_ - alpha_f_ * a_) / (1.0 - alpha_f_);
+  w_ = state_.v + h * ((1.0 - gamma_) * abar_ + gamma_ * abar_next_);
   std::swap(abar_, abar_next_);
 
   // Contacts the smooth step closes, before the position correction opens them.
