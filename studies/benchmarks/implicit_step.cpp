@@ -21,8 +21,8 @@
 // parameters: moreau-jean h^2 theta^2 (theta = 1/2), nsga beta h^2 (1 - alpha_f) / (1 -
 // alpha_m) (rho_inf = 1), newmark-lm beta h^2 (beta = 1/4), schatzman-paoli theta h^2
 // (theta = 1/4): all h^2 / 4, but computed per scheme. units = dofs.
-// Measured (min of 5, 2-core machine shared with other work, default NSBENCH_THREADS = 2),
-// step / limit: on the bar at N = 1e3, 1e4, 1e5 moreau-jean 1.23, 1.25, 1.29 (projected
+// Measured (min of 5, 2-core machine shared with other work, default NSBENCH_THREADS = 2;
+// under load the ratios at N = 1e5 rise by up to 0.1, nsga's to 1.57), step / limit: on the bar at N = 1e3, 1e4, 1e5 moreau-jean 1.23, 1.25, 1.29 (projected
 // 1.24, 1.26, 1.30), nsga lumped 1.27, 1.37, 1.46 (singular 1.26, 1.36, 1.45), newmark-lm
 // lumped 1.18, 1.18, 1.21 (singular 1.17, 1.19, 1.25), schatzman-paoli 1/4 1.12, 1.13, 1.15;
 // the bare solve alone costs 15.5 ns per dof (CHOLMOD's simplicial solve of a tridiagonal
