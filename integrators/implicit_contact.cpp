@@ -22,57 +22,55 @@ void ImplicitContact::bind(const Problem& problem, const SpMat& M, const Vec& u0
   f_int_ = Vec::Zero(problem.ndof());
   L_ = problem.gap_operator();
   response_.assign(L_.rows(), Vec());
+  response_valid_.assign(L_.rows(), 0);
   unit_ = Vec::Zero(problem.ndof());
-  gap_ = Vec::Zero(L_.rows());
-  analyzed_ = false;
-  chol_.setMode(Eigen::CholmodSimplicialLLt);  // no BLAS: see moreau_jean.hpp
-  chol_.cholmod().print = 1;  // errors only: "not positive definite" is handled by the LU fallback
+  S_.bind(M, K_);  // S's pattern for every c, analysed now: a factor too large is refused up front
+  chol_.analyze(S_.matrix(), fmt::format("integrator {}", who), "S");
 }
 
 void ImplicitContact::factorize(double c) {
-  S_ = *M_ + c * K_;
-  if (!analyzed_) {
-    chol_.analyzePattern(S_);
-    analyzed_ = true;
-  }
-  chol_.factorize(S_);
+  chol_.factorize(S_.assemble(*M_, c, K_), true);
   ++work_->factorizations;
-  use_lu_ = chol_.info() != Eigen::Success;
-  if (use_lu_) {
-    lu_.compute(S_);
-    ++work_->extra["lu_fallbacks"];
-    if (lu_.info() != Eigen::Success) throw std::runtime_error(fmt::format("{}: iteration matrix M + c K is singular", who_));
-  }
+  if (chol_.uses_lu()) ++work_->extra["lu_fallbacks"];
   c_factored_ = c;
-  for (auto& r : response_) r.resize(0);
+  std::fill(response_valid_.begin(), response_valid_.end(), 0);
 }
 
 void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, bool with_contact, Vec& u, Vec& mu,
                                  StepInfo& info) {
   const bool linear = problem_->is_linear();
-  u = u_hat;
-  mu = Vec::Zero(L_.rows());
+  mu.setZero(L_.rows());
   for (long it = 0;; ++it) {
+    // The iterate: U_hat itself on the first iteration (no copy), where M (U - U_hat) = 0.
+    const Vec& x = it == 0 ? u_hat : u;
     if (!linear) {
-      problem_->tangent_stiffness(u, K_);
+      problem_->tangent_stiffness(x, K_);
       ++work_->tangent_evaluations;
     }
     if (!linear || c != c_factored_) factorize(c);
-    problem_->internal_force(u, f_int_);
+    problem_->internal_force(x, f_int_);
     ++work_->force_evaluations;
-    du_ = u - u_hat;
-    r_.noalias() = *M_ * du_;
-    r_ += c * (f_int_ - f_ext);
-    solve(r_, du_);
-    du_ = u - du_;  // the next iterate before the contact correction
+    if (it == 0) {
+      r_.noalias() = c * (f_int_ - f_ext);
+    } else {
+      du_ = u - u_hat;
+      r_.noalias() = *M_ * du_;
+      r_ += c * (f_int_ - f_ext);
+    }
+    chol_.solve(r_, du_);
+    ++work_->linear_solves;
+    du_ = x - du_;  // the next iterate before the contact correction
     if (with_contact) {
       const LcpResult res = correct(problem_->gap_offset(), du_, mu, {}, true);
       info.iterations += res.iterations;
       if (!res.converged) info.converged = false;
     }
-    const double change = (du_ - u).lpNorm<Eigen::Infinity>();
+    if (linear) {
+      std::swap(u, du_);
+      return;
+    }
+    const double change = (du_ - x).lpNorm<Eigen::Infinity>();
     std::swap(u, du_);
-    if (linear) return;
     ++info.iterations;
     // The increment cannot fall below the round-off of U: |U - U_hat| = O(h^2) can be far
     // smaller than eps |U| (a small step on a body away from the origin).
@@ -86,46 +84,42 @@ void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, b
   }
 }
 
-void ImplicitContact::solve(const Vec& rhs, Vec& x) {
-  if (use_lu_)
-    x = lu_.solve(rhs);
-  else
-    x = chol_.solve(rhs);
-  ++work_->linear_solves;
-}
-
 const Vec& ImplicitContact::response(Index i) {
   Vec& r = response_[i];
-  if (r.size() == 0) {
+  if (!response_valid_[i]) {
     unit_.setZero();
     for (decltype(L_)::InnerIterator it(L_, i); it; ++it) unit_[it.col()] = it.value();
-    solve(unit_, r);
+    chol_.solve(unit_, r);
+    ++work_->linear_solves;
+    response_valid_[i] = 1;
   }
   return r;
 }
 
-LcpResult ImplicitContact::correct(const Vec& b, Vec& x, Vec& mu, std::vector<Index> active, bool grow) {
-  return contact_correction(L_, b, x, mu, std::move(active), grow, [this](Index i) -> const Vec& { return response(i); },
-                            lcp_, *work_);
+LcpResult ImplicitContact::correct(const Vec& b, Vec& x, Vec& mu, const std::vector<Index>& active, bool grow) {
+  return contact_correction(L_, b, x, mu, active, grow, [this](Index i) -> const Vec& { return response(i); }, lcp_,
+                            *work_, buffers_);
 }
 
-LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu, std::vector<Index> active, bool grow,
+LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu, const std::vector<Index>& fixed, bool grow,
                              const std::function<const Vec&(Index)>& response, const LcpOptions& lcp,
-                             WorkCounters& work) {
+                             WorkCounters& work, CorrectionBuffers& buffers) {
   const Index p = L.rows();
-  mu = Vec::Zero(p);
+  mu.setZero(p);
   LcpResult total;
+  std::vector<Index>& active = buffers.active;
+  active.assign(fixed.begin(), fixed.end());
   auto violated = [&](Index i) { return b[i] + L.row(i).dot(x) < 0.0; };
   if (grow)
     for (Index i = 0; i < p; ++i)
       if (violated(i)) active.push_back(i);
   if (active.empty()) return total;
-  const Vec x0 = x;
+  Vec& x0 = buffers.x0;
+  x0 = x;
   // Each further pass adds at least one contact, so at most p + 1 passes.
   for (;;) {
     const Index a = static_cast<Index>(active.size());
-    Eigen::MatrixXd D(a, a);
-    Vec q(a), z(a);
+    auto& [D, q, z] = buffers.lcp.of_size(a);
     for (Index c = 0; c < a; ++c) {
       const Vec& r = response(active[c]);
       for (Index row = 0; row < a; ++row) D(row, c) = L.row(active[row]).dot(r);
@@ -175,14 +169,14 @@ Vec initial_acceleration(const Problem& problem, const State& s, const SpMat& M,
       if ((*m)[i] > 0.0) a[i] = r[i] / (*m)[i];
     return a;
   }
-  Eigen::CholmodDecomposition<SpMat, Eigen::Lower> chol;
-  chol.setMode(Eigen::CholmodSimplicialLLt);
-  chol.cholmod().print = 1;
-  chol.compute(M);
-  if (chol.info() != Eigen::Success)
+  SparseCholesky chol;
+  chol.analyze(M, fmt::format("integrator {}", who), "M");
+  if (!chol.factorize(M, false))
     throw InputError(fmt::format("{}: problem '{}' has a non-diagonal mass matrix that is not positive definite "
                                  "(massless dofs are handled only with a diagonal mass)", who, problem.name()));
-  return chol.solve(r);
+  Vec a;
+  chol.solve(r, a);
+  return a;
 }
 
 }  // namespace nsb

@@ -16,32 +16,39 @@
 //                                          beta h^2 (1 - alpha_f) / (1 - alpha_m) for gen.-alpha)
 //     x <- x + S^{-1} L_A^T mu,   0 <= mu  _|_  b_A + L_A x >= 0        (contact correction)
 //
-// S is factorised by CHOLMOD's simplicial LL^T (symbolic analysis kept across
-// refactorisations; no BLAS, see moreau_jean.hpp), with Eigen's sparse LU as the fallback when S is indefinite; the responses S^{-1} L_i^T are cached
-// per contact while S is unchanged. S is regular for a singular (massless-dof) M when K
+// S is factorised by CHOLMOD's simplicial LL^T (sparse_cholesky.hpp: pattern analysed at
+// bind(), where a factor too large for the memory is refused; no BLAS, see moreau_jean.hpp),
+// with Eigen's sparse LU as the fallback when S is indefinite; the responses S^{-1} L_i^T are
+// cached per contact while S is unchanged. S is regular for a singular (massless-dof) M when K
 // holds those dofs, which is why the corrections go along S^{-1} L^T and not M^{-1} L^T
 // (the two agree to O(c) on massive dofs).
 // The correction is one LCP on the contact set A with Delassus D = L_A S^{-1} L_A^T (see
 // lcp.hpp). With grow = true, A starts as the violated rows (b + L x < 0) and contacts that
 // the correction pushes into violation are added until none is left (position level:
 // no penetration at the step's end beyond the LCP tolerance).
-#include <Eigen/CholmodSupport>
-#include <Eigen/SparseLU>
 #include <functional>
 #include <vector>
 
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
+#include "integrators/sparse_cholesky.hpp"
 
 namespace nsb {
 
 using ContactRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
+// The correction's storage, kept by the caller from step to step (no allocation per step).
+struct CorrectionBuffers {
+  std::vector<Index> active;
+  Vec x0;
+  LcpStorage lcp;
+};
+
 // The correction above for any iteration matrix: response(i) = S^{-1} L_i^T (cached by the
 // caller). Adds the LCP iterations to work (and an unconverged LCP to lcp_unconverged).
-LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu, std::vector<Index> active, bool grow,
+LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu, const std::vector<Index>& active, bool grow,
                              const std::function<const Vec&(Index)>& response, const LcpOptions& lcp,
-                             WorkCounters& work);
+                             WorkCounters& work, CorrectionBuffers& buffers);
 
 struct NewtonOptions {
   double tolerance = 1e-10;
@@ -58,12 +65,11 @@ class ImplicitContact {
   void solve_step(const Vec& u_hat, const Vec& f_ext, double c, bool with_contact, Vec& u, Vec& mu, StepInfo& info);
   // Corrects x on the contact set (fixed `active`, or grown from the violated rows when
   // `grow`): x += S^{-1} L^T mu, mu (size p, zero off the set) returned in `mu`.
-  LcpResult correct(const Vec& b, Vec& x, Vec& mu, std::vector<Index> active, bool grow);
+  LcpResult correct(const Vec& b, Vec& x, Vec& mu, const std::vector<Index>& active, bool grow);
 
  private:
   const Vec& response(Index contact);
   void factorize(double c);
-  void solve(const Vec& rhs, Vec& x);
 
   const Problem* problem_ = nullptr;
   const SpMat* M_ = nullptr;
@@ -75,12 +81,12 @@ class ImplicitContact {
   double c_factored_ = 0.0;
   Vec f_int_, r_, du_;
   ContactRows L_;
-  SpMat S_;
-  Eigen::CholmodDecomposition<SpMat, Eigen::Lower> chol_;
-  Eigen::SparseLU<SpMat> lu_;  // no BLAS (UMFPACK calls it): see moreau_jean.hpp
-  bool use_lu_ = false, analyzed_ = false;
-  std::vector<Vec> response_;
-  Vec unit_, gap_;
+  SparseSum S_;
+  SparseCholesky chol_;
+  std::vector<Vec> response_;         // storage kept across refactorisations
+  std::vector<char> response_valid_;  // computed for the current S
+  Vec unit_;
+  CorrectionBuffers buffers_;
 };
 
 // The Newton and LCP parameters (newton_tol, newton_max_iter, lcp_tol, lcp_max_iter) shared

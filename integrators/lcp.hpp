@@ -12,6 +12,7 @@
 //
 // being below the tolerance.
 #include <Eigen/Core>
+#include <vector>
 
 #include "core/parameters.hpp"
 
@@ -30,6 +31,30 @@ struct LcpResult {
 
 LcpResult solve_lcp(const Eigen::MatrixXd& D, const Eigen::VectorXd& q, Eigen::VectorXd& x,
                     const LcpOptions& options);
+
+// Storage for the LCPs a scheme solves step after step: one D, q, x per size, made the first
+// time that size occurs, so that a step whose active set has a size seen before allocates
+// nothing (an Eigen matrix reallocates whenever its size changes). x comes zeroed.
+class LcpStorage {
+ public:
+  struct Arrays {
+    Eigen::MatrixXd D;
+    Eigen::VectorXd q, x;
+  };
+  Arrays& of_size(Eigen::Index a) {
+    if (static_cast<std::size_t>(a) >= by_size_.size()) by_size_.resize(static_cast<std::size_t>(a) + 1);
+    Arrays& s = by_size_[static_cast<std::size_t>(a)];
+    if (s.q.size() != a) {
+      s.D.resize(a, a);
+      s.q.resize(a);
+    }
+    s.x.setZero(a);
+    return s;
+  }
+
+ private:
+  std::vector<Arrays> by_size_;
+};
 
 // The relative natural-map residual above, for checks and reports.
 double lcp_residual(const Eigen::MatrixXd& D, const Eigen::VectorXd& q, const Eigen::VectorXd& x);

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <stdexcept>
 
 namespace nsb {
 
@@ -30,48 +29,41 @@ void MoreauJean::init(const Problem& problem, const State& initial) {
   ++work_.tangent_evaluations;
   L_ = problem.gap_operator();
   response_.assign(L_.rows(), Vec());
+  response_valid_.assign(L_.rows(), 0);
   f_int_ = Vec::Zero(n);
   f_ext_now_ = Vec::Zero(n);
   f_ext_next_ = Vec::Zero(n);
   rhs_ = Vec::Zero(n);
-  v_free_ = Vec::Zero(n);
+  v_next_ = Vec::Zero(n);
+  unit_ = Vec::Zero(n);
   gap_ = Vec::Zero(L_.rows());
   gdot_ = Vec::Zero(L_.rows());
   problem.external_force(state_.t, f_ext_now_);
   f_ext_next_ = f_ext_now_;
-  pattern_analyzed_ = false;
+  lcp_max_residual_ = nullptr;
   h_factored_ = 0.0;
-  solver_.setMode(Eigen::CholmodSimplicialLLt);  // no BLAS: see the header
-  solver_.cholmod().print = 1;  // errors only: "not positive definite" is handled by the LU fallback
+  // W's pattern (M + K for every h) is analysed here, so that a W too large for the memory
+  // is refused before the run starts.
+  W_.bind(mass_, K_);
+  chol_.analyze(W_.matrix(), "integrator moreau-jean", "W");
 }
 
 void MoreauJean::factorize(double h) {
-  W_ = mass_ + (h * h * theta_ * theta_) * K_;
-  if (!pattern_analyzed_) {
-    solver_.analyzePattern(W_);
-    pattern_analyzed_ = true;
-  }
-  solver_.factorize(W_);
+  const SpMat& W = W_.assemble(mass_, h * h * theta_ * theta_, K_);
+  chol_.factorize(W, true);
   ++work_.factorizations;
-  use_lu_ = solver_.info() != Eigen::Success;
-  if (use_lu_) {
-    lu_.compute(W_);
-    ++work_.extra["lu_fallbacks"];
-    if (lu_.info() != Eigen::Success)
-      throw std::runtime_error("moreau-jean: iteration matrix M + h^2 theta^2 K is singular");
-  }
+  if (chol_.uses_lu()) ++work_.extra["lu_fallbacks"];
   h_factored_ = h;
-  for (auto& r : response_) r.resize(0);
+  std::fill(response_valid_.begin(), response_valid_.end(), 0);
 }
-
-Vec MoreauJean::solve(const Vec& rhs) { return use_lu_ ? Vec(lu_.solve(rhs)) : Vec(solver_.solve(rhs)); }
 
 const Vec& MoreauJean::contact_response(Index i) {
   Vec& r = response_[i];
-  if (r.size() == 0) {
-    Vec li = Vec::Zero(problem_->ndof());
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) li[it.col()] = it.value();
-    r = solve(li);
+  if (!response_valid_[i]) {
+    unit_.setZero();
+    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) unit_[it.col()] = it.value();
+    chol_.solve(unit_, r);
+    response_valid_[i] = 1;
     ++work_.linear_solves;
   }
   return r;
@@ -89,12 +81,13 @@ StepInfo MoreauJean::step(double h) {
   }
   problem_->internal_force(state_.u, f_int_);
   ++work_.force_evaluations;
-  if (!problem_->external_force_is_constant()) problem_->external_force(state_.t + h, f_ext_next_);
+  const bool constant_force = problem_->external_force_is_constant();  // then f_ext_next_ == f_ext_now_
+  if (!constant_force) problem_->external_force(state_.t + h, f_ext_next_);
 
   rhs_.noalias() = h * (theta_ * f_ext_next_ + (1.0 - theta_) * f_ext_now_ - f_int_);
   rhs_.noalias() -= (h * h * theta_) * (K_ * state_.v);
-  v_free_ = solve(rhs_);
-  v_free_ += state_.v;
+  chol_.solve(rhs_, v_next_);
+  v_next_ += state_.v;  // V_free; the impulses are added to it below
   ++work_.linear_solves;
 
   // Active set from the predicted gap.
@@ -108,22 +101,20 @@ StepInfo MoreauJean::step(double h) {
     if (gap_[i] + h * (1.0 - theta_) * gdot_[i] <= 0.0) active_.push_back(i);
 
   impulses_.setZero();
-  v_next_ = v_free_;
   if (!active_.empty()) {
     const Index a = static_cast<Index>(active_.size());
-    Eigen::MatrixXd D(a, a);
-    Vec q(a), x = Vec::Zero(a);
+    auto& [D, q, x] = lcp_storage_.of_size(a);
     for (Index c = 0; c < a; ++c) {
       const Vec& r = contact_response(active_[c]);
       for (Index row = 0; row < a; ++row) D(row, c) = L_.row(active_[row]).dot(r);
     }
     for (Index row = 0; row < a; ++row)
-      q[row] = L_.row(active_[row]).dot(v_free_) + e * gdot_[active_[row]];
+      q[row] = L_.row(active_[row]).dot(v_next_) + e * gdot_[active_[row]];
     const LcpResult res = solve_lcp(D, q, x, lcp_);
     info.iterations = res.iterations;
     work_.lcp_iterations += res.iterations;
-    double& max_residual = work_.extra["lcp_max_residual"];
-    max_residual = std::max(max_residual, res.residual);
+    if (!lcp_max_residual_) lcp_max_residual_ = &work_.extra["lcp_max_residual"];
+    *lcp_max_residual_ = std::max(*lcp_max_residual_, res.residual);
     if (!res.converged) {
       info.converged = false;
       ++work_.lcp_unconverged;
@@ -137,14 +128,14 @@ StepInfo MoreauJean::step(double h) {
   state_.u.noalias() += h * (theta_ * v_next_ + (1.0 - theta_) * state_.v);
   if (project_positions_) {
     const LcpResult res = contact_correction(L_, g0, state_.u, nu_, {}, true,
-                                             [this](Index i) -> const Vec& { return contact_response(i); }, lcp_, work_);
+                                             [this](Index i) -> const Vec& { return contact_response(i); }, lcp_, work_,
+                                             correction_);
     info.iterations += res.iterations;
     if (!res.converged) info.converged = false;
   }
   std::swap(state_.v, v_next_);
   state_.t += h;
-  std::swap(f_ext_now_, f_ext_next_);
-  if (problem_->external_force_is_constant()) f_ext_next_ = f_ext_now_;
+  if (!constant_force) std::swap(f_ext_now_, f_ext_next_);
   ++work_.steps;
   return info;
 }

@@ -53,12 +53,10 @@
 // left as the velocity step made it, so energy and momentum are not changed by nu directly;
 // the position shift is O(h * penetration speed) per step, the scheme stays first order
 // with impacts and of the theta-method's order in smooth phases (no correction there).
-#include <Eigen/CholmodSupport>
-#include <Eigen/SparseLU>
-
 #include "integrators/implicit_contact.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
+#include "integrators/sparse_cholesky.hpp"
 
 namespace nsb {
 
@@ -74,21 +72,22 @@ class MoreauJean final : public Integrator {
  private:
   void factorize(double h);
   const Vec& contact_response(Index contact);  // W^{-1} L_i^T, cached while W is unchanged
-  Vec solve(const Vec& rhs);                   // W^{-1} rhs with the current factorisation
 
   double theta_;
   bool project_positions_;
   LcpOptions lcp_;
-  SpMat K_, W_;
-  Eigen::CholmodDecomposition<SpMat, Eigen::Lower> solver_;
-  Eigen::SparseLU<SpMat> lu_;  // fallback for an indefinite W
-  bool use_lu_ = false;
-  bool pattern_analyzed_ = false;
+  SpMat K_;
+  SparseSum W_;         // M + h^2 theta^2 K, refilled in place
+  SparseCholesky chol_;  // its factorisation (sparse_cholesky.hpp)
   double h_factored_ = 0.0;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
-  std::vector<Vec> response_;  // per contact; empty when not computed for the current W
-  Vec f_int_, f_ext_now_, f_ext_next_, rhs_, v_free_, v_next_, gap_, gdot_, nu_;
+  std::vector<Vec> response_;         // per contact; storage kept across refactorisations
+  std::vector<char> response_valid_;  // computed for the current W
+  Vec f_int_, f_ext_now_, f_ext_next_, rhs_, v_next_, gap_, gdot_, nu_, unit_;
+  LcpStorage lcp_storage_;  // the LCP on the active set
+  double* lcp_max_residual_ = nullptr;  // work_.extra's entry, once created
   std::vector<Index> active_;
+  CorrectionBuffers correction_;  // projection = position
 };
 
 }  // namespace nsb

@@ -43,6 +43,7 @@ void NewmarkLm::init(const Problem& problem, const State& initial) {
   implicit_.bind(problem, mass_, state_.u, work_, lcp_options(params_), newton_options(params_), "newmark-lm");
   lambda_ = Vec::Zero(problem.ncontacts());
   f_ext_ = Vec::Zero(problem.ndof());
+  problem.external_force(state_.t, f_ext_);  // kept as is when constant
 }
 
 StepInfo NewmarkLm::step(double h) {
@@ -50,7 +51,7 @@ StepInfo NewmarkLm::step(double h) {
   info.dt = h;
   const double c = beta_ * h * h;
   u_pred_ = state_.u + h * state_.v + (h * h * (0.5 - beta_)) * a_;
-  problem_->external_force(state_.t + h, f_ext_);
+  if (!problem_->external_force_is_constant()) problem_->external_force(state_.t + h, f_ext_);
   implicit_.solve_step(u_pred_, f_ext_, c, true, u_next_, mu_, info);
   a_next_ = (u_next_ - u_pred_) / c;
   state_.v += h * ((1.0 - gamma_) * a_ + gamma_ * a_next_);

@@ -26,6 +26,7 @@ void Nsga::init(const Problem& problem, const State& initial) {
   abar_ = a_;
   implicit_.bind(problem, mass_, state_.u, work_, lcp_options(params_), newton_options(params_), "nsga");
   f_ext_ = Vec::Zero(problem.ndof());
+  problem.external_force(state_.t, f_ext_);  // kept as is when constant
 }
 
 StepInfo Nsga::step(double h) {
@@ -37,7 +38,7 @@ StepInfo Nsga::step(double h) {
   // multiplied by c, with a_{k+1} and abar_{k+1} eliminated through Q.
   u_pred_ = state_.u + h * state_.v + (h * h * (0.5 - beta_)) * abar_;
   u_hat_ = u_pred_ - (bh2 / (1.0 - alpha_m_)) * (alpha_m_ * abar_ - alpha_f_ * a_);
-  problem_->external_force(state_.t + h, f_ext_);
+  if (!problem_->external_force_is_constant()) problem_->external_force(state_.t + h, f_ext_);
   implicit_.solve_step(u_hat_, f_ext_, c, false, q_, nu_, info);
   abar_next_ = (q_ - u_pred_) / bh2;
   a_ = ((1.0 - alpha_m_) * abar_next_ + alpha_m_ * abar_ - alpha_f_ * a_) / (1.0 - alpha_f_);
@@ -47,7 +48,8 @@ StepInfo Nsga::step(double h) {
   // Contacts the smooth step closes, before the position correction opens them.
   const SpMat& L = problem_->gap_operator();
   const Vec& g0 = problem_->gap_offset();
-  b_ = g0 + L * q_;
+  b_.noalias() = L * q_;
+  b_ += g0;
   closing_.clear();
   for (Index i = 0; i < L.rows(); ++i)
     if (b_[i] <= 0.0) closing_.push_back(i);
@@ -58,7 +60,7 @@ StepInfo Nsga::step(double h) {
   if (closing_.empty()) {
     impulses_.setZero();
   } else {
-    b_ = problem_->restitution() * (L * state_.v);
+    b_.noalias() = problem_->restitution() * (L * state_.v);
     const LcpResult vel = implicit_.correct(b_, w_, impulses_, closing_, false);
     info.iterations += vel.iterations;
     if (!vel.converged) info.converged = false;

@@ -49,10 +49,11 @@ void SchatzmanPaoli::init(const Problem& problem, const State& initial) {
           theta_, problem.name()));
     problem.tangent_stiffness(state_.u, K_);
     ++work_.tangent_evaluations;
-    solver_.setMode(Eigen::CholmodSimplicialLLt);  // no BLAS: see moreau_jean.hpp
-    solver_.cholmod().print = 1;
+    W_.bind(mass_, K_);  // W's pattern, analysed now: a factor too large is refused up front
+    chol_.analyze(W_.matrix(), "integrator schatzman-paoli", "W");
   }
   response_.assign(static_cast<std::size_t>(L_.rows()), Vec());
+  response_valid_.assign(static_cast<std::size_t>(L_.rows()), 0);
   h_factored_ = 0.0;
   f_int_ = Vec::Zero(n);
   f_ext_ = Vec::Zero(n);
@@ -64,31 +65,29 @@ void SchatzmanPaoli::init(const Problem& problem, const State& initial) {
 }
 
 void SchatzmanPaoli::factorize(double h) {
-  W_ = mass_ + (theta_ * h * h) * K_;
-  if (h_factored_ == 0.0) solver_.analyzePattern(W_);
-  solver_.factorize(W_);
+  const bool positive = chol_.factorize(W_.assemble(mass_, theta_ * h * h, K_), false);
   ++work_.factorizations;
-  if (solver_.info() != Eigen::Success)
-    throw std::runtime_error("schatzman-paoli: M + theta h^2 K is not positive definite");
+  if (!positive) throw std::runtime_error("schatzman-paoli: M + theta h^2 K is not positive definite");
   h_factored_ = h;
-  for (auto& r : response_) r.resize(0);
+  std::fill(response_valid_.begin(), response_valid_.end(), 0);
 }
 
 void SchatzmanPaoli::solve_in_place(Vec& x) {
   if (explicit_()) {
     x.array() *= minv_.array();
   } else {
-    x = solver_.solve(x);
+    chol_.solve(x, x);
     ++work_.linear_solves;
   }
 }
 
 const Vec& SchatzmanPaoli::contact_response(Index i) {
   Vec& r = response_[static_cast<std::size_t>(i)];
-  if (r.size() == 0) {
-    r = Vec::Zero(problem_->ndof());
+  if (!response_valid_[static_cast<std::size_t>(i)]) {
+    r.setZero(problem_->ndof());
     for (decltype(L_)::InnerIterator it(L_, i); it; ++it) r[it.col()] = it.value();
     solve_in_place(r);
+    response_valid_[static_cast<std::size_t>(i)] = 1;
   }
   return r;
 }
@@ -155,8 +154,7 @@ void SchatzmanPaoli::solve_contacts(double h, StepInfo& info) {
     if (q_of(i) <= 0.0) active_.push_back(i);
   if (active_.empty()) return;
   const Index a = static_cast<Index>(active_.size());
-  Eigen::MatrixXd D(a, a);
-  Vec q(a), R = Vec::Zero(a);
+  auto& [D, q, R] = lcp_storage_.of_size(a);
   for (Index c = 0; c < a; ++c) {
     const Vec& r = contact_response(active_[c]);
     for (Index row = 0; row < a; ++row) D(row, c) = L_.row(active_[row]).dot(r);

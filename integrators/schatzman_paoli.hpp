@@ -37,10 +37,9 @@
 // bar) are allowed for theta > 0: their rows of W are theta h^2 K, i.e. they follow the
 // equilibrium of the theta-weighted position theta U_{k+1} + (1 - 2 theta) U_k + theta U_{k-1},
 // which, like the trapezoidal rule (moreau_jean.hpp), leaves a (-1)^k mode undamped there.
-#include <Eigen/CholmodSupport>
-
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
+#include "integrators/sparse_cholesky.hpp"
 
 namespace nsb {
 
@@ -68,14 +67,17 @@ class SchatzmanPaoli final : public Integrator {
   double theta_;
   LcpOptions lcp_;
   Vec minv_;                        // theta = 0
-  SpMat K_, W_;                     // theta > 0
-  Eigen::CholmodDecomposition<SpMat, Eigen::Lower> solver_;
+  SpMat K_;                         // theta > 0
+  SparseSum W_;
+  SparseCholesky chol_;
   double h_factored_ = 0.0;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
   Vec h_diag_;                      // diag(L W^{-1} L^T) when D is known to be diagonal
   bool d_diagonal_ = false;
-  std::vector<Vec> response_;
+  std::vector<Vec> response_;         // storage kept across refactorisations
+  std::vector<char> response_valid_;  // computed for the current W
   Vec u_prev_, u_next_, f_int_, f_ext_, rhs_;
+  LcpStorage lcp_storage_;  // the LCP on the active set
   std::vector<Index> active_;
   bool started_ = false;
   bool impulse_before_ = false;  // the previous step had an impulse
