@@ -34,6 +34,20 @@ inline int threads_for(std::ptrdiff_t n, std::ptrdiff_t min_per_thread) {
   return static_cast<int>(std::clamp<std::ptrdiff_t>(n / min_per_thread, 1, run_threads()));
 }
 
+// Calls f(i) for i = first, first + stride, ... below end: on `threads` threads (OpenMP,
+// static schedule) when threads > 1, else in a plain loop, because an OpenMP region starts
+// a team (and allocates, in libgomp) even when its if clause keeps it on one thread. For
+// work whose calls write disjoint entries.
+template <class F>
+void strided_for(std::ptrdiff_t first, std::ptrdiff_t end, std::ptrdiff_t stride, int threads, F&& f) {
+  if (threads <= 1) {
+    for (std::ptrdiff_t i = first; i < end; i += stride) f(i);
+    return;
+  }
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::ptrdiff_t i = first; i < end; i += stride) f(i);
+}
+
 // Calls f(begin, end) on contiguous pieces of [0, n), in parallel on run_threads() threads
 // when n is large enough to pay for them. For element-wise work (each index written by one
 // call only), so results do not depend on the split.

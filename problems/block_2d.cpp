@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -250,14 +251,14 @@ void Block2d::internal_force(ConstVecRef u, VecRef f) const {
   const double* pu = u.data();
   double* pf = f.data();
   const int threads = threads_for(nx_ * ny_, kMinElementsPerThread);
-  bool ok = true;
+  std::atomic<bool> ok{true};  // any row with an inverted element clears it
   // Even element rows, then odd ones: rows of one parity share no node.
-  for (Index parity = 0; parity < 2; ++parity) {
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static) reduction(&& : ok)
-    for (Index j = parity; j < ny_; j += 2)
-      ok = (neo_hookean_ ? add_row_forces<true>(j, pu, pf) : add_row_forces<false>(j, pu, pf)) && ok;
-  }
-  if (!ok) throw std::runtime_error("block-2d: inverted element (det F <= 0) in the neo-Hookean law");
+  for (Index parity = 0; parity < 2; ++parity)
+    strided_for(parity, ny_, 2, threads, [&](Index j) {
+      if (!(neo_hookean_ ? add_row_forces<true>(j, pu, pf) : add_row_forces<false>(j, pu, pf)))
+        ok.store(false, std::memory_order_relaxed);
+    });
+  if (!ok.load()) throw std::runtime_error("block-2d: inverted element (det F <= 0) in the neo-Hookean law");
 }
 
 void Block2d::element_tangent(Index e, ConstVecRef u, Mat8& Ke) const {
@@ -324,9 +325,8 @@ void Block2d::tangent_stiffness(ConstVecRef u, SpMat& K) const {
   const auto* outer = K.outerIndexPtr();
   const int threads = threads_for(nx_ * ny_, kMinElementsPerThread);
   // Element rows of one parity share no node, hence no entry of K.
-  for (Index parity = 0; parity < 2; ++parity) {
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
-    for (Index j = parity; j < ny_; j += 2) {
+  for (Index parity = 0; parity < 2; ++parity)
+    strided_for(parity, ny_, 2, threads, [&](Index j) {
       Mat8 Ke;
       for (Index e = j * nx_; e < (j + 1) * nx_; ++e) {
         element_tangent(e, u, Ke);
@@ -342,16 +342,14 @@ void Block2d::tangent_stiffness(ConstVecRef u, SpMat& K) const {
           for (int r = 0; r < 8; ++r) values[slot[r]] += Ke(r, c);
         }
       }
-    }
-  }
+    });
 }
 
 double Block2d::strain_energy(ConstVecRef u) const {
   // Per element row, then summed in row order: the same sum for any thread count.
   std::vector<double> row(static_cast<std::size_t>(ny_), 0.0);
   const int threads = threads_for(nx_ * ny_, kMinElementsPerThread);
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
-  for (Index j = 0; j < ny_; ++j) {
+  strided_for(0, ny_, 1, threads, [&](Index j) {
     Eigen::Matrix2d F;
     Eigen::Matrix<double, 3, 8> B;
     Eigen::Vector3d S;
@@ -364,7 +362,7 @@ double Block2d::strain_energy(ConstVecRef u) const {
       }
     }
     row[static_cast<std::size_t>(j)] = W;
-  }
+  });
   double W = 0.0;
   for (const double w : row) W += w;
   return W;

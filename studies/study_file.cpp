@@ -270,7 +270,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   for (const auto& m : spec.measures)
     t.columns.push_back({m.label, m.kind == MeasureKind::ImpactTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" ? "1/s" : "",
                          "{:.3e}", ""});
-  t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", ""}, {"steps", "", "", ""},
+  t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", "", true}, {"steps", "", "", ""},
                                      {"F_int evals", "", "", "internal force evaluations"}, {"status", "", "", ""}});
   t.metadata = meta;
   Table orders;
