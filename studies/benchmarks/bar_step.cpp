@@ -82,16 +82,11 @@ void register_all() {
                                  c.params, c.mass, c.alpha)
         ->RangeMultiplier(10)
         ->Range(1000, c.largest)
-        ->ComputeStatistics("min", min_of);
-  benchmark::RegisterBenchmark("BM_Triad", BM_Triad)->RangeMultiplier(10)->Range(1000, 10000000)->ComputeStatistics("min", min_of);
+        ->ComputeStatistics("min", min_of)
+        ->UseRealTime();
+  benchmark::RegisterBenchmark("BM_Triad", BM_Triad)->RangeMultiplier(10)->Range(1000, 10000000)->ComputeStatistics("min", min_of)->UseRealTime();
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  register_all();
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+int main(int argc, char** argv) { return nsb::bench::run_benchmarks(argc, argv, register_all); }

@@ -88,4 +88,13 @@ inline double peak_flops_per_ns() {
   return 2.0 * kLanes * kRounds / ns;
 }
 
+// main() of a benchmark binary whose benchmarks `register_benchmarks` registers at run time.
+inline int run_benchmarks(int argc, char** argv, void (*register_benchmarks)()) {
+  register_benchmarks();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
+
 }  // namespace nsb::bench
