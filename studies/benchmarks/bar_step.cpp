@@ -58,6 +58,8 @@ void BM_Triad(benchmark::State& state) {
   const long n = state.range(0) + 1;
   nsb::bench::Triad triad(n);
   for (auto _ : state) triad();
+  state.counters["units"] = static_cast<double>(n);
+  state.counters["run_threads"] = nsb::run_threads();
   state.counters["time_per_unit"] = benchmark::Counter(static_cast<double>(n),
                                                        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }

@@ -2,6 +2,8 @@
 // What every nsbench benchmark of a time step reports beside its time, so that
 // `nsbench-study performance` (studies/performance.cpp) can put each scheme next to its
 // limit in one table:
+//   counter "run_threads" the threads of the run (NSBENCH_THREADS; Google Benchmark's own
+//                      "threads" field counts its benchmark threads, always 1 here)
 //   counter "units"     the dofs (or elements) the step works on: the per-unit column
 //   counter "limit_ns"  the limit's time per step in ns, measured in the same process,
 //                       on the same data size, just before the step's own loop (so both
@@ -48,7 +50,7 @@ inline void report_limit(benchmark::State& state, double units, double limit_ns,
   state.counters["limit_ns"] = limit_ns;
   state.counters["time_per_unit"] =
       benchmark::Counter(units, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  state.counters["threads"] = nsb::run_threads();
+  state.counters["run_threads"] = nsb::run_threads();
   state.SetLabel("limit: " + limit);
 }
 

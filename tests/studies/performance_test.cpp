@@ -16,7 +16,7 @@ nsb::Json entry(const std::string& run_name, const std::string& run_type, const 
                 const std::string& unit, double threads) {
   nsb::Json b = {{"name", run_name}, {"run_name", run_name}, {"run_type", run_type}, {"real_time", time},
                  {"cpu_time", time}, {"time_unit", unit}, {"units", 1000.0}, {"limit_ns", 250.0},
-                 {"threads", threads}, {"label", "limit: triad over N+1 doubles"}};
+                 {"threads", 1}, {"run_threads", threads}, {"label", "limit: triad over N+1 doubles"}};
   if (!aggregate.empty()) b["aggregate_name"] = aggregate;
   return b;
 }
