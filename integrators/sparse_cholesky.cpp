@@ -79,7 +79,9 @@ SparseCholesky::SparseCholesky() {
   common_.final_asis = 0;  // as Eigen's CholmodSimplicialLLt mode
   common_.supernodal = CHOLMOD_SIMPLICIAL;
   common_.final_ll = 1;
-  common_.print = 1;  // errors only: "not positive definite" is reported through factorize()
+  // Silent: CHOLMOD prints "not positive definite" as an error, but that is the LU fallback's
+  // case, reported through factorize() and counted by the schemes (lu_fallbacks).
+  common_.print = 0;
 }
 
 SparseCholesky::~SparseCholesky() {
