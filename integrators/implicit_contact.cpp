@@ -21,9 +21,7 @@ void ImplicitContact::bind(const Problem& problem, const SpMat& M, const Vec& u0
   ++work.tangent_evaluations;
   f_int_ = Vec::Zero(problem.ndof());
   L_ = problem.gap_operator();
-  response_.assign(L_.rows(), Vec());
-  response_valid_.assign(L_.rows(), 0);
-  unit_ = Vec::Zero(problem.ndof());
+  responses_.bind(L_.rows());
   S_.bind(M, K_);  // S's pattern for every c, analysed now: a factor too large is refused up front
   chol_.analyze(S_.matrix(), fmt::format("integrator {}", who), "S");
 }
@@ -33,7 +31,7 @@ void ImplicitContact::factorize(double c) {
   ++work_->factorizations;
   if (chol_.uses_lu()) ++work_->extra["lu_fallbacks"];
   c_factored_ = c;
-  std::fill(response_valid_.begin(), response_valid_.end(), 0);
+  responses_.invalidate();
 }
 
 void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, bool with_contact, Vec& u, Vec& mu,
@@ -85,15 +83,10 @@ void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, b
 }
 
 const Vec& ImplicitContact::response(Index i) {
-  Vec& r = response_[i];
-  if (!response_valid_[i]) {
-    unit_.setZero();
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) unit_[it.col()] = it.value();
-    chol_.solve(unit_, r);
+  return responses_.get(L_, i, [this](Vec& r) {
+    chol_.solve(r, r);
     ++work_->linear_solves;
-    response_valid_[i] = 1;
-  }
-  return r;
+  });
 }
 
 LcpResult ImplicitContact::correct(const Vec& b, Vec& x, Vec& mu, const std::vector<Index>& active, bool grow) {

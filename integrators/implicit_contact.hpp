@@ -29,6 +29,7 @@
 #include <functional>
 #include <vector>
 
+#include "integrators/contact_responses.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
 #include "integrators/sparse_cholesky.hpp"
@@ -83,9 +84,7 @@ class ImplicitContact {
   ContactRows L_;
   SparseSum S_;
   SparseCholesky chol_;
-  std::vector<Vec> response_;         // storage kept across refactorisations
-  std::vector<char> response_valid_;  // computed for the current S
-  Vec unit_;
+  ContactResponses responses_;  // S^{-1} L_i^T
   CorrectionBuffers buffers_;
 };
 

@@ -28,14 +28,12 @@ void MoreauJean::init(const Problem& problem, const State& initial) {
   problem.tangent_stiffness(state_.u, K_);
   ++work_.tangent_evaluations;
   L_ = problem.gap_operator();
-  response_.assign(L_.rows(), Vec());
-  response_valid_.assign(L_.rows(), 0);
+  responses_.bind(L_.rows());
   f_int_ = Vec::Zero(n);
   f_ext_now_ = Vec::Zero(n);
   f_ext_next_ = Vec::Zero(n);
   rhs_ = Vec::Zero(n);
   v_next_ = Vec::Zero(n);
-  unit_ = Vec::Zero(n);
   gap_ = Vec::Zero(L_.rows());
   gdot_ = Vec::Zero(L_.rows());
   problem.external_force(state_.t, f_ext_now_);
@@ -54,19 +52,14 @@ void MoreauJean::factorize(double h) {
   ++work_.factorizations;
   if (chol_.uses_lu()) ++work_.extra["lu_fallbacks"];
   h_factored_ = h;
-  std::fill(response_valid_.begin(), response_valid_.end(), 0);
+  responses_.invalidate();
 }
 
 const Vec& MoreauJean::contact_response(Index i) {
-  Vec& r = response_[i];
-  if (!response_valid_[i]) {
-    unit_.setZero();
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) unit_[it.col()] = it.value();
-    chol_.solve(unit_, r);
-    response_valid_[i] = 1;
+  return responses_.get(L_, i, [this](Vec& r) {
+    chol_.solve(r, r);
     ++work_.linear_solves;
-  }
-  return r;
+  });
 }
 
 StepInfo MoreauJean::step(double h) {

@@ -53,6 +53,7 @@
 // left as the velocity step made it, so energy and momentum are not changed by nu directly;
 // the position shift is O(h * penetration speed) per step, the scheme stays first order
 // with impacts and of the theta-method's order in smooth phases (no correction there).
+#include "integrators/contact_responses.hpp"
 #include "integrators/implicit_contact.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
@@ -81,9 +82,8 @@ class MoreauJean final : public Integrator {
   SparseCholesky chol_;  // its factorisation (sparse_cholesky.hpp)
   double h_factored_ = 0.0;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
-  std::vector<Vec> response_;         // per contact; storage kept across refactorisations
-  std::vector<char> response_valid_;  // computed for the current W
-  Vec f_int_, f_ext_now_, f_ext_next_, rhs_, v_next_, gap_, gdot_, nu_, unit_;
+  ContactResponses responses_;  // W^{-1} L_i^T
+  Vec f_int_, f_ext_now_, f_ext_next_, rhs_, v_next_, gap_, gdot_, nu_;
   LcpStorage lcp_storage_;  // the LCP on the active set
   double* lcp_max_residual_ = nullptr;  // work_.extra's entry, once created
   std::vector<Index> active_;

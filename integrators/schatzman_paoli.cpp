@@ -52,8 +52,7 @@ void SchatzmanPaoli::init(const Problem& problem, const State& initial) {
     W_.bind(mass_, K_);  // W's pattern, analysed now: a factor too large is refused up front
     chol_.analyze(W_.matrix(), "integrator schatzman-paoli", "W");
   }
-  response_.assign(static_cast<std::size_t>(L_.rows()), Vec());
-  response_valid_.assign(static_cast<std::size_t>(L_.rows()), 0);
+  responses_.bind(L_.rows());
   h_factored_ = 0.0;
   f_int_ = Vec::Zero(n);
   f_ext_ = Vec::Zero(n);
@@ -69,7 +68,7 @@ void SchatzmanPaoli::factorize(double h) {
   ++work_.factorizations;
   if (!positive) throw std::runtime_error("schatzman-paoli: M + theta h^2 K is not positive definite");
   h_factored_ = h;
-  std::fill(response_valid_.begin(), response_valid_.end(), 0);
+  responses_.invalidate();
 }
 
 void SchatzmanPaoli::solve_in_place(Vec& x) {
@@ -82,14 +81,7 @@ void SchatzmanPaoli::solve_in_place(Vec& x) {
 }
 
 const Vec& SchatzmanPaoli::contact_response(Index i) {
-  Vec& r = response_[static_cast<std::size_t>(i)];
-  if (!response_valid_[static_cast<std::size_t>(i)]) {
-    r.setZero(problem_->ndof());
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) r[it.col()] = it.value();
-    solve_in_place(r);
-    response_valid_[static_cast<std::size_t>(i)] = 1;
-  }
-  return r;
+  return responses_.get(L_, i, [this](Vec& r) { solve_in_place(r); });
 }
 
 StepInfo SchatzmanPaoli::step(double h) {

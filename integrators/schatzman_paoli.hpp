@@ -37,6 +37,7 @@
 // bar) are allowed for theta > 0: their rows of W are theta h^2 K, i.e. they follow the
 // equilibrium of the theta-weighted position theta U_{k+1} + (1 - 2 theta) U_k + theta U_{k-1},
 // which, like the trapezoidal rule (moreau_jean.hpp), leaves a (-1)^k mode undamped there.
+#include "integrators/contact_responses.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
 #include "integrators/sparse_cholesky.hpp"
@@ -74,8 +75,7 @@ class SchatzmanPaoli final : public Integrator {
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
   Vec h_diag_;                      // diag(L W^{-1} L^T) when D is known to be diagonal
   bool d_diagonal_ = false;
-  std::vector<Vec> response_;         // storage kept across refactorisations
-  std::vector<char> response_valid_;  // computed for the current W
+  ContactResponses responses_;  // W^{-1} L_i^T
   Vec u_prev_, u_next_, f_int_, f_ext_, rhs_;
   LcpStorage lcp_storage_;  // the LCP on the active set
   std::vector<Index> active_;
