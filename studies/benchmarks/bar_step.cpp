@@ -46,11 +46,7 @@ void step_bench(benchmark::State& state, const std::string& integrator, const st
   for (int k = 0; k < 10; ++k) integ->step(dt);
   nsb::bench::Triad triad(N + 1);
   const double limit_ns = nsb::bench::least_ns(triad);
-  for (auto _ : state) {
-    integ->step(dt);
-    benchmark::DoNotOptimize(integ->state().v.data());
-    benchmark::ClobberMemory();
-  }
+  nsb::bench::time_steps(state, *integ, dt);
   nsb::bench::report_limit(state, static_cast<double>(N + 1), limit_ns, "triad over N+1 doubles");
 }
 
@@ -58,10 +54,7 @@ void BM_Triad(benchmark::State& state) {
   const long n = state.range(0) + 1;
   nsb::bench::Triad triad(n);
   for (auto _ : state) triad();
-  state.counters["units"] = static_cast<double>(n);
-  state.counters["run_threads"] = nsb::run_threads();
-  state.counters["time_per_unit"] = benchmark::Counter(static_cast<double>(n),
-                                                       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  nsb::bench::report_units(state, static_cast<double>(n));
 }
 
 void register_all() {

@@ -73,11 +73,7 @@ void BM_BlockCdLagrangeStep(benchmark::State& state) {
     benchmark::DoNotOptimize(f.data());
     benchmark::ClobberMemory();
   });
-  for (auto _ : state) {
-    integ.step(dt);
-    benchmark::DoNotOptimize(integ.state().v.data());
-    benchmark::ClobberMemory();
-  }
+  nsb::bench::time_steps(state, integ, dt);
   nsb::bench::report_limit(state, static_cast<double>(n * n), limit_ns, "bare F_int on the same mesh");
 }
 

@@ -131,11 +131,7 @@ void run(benchmark::State& state, nsb::Integrator& integ, const nsb::Problem& pr
   BareCholmod bare(problem.mass_matrix(), c(dt), K);
   const double factorise_ns = nsb::bench::least_ns([&] { bare.factorise(); });
   const double solve_ns = nsb::bench::least_ns([&] { bare.solve(); });
-  for (auto _ : state) {
-    integ.step(dt);
-    benchmark::DoNotOptimize(integ.state().v.data());
-    benchmark::ClobberMemory();
-  }
+  nsb::bench::time_steps(state, integ, dt);
   state.counters["factorise_ns"] = factorise_ns;
   state.counters["solve_ns"] = solve_ns;
   const auto units = static_cast<double>(problem.ndof());

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/threads.hpp"
+#include "integrators/integrator.hpp"
 
 namespace nsb::bench {
 
@@ -43,15 +44,29 @@ double least_ns(Kernel&& kernel) {
   return best;
 }
 
-// Records the convention's counters and label, and the inverted per-unit rate "time_per_unit"
-// (seconds per unit and step, printed with an SI prefix).
-inline void report_limit(benchmark::State& state, double units, double limit_ns, const std::string& limit) {
+// Records "units", "run_threads" and the inverted per-unit rate "time_per_unit" (seconds per
+// unit and step, printed with an SI prefix): the counters of any benchmark, limit or not.
+inline void report_units(benchmark::State& state, double units) {
   state.counters["units"] = units;
-  state.counters["limit_ns"] = limit_ns;
   state.counters["time_per_unit"] =
       benchmark::Counter(units, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.counters["run_threads"] = nsb::run_threads();
+}
+
+// A step's counters: the above, its limit and the label naming it.
+inline void report_limit(benchmark::State& state, double units, double limit_ns, const std::string& limit) {
+  report_units(state, units);
+  state.counters["limit_ns"] = limit_ns;
   state.SetLabel("limit: " + limit);
+}
+
+// The timed loop of a step benchmark: one step of `integ` per iteration.
+inline void time_steps(benchmark::State& state, nsb::Integrator& integ, double dt) {
+  for (auto _ : state) {
+    integ.step(dt);
+    benchmark::DoNotOptimize(integ.state().v.data());
+    benchmark::ClobberMemory();
+  }
 }
 
 // STREAM triad a = b + s c over n doubles: the memory-bandwidth yardstick. On the threads
