@@ -32,6 +32,7 @@ void CdLagrange::init(const Problem& problem, const State& initial) {
       throw InputError(fmt::format("integrator cd-lagrange: problem {} has massless dofs, which need {}", problem.name(), why));
     };
     if (!problem.is_linear()) fail("a linear problem");
+    if (problem.contacts().has_friction()) fail("mu = 0 (friction on a quasi-static dof is not treated)");
     SpMat K;
     problem.tangent_stiffness(state_.u, K);
     ++work_.tangent_evaluations;
@@ -69,7 +70,7 @@ StepInfo CdLagrange::step(double tau) {
   if (!massless_.empty()) solve_massless(tau);
   cd_.kick(state_, tau);
 
-  info.iterations = contact_.apply(state_.u, cd_.v_prev, state_.v, impulses_, info, work_);
+  info.iterations = contact_.apply(state_.u, cd_.v_prev, state_.v, impulses_, tangential_impulses_, info, work_);
   for (std::size_t q = 0; q < massless_.size(); ++q) {
     const MasslessDof& d = massless_[q];
     state_.v[d.dof] = (state_.u[d.dof] - cd_.u_prev[d.dof]) / tau;

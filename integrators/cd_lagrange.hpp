@@ -14,6 +14,11 @@
 // Lambda_{k+1/2}) with Lambda reset to 0 when the gap opens is adhesive (DESIGN.md); the
 // impulse form is not.
 //
+// Coulomb friction (DESIGN.md section 6): the closed contacts take (Lambda_N, Lambda_T) from
+// the 2D Moreau–Coulomb law, P_{k+3/2} = P_free + L^T Lambda_N + T^T Lambda_T, in closed form
+// per contact where no two contacts share a dof (impulse_contact.hpp); no tangential
+// restitution.
+//
 // Start: P_{1/2} = M v0 + tau/2 (F_ext(0) - F_int(U_0)) (half kick, second order in
 // smooth phases). Needs a diagonal mass.
 //
@@ -48,6 +53,7 @@ class CdLagrange final : public Integrator {
 
   std::string name() const override { return "cd-lagrange"; }
   bool conditionally_stable() const override { return true; }  // explicit central difference
+  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
   Energy energy() const override;

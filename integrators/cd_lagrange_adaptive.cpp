@@ -66,6 +66,12 @@ void CdLagrangeAdaptive::init(const Problem& problem, const State& initial) {
   e_ = problem.restitution();
   cfl_ = cfl_fraction_ * problem.stable_step();
   contact_ = ImpulseContact(problem, minv_, lcp_);
+  friction_ = problem.contacts().has_friction();
+  if (friction_) {
+    T_ = problem.contacts().tangent;
+    tdot_prev_ = Vec::Zero(problem.ncontacts());
+    tdot_next_ = Vec::Zero(problem.ncontacts());
+  }
   started_ = false;
   auto& extra = work_.extra;
   iterations_ = &extra["energy_iterations"];
@@ -119,6 +125,7 @@ StepInfo CdLagrangeAdaptive::step(double dt_requested) {
   energy_ = kinetic_ + 0.5 * (pot_prev_ + pot_cur_);
   scale_ = kinetic_ + 0.5 * (std::abs(pot_prev_) + std::abs(pot_cur_));
   gdot_prev_.noalias() = problem_->gap_operator() * state_.v;
+  if (friction_) tdot_prev_.noalias() = T_ * state_.v;
   fext_u_prev_ = f_ext_.dot(u_prev_);
 
   choose_next_step(info);
@@ -140,13 +147,17 @@ double CdLagrangeAdaptive::residual(double tau, StepInfo& info) {
     v_next_.noalias() = state_.v + (0.5 * (tau_ + tau)) * acc_;
   }
   // The free velocity depends on tau, so does the impulse: the contact is solved per trial.
-  work_.lcp_iterations += contact_.apply(state_.u, state_.v, v_next_, impulses_, info, work_);
+  work_.lcp_iterations += contact_.apply(state_.u, state_.v, v_next_, impulses_, tangential_impulses_, info, work_);
   u_next_.noalias() = state_.u + tau * v_next_;
   load_next_ = problem_->load_potential(u_next_);
   pot_next_ = problem_->strain_energy(u_next_) + load_next_;
   const double kinetic = 0.5 * v_next_.dot(m_.cwiseProduct(v_next_));
   const double w_ext = 0.5 * (f_ext_.dot(u_next_) - fext_u_prev_) + 0.5 * (load_next_ - load_prev_);
-  const double w_impulse = no_work_ ? 0.0 : 0.5 * (1.0 - e_) * impulses_.dot(gdot_prev_);
+  double w_impulse = no_work_ ? 0.0 : 0.5 * (1.0 - e_) * impulses_.dot(gdot_prev_);
+  if (friction_) {
+    tdot_next_.noalias() = T_ * v_next_;
+    w_impulse += 0.5 * (tangential_impulses_.dot(tdot_next_) + tangential_impulses_.dot(tdot_prev_));
+  }
   ++*iterations_;
   return kinetic + 0.5 * (pot_cur_ + pot_next_) - energy_ - w_ext - w_impulse;
 }

@@ -58,6 +58,11 @@
 // the continuous E_0, is the balanced quantity. tau_min = tau_min_ratio * dt,
 // tau_max = tau_max_ratio * dt (dt: the first requested step; later requests are ignored).
 //
+// Coulomb friction (either target): the closed contacts' tangential impulses do the work
+//   W_T = 1/2 Lambda_T^T T (v_{k+3/2} + v_{k+1/2})    (the exact work of an impulse on the body,
+//   <= 0 on a fixed obstacle), added to W_Lambda: friction is dissipation the balance must
+//   allow, whatever the normal impulses' target.
+//
 // Counters (work().extra): energy_iterations (residual evaluations), no_root_steps,
 // cfl_capped_steps (the step was held at tau_up: predictor above it, or no root and the
 // least residual there; tau_up is the CFL bound or the user cap tau_max, whichever is
@@ -78,6 +83,7 @@ class CdLagrangeAdaptive final : public Integrator {
   static ParamSpecs parameters_spec();
 
   std::string name() const override { return "cd-lagrange-adaptive"; }
+  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
   Energy energy() const override;
@@ -99,6 +105,9 @@ class CdLagrangeAdaptive final : public Integrator {
   Vec m_, minv_;
   Vec u_prev_, u_next_, v_next_;  // U_k; trial U_{k+2}, M^{-1} P_{k+3/2}
   Vec f_int_, f_ext_, acc_, gdot_prev_;  // F_int, F_ext, M^{-1} F at U_{k+1}; L M^{-1} P_{k+1/2}
+  bool friction_ = false;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
+  Vec tdot_prev_, tdot_next_;  // T M^{-1} P_{k+1/2}, T v of the trial
   double e_ = 1.0;
   double tau_prev_ = 0, tau_ = 0, tau_next_ = 0;  // tau_k, tau_{k+1}, tau_{k+2}
   double tau_min_ = 0, tau_max_ = 0, cfl_ = 0;

@@ -49,7 +49,7 @@ StepInfo D1MinusLinear::step(double h) {
     for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v1_[it.col()] = state_.v[it.col()] + h * a_now_[it.col()];
   long iterations = 0;
   p1_.setZero();
-  if (closed_start_) iterations += contact_.apply(state_.u, v1_, v1_, p1_, info, work_, 0.0);  // e = 0: v_prev unused
+  if (closed_start_) iterations += contact_.apply(state_.u, v1_, v1_, p1_, tangential_impulses_, info, work_, 0.0);  // e = 0: v_prev unused
   std::swap(u_start_, state_.u);
   state_.u.noalias() = u_start_ + h * state_.v + (0.5 * h * h) * a_now_;
   add_impulses(p1_, 0.5 * h, state_.u);
@@ -77,7 +77,7 @@ StepInfo D1MinusLinear::step(double h) {
     p1_.setZero();
   } else if (closed_start_) {
     add_impulses(p1_, 0.5, v_minus_);
-    iterations += contact_.apply(u_start_, v_minus_, v_minus_, p2_, info, work_, 0.0);
+    iterations += contact_.apply(u_start_, v_minus_, v_minus_, p2_, tangential_impulses_, info, work_, 0.0);
   }
   // Impact at t_{k+1}, Newton's law against V^-.
   impact_.setZero();
@@ -86,7 +86,7 @@ StepInfo D1MinusLinear::step(double h) {
     // V^- on the contacts' dofs (all the impact law reads of it) into v1_, no longer needed.
     for (Index i = 0; i < L_.rows(); ++i)
       for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v1_[it.col()] = state_.v[it.col()];
-    iterations += contact_.apply(state_.u, v1_, state_.v, impact_, info, work_, problem_->restitution());
+    iterations += contact_.apply(state_.u, v1_, state_.v, impact_, tangential_impulses_, info, work_, problem_->restitution());
   }
   impulses_ = impact_ + 0.5 * p1_ + p2_;
 

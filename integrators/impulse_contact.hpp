@@ -10,6 +10,15 @@
 // the closed contacts (projected Gauss-Seidel, lcp.hpp).
 // A contact with H_ii = 0 acts on massless dofs only (minv zero there): it has no impulse
 // law and is skipped here; the caller solves it quasi-statically (cd_lagrange.hpp).
+//
+// With Coulomb friction (Contacts::mu > 0 somewhere, DESIGN.md section 6) each closed
+// contact takes (Lambda_N, Lambda_T) from the 2D Moreau–Coulomb law (coulomb.hpp) with
+// q_N = g'_free + e g'_prev, q_T = T v_free - w and W = [L; T] M^{-1} [L; T]^T:
+//     v  <-  v_free + M^{-1} (L^T Lambda_N + T^T Lambda_T).
+// Contacts that share no dof with another (W block diagonal): each in closed form, still
+// explicit and allocation-free; otherwise nonsmooth Gauss–Seidel over the closed contacts.
+// The frictionless path is the one above, untouched.
+#include "integrators/coulomb.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
 
@@ -21,16 +30,22 @@ class ImpulseContact {
   ImpulseContact(const Problem& problem, const Vec& minv, LcpOptions lcp);
 
   // u: new position; v_prev: velocity before the step (for restitution); v: in, the free
-  // velocity, out, the velocity after the impulses; impulses: out (size p). Returns the LCP
-  // iterations (0 for a diagonal H); counts unconverged LCPs in `work`.
-  long apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef impulses, StepInfo& info,
+  // velocity, out, the velocity after the impulses; impulses, tangential: out (size p; the
+  // tangential ones stay zero without friction). Returns the LCP iterations (0 for a
+  // diagonal H); counts unconverged LCPs in `work`.
+  long apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef impulses, VecRef tangential, StepInfo& info,
              WorkCounters& work);
   // The same with restitution e instead of the problem's (e = 0: the velocity-level
   // constraint g' >= 0 of a closed contact, as d1_minus_linear.hpp needs).
-  long apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef impulses, StepInfo& info,
+  long apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef impulses, VecRef tangential, StepInfo& info,
              WorkCounters& work, double e);
 
  private:
+  long apply_with_friction(ConstVecRef v_prev, VecRef v, VecRef impulses, VecRef tangential, StepInfo& info,
+                           WorkCounters& work, double e);
+  // v += M^{-1} (L_i^T n + T_i^T t)
+  void add_impulse(Index i, double n, double t, VecRef v) const;
+
   const Problem* problem_ = nullptr;
   Vec minv_;
   LcpOptions lcp_;
@@ -39,6 +54,17 @@ class ImpulseContact {
   Vec h_diag_;
   bool h_is_diagonal_ = true;
   Eigen::MatrixXd h_full_;  // H, when it is not diagonal
+
+  // Friction: T, mu, w, the local 2x2 blocks (w_nn = h_diag_), and the full interleaved
+  // [L; T] M^{-1} [L; T]^T when contacts share dofs.
+  bool friction_ = false;
+  bool friction_coupled_ = false;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
+  Vec mu_, w_, w_nt_, w_tt_;
+  Eigen::MatrixXd w_full_;
+  std::vector<Index> closed_;
+  LcpStorage storage_;  // D, q, x of the coupled case, per size (x: impulses, 2 per contact)
+  Vec mu_closed_;
 };
 
 }  // namespace nsb

@@ -90,22 +90,29 @@ class Integrator {
   virtual bool conditionally_stable() const { return false; }
   // See ImpactAccuracy; valid after init().
   virtual ImpactAccuracy impact_accuracy() const { return {}; }
+  // True for a scheme that treats Coulomb friction (Contacts::mu, DESIGN.md section 6). bind()
+  // refuses a problem with mu > 0 for every other scheme, so none ignores friction silently.
+  virtual bool treats_friction() const { return false; }
 
   const State& state() const { return state_; }
   // Contact impulses Lambda (size p) applied during the last step; >= 0.
   const Vec& impulses() const { return impulses_; }
+  // Tangential impulses Lambda_T (size p) of the last step, along +T; zero without friction.
+  const Vec& tangential_impulses() const { return tangential_impulses_; }
   const WorkCounters& work() const { return work_; }
   const Params& parameters() const { return params_; }
 
  protected:
   explicit Integrator(Params params) : params_(std::move(params)) {}
-  // Common part of init(): stores the problem and state, sizes the impulses.
+  // Common part of init(): checks the problem's contacts (check_contacts; friction only for a
+  // scheme that treats_friction()), stores the problem and state, sizes the impulses.
   void bind(const Problem& problem, const State& initial);
 
   const Problem* problem_ = nullptr;
   SpMat mass_;
   State state_;
   Vec impulses_;
+  Vec tangential_impulses_;
   WorkCounters work_;
   Params params_;
 };

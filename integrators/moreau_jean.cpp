@@ -29,6 +29,12 @@ void MoreauJean::init(const Problem& problem, const State& initial) {
   ++work_.tangent_evaluations;
   L_ = problem.gap_operator();
   responses_.bind(L_.rows());
+  friction_ = problem.contacts().has_friction();
+  if (friction_) {
+    T_ = problem.contacts().tangent;
+    tangent_responses_.bind(L_.rows());
+    mu_active_ = Vec::Zero(L_.rows());
+  }
   f_int_ = Vec::Zero(n);
   f_ext_now_ = Vec::Zero(n);
   f_ext_next_ = Vec::Zero(n);
@@ -53,6 +59,7 @@ void MoreauJean::factorize(double h) {
   if (chol_.uses_lu()) ++work_.extra["lu_fallbacks"];
   h_factored_ = h;
   responses_.invalidate();
+  tangent_responses_.invalidate();
 }
 
 const Vec& MoreauJean::contact_response(Index i) {
@@ -60,6 +67,60 @@ const Vec& MoreauJean::contact_response(Index i) {
     chol_.solve(r, r);
     ++work_.linear_solves;
   });
+}
+
+const Vec& MoreauJean::tangent_response(Index i) {
+  return tangent_responses_.get(T_, i, [this](Vec& r) {
+    chol_.solve(r, r);
+    ++work_.linear_solves;
+  });
+}
+
+LcpResult MoreauJean::solve_frictionless(Index a, double e) {
+  auto& [D, q, x] = lcp_storage_.of_size(a);
+  for (Index c = 0; c < a; ++c) {
+    const Vec& r = contact_response(active_[c]);
+    for (Index row = 0; row < a; ++row) D(row, c) = L_.row(active_[row]).dot(r);
+  }
+  for (Index row = 0; row < a; ++row)
+    q[row] = L_.row(active_[row]).dot(v_next_) + e * gdot_[active_[row]];
+  const LcpResult res = solve_lcp(D, q, x, lcp_);
+  for (Index c = 0; c < a; ++c) {
+    if (x[c] == 0.0) continue;
+    impulses_[active_[c]] = x[c];
+    v_next_.noalias() += x[c] * contact_response(active_[c]);
+  }
+  return res;
+}
+
+LcpResult MoreauJean::solve_with_friction(Index a, double e) {
+  auto& [D, q, x] = lcp_storage_.of_size(2 * a);
+  const Vec& w = problem_->contacts().tangent_velocity;
+  for (Index c = 0; c < a; ++c) {
+    const Vec& rn = contact_response(active_[c]);
+    const Vec& rt = tangent_response(active_[c]);
+    for (Index row = 0; row < a; ++row) {
+      D(2 * row, 2 * c) = L_.row(active_[row]).dot(rn);
+      D(2 * row, 2 * c + 1) = L_.row(active_[row]).dot(rt);
+      D(2 * row + 1, 2 * c) = T_.row(active_[row]).dot(rn);
+      D(2 * row + 1, 2 * c + 1) = T_.row(active_[row]).dot(rt);
+    }
+  }
+  for (Index row = 0; row < a; ++row) {
+    const Index i = active_[row];
+    q[2 * row] = L_.row(i).dot(v_next_) + e * gdot_[i];
+    q[2 * row + 1] = T_.row(i).dot(v_next_) - w[i];
+    mu_active_[row] = problem_->contacts().mu[i];
+  }
+  const LcpResult res = solve_coulomb(D, q, mu_active_.head(a), x, lcp_);
+  for (Index c = 0; c < a; ++c) {
+    const Index i = active_[c];
+    impulses_[i] = x[2 * c];
+    tangential_impulses_[i] = x[2 * c + 1];
+    if (x[2 * c] != 0.0) v_next_.noalias() += x[2 * c] * contact_response(i);
+    if (x[2 * c + 1] != 0.0) v_next_.noalias() += x[2 * c + 1] * tangent_response(i);
+  }
+  return res;
 }
 
 StepInfo MoreauJean::step(double h) {
@@ -94,16 +155,10 @@ StepInfo MoreauJean::step(double h) {
     if (gap_[i] + h * (1.0 - theta_) * gdot_[i] <= 0.0) active_.push_back(i);
 
   impulses_.setZero();
+  if (friction_) tangential_impulses_.setZero();
   if (!active_.empty()) {
     const Index a = static_cast<Index>(active_.size());
-    auto& [D, q, x] = lcp_storage_.of_size(a);
-    for (Index c = 0; c < a; ++c) {
-      const Vec& r = contact_response(active_[c]);
-      for (Index row = 0; row < a; ++row) D(row, c) = L_.row(active_[row]).dot(r);
-    }
-    for (Index row = 0; row < a; ++row)
-      q[row] = L_.row(active_[row]).dot(v_next_) + e * gdot_[active_[row]];
-    const LcpResult res = solve_lcp(D, q, x, lcp_);
+    const LcpResult res = friction_ ? solve_with_friction(a, e) : solve_frictionless(a, e);
     info.iterations = res.iterations;
     work_.lcp_iterations += res.iterations;
     if (!lcp_max_residual_) lcp_max_residual_ = &work_.extra["lcp_max_residual"];
@@ -111,11 +166,6 @@ StepInfo MoreauJean::step(double h) {
     if (!res.converged) {
       info.converged = false;
       ++work_.lcp_unconverged;
-    }
-    for (Index c = 0; c < a; ++c) {
-      if (x[c] == 0.0) continue;
-      impulses_[active_[c]] = x[c];
-      v_next_.noalias() += x[c] * contact_response(active_[c]);
     }
   }
   state_.u.noalias() += h * (theta_ * v_next_ + (1.0 - theta_) * state_.v);

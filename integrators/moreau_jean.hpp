@@ -15,6 +15,11 @@
 // (diagonal D: closed form; otherwise projected Gauss-Seidel to lcp_tol, see lcp.hpp), then
 //     V_{k+1} = V_free + W^{-1} L^T Lambda.
 // theta in [1/2, 1]; first order with impacts; dissipative for theta > 1/2.
+// Coulomb friction (DESIGN.md section 6; Jean 1999): on the active contacts the 2D
+// Moreau–Coulomb law with the local velocities U_N = g'_{k+1} + e g'_k, U_T = T V_{k+1} - w
+// and the Delassus matrix of the interleaved rows [L_i; T_i] W^{-1} [L_j; T_j]^T, solved by
+// nonsmooth Gauss–Seidel over contacts (coulomb.hpp: closed form per contact when they share
+// no dof of W^{-1}, i.e. W diagonal), then V_{k+1} = V_free + W^{-1} (L^T Lambda_N + T^T Lambda_T).
 // Massless dofs (the singular-mass bar's contact node): their rows of W are algebraic, and
 // theta = 1/2 only carries an algebraic error over from step to step with factor -1 (the
 // trapezoidal rule is not stiffly accurate). Measured on the bar bouncing under gravity
@@ -54,6 +59,7 @@
 // the position shift is O(h * penetration speed) per step, the scheme stays first order
 // with impacts and of the theta-method's order in smooth phases (no correction there).
 #include "integrators/contact_responses.hpp"
+#include "integrators/coulomb.hpp"
 #include "integrators/implicit_contact.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
@@ -67,12 +73,16 @@ class MoreauJean final : public Integrator {
   static ParamSpecs parameters_spec();
 
   std::string name() const override { return "moreau-jean"; }
+  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
 
  private:
   void factorize(double h);
   const Vec& contact_response(Index contact);  // W^{-1} L_i^T, cached while W is unchanged
+  const Vec& tangent_response(Index contact);  // W^{-1} T_i^T, likewise
+  LcpResult solve_frictionless(Index a, double e);
+  LcpResult solve_with_friction(Index a, double e);
 
   double theta_;
   bool project_positions_;
@@ -83,6 +93,10 @@ class MoreauJean final : public Integrator {
   double h_factored_ = 0.0;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
   ContactResponses responses_;  // W^{-1} L_i^T
+  bool friction_ = false;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
+  ContactResponses tangent_responses_;  // W^{-1} T_i^T
+  Vec mu_active_;
   Vec f_int_, f_ext_now_, f_ext_next_, rhs_, v_next_, gap_, gdot_, nu_;
   LcpStorage lcp_storage_;  // the LCP on the active set
   double* lcp_max_residual_ = nullptr;  // work_.extra's entry, once created

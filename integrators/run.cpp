@@ -25,7 +25,7 @@ double clock_seconds(clockid_t clock) {
 double cpu_seconds() { return clock_seconds(run_threads() > 1 ? CLOCK_PROCESS_CPUTIME_ID : CLOCK_THREAD_CPUTIME_ID); }
 
 const std::vector<std::string> kGenericColumns = {
-    "t", "dt", "kinetic", "potential", "total_energy", "min_gap", "impulse", "active_contacts"};
+    "t", "dt", "kinetic", "potential", "total_energy", "min_gap", "impulse", "active_contacts", "tangential_impulse"};
 
 }  // namespace
 
@@ -96,6 +96,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     row[5] = min_gap();
     row[6] = lambda.sum();
     row[7] = static_cast<double>((lambda.array() > 0.0).count());
+    row[8] = integrator.tangential_impulses().cwiseAbs().sum();
     problem.observe_step(s, lambda, dt, std::span<double>(row).subspan(kGenericColumns.size()));
     result.series.values.insert(result.series.values.end(), row.begin(), row.end());
   };

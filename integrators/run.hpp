@@ -3,7 +3,8 @@
 // a series (columns below, then the problem's own) and gathers the run's figures.
 //
 // Generic columns: t, dt, kinetic, potential, total_energy, min_gap, impulse (sum of the
-// contact impulses of the step), active_contacts (contacts with a positive impulse).
+// contact impulses of the step), active_contacts (contacts with a positive impulse),
+// tangential_impulse (sum of |Lambda_T| of the step; 0 without friction).
 #include <csignal>
 #include <functional>
 #include <string>

@@ -44,6 +44,8 @@ ParamSpecs Block2d::parameters_spec() {
       ParamSpec::real("spin", 0.0, -1e308, 1e308, "initial angular velocity about the centre [rad/s]"),
       ParamSpec::real("g", 9.81, 0.0, 1e308, "gravity [m/s^2] (0: off)"),
       ParamSpec::real("e", 0.0, 0.0, 1.0, "Newton restitution coefficient"),
+      ParamSpec::real("mu", 0.0, 0.0, 1e308, "Coulomb friction coefficient of the floor (0: frictionless)"),
+      ParamSpec::real("floor_velocity", 0.0, -1e308, 1e308, "the floor's own velocity along +x (a belt) [m/s]"),
   };
 }
 
@@ -104,13 +106,21 @@ Block2d::Block2d(const Params& p)
   for (Index j = 0; j <= ny_; ++j)
     for (Index i = 0; i <= nx_; ++i)
       if (i == 0 || i == nx_ || j == 0 || j == ny_) boundary_.push_back(i + (nx_ + 1) * j);
-  L_.resize(static_cast<Index>(boundary_.size()), ndof());
-  g0_.resize(L_.rows());
-  for (Index r = 0; r < L_.rows(); ++r) {
-    L_.insert(r, 2 * boundary_[r] + 1) = 1.0;
-    g0_[r] = X_(1, boundary_[r]);
+  contacts_.normal.resize(static_cast<Index>(boundary_.size()), ndof());
+  contacts_.gap_offset.resize(contacts_.normal.rows());
+  for (Index r = 0; r < contacts_.normal.rows(); ++r) {
+    contacts_.normal.insert(r, 2 * boundary_[r] + 1) = 1.0;
+    contacts_.gap_offset[r] = X_(1, boundary_[r]);
   }
-  L_.makeCompressed();
+  contacts_.normal.makeCompressed();
+  contacts_.restitution = e_;
+  // Friction (tangent row on the x dof, slip u_T = v_a,x - w) only when mu > 0, so that the
+  // frictionless block is described exactly as before.
+  if (p.real("mu") > 0.0) {
+    SpMat T(contacts_.normal.rows(), ndof());
+    for (Index r = 0; r < T.rows(); ++r) T.insert(r, 2 * boundary_[r]) = 1.0;
+    contacts_.set_friction(std::move(T), p.real("mu"), p.real("floor_velocity"));
+  }
 
   // Element eigenvalue bound at U = 0: omega_max^2 <= lambda_max(M_e^{-1/2} K_e M_e^{-1/2}),
   // the same for every element.
@@ -420,7 +430,7 @@ std::vector<std::string> Block2d::observable_names() const {
 void Block2d::observe(const State& s, std::span<double> out) const {
   const Eigen::Vector2d p = linear_momentum(s.v);
   long closed = 0;
-  for (Index r = 0; r < L_.rows(); ++r) closed += (g0_[r] + s.u[2 * boundary_[r] + 1] <= 0.0);
+  for (Index r = 0; r < contacts_.normal.rows(); ++r) closed += (contacts_.gap_offset[r] + s.u[2 * boundary_[r] + 1] <= 0.0);
   out[0] = strain_energy(s.u);
   out[1] = load_potential(s.u);
   out[2] = p.x();

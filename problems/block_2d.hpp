@@ -1,6 +1,6 @@
 #pragma once
 // 2D block impact: a hyperelastic block (plane strain, thickness 1 m) dropped, tilted and
-// spinning, on a rigid frictionless floor y = 0 (DESIGN.md section 3; the benchmark family
+// spinning, on a rigid floor y = 0, frictionless or with Coulomb friction mu (DESIGN.md section 3; the benchmark family
 // of J. Di Stasio, D. Dureisseix, A. Gravouil et al., "Benchmark cases for robust explicit
 // time integrators in non-smooth transient dynamics", Advanced Modeling and Simulation in
 // Engineering Sciences (AMSES), 2019).
@@ -31,9 +31,13 @@
 // CD-Lagrange's Delassus operator L M^{-1} L^T is diagonal: one contact per y dof).
 // Gravity g (0: off) along -y: V_load = sum_a m_a g y_a, F_ext = -m_a g on the y dofs.
 // Contact: every boundary node is a candidate, gap g_a = y_a = X_a,y + U_a,y >= 0 (one row
-// of L per boundary node, on its y dof, g0 = X_a,y). Frictionless: horizontal momentum
-// P_x = sum m_a v_a,x is conserved exactly; Newton restitution e (0 by default, the usual
-// choice for a deformable body: the rebound comes from the elastic energy).
+// of L per boundary node, on its y dof, g0 = X_a,y). Frictionless (mu = 0, the default):
+// horizontal momentum P_x = sum m_a v_a,x is conserved exactly; Newton restitution e (0 by
+// default, the usual choice for a deformable body: the rebound comes from the elastic
+// energy). With mu > 0 each contact has the tangent row on its x dof, slip rate
+// u_T = v_a,x - w (w = floor_velocity, a belt), and DESIGN.md section 6's identities hold:
+// P_x changes by sum Lambda_T exactly; while every closed contact slides the same way
+// (u_T > 0, say) Delta P_x = -mu sum Lambda_N; the energy never increases (e <= 1, w = 0).
 //
 // Observables: strain and gravity energy, P_x, P_y, angular momentum about the origin
 // J = sum_a m_a (x_a v_a,y - y_a v_a,x), contacts closed (g <= 0). The generic columns add
@@ -43,7 +47,8 @@
 //
 // Parameters: W, H (size [m]), nx, ny (elements), E [Pa], nu, rho [kg/m^3], material
 // {svk, neo-hookean}, height (lowest corner above the floor [m]), tilt [deg, about the
-// centre, counter-clockwise], vx, vy [m/s], spin [rad/s, about the centre], g [m/s^2], e.
+// centre, counter-clockwise], vx, vy [m/s], spin [rad/s, about the centre], g [m/s^2], e,
+// mu (>= 0), floor_velocity [m/s].
 //
 // Stable step: 2 / omega_max with omega_max^2 <= max_e lambda_max(M_e^{-1} K_e) (the
 // element eigenvalue bound, Irons & Treharne 1971; Hughes, The Finite Element Method,
@@ -71,9 +76,7 @@ class Block2d final : public Problem {
   void external_force(double t, VecRef f) const override;
   double strain_energy(ConstVecRef u) const override;
   double load_potential(ConstVecRef u) const override;
-  const SpMat& gap_operator() const override { return L_; }
-  const Vec& gap_offset() const override { return g0_; }
-  double restitution() const override { return e_; }
+  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
   double stable_step() const override { return stable_step_; }
   std::vector<std::string> observable_names() const override;
@@ -121,8 +124,7 @@ class Block2d final : public Problem {
     double x[4][4], y[4][4];
   } wgrad_;
   Vec m_;                                  // lumped mass per dof
-  SpMat L_;
-  Vec g0_;
+  Contacts contacts_;
   std::vector<Index> boundary_;            // node of each contact row
   Eigen::Vector2d v0_;
   double spin_;

@@ -25,10 +25,11 @@ BouncingMass::BouncingMass(const Params& params)
       v0_(params.real("v0")) {
   w1_ = std::sqrt(v0_ * v0_ + 2.0 * g_ * h0_);
   t1_ = (v0_ + w1_) / g_;
-  L_.resize(1, 1);
-  L_.insert(0, 0) = 1.0;
-  L_.makeCompressed();
-  g0_ = Vec::Zero(1);
+  contacts_.normal.resize(1, 1);
+  contacts_.normal.insert(0, 0) = 1.0;
+  contacts_.normal.makeCompressed();
+  contacts_.gap_offset = Vec::Zero(1);
+  contacts_.restitution = e_;
 }
 
 SpMat BouncingMass::mass_matrix() const {

@@ -34,9 +34,7 @@ class BouncingMass final : public Problem {
   void external_force(double t, VecRef f) const override;
   double strain_energy(ConstVecRef) const override { return 0.0; }
   double load_potential(ConstVecRef u) const override { return m_ * g_ * u[0]; }
-  const SpMat& gap_operator() const override { return L_; }
-  const Vec& gap_offset() const override { return g0_; }
-  double restitution() const override { return e_; }
+  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
   double stable_step() const override;  // no stiffness: unbounded
   std::vector<std::string> observable_names() const override;
@@ -57,8 +55,7 @@ class BouncingMass final : public Problem {
   Params params_;
   double m_, g_, e_, h0_, v0_;
   double t1_, w1_;
-  SpMat L_;
-  Vec g0_;
+  Contacts contacts_;
 };
 
 }  // namespace nsb

@@ -1,5 +1,9 @@
 #include "problems/problem.hpp"
 
+#include <fmt/format.h>
+
+#include <cmath>
+
 namespace nsb {
 
 std::optional<Vec> diagonal_mass(const SpMat& M) {
@@ -13,6 +17,31 @@ std::optional<Vec> diagonal_mass(const SpMat& M) {
       }
     }
   return d;
+}
+
+void Contacts::set_friction(SpMat tangent_rows, double mu_all, double w_all) {
+  tangent = std::move(tangent_rows);
+  tangent.makeCompressed();
+  mu = Vec::Constant(tangent.rows(), mu_all);
+  tangent_velocity = Vec::Constant(tangent.rows(), w_all);
+}
+
+void check_contacts(const Contacts& c, Index ndof, const std::string& problem) {
+  const auto fail = [&](const std::string& why) { throw InputError(fmt::format("problem {}: contacts: {}", problem, why)); };
+  const Index p = c.normal.rows();
+  if (c.normal.cols() != ndof) fail(fmt::format("L has {} columns, expected ndof = {}", c.normal.cols(), ndof));
+  if (c.gap_offset.size() != p) fail(fmt::format("g0 has {} entries, expected one per contact ({})", c.gap_offset.size(), p));
+  if (!(c.restitution >= 0.0 && c.restitution <= 1.0)) fail(fmt::format("restitution {} outside [0, 1]", c.restitution));
+  const bool frictionless = c.tangent.rows() == 0 && c.mu.size() == 0 && c.tangent_velocity.size() == 0;
+  if (frictionless) return;
+  if (c.tangent.rows() != p || c.tangent.cols() != ndof)
+    fail(fmt::format("T is {} x {}, expected {} x {} (one tangent row per contact)", c.tangent.rows(), c.tangent.cols(), p, ndof));
+  if (c.mu.size() != p || c.tangent_velocity.size() != p)
+    fail(fmt::format("mu and w need one entry per contact ({}); they have {} and {}", p, c.mu.size(), c.tangent_velocity.size()));
+  for (Index i = 0; i < p; ++i) {
+    if (!(c.mu[i] >= 0.0) || !std::isfinite(c.mu[i])) fail(fmt::format("mu of contact {} is {}; valid: finite, >= 0", i, c.mu[i]));
+    if (!std::isfinite(c.tangent_velocity[i])) fail(fmt::format("w of contact {} is {}; valid: finite", i, c.tangent_velocity[i]));
+  }
 }
 
 }  // namespace nsb

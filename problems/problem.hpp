@@ -35,6 +35,39 @@ struct State {
   Vec v;
 };
 
+// Every contact of a problem, described once (DESIGN.md sections 1 and 6); row i of each
+// operator belongs to contact i:
+//
+//     normal gap   g_i   = g0_i + L_i U          (>= 0 open; g'_i = L_i M^{-1} P)
+//     slip rate    u_T,i = T_i M^{-1} P - w_i    (w_i: the obstacle's own tangential velocity,
+//                                                 0 for a fixed floor)
+//     impulses     Lambda_N,i >= 0 along +L_i (pushes apart), Lambda_T,i along +T_i
+//     Newton       0 <= Lambda_N  _|_  g'(+) + e g'(-) >= 0   (no tangential restitution)
+//     Coulomb      |Lambda_T,i| <= mu_i Lambda_N,i;  < : u_T,i(+) = 0 (stick);
+//                  = : u_T,i(+) Lambda_T,i <= 0 (the slip opposes the impulse)
+//
+// A frictionless problem leaves `tangent`, `mu` and `tangent_velocity` empty (mu = 0 on every
+// contact), which every scheme treats exactly as before friction existed.
+struct Contacts {
+  SpMat normal;             // L (p x n)
+  Vec gap_offset;           // g0 (p)
+  double restitution = 0.0; // e in [0, 1]
+  SpMat tangent;            // T (p x n), or 0 rows when frictionless
+  Vec mu;                   // (p) friction coefficients >= 0, or empty
+  Vec tangent_velocity;     // w (p), or empty
+
+  Index size() const { return normal.rows(); }
+  // True when some contact has mu > 0: only then does a scheme need to treat friction.
+  bool has_friction() const { return mu.size() > 0 && mu.maxCoeff() > 0.0; }
+  double max_mu() const { return mu.size() > 0 ? mu.maxCoeff() : 0.0; }
+  // Sets T, mu (the same on every contact) and w (the same on every contact).
+  void set_friction(SpMat tangent_rows, double mu_all, double w_all);
+};
+
+// Throws InputError naming `problem` when the operators' shapes disagree (rows of T, sizes of
+// g0, mu and w against L's rows, columns against ndof) or a value is outside its range.
+void check_contacts(const Contacts& c, Index ndof, const std::string& problem);
+
 class Problem {
  public:
   virtual ~Problem() = default;
@@ -65,11 +98,13 @@ class Problem {
   virtual double load_potential(ConstVecRef u) const = 0;
   double potential(ConstVecRef u) const { return strain_energy(u) + load_potential(u); }
 
-  // Contact: L (p x n), g0 (size p), Newton restitution coefficient e in [0, 1].
-  virtual const SpMat& gap_operator() const = 0;
-  virtual const Vec& gap_offset() const = 0;
-  virtual double restitution() const = 0;
-  Index ncontacts() const { return gap_operator().rows(); }
+  // The contacts (normal and tangent rows, gaps, restitution, friction); see Contacts.
+  virtual const Contacts& contacts() const = 0;
+  // Shorthands: L (p x n), g0 (size p), Newton restitution coefficient e in [0, 1].
+  const SpMat& gap_operator() const { return contacts().normal; }
+  const Vec& gap_offset() const { return contacts().gap_offset; }
+  double restitution() const { return contacts().restitution; }
+  Index ncontacts() const { return contacts().size(); }
 
   virtual State initial_state() const = 0;
   // Largest stable step of the explicit central-difference scheme, 2 / omega_max (an

@@ -105,10 +105,10 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
   M_.makeCompressed();
   mass_rows_ = M_ * Vec::Ones(n);
 
-  L_.resize(1, n);
-  L_.insert(0, 0) = 1.0;
-  L_.makeCompressed();
-  g0_ = Vec::Constant(1, gap0_);
+  contacts_.normal.resize(1, n);
+  contacts_.normal.insert(0, 0) = 1.0;
+  contacts_.normal.makeCompressed();
+  contacts_.gap_offset = Vec::Constant(1, gap0_);
 }
 
 // Element loop written as a tridiagonal stencil: one pass, no matrix, no allocation.

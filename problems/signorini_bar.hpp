@@ -110,9 +110,7 @@ class SignoriniBar final : public Problem {
   void external_force(double, VecRef f) const override { f = -gravity_ * mass_rows_; }
   double strain_energy(ConstVecRef u) const override;
   double load_potential(ConstVecRef u) const override { return gravity_ * mass_rows_.dot(u); }
-  const SpMat& gap_operator() const override { return L_; }
-  const Vec& gap_offset() const override { return g0_; }
-  double restitution() const override { return 0.0; }
+  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
   double stable_step() const override;
   // u_contact, v_contact, contact_force (impulse / dt of the step), their exact values,
@@ -151,8 +149,9 @@ class SignoriniBar final : public Problem {
   double stiff_ratio_;
   double c_, t0_;  // wave speed (of E), contact start
   std::vector<double> ke_;  // element stiffnesses E_e A / h
-  SpMat M_, K_, L_;
-  Vec g0_, mass_rows_;
+  SpMat M_, K_;
+  Vec mass_rows_;
+  Contacts contacts_;
 };
 
 }  // namespace nsb

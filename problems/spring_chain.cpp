@@ -43,11 +43,12 @@ SpringChain::SpringChain(const Params& params)
 
   const std::string& wall = params.choice("wall");
   const Index walls = wall == "none" ? 0 : wall == "left" ? 1 : 2;
-  L_.resize(walls, n_);
-  g0_ = Vec::Constant(walls, params.real("gap"));
-  if (walls >= 1) L_.insert(0, 0) = 1.0;
-  if (walls == 2) L_.insert(1, n_ - 1) = -1.0;
-  L_.makeCompressed();
+  contacts_.normal.resize(walls, n_);
+  contacts_.gap_offset = Vec::Constant(walls, params.real("gap"));
+  if (walls >= 1) contacts_.normal.insert(0, 0) = 1.0;
+  if (walls == 2) contacts_.normal.insert(1, n_ - 1) = -1.0;
+  contacts_.normal.makeCompressed();
+  contacts_.restitution = e_;
 
   // omega_max^2 = largest eigenvalue of M^{-1/2} K M^{-1/2} (symmetric, same spectrum).
   const Vec s = m_.cwiseSqrt().cwiseInverse();

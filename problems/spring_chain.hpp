@@ -35,9 +35,7 @@ class SpringChain final : public Problem {
   void external_force(double, VecRef f) const override { f.setZero(); }
   double strain_energy(ConstVecRef u) const override;
   double load_potential(ConstVecRef) const override { return 0.0; }
-  const SpMat& gap_operator() const override { return L_; }
-  const Vec& gap_offset() const override { return g0_; }
-  double restitution() const override { return e_; }
+  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
   double stable_step() const override { return stable_step_; }
   std::vector<std::string> observable_names() const override { return {"momentum"}; }
@@ -51,8 +49,8 @@ class SpringChain final : public Problem {
   Index n_;
   double k_, e_, v0_, a_;
   Vec m_;
-  SpMat K_, L_;
-  Vec g0_;
+  SpMat K_;
+  Contacts contacts_;
   double stable_step_;
 };
 

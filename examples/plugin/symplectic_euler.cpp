@@ -61,7 +61,7 @@ class SymplecticEuler final : public Integrator {
     state_.v.noalias() = v_prev_ + h * minv_.cwiseProduct(f_ext_ - f_int_);  // v_free
     std::swap(u_prev_, state_.u);
     state_.u.noalias() = u_prev_ + h * state_.v;  // q_pred
-    info.iterations = contact_.apply(state_.u, v_prev_, state_.v, impulses_, info, work_);
+    info.iterations = contact_.apply(state_.u, v_prev_, state_.v, impulses_, tangential_impulses_, info, work_);
     state_.u.noalias() = u_prev_ + h * state_.v;
     state_.t += h;
     work_.lcp_iterations += info.iterations;

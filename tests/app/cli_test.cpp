@@ -74,7 +74,7 @@ TEST_CASE("cli: a run writes series.csv and summary.json", "[app]") {
   std::ifstream csv(dir + "/series.csv");
   std::string header;
   std::getline(csv, header);
-  CHECK(header == "t,dt,kinetic,potential,total_energy,min_gap,impulse,active_contacts,q,v,q_exact,v_exact");
+  CHECK(header == "t,dt,kinetic,potential,total_energy,min_gap,impulse,active_contacts,tangential_impulse,q,v,q_exact,v_exact");
   std::ifstream json(dir + "/summary.json");
   const std::string summary((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   CHECK_THAT(summary, Catch::Contains("\"e\": 0.8") && Catch::Contains("\"steps\": 500") &&

@@ -13,7 +13,7 @@ namespace {
 class Saddle final : public nsb::Problem {
  public:
   Saddle(double k, nsb::Index n) : k_(k), n_(n) {
-    L_.resize(0, n);
+    contacts_.normal.resize(0, n);
     K_ = (k * (Eigen::MatrixXd::Constant(n, n, 3.0 / n) - Eigen::MatrixXd::Identity(n, n))).sparseView();
   }
   Eigen::MatrixXd dense_stiffness() const { return Eigen::MatrixXd(K_); }
@@ -31,9 +31,7 @@ class Saddle final : public nsb::Problem {
   void external_force(double, nsb::VecRef f) const override { f.setZero(); }
   double strain_energy(nsb::ConstVecRef u) const override { return 0.5 * u.dot(K_ * u); }
   double load_potential(nsb::ConstVecRef) const override { return 0.0; }
-  const nsb::SpMat& gap_operator() const override { return L_; }
-  const nsb::Vec& gap_offset() const override { return g0_; }
-  double restitution() const override { return 0.0; }
+  const nsb::Contacts& contacts() const override { return contacts_; }
   nsb::State initial_state() const override {
     return {0.0, nsb::Vec::LinSpaced(n_, 0.1, -0.3), nsb::Vec::LinSpaced(n_, -0.2, 0.4)};
   }
@@ -43,8 +41,8 @@ class Saddle final : public nsb::Problem {
   double k_;
   nsb::Index n_;
   nsb::Params params_;
-  nsb::SpMat K_, L_;
-  nsb::Vec g0_;
+  nsb::SpMat K_;
+  nsb::Contacts contacts_;
 };
 
 }  // namespace
