@@ -44,9 +44,10 @@ void list() {
     fmt::print("  {:<22} {}\n", e.name, e.description);
     print_params(e.parameters());
   }
-  fmt::print("integrators:\n");
+  fmt::print("integrators (friction: treats Coulomb friction, mu > 0; the others decline it):\n");
   for (const auto& e : nsb::integrator_registry()) {
-    fmt::print("  {:<22} {}\n", e.name, e.description);
+    const bool friction = e.make(nsb::Params(e.parameters()))->treats_friction();
+    fmt::print("  {:<22} {}{}\n", e.name, e.description, friction ? " [friction]" : "");
     print_params(e.parameters());
   }
 }
