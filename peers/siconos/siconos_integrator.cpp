@@ -44,6 +44,10 @@ ParamSpecs SiconosIntegrator::parameters_spec(siconos::Scheme scheme) {
   if (scheme == siconos::Scheme::SchatzmanPaoli)
     specs.push_back(ParamSpec::real("theta", 0.0, 0.0, 1.0, "theta of SchatzmanPaoliOSI (W = M + h^2 theta^2 K; 0: explicit)"));
   specs.push_back(ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "tolerance of Siconos' Lemke LCP solver", true));
+  if (scheme == siconos::Scheme::MoreauJean) {
+    specs.push_back(ParamSpec::real("friction_tol", 1e-12, 0.0, 1e-2, "tolerance of Siconos' 2D friction solver (SICONOS_FRICTION_2D_NSGS; problems with mu > 0)", true));
+    specs.push_back(ParamSpec::integer("friction_max_iter", 1000, 1, 1000000, "cap on the 2D friction solver's Gauss-Seidel sweeps per step"));
+  }
   specs.push_back(ParamSpec::integer("max_dofs", 128, 1, 100000, "largest problem accepted (Siconos gets dense M, K and W: O(n^2) per step)"));
   return specs;
 }
@@ -77,6 +81,14 @@ void SiconosIntegrator::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
   if ((mass_.diagonal().array() <= 0.0).any())
     throw InputError(fmt::format("{}: problem '{}' has massless dofs (a zero diagonal mass, e.g. mass=singular); Siconos' LagrangianDS needs an invertible M (valid: mass=lumped|consistent)", who, problem.name()));
+  const Contacts& contacts = problem.contacts();
+  if (contacts.has_friction())
+    for (Index i = 0; i < contacts.size(); ++i)
+      if (contacts.tangent_velocity[i] != 0.0)
+        throw InputError(fmt::format("{}: problem '{}' has an obstacle moving along contact {} (tangent_velocity w = {}, e.g. block-2d's "
+                                     "floor_velocity); Siconos' LagrangianLinearTIR has no velocity offset (y' = C v), so its slip would be "
+                                     "T v instead of T v - w (valid: floor_velocity = 0, or mu = 0)",
+                                     who, problem.name(), i, contacts.tangent_velocity[i]));
   {
     const std::lock_guard lock(siconos_mutex());
     model_.reset();
@@ -90,6 +102,13 @@ void SiconosIntegrator::build(double h) {
   spec.scheme = scheme_;
   if (scheme_ != siconos::Scheme::D1MinusLinear) spec.theta = params_.real("theta");
   spec.lcp_tol = params_.real("lcp_tol");
+  const Contacts& contacts = problem.contacts();
+  if (contacts.has_friction()) {
+    spec.friction_tol = params_.real("friction_tol");
+    spec.friction_max_iter = static_cast<int>(params_.integer("friction_max_iter"));
+    for (Index i = 0; i < contacts.size(); ++i) spec.tangent_rows.push_back(dense(SpMat(contacts.tangent.row(i))));
+    spec.mu = to_std(contacts.mu);
+  }
   spec.h = h;
   spec.t0 = state_.t;
   spec.restitution = problem.restitution();
@@ -116,19 +135,24 @@ StepInfo SiconosIntegrator::step(double h) {
   if (!model_) build(h);
   if (h != h_)
     throw InputError(fmt::format("--dt: {} takes one fixed step (Siconos' TimeDiscretisation, built with {}); got {}", name(), h_, h));
+  siconos::StepStats stats;
   {
     const std::lock_guard lock(siconos_mutex());
-    model_->step(state_.u.data(), state_.v.data(), impulses_.data());
+    stats = model_->step(state_.u.data(), state_.v.data(), impulses_.data(), tangential_impulses_.data());
   }
   state_.t += h;
   ++work_.steps;
   ++work_.force_evaluations;  // one K q product per step, inside Siconos
   StepInfo info;
   info.dt = h;
+  info.iterations = stats.iterations;
+  info.converged = stats.converged;
+  work_.lcp_iterations += stats.iterations;
+  if (!stats.converged) ++work_.lcp_unconverged;
   return info;
 }
 
-NSBENCH_INTEGRATOR({"siconos-moreau-jean", "peer: Siconos MoreauJeanOSI(theta), TimeStepping, Lemke LCP (linear problems)", &SiconosPeer<siconos::Scheme::MoreauJean>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::MoreauJean>>, false, true});
+NSBENCH_INTEGRATOR({"siconos-moreau-jean", "peer: Siconos MoreauJeanOSI(theta), TimeStepping, Lemke LCP, or 2D NSGS FrictionContact with friction (linear problems)", &SiconosPeer<siconos::Scheme::MoreauJean>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::MoreauJean>>, false, true});
 NSBENCH_INTEGRATOR({"siconos-schatzman-paoli", "peer: Siconos SchatzmanPaoliOSI(theta), TimeStepping, position-level Lemke LCP (linear problems)", &SiconosPeer<siconos::Scheme::SchatzmanPaoli>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::SchatzmanPaoli>>, false, true});
 NSBENCH_INTEGRATOR({"siconos-d1-minus-linear", "peer: Siconos D1MinusLinearOSI, TimeSteppingD1Minus, impact and contact-force Lemke LCPs (linear problems)", &SiconosPeer<siconos::Scheme::D1MinusLinear>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::D1MinusLinear>>, false, true});
 

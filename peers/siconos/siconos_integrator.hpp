@@ -11,7 +11,8 @@
 // with one of Siconos' one-step integrators:
 //   siconos-moreau-jean      MoreauJeanOSI(theta), TimeStepping; velocity-level LCP on the
 //                            contacts with y_k + gamma h y'_k <= 0 (Siconos: gamma = 1/2 when
-//                            unset); impulses() = lambda(1), the impulse of the step
+//                            unset); impulses() = lambda(1), the impulse of the step, and
+//                            tangential_impulses() its tangential component with friction
 //   siconos-schatzman-paoli  SchatzmanPaoliOSI(theta), TimeStepping; position-level LCP
 //                              W (q_{k+1} - q_k) = M (q_k - q_{k-1}) + h^2 (F_ext - K q_k) + L^T R,
 //                              W = M + h^2 theta^2 K,  0 <= R _|_ g0 + L q_{k+1} + e (g0 + L q_{k-1}) >= 0;
@@ -24,14 +25,38 @@
 //                            TimeSteppingD1Minus with an impact LCP and a contact-force LCP
 //                            (Schindler & Acary, Math. Comput. Simul. 95, 2014);
 //                            impulses() = lambda(1) + h lambda(2).
+//
+// For a problem with Coulomb friction (some mu_i > 0; siconos-moreau-jean only), every
+// contact is one 2D interaction instead:
+//
+//     LagrangianLinearTIR       y_i = [L_i; T_i] q + (g0_i, 0)    (gap, slip position)
+//     NewtonImpactFrictionNSL   (e, e_t = 0, mu_i): Newton on the normal, Coulomb on the
+//                               tangent; Siconos' tangential lambda acts along +T_i (p = C^T
+//                               lambda) and opposes y'_T, as our Lambda_T and u_T = T v
+//     FrictionContact(2)        2D nonsmooth Gauss-Seidel (SICONOS_FRICTION_2D_NSGS: exact
+//                               local solve per contact), tolerance `friction_tol` (1e-12,
+//                               Siconos' residual |q + W r - u| / |q|), at most
+//                               `friction_max_iter` sweeps; iterations and convergence are
+//                               reported as the LCP's (lcp_iterations, lcp_unconverged)
+//
+// A frictionless problem (mu = 0 everywhere) takes the LCP model above unchanged.
+// The Schatzman-Paoli and D1MinusLinear peers decline friction (bind(): mu named).
+// D1MinusLinearOSI has no NewtonImpactFrictionNSL case in its free-output visitor (only
+// NewtonImpactNSL: Siconos throws "you must define a visit function"). SchatzmanPaoliOSI has
+// one (a position-level FrictionContact), but our schatzman-paoli treats no friction to
+// compare it with.
 // References: V. Acary, B. Brogliato, Numerical Methods for Nonsmooth Dynamical Systems,
 // Springer 2008; the Siconos kernel sources (MoreauJeanOSI.cpp, SchatzmanPaoliOSI.cpp,
-// D1MinusLinearOSI*.cpp), read, not copied.
+// D1MinusLinearOSI*.cpp, FrictionContact.cpp, numerics' fc2d_nsgs.c), read, not copied;
+// M. Jean, The non-smooth contact dynamics method, CMAME 177, 1999 (friction).
 //
 // Declined with an InputError: nonlinear F_int (Siconos' LagrangianDS would need plugins),
 // a time-dependent F_ext, massless dofs (LagrangianDS inverts M), more than `max_dofs` dofs
-// (dense matrices). The step is fixed at the first call of step() (Siconos'
-// TimeDiscretisation); a later different step is refused.
+// (dense matrices), and with friction an obstacle moving along a contact (w != 0, e.g.
+// block-2d's floor_velocity): LagrangianLinearTIR has no velocity offset (y' = C v), and
+// Siconos' time-dependent relation (LagrangianRheonomousR) takes h, its Jacobian and hDot
+// only as plugins loaded from a shared library by path. The step is fixed at the first call
+// of step() (Siconos' TimeDiscretisation); a later different step is refused.
 #include <memory>
 
 #include "integrators/integrator.hpp"
@@ -47,6 +72,7 @@ class SiconosIntegrator : public Integrator {
   static ParamSpecs parameters_spec(siconos::Scheme scheme);
 
   std::string name() const override;
+  bool treats_friction() const override { return scheme_ == siconos::Scheme::MoreauJean; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
 

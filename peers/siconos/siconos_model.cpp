@@ -3,11 +3,13 @@
 
 // The kernel's headers one by one: SiconosKernel.hpp (everything) doubles the compile time.
 #include <siconos/kernel/D1MinusLinearOSI.hpp>
+#include <siconos/kernel/FrictionContact.hpp>
 #include <siconos/kernel/Interaction.hpp>
 #include <siconos/kernel/LCP.hpp>
 #include <siconos/kernel/LagrangianLinearTIDS.hpp>
 #include <siconos/kernel/LagrangianLinearTIR.hpp>
 #include <siconos/kernel/MoreauJeanOSI.hpp>
+#include <siconos/kernel/NewtonImpactFrictionNSL.hpp>
 #include <siconos/kernel/NewtonImpactNSL.hpp>
 #include <siconos/kernel/NonSmoothDynamicalSystem.hpp>
 #include <siconos/kernel/SchatzmanPaoliOSI.hpp>
@@ -16,6 +18,7 @@
 #include <siconos/kernel/TimeDiscretisation.hpp>
 #include <siconos/kernel/TimeStepping.hpp>
 #include <siconos/kernel/TimeSteppingD1Minus.hpp>
+#include <siconos/numerics/Friction_cst.h>
 #include <siconos/numerics/lcp_cst.h>
 #include <siconos/numerics/SolverOptions.h>
 
@@ -45,6 +48,16 @@ SP::LCP lemke(double tol) {
   return p;
 }
 
+// Siconos' 2D nonsmooth Gauss-Seidel: per contact, the exact solution of the local law
+// (separate, stick, slip either way), as our coulomb.hpp; dense Delassus matrix (LinearOSNS'
+// default storage). Residual: |q + W r - u| / |q|.
+SP::FrictionContact nsgs_2d(double tol, int max_iter) {
+  auto p = std::make_shared<FrictionContact>(2, SICONOS_FRICTION_2D_NSGS);
+  p->numericsSolverOptions()->dparam[SICONOS_DPARAM_TOL] = tol;
+  p->numericsSolverOptions()->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
+  return p;
+}
+
 }  // namespace
 
 struct Model::Impl {
@@ -54,6 +67,7 @@ struct Model::Impl {
   SP::NonSmoothDynamicalSystem nsds;
   SP::TimeStepping time_stepping;            // Moreau-Jean, Schatzman-Paoli
   SP::TimeSteppingD1Minus d1_time_stepping;  // D1MinusLinear
+  SP::FrictionContact friction;              // MoreauJean with friction: its one-step problem
 };
 
 Model::Model(const ModelSpec& spec) : impl_(std::make_unique<Impl>()) {
@@ -67,21 +81,38 @@ Model::Model(const ModelSpec& spec) : impl_(std::make_unique<Impl>()) {
     // The nsbench run driver decides when to stop: Siconos' horizon only has to lie beyond.
     m.nsds = std::make_shared<NonSmoothDynamicalSystem>(spec.t0, spec.t0 + 1e12 * spec.h);
     m.nsds->insertDynamicalSystem(m.ds);
+    const bool friction = !spec.tangent_rows.empty();
+    if (friction && spec.scheme != Scheme::MoreauJean)
+      throw std::invalid_argument("friction is treated by the Moreau-Jean peer only");
     auto law = std::make_shared<NewtonImpactNSL>(spec.restitution);
     for (std::size_t i = 0; i < spec.gap_rows.size(); ++i) {
-      auto b = std::make_shared<SiconosVector>(1);
-      b->setValue(0, spec.gap_offset[i]);
-      auto relation = std::make_shared<LagrangianLinearTIR>(matrix(spec.gap_rows[i], 1, n), b);
-      auto inter = std::make_shared<Interaction>(law, relation);
+      SP::Interaction inter;
+      if (friction) {
+        // y = (g_i, T_i q): the normal row first, as MoreauJeanOSI's index set reads y(0)(0),
+        // y(1)(0); Siconos' tangential reaction acts along +T_i (p = C^T lambda) and opposes
+        // the slip y'(1), our Lambda_T and u_T. No tangential restitution (e_t = 0).
+        std::vector<double> rows = spec.gap_rows[i];
+        rows.insert(rows.end(), spec.tangent_rows[i].begin(), spec.tangent_rows[i].end());
+        auto relation = std::make_shared<LagrangianLinearTIR>(matrix(rows, 2, n), vector({spec.gap_offset[i], 0.0}));
+        inter = std::make_shared<Interaction>(std::make_shared<NewtonImpactFrictionNSL>(spec.restitution, 0.0, spec.mu[i], 2), relation);
+      } else {
+        auto b = std::make_shared<SiconosVector>(1);
+        b->setValue(0, spec.gap_offset[i]);
+        auto relation = std::make_shared<LagrangianLinearTIR>(matrix(spec.gap_rows[i], 1, n), b);
+        inter = std::make_shared<Interaction>(law, relation);
+      }
       m.nsds->link(inter, m.ds);
       m.contacts.push_back(inter);
     }
     auto td = std::make_shared<TimeDiscretisation>(spec.t0, spec.h);
     switch (spec.scheme) {
-      case Scheme::MoreauJean:
-        m.time_stepping = std::make_shared<TimeStepping>(m.nsds, td, std::make_shared<MoreauJeanOSI>(spec.theta), lemke(spec.lcp_tol));
+      case Scheme::MoreauJean: {
+        if (friction) m.friction = nsgs_2d(spec.friction_tol, spec.friction_max_iter);
+        SP::OneStepNSProblem osnsp = m.friction ? SP::OneStepNSProblem(m.friction) : lemke(spec.lcp_tol);
+        m.time_stepping = std::make_shared<TimeStepping>(m.nsds, td, std::make_shared<MoreauJeanOSI>(spec.theta), osnsp);
         m.time_stepping->initialize();
         break;
+      }
       case Scheme::SchatzmanPaoli:
         m.time_stepping = std::make_shared<TimeStepping>(m.nsds, td, std::make_shared<SchatzmanPaoliOSI>(spec.theta), lemke(spec.lcp_tol));
         m.time_stepping->initialize();
@@ -101,26 +132,40 @@ Model::Model(const ModelSpec& spec) : impl_(std::make_unique<Impl>()) {
 
 Model::~Model() = default;
 
-void Model::step(double* q, double* v, double* impulses) {
+StepStats Model::step(double* q, double* v, double* impulses, double* tangential_impulses) {
   Impl& m = *impl_;
+  StepStats stats;
   try {
+    // The solver is not called on a step without active contacts, and then leaves its last
+    // counts in place: clear them first.
+    SolverOptions* friction_options = m.friction ? m.friction->numericsSolverOptions().get() : nullptr;
+    if (friction_options) {
+      friction_options->iparam[SICONOS_IPARAM_ITER_DONE] = 0;
+      friction_options->dparam[SICONOS_DPARAM_RESIDU] = 0.0;
+    }
     // Read between the step and the switch to the next one: the latter resets the
     // multipliers of the contacts it drops from the active set.
     if (m.time_stepping) {
       m.time_stepping->computeOneStep();
-      read(q, v, impulses);
+      read(q, v, impulses, tangential_impulses);
       m.time_stepping->nextStep();
     } else {
       m.d1_time_stepping->advanceToEvent();
-      read(q, v, impulses);
+      read(q, v, impulses, tangential_impulses);
       m.d1_time_stepping->processEvents();
+    }
+    if (friction_options) {
+      stats.iterations = friction_options->iparam[SICONOS_IPARAM_ITER_DONE];
+      // TimeStepping only prints the solver's failure (DefaultCheckSolverOutput): test it here.
+      stats.converged = !(friction_options->dparam[SICONOS_DPARAM_RESIDU] > m.spec.friction_tol);
     }
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("Siconos step: ") + e.what());
   }
+  return stats;
 }
 
-void Model::read(double* q, double* v, double* impulses) const {
+void Model::read(double* q, double* v, double* impulses, double* tangential_impulses) const {
   const SiconosVector& sq = *impl_->ds->q();
   const SiconosVector& sv = *impl_->ds->velocity();
   for (unsigned i = 0; i < sq.size(); ++i) {
@@ -132,8 +177,9 @@ void Model::read(double* q, double* v, double* impulses) const {
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     const Interaction& inter = *m.contacts[i];
     switch (m.spec.scheme) {
-      case Scheme::MoreauJean:  // lambda(1): the impulse of the step
+      case Scheme::MoreauJean:  // lambda(1): the impulse of the step, (normal, tangential) with friction
         impulses[i] = inter.lambda(1)->getValue(0);
+        if (m.friction) tangential_impulses[i] = inter.lambda(1)->getValue(1);
         break;
       case Scheme::SchatzmanPaoli:  // lambda(0) = R, with W (q - q_free) = L^T R: R / h
         impulses[i] = inter.lambda(0)->getValue(0) / h;

@@ -12,7 +12,9 @@ enum class Scheme { MoreauJean, SchatzmanPaoli, D1MinusLinear };
 struct ModelSpec {
   Scheme scheme = Scheme::MoreauJean;
   double theta = 0.5;       // MoreauJeanOSI, SchatzmanPaoliOSI
-  double lcp_tol = 1e-12;   // Lemke's tolerance
+  double lcp_tol = 1e-12;   // Lemke's tolerance (frictionless contacts)
+  double friction_tol = 1e-12;    // the 2D NSGS friction solver's tolerance (MoreauJean with friction)
+  int friction_max_iter = 1000;   // and its cap on Gauss-Seidel sweeps
   double h = 0.0;           // the fixed step
   double t0 = 0.0;
   double restitution = 0.0;
@@ -22,18 +24,28 @@ struct ModelSpec {
   std::vector<double> q0, v0;
   std::vector<std::vector<double>> gap_rows;  // one dense row of L per contact
   std::vector<double> gap_offset;             // g0 per contact
+  // Coulomb friction (MoreauJean only): one dense row of T and one mu per contact; empty when
+  // frictionless, and then the contacts are exactly those of the frictionless model.
+  std::vector<std::vector<double>> tangent_rows;
+  std::vector<double> mu;
+};
+
+// What the friction solver did in the step (frictionless: iterations 0, converged).
+struct StepStats {
+  long iterations = 0;
+  bool converged = true;
 };
 
 class Model {
  public:
   explicit Model(const ModelSpec& spec);  // throws std::runtime_error with Siconos' message
   ~Model();
-  // Advances one step of h and writes the new q, v (ndof each) and each contact's impulse
-  // over the step (>= 0, pushing apart).
-  void step(double* q, double* v, double* impulses);
+  // Advances one step of h and writes the new q, v (ndof each), each contact's impulse over
+  // the step (>= 0, pushing apart) and, with friction, its tangential impulse (along +T).
+  StepStats step(double* q, double* v, double* impulses, double* tangential_impulses);
 
  private:
-  void read(double* q, double* v, double* impulses) const;
+  void read(double* q, double* v, double* impulses, double* tangential_impulses) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
