@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <thread>
 
 #include "integrators/registry.hpp"
@@ -12,6 +13,97 @@
 namespace {
 
 const char* const kPeers[] = {"siconos-moreau-jean", "siconos-schatzman-paoli", "siconos-d1-minus-linear"};
+
+// A rigid body on a fixed plane with one frictional contact, linear (K = 0), constant force:
+// the sliding mass (x along the slope, y normal) and the rolling disk (x, y, theta) until
+// those problems are registered. Diagonal mass; gap g = y.
+class OnPlane final : public nsb::Problem {
+ public:
+  struct Spec {
+    std::vector<double> mass, normal, tangent, force, u0, v0;
+    double mu = 0.0, e = 0.0, w = 0.0;
+  };
+  explicit OnPlane(const Spec& s) : n_(static_cast<nsb::Index>(s.mass.size())), force_(nsb::Vec::Map(s.force.data(), n_)),
+                                    initial_{0.0, nsb::Vec::Map(s.u0.data(), n_), nsb::Vec::Map(s.v0.data(), n_)} {
+    M_ = nsb::Vec::Map(s.mass.data(), n_).asDiagonal();
+    contacts_.normal = nsb::Vec::Map(s.normal.data(), n_).transpose().sparseView();
+    contacts_.gap_offset = nsb::Vec::Zero(1);
+    contacts_.restitution = s.e;
+    contacts_.set_friction(nsb::Vec::Map(s.tangent.data(), n_).transpose().sparseView(), s.mu, s.w);
+  }
+  std::string name() const override { return "on-plane"; }
+  const nsb::Params& parameters() const override { return params_; }
+  nsb::Index ndof() const override { return n_; }
+  nsb::SpMat mass_matrix() const override { return M_; }
+  void internal_force(nsb::ConstVecRef, nsb::VecRef f) const override { f.setZero(); }
+  void tangent_stiffness(nsb::ConstVecRef, nsb::SpMat& K) const override { K.resize(n_, n_); }
+  bool is_linear() const override { return true; }
+  void external_force(double, nsb::VecRef f) const override { f = force_; }
+  double strain_energy(nsb::ConstVecRef) const override { return 0.0; }
+  double load_potential(nsb::ConstVecRef u) const override { return -force_.dot(u); }
+  const nsb::Contacts& contacts() const override { return contacts_; }
+  nsb::State initial_state() const override { return initial_; }
+  double stable_step() const override { return std::numeric_limits<double>::infinity(); }
+
+ private:
+  nsb::Index n_;
+  nsb::Params params_;
+  nsb::SpMat M_;
+  nsb::Vec force_;
+  nsb::State initial_;
+  nsb::Contacts contacts_;
+};
+
+// Mass 1 on a slope of 30 degrees (x down the slope), g = 9.81.
+OnPlane sliding_mass(double mu, double v0, double w = 0.0) {
+  const double a = std::numbers::pi / 6, g = 9.81;
+  return OnPlane({{1, 1}, {0, 1}, {1, 0}, {g * std::sin(a), -g * std::cos(a)}, {0, 0}, {v0, 0}, mu, 0.0, w});
+}
+
+// Solid disk (kappa = 1/2), R = 0.1, m = 1, its lowest point h0 above the floor; slip
+// u_T = v_x + R omega.
+OnPlane rolling_disk(double mu, double v0, double omega0, double h0, double e) {
+  const double R = 0.1, g = 9.81;
+  return OnPlane({{1, 1, 0.5 * R * R}, {0, 1, 0}, {1, 0, R}, {0, -g, 0}, {0, h0, 0}, {v0, 0, omega0}, mu, e});
+}
+
+struct Agreement {
+  double du = 0.0, dv = 0.0;  // max over the run of the max-norm differences, over ours' largest |u|, |v| (if > 0)
+  double dimpulse = 0.0;      // normal and tangential impulses' differences, over ours' largest impulse
+  double slip_impulse = 0.0;  // sum of ours' |Lambda_T|: friction did act
+  double v_end = 0.0;         // ours' max |v| at the end
+};
+
+// siconos-moreau-jean against moreau-jean in lockstep (same theta).
+Agreement agreement(const nsb::Problem& problem, const std::string& theta, double dt, int steps) {
+  auto ours = nsb::make_integrator("moreau-jean", {{"theta", theta}});
+  auto peer = nsb::make_integrator("siconos-moreau-jean", {{"theta", theta}});
+  ours->init(problem, problem.initial_state());
+  peer->init(problem, problem.initial_state());
+  Agreement a;
+  double u_scale = 0.0, v_scale = 0.0, impulse_scale = 0.0, dimpulse = 0.0;
+  for (int k = 0; k < steps; ++k) {
+    ours->step(dt);
+    const nsb::StepInfo info = peer->step(dt);
+    REQUIRE(info.converged);
+    const nsb::State &x = ours->state(), &y = peer->state();
+    a.du = std::max(a.du, (x.u - y.u).lpNorm<Eigen::Infinity>());
+    a.dv = std::max(a.dv, (x.v - y.v).lpNorm<Eigen::Infinity>());
+    u_scale = std::max(u_scale, x.u.lpNorm<Eigen::Infinity>());
+    v_scale = std::max(v_scale, x.v.lpNorm<Eigen::Infinity>());
+    dimpulse = std::max({dimpulse, (ours->impulses() - peer->impulses()).lpNorm<Eigen::Infinity>(),
+                         (ours->tangential_impulses() - peer->tangential_impulses()).lpNorm<Eigen::Infinity>()});
+    impulse_scale = std::max({impulse_scale, ours->impulses().lpNorm<Eigen::Infinity>(),
+                              ours->tangential_impulses().lpNorm<Eigen::Infinity>()});
+    a.slip_impulse += ours->tangential_impulses().cwiseAbs().sum();
+  }
+  const auto relative = [](double d, double scale) { return scale > 0.0 ? d / scale : d; };  // at rest: absolute
+  a.du = relative(a.du, u_scale);
+  a.dv = relative(a.dv, v_scale);
+  a.dimpulse = relative(dimpulse, impulse_scale);
+  a.v_end = ours->state().v.lpNorm<Eigen::Infinity>();
+  return a;
+}
 
 }  // namespace
 
@@ -119,4 +211,69 @@ TEST_CASE("siconos peers: two runs at once give the bits of a run alone", "[peer
     CHECK(a == alone);
     CHECK(b == alone);
   }
+}
+
+TEST_CASE("siconos peers: siconos-moreau-jean agrees with moreau-jean under Coulomb friction to 1e-10", "[peers][siconos][friction]") {
+  // theta = 1 too where the contact stays closed (g = g' = 0): there the two active-set
+  // predictions agree (studies/peers.cpp: ours g_k + (1 - theta) h g'_k, Siconos' gamma = 1/2).
+  struct Case {
+    const char* label;
+    OnPlane problem;
+    std::vector<const char*> thetas;
+  };
+  const Case cases[] = {
+      {"sliding mass, mu 0.3: slides on, accelerating", sliding_mass(0.3, 2.0), {"0.5", "1"}},
+      {"sliding mass, mu 0.8: slows down, then sticks", sliding_mass(0.8, 2.0), {"0.5", "1"}},
+      {"sliding mass, mu 0.8, at rest: sticks throughout", sliding_mass(0.8, 0.0), {"0.5", "1"}},
+      {"rolling disk on the floor, v0 1, mu 0.3: slips, then rolls", rolling_disk(0.3, 1.0, 0.0, 0.0, 0.0), {"0.5", "1"}},
+      {"rolling disk dropped from 0.05, omega0 20, e 0.5, mu 0.3", rolling_disk(0.3, 0.0, 20.0, 0.05, 0.5), {"0.5"}},
+  };
+  for (const Case& c : cases) {
+    for (const char* theta : c.thetas) {
+      DYNAMIC_SECTION(c.label << ", theta = " << theta) {
+        const Agreement a = agreement(c.problem, theta, 1e-3, 2000);
+        CAPTURE(a.du, a.dv, a.dimpulse);
+        CHECK(a.slip_impulse > 0.0);  // friction acted
+        CHECK(a.du <= 1e-10);
+        CHECK(a.dv <= 1e-10);
+        CHECK(a.dimpulse <= 1e-10);
+      }
+    }
+  }
+}
+
+TEST_CASE("siconos peers: a stuck body stays stuck in both", "[peers][siconos][friction]") {
+  for (const double v0 : {2.0, 0.0}) {
+    const OnPlane problem = sliding_mass(0.8, v0);
+    auto peer = nsb::make_integrator("siconos-moreau-jean");
+    peer->init(problem, problem.initial_state());
+    for (int k = 0; k < 2000; ++k) peer->step(1e-3);  // v0 = 2 stops at t = v0 / (g (mu cos a - sin a)) = 1.06
+    CHECK(peer->state().v.lpNorm<Eigen::Infinity>() <= 1e-12);
+    CHECK(peer->work().lcp_iterations >= 2000);  // the friction solver's sweeps, one step or more each
+    CHECK(peer->work().lcp_unconverged == 0);
+    CHECK(agreement(problem, "0.5", 1e-3, 2000).v_end <= 1e-12);
+  }
+}
+
+TEST_CASE("siconos peers: friction declined where Siconos cannot treat it, with the reason", "[peers][siconos][friction]") {
+  const auto input_error = [](nsb::Integrator& integrator, const nsb::Problem& problem) -> std::string {
+    try {
+      integrator.init(problem, problem.initial_state());
+    } catch (const nsb::InputError& e) {
+      return e.what();
+    }
+    return "no InputError";
+  };
+  const OnPlane problem = sliding_mass(0.3, 2.0);
+  for (const char* name : {"siconos-schatzman-paoli", "siconos-d1-minus-linear"}) {
+    auto integrator = nsb::make_integrator(name);
+    CHECK_FALSE(integrator->treats_friction());
+    CHECK_THAT(input_error(*integrator, problem), Catch::Contains("mu = 0.3"));
+  }
+  // A moving floor: LagrangianLinearTIR has no velocity offset.
+  auto peer = nsb::make_integrator("siconos-moreau-jean");
+  CHECK(peer->treats_friction());
+  CHECK_THAT(input_error(*peer, sliding_mass(0.3, 2.0, 1.0)), Catch::Contains("floor_velocity") && Catch::Contains("tangent_velocity"));
+  // Without friction the obstacle's tangential velocity plays no part.
+  CHECK(input_error(*peer, sliding_mass(0.0, 2.0, 1.0)) == "no InputError");
 }
