@@ -3,7 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <numbers>
+#include <map>
+#include <memory>
 #include <thread>
 
 #include "integrators/registry.hpp"
@@ -14,58 +15,36 @@ namespace {
 
 const char* const kPeers[] = {"siconos-moreau-jean", "siconos-schatzman-paoli", "siconos-d1-minus-linear"};
 
-// A rigid body on a fixed plane with one frictional contact, linear (K = 0), constant force:
-// the sliding mass (x along the slope, y normal) and the rolling disk (x, y, theta) until
-// those problems are registered. Diagonal mass; gap g = y.
-class OnPlane final : public nsb::Problem {
+// Moving at 30 degrees down a slope; mu 0.3 < tan 30 slides on, mu 0.8 stops (at t = 1.06
+// from v0 = 2) and sticks.
+std::unique_ptr<nsb::Problem> sliding_mass(const std::string& mu, const std::string& v0) {
+  return nsb::make_problem("sliding-mass", {{"alpha", "30"}, {"mu", mu}, {"v0", v0}});
+}
+
+// A registered problem on a belt: its contacts' obstacle moves at w along +T.
+class OnBelt final : public nsb::Problem {
  public:
-  struct Spec {
-    std::vector<double> mass, normal, tangent, force, u0, v0;
-    double mu = 0.0, e = 0.0, w = 0.0;
-  };
-  explicit OnPlane(const Spec& s) : n_(static_cast<nsb::Index>(s.mass.size())), force_(nsb::Vec::Map(s.force.data(), n_)),
-                                    initial_{0.0, nsb::Vec::Map(s.u0.data(), n_), nsb::Vec::Map(s.v0.data(), n_)} {
-    M_ = nsb::Vec::Map(s.mass.data(), n_).asDiagonal();
-    contacts_.normal = nsb::Vec::Map(s.normal.data(), n_).transpose().sparseView();
-    contacts_.gap_offset = nsb::Vec::Zero(1);
-    contacts_.restitution = s.e;
-    contacts_.set_friction(nsb::Vec::Map(s.tangent.data(), n_).transpose().sparseView(), s.mu, s.w);
+  OnBelt(std::unique_ptr<nsb::Problem> problem, double w) : p_(std::move(problem)), contacts_(p_->contacts()) {
+    contacts_.tangent_velocity.setConstant(w);
   }
-  std::string name() const override { return "on-plane"; }
-  const nsb::Params& parameters() const override { return params_; }
-  nsb::Index ndof() const override { return n_; }
-  nsb::SpMat mass_matrix() const override { return M_; }
-  void internal_force(nsb::ConstVecRef, nsb::VecRef f) const override { f.setZero(); }
-  void tangent_stiffness(nsb::ConstVecRef, nsb::SpMat& K) const override { K.resize(n_, n_); }
-  bool is_linear() const override { return true; }
-  void external_force(double, nsb::VecRef f) const override { f = force_; }
-  double strain_energy(nsb::ConstVecRef) const override { return 0.0; }
-  double load_potential(nsb::ConstVecRef u) const override { return -force_.dot(u); }
+  std::string name() const override { return p_->name(); }
+  const nsb::Params& parameters() const override { return p_->parameters(); }
+  nsb::Index ndof() const override { return p_->ndof(); }
+  nsb::SpMat mass_matrix() const override { return p_->mass_matrix(); }
+  void internal_force(nsb::ConstVecRef u, nsb::VecRef f) const override { p_->internal_force(u, f); }
+  void tangent_stiffness(nsb::ConstVecRef u, nsb::SpMat& K) const override { p_->tangent_stiffness(u, K); }
+  bool is_linear() const override { return p_->is_linear(); }
+  void external_force(double t, nsb::VecRef f) const override { p_->external_force(t, f); }
+  double strain_energy(nsb::ConstVecRef u) const override { return p_->strain_energy(u); }
+  double load_potential(nsb::ConstVecRef u) const override { return p_->load_potential(u); }
   const nsb::Contacts& contacts() const override { return contacts_; }
-  nsb::State initial_state() const override { return initial_; }
-  double stable_step() const override { return std::numeric_limits<double>::infinity(); }
+  nsb::State initial_state() const override { return p_->initial_state(); }
+  double stable_step() const override { return p_->stable_step(); }
 
  private:
-  nsb::Index n_;
-  nsb::Params params_;
-  nsb::SpMat M_;
-  nsb::Vec force_;
-  nsb::State initial_;
+  std::unique_ptr<nsb::Problem> p_;
   nsb::Contacts contacts_;
 };
-
-// Mass 1 on a slope of 30 degrees (x down the slope), g = 9.81.
-OnPlane sliding_mass(double mu, double v0, double w = 0.0) {
-  const double a = std::numbers::pi / 6, g = 9.81;
-  return OnPlane({{1, 1}, {0, 1}, {1, 0}, {g * std::sin(a), -g * std::cos(a)}, {0, 0}, {v0, 0}, mu, 0.0, w});
-}
-
-// Solid disk (kappa = 1/2), R = 0.1, m = 1, its lowest point h0 above the floor; slip
-// u_T = v_x + R omega.
-OnPlane rolling_disk(double mu, double v0, double omega0, double h0, double e) {
-  const double R = 0.1, g = 9.81;
-  return OnPlane({{1, 1, 0.5 * R * R}, {0, 1, 0}, {1, 0, R}, {0, -g, 0}, {0, h0, 0}, {v0, 0, omega0}, mu, e});
-}
 
 struct Agreement {
   double du = 0.0, dv = 0.0;  // max over the run of the max-norm differences, over ours' largest |u|, |v| (if > 0)
@@ -216,22 +195,25 @@ TEST_CASE("siconos peers: two runs at once give the bits of a run alone", "[peer
 TEST_CASE("siconos peers: siconos-moreau-jean agrees with moreau-jean under Coulomb friction to 1e-10", "[peers][siconos][friction]") {
   // theta = 1 too where the contact stays closed (g = g' = 0): there the two active-set
   // predictions agree (studies/peers.cpp: ours g_k + (1 - theta) h g'_k, Siconos' gamma = 1/2).
+  using Strings = std::map<std::string, std::string>;
   struct Case {
     const char* label;
-    OnPlane problem;
+    std::string problem;
+    Strings params;
     std::vector<const char*> thetas;
   };
   const Case cases[] = {
-      {"sliding mass, mu 0.3: slides on, accelerating", sliding_mass(0.3, 2.0), {"0.5", "1"}},
-      {"sliding mass, mu 0.8: slows down, then sticks", sliding_mass(0.8, 2.0), {"0.5", "1"}},
-      {"sliding mass, mu 0.8, at rest: sticks throughout", sliding_mass(0.8, 0.0), {"0.5", "1"}},
-      {"rolling disk on the floor, v0 1, mu 0.3: slips, then rolls", rolling_disk(0.3, 1.0, 0.0, 0.0, 0.0), {"0.5", "1"}},
-      {"rolling disk dropped from 0.05, omega0 20, e 0.5, mu 0.3", rolling_disk(0.3, 0.0, 20.0, 0.05, 0.5), {"0.5"}},
+      {"sliding mass, mu 0.3: slides on, accelerating", "sliding-mass", {{"alpha", "30"}, {"mu", "0.3"}, {"v0", "2"}}, {"0.5", "1"}},
+      {"sliding mass, mu 0.8: slows down, then sticks", "sliding-mass", {{"alpha", "30"}, {"mu", "0.8"}, {"v0", "2"}}, {"0.5", "1"}},
+      {"sliding mass, mu 0.8, at rest: sticks throughout", "sliding-mass", {{"alpha", "30"}, {"mu", "0.8"}, {"v0", "0"}}, {"0.5", "1"}},
+      {"rolling disk on the floor, v0 1, mu 0.3: slips, then rolls", "rolling-disk", {{"v0", "1"}, {"omega0", "0"}, {"mu", "0.3"}}, {"0.5", "1"}},
+      {"rolling disk dropped from 0.05, omega0 20, e 0.5, mu 0.3", "rolling-disk", {{"h0", "0.05"}, {"omega0", "20"}, {"e", "0.5"}, {"mu", "0.3"}}, {"0.5"}},
   };
   for (const Case& c : cases) {
     for (const char* theta : c.thetas) {
       DYNAMIC_SECTION(c.label << ", theta = " << theta) {
-        const Agreement a = agreement(c.problem, theta, 1e-3, 2000);
+        auto problem = nsb::make_problem(c.problem, c.params);
+        const Agreement a = agreement(*problem, theta, 1e-3, 2000);
         CAPTURE(a.du, a.dv, a.dimpulse);
         CHECK(a.slip_impulse > 0.0);  // friction acted
         CHECK(a.du <= 1e-10);
@@ -243,15 +225,15 @@ TEST_CASE("siconos peers: siconos-moreau-jean agrees with moreau-jean under Coul
 }
 
 TEST_CASE("siconos peers: a stuck body stays stuck in both", "[peers][siconos][friction]") {
-  for (const double v0 : {2.0, 0.0}) {
-    const OnPlane problem = sliding_mass(0.8, v0);
+  for (const char* v0 : {"2", "0"}) {
+    auto problem = sliding_mass("0.8", v0);
     auto peer = nsb::make_integrator("siconos-moreau-jean");
-    peer->init(problem, problem.initial_state());
-    for (int k = 0; k < 2000; ++k) peer->step(1e-3);  // v0 = 2 stops at t = v0 / (g (mu cos a - sin a)) = 1.06
+    peer->init(*problem, problem->initial_state());
+    for (int k = 0; k < 2000; ++k) peer->step(1e-3);
     CHECK(peer->state().v.lpNorm<Eigen::Infinity>() <= 1e-12);
     CHECK(peer->work().lcp_iterations >= 2000);  // the friction solver's sweeps, one step or more each
     CHECK(peer->work().lcp_unconverged == 0);
-    CHECK(agreement(problem, "0.5", 1e-3, 2000).v_end <= 1e-12);
+    CHECK(agreement(*problem, "0.5", 1e-3, 2000).v_end <= 1e-12);
   }
 }
 
@@ -264,16 +246,16 @@ TEST_CASE("siconos peers: friction declined where Siconos cannot treat it, with 
     }
     return "no InputError";
   };
-  const OnPlane problem = sliding_mass(0.3, 2.0);
   for (const char* name : {"siconos-schatzman-paoli", "siconos-d1-minus-linear"}) {
     auto integrator = nsb::make_integrator(name);
     CHECK_FALSE(integrator->treats_friction());
-    CHECK_THAT(input_error(*integrator, problem), Catch::Contains("mu = 0.3"));
+    CHECK_THAT(input_error(*integrator, *sliding_mass("0.3", "2")), Catch::Contains("mu = 0.3"));
+    CHECK_THAT(input_error(*integrator, *nsb::make_problem("rolling-disk")), Catch::Contains("mu = 0.3"));
   }
   // A moving floor: LagrangianLinearTIR has no velocity offset.
   auto peer = nsb::make_integrator("siconos-moreau-jean");
   CHECK(peer->treats_friction());
-  CHECK_THAT(input_error(*peer, sliding_mass(0.3, 2.0, 1.0)), Catch::Contains("floor_velocity") && Catch::Contains("tangent_velocity"));
+  CHECK_THAT(input_error(*peer, OnBelt(sliding_mass("0.3", "2"), 1.0)), Catch::Contains("floor_velocity") && Catch::Contains("tangent_velocity"));
   // Without friction the obstacle's tangential velocity plays no part.
-  CHECK(input_error(*peer, sliding_mass(0.0, 2.0, 1.0)) == "no InputError");
+  CHECK(input_error(*peer, OnBelt(sliding_mass("0", "2"), 1.0)) == "no InputError");
 }
