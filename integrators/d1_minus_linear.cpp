@@ -17,18 +17,23 @@ void D1MinusLinear::init(const Problem& problem, const State& initial) {
                                  problem.name(), m ? "a massless dof" : "a non-diagonal mass"));
   minv_ = m->cwiseInverse();
   L_ = problem.gap_operator();
+  friction_ = problem.contacts().has_friction();
+  if (friction_) T_ = problem.contacts().tangent;
   contact_ = ImpulseContact(problem, minv_, lcp_);
   const Index n = problem.ndof(), p = L_.rows();
   for (Vec* x : {&f_ext_, &a_now_, &a_next_, &f_int_, &v1_, &v_minus_, &u_start_}) *x = Vec::Zero(n);
-  for (Vec* x : {&p1_, &p2_, &impact_, &gap_}) *x = Vec::Zero(p);
+  for (Vec* x : {&p1_, &p2_, &impact_, &gap_, &p1_t_, &p2_t_, &impact_t_}) *x = Vec::Zero(p);
   problem.external_force(state_.t, f_ext_);
   started_ = false;
 }
 
-void D1MinusLinear::add_impulses(const Vec& impulse, double scale, VecRef v) const {
-  for (Index i = 0; i < L_.rows(); ++i)
-    if (impulse[i] != 0.0)
-      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v[it.col()] += scale * minv_[it.col()] * it.value() * impulse[i];
+void D1MinusLinear::add_impulses(const Vec& normal, const Vec& tangential, double scale, VecRef v) const {
+  for (Index i = 0; i < L_.rows(); ++i) {
+    if (normal[i] != 0.0)
+      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v[it.col()] += scale * minv_[it.col()] * it.value() * normal[i];
+    if (friction_ && tangential[i] != 0.0)
+      for (decltype(T_)::InnerIterator it(T_, i); it; ++it) v[it.col()] += scale * minv_[it.col()] * it.value() * tangential[i];
+  }
 }
 
 StepInfo D1MinusLinear::step(double h) {
@@ -45,14 +50,14 @@ StepInfo D1MinusLinear::step(double h) {
   }
   // Left: V_{k,1} = V_k + h A_k, needed in full only on the contacts' dofs (the contact
   // solves read and write nothing else); U_{k+1} = U_k + h V_k + h^2/2 A_k + h/2 M^{-1} L^T P_1.
-  for (Index i = 0; i < L_.rows(); ++i)
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v1_[it.col()] = state_.v[it.col()] + h * a_now_[it.col()];
+  for_contact_dofs([&](Index j) { v1_[j] = state_.v[j] + h * a_now_[j]; });
   long iterations = 0;
   p1_.setZero();
-  if (closed_start_) iterations += contact_.apply(state_.u, v1_, v1_, p1_, tangential_impulses_, info, work_, 0.0);  // e = 0: v_prev unused
+  p1_t_.setZero();
+  if (closed_start_) iterations += contact_.apply(state_.u, v1_, v1_, p1_, p1_t_, info, work_, 0.0);  // e = 0: v_prev unused
   std::swap(u_start_, state_.u);
   state_.u.noalias() = u_start_ + h * state_.v + (0.5 * h * h) * a_now_;
-  add_impulses(p1_, 0.5 * h, state_.u);
+  add_impulses(p1_, p1_t_, 0.5 * h, state_.u);
   state_.t += h;
 
   // Right: A_{k+1}, V^- = V_k + h/2 (A_k + A_{k+1}).
@@ -73,22 +78,25 @@ StepInfo D1MinusLinear::step(double h) {
     impact = impact || gdot < 0.0;
   }
   p2_.setZero();
+  p2_t_.setZero();
   if (impact) {
     p1_.setZero();
+    p1_t_.setZero();
   } else if (closed_start_) {
-    add_impulses(p1_, 0.5, v_minus_);
-    iterations += contact_.apply(u_start_, v_minus_, v_minus_, p2_, tangential_impulses_, info, work_, 0.0);
+    add_impulses(p1_, p1_t_, 0.5, v_minus_);
+    iterations += contact_.apply(u_start_, v_minus_, v_minus_, p2_, p2_t_, info, work_, 0.0);
   }
   // Impact at t_{k+1}, Newton's law against V^-.
   impact_.setZero();
+  impact_t_.setZero();
   std::swap(state_.v, v_minus_);
   if (closed_end) {
     // V^- on the contacts' dofs (all the impact law reads of it) into v1_, no longer needed.
-    for (Index i = 0; i < L_.rows(); ++i)
-      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v1_[it.col()] = state_.v[it.col()];
-    iterations += contact_.apply(state_.u, v1_, state_.v, impact_, tangential_impulses_, info, work_, problem_->restitution());
+    for_contact_dofs([&](Index j) { v1_[j] = state_.v[j]; });
+    iterations += contact_.apply(state_.u, v1_, state_.v, impact_, impact_t_, info, work_, problem_->restitution());
   }
   impulses_ = impact_ + 0.5 * p1_ + p2_;
+  if (friction_) tangential_impulses_ = impact_t_ + 0.5 * p1_t_ + p2_t_;
 
   std::swap(a_now_, a_next_);
   closed_start_ = closed_end;

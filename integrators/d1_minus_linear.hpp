@@ -22,6 +22,10 @@
 // In smooth phases this is velocity Verlet: second order, explicit. Impulse of the step:
 // Lambda + P_1/2 + P_2 (no impact) or Lambda (impact), >= 0. The LCPs: closed form for a
 // diagonal H = L M^{-1} L^T, else projected Gauss-Seidel (impulse_contact.hpp).
+// Coulomb friction: every stage's contact solve takes (P_N, P_T) from the 2D Moreau–Coulomb
+// law (impulse_contact.hpp) at its own velocity, slip U_T = T V - w, and the tangential
+// impulses join the normal ones in every update (M^{-1} (L^T P_N + T^T P_T)); the step's
+// tangential impulse is summed like the normal one, so it stays in the cone.
 // Reported state: (U_{k+1}, V_{k+1}) at t_{k+1}; energy V^T M V / 2 + V(U).
 // Declines (InputError): a non-diagonal mass or a massless dof (M^{-1} in every stage).
 #include "integrators/impulse_contact.hpp"
@@ -38,15 +42,30 @@ class D1MinusLinear final : public Integrator {
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
   bool conditionally_stable() const override { return true; }  // explicit in the smooth forces
+  bool treats_friction() const override { return true; }
 
  private:
-  void add_impulses(const Vec& impulse, double scale, VecRef v) const;  // v += scale M^{-1} L^T impulse
+  // v += scale M^{-1} (L^T normal + T^T tangential)
+  void add_impulses(const Vec& normal, const Vec& tangential, double scale, VecRef v) const;
+  // f(j) for each dof j of the contact rows (normal and tangent): the only velocities the
+  // contact solves read.
+  template <class F>
+  void for_contact_dofs(F&& f) const {
+    for (Index i = 0; i < L_.rows(); ++i) {
+      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) f(it.col());
+      if (friction_)
+        for (decltype(T_)::InnerIterator it(T_, i); it; ++it) f(it.col());
+    }
+  }
 
   LcpOptions lcp_;
   ImpulseContact contact_;
   Vec minv_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
   Vec f_ext_, a_now_, a_next_, f_int_, v1_, v_minus_, u_start_, p1_, p2_, impact_, gap_;
+  bool friction_ = false;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
+  Vec p1_t_, p2_t_, impact_t_;  // the stages' tangential impulses
   bool started_ = false;
   bool closed_start_ = false;  // some contact closed at U_k (g <= 0)
 };

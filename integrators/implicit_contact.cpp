@@ -22,6 +22,11 @@ void ImplicitContact::bind(const Problem& problem, const SpMat& M, const Vec& u0
   f_int_ = Vec::Zero(problem.ndof());
   L_ = problem.gap_operator();
   responses_.bind(L_.rows());
+  if (problem.contacts().has_friction()) {
+    T_ = problem.contacts().tangent;
+    tangent_responses_.bind(L_.rows());
+    mu_active_ = Vec::Zero(L_.rows());
+  }
   S_.bind(M, K_);  // S's pattern for every c, analysed now: a factor too large is refused up front
   chol_.analyze(S_.matrix(), fmt::format("integrator {}", who), "S");
 }
@@ -32,6 +37,7 @@ void ImplicitContact::factorize(double c) {
   if (chol_.uses_lu()) ++work_->extra["lu_fallbacks"];
   c_factored_ = c;
   responses_.invalidate();
+  tangent_responses_.invalidate();
 }
 
 void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, bool with_contact, Vec& u, Vec& mu,
@@ -87,6 +93,58 @@ const Vec& ImplicitContact::response(Index i) {
     chol_.solve(r, r);
     ++work_->linear_solves;
   });
+}
+
+const Vec& ImplicitContact::tangent_response(Index i) {
+  return tangent_responses_.get(T_, i, [this](Vec& r) {
+    chol_.solve(r, r);
+    ++work_->linear_solves;
+  });
+}
+
+LcpResult ImplicitContact::correct_with_friction(const Vec& b, Vec& x, Vec& normal, Vec& tangential,
+                                                 const std::vector<Index>& active) {
+  const FrictionalCorrection c{L_, T_, problem_->contacts(), [this](Index i) -> const Vec& { return response(i); },
+                               [this](Index i) -> const Vec& { return tangent_response(i); }};
+  const LcpResult res = frictional_correction(c, b, x, normal, tangential, active, lcp_, buffers_.lcp, mu_active_);
+  work_->lcp_iterations += res.iterations;
+  if (!res.converged) ++work_->lcp_unconverged;
+  return res;
+}
+
+LcpResult frictional_correction(const FrictionalCorrection& c, const Vec& b, Vec& x, Vec& normal, Vec& tangential,
+                                const std::vector<Index>& active, const LcpOptions& lcp, LcpStorage& storage,
+                                Vec& mu_active) {
+  normal.setZero();
+  tangential.setZero();
+  const Index a = static_cast<Index>(active.size());
+  if (a == 0) return {};
+  auto& [D, q, z] = storage.of_size(2 * a);
+  for (Index col = 0; col < a; ++col) {
+    const Vec& rn = c.normal_response(active[col]);
+    const Vec& rt = c.tangent_response(active[col]);
+    for (Index row = 0; row < a; ++row) {
+      D(2 * row, 2 * col) = c.L.row(active[row]).dot(rn);
+      D(2 * row, 2 * col + 1) = c.L.row(active[row]).dot(rt);
+      D(2 * row + 1, 2 * col) = c.T.row(active[row]).dot(rn);
+      D(2 * row + 1, 2 * col + 1) = c.T.row(active[row]).dot(rt);
+    }
+  }
+  for (Index row = 0; row < a; ++row) {
+    const Index i = active[row];
+    q[2 * row] = b[i] + c.L.row(i).dot(x);
+    q[2 * row + 1] = c.T.row(i).dot(x) - c.contacts.tangent_velocity[i];
+    mu_active[row] = c.contacts.mu[i];
+  }
+  const LcpResult res = solve_coulomb(D, q, mu_active.head(a), z, lcp);
+  for (Index k = 0; k < a; ++k) {
+    const Index i = active[k];
+    normal[i] = z[2 * k];
+    tangential[i] = z[2 * k + 1];
+    if (z[2 * k] != 0.0) x.noalias() += z[2 * k] * c.normal_response(i);
+    if (z[2 * k + 1] != 0.0) x.noalias() += z[2 * k + 1] * c.tangent_response(i);
+  }
+  return res;
 }
 
 LcpResult ImplicitContact::correct(const Vec& b, Vec& x, Vec& mu, const std::vector<Index>& active, bool grow) {

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "integrators/contact_responses.hpp"
+#include "integrators/coulomb.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/lcp.hpp"
 #include "integrators/sparse_cholesky.hpp"
@@ -51,6 +52,23 @@ LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu
                              const std::function<const Vec&(Index)>& response, const LcpOptions& lcp,
                              WorkCounters& work, CorrectionBuffers& buffers);
 
+// The frictional velocity correction of an implicit scheme (DESIGN.md section 6), on the
+// contact set `active`, S the iteration matrix:
+//     x <- x + S^{-1} (L^T Lambda_N + T^T Lambda_T),
+//     2D Moreau–Coulomb law (coulomb.hpp) with U_N = b_i + L_i x, U_T = T_i x - w_i,
+// Delassus blocks [L_i; T_i] S^{-1} [L_j; T_j]^T from the cached responses S^{-1} L_j^T and
+// S^{-1} T_j^T. normal, tangential (size p) get the impulses, zero off the set. The caller
+// counts the iterations.
+struct FrictionalCorrection {
+  const ContactRows& L;
+  const ContactRows& T;
+  const Contacts& contacts;  // mu and w
+  std::function<const Vec&(Index)> normal_response, tangent_response;
+};
+LcpResult frictional_correction(const FrictionalCorrection& c, const Vec& b, Vec& x, Vec& normal, Vec& tangential,
+                                const std::vector<Index>& active, const LcpOptions& lcp, LcpStorage& storage,
+                                Vec& mu_active);
+
 struct NewtonOptions {
   double tolerance = 1e-10;
   long max_iterations = 25;
@@ -67,9 +85,13 @@ class ImplicitContact {
   // Corrects x on the contact set (fixed `active`, or grown from the violated rows when
   // `grow`): x += S^{-1} L^T mu, mu (size p, zero off the set) returned in `mu`.
   LcpResult correct(const Vec& b, Vec& x, Vec& mu, const std::vector<Index>& active, bool grow);
+  // The frictional correction above on the fixed set `active` (the problem has friction),
+  // iterations counted in work.
+  LcpResult correct_with_friction(const Vec& b, Vec& x, Vec& normal, Vec& tangential, const std::vector<Index>& active);
 
  private:
   const Vec& response(Index contact);
+  const Vec& tangent_response(Index contact);
   void factorize(double c);
 
   const Problem* problem_ = nullptr;
@@ -86,6 +108,9 @@ class ImplicitContact {
   SparseCholesky chol_;
   ContactResponses responses_;  // S^{-1} L_i^T
   CorrectionBuffers buffers_;
+  ContactRows T_;                       // with friction
+  ContactResponses tangent_responses_;  // S^{-1} T_i^T
+  Vec mu_active_;
 };
 
 // The Newton and LCP parameters (newton_tol, newton_max_iter, lcp_tol, lcp_max_iter) shared

@@ -34,6 +34,7 @@ void MoreauJean::init(const Problem& problem, const State& initial) {
     T_ = problem.contacts().tangent;
     tangent_responses_.bind(L_.rows());
     mu_active_ = Vec::Zero(L_.rows());
+    restitution_rate_ = Vec::Zero(L_.rows());
   }
   f_int_ = Vec::Zero(n);
   f_ext_now_ = Vec::Zero(n);
@@ -93,34 +94,11 @@ LcpResult MoreauJean::solve_frictionless(Index a, double e) {
   return res;
 }
 
-LcpResult MoreauJean::solve_with_friction(Index a, double e) {
-  auto& [D, q, x] = lcp_storage_.of_size(2 * a);
-  const Vec& w = problem_->contacts().tangent_velocity;
-  for (Index c = 0; c < a; ++c) {
-    const Vec& rn = contact_response(active_[c]);
-    const Vec& rt = tangent_response(active_[c]);
-    for (Index row = 0; row < a; ++row) {
-      D(2 * row, 2 * c) = L_.row(active_[row]).dot(rn);
-      D(2 * row, 2 * c + 1) = L_.row(active_[row]).dot(rt);
-      D(2 * row + 1, 2 * c) = T_.row(active_[row]).dot(rn);
-      D(2 * row + 1, 2 * c + 1) = T_.row(active_[row]).dot(rt);
-    }
-  }
-  for (Index row = 0; row < a; ++row) {
-    const Index i = active_[row];
-    q[2 * row] = L_.row(i).dot(v_next_) + e * gdot_[i];
-    q[2 * row + 1] = T_.row(i).dot(v_next_) - w[i];
-    mu_active_[row] = problem_->contacts().mu[i];
-  }
-  const LcpResult res = solve_coulomb(D, q, mu_active_.head(a), x, lcp_);
-  for (Index c = 0; c < a; ++c) {
-    const Index i = active_[c];
-    impulses_[i] = x[2 * c];
-    tangential_impulses_[i] = x[2 * c + 1];
-    if (x[2 * c] != 0.0) v_next_.noalias() += x[2 * c] * contact_response(i);
-    if (x[2 * c + 1] != 0.0) v_next_.noalias() += x[2 * c + 1] * tangent_response(i);
-  }
-  return res;
+LcpResult MoreauJean::solve_with_friction() {
+  const FrictionalCorrection c{L_, T_, problem_->contacts(), [this](Index i) -> const Vec& { return contact_response(i); },
+                               [this](Index i) -> const Vec& { return tangent_response(i); }};
+  return frictional_correction(c, restitution_rate_, v_next_, impulses_, tangential_impulses_, active_, lcp_,
+                               lcp_storage_, mu_active_);
 }
 
 StepInfo MoreauJean::step(double h) {
@@ -155,10 +133,13 @@ StepInfo MoreauJean::step(double h) {
     if (gap_[i] + h * (1.0 - theta_) * gdot_[i] <= 0.0) active_.push_back(i);
 
   impulses_.setZero();
-  if (friction_) tangential_impulses_.setZero();
+  if (friction_) {
+    tangential_impulses_.setZero();
+    restitution_rate_.noalias() = e * gdot_;
+  }
   if (!active_.empty()) {
     const Index a = static_cast<Index>(active_.size());
-    const LcpResult res = friction_ ? solve_with_friction(a, e) : solve_frictionless(a, e);
+    const LcpResult res = friction_ ? solve_with_friction() : solve_frictionless(a, e);
     info.iterations = res.iterations;
     work_.lcp_iterations += res.iterations;
     if (!lcp_max_residual_) lcp_max_residual_ = &work_.extra["lcp_max_residual"];

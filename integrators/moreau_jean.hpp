@@ -82,7 +82,7 @@ class MoreauJean final : public Integrator {
   const Vec& contact_response(Index contact);  // W^{-1} L_i^T, cached while W is unchanged
   const Vec& tangent_response(Index contact);  // W^{-1} T_i^T, likewise
   LcpResult solve_frictionless(Index a, double e);
-  LcpResult solve_with_friction(Index a, double e);
+  LcpResult solve_with_friction();  // on active_, b = e g'_k (restitution_rate_)
 
   double theta_;
   bool project_positions_;
@@ -96,7 +96,7 @@ class MoreauJean final : public Integrator {
   bool friction_ = false;
   Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
   ContactResponses tangent_responses_;  // W^{-1} T_i^T
-  Vec mu_active_;
+  Vec mu_active_, restitution_rate_;
   Vec f_int_, f_ext_now_, f_ext_next_, rhs_, v_next_, gap_, gdot_, nu_;
   LcpStorage lcp_storage_;  // the LCP on the active set
   double* lcp_max_residual_ = nullptr;  // work_.extra's entry, once created

@@ -59,9 +59,12 @@ StepInfo Nsga::step(double h) {
   if (!pos.converged) info.converged = false;
   if (closing_.empty()) {
     impulses_.setZero();
+    tangential_impulses_.setZero();
   } else {
     b_.noalias() = problem_->restitution() * (L * state_.v);
-    const LcpResult vel = implicit_.correct(b_, w_, impulses_, closing_, false);
+    const LcpResult vel = problem_->contacts().has_friction()
+                              ? implicit_.correct_with_friction(b_, w_, impulses_, tangential_impulses_, closing_)
+                              : implicit_.correct(b_, w_, impulses_, closing_, false);
     info.iterations += vel.iterations;
     if (!vel.converged) info.converged = false;
   }

@@ -31,6 +31,16 @@
 // not invertible but S is, and the massless rows of the smooth step are quasi-static
 // (F_int = F_ext); (iii) the persistent-contact force is carried by the per-step impulses
 // (as in Moreau-Jean), not by a separate smooth multiplier.
+// Coulomb friction (DESIGN.md section 6), at the velocity level only, in the spirit of the
+// frictional NSGA of Capobianco, Harsch, Eugster, Leine ("A nonsmooth generalized-alpha
+// method for mechanical systems with frictional contact", IJNME 122, 2021): the velocity
+// jump takes (Lambda_N, Lambda_T) from the 2D Moreau–Coulomb law with U_N = L V_{k+1} +
+// e L V_k, U_T = T V_{k+1} - w (implicit_contact.hpp's frictional correction),
+// V_{k+1} = W_{k+1} + S^{-1} (L^T Lambda_N + T^T Lambda_T); the position correction stays
+// normal (no tangential constraint on positions). Differences from Capobianco et al.: their
+// scheme carries separate contact forces and percussions, each with its own friction law,
+// and solves the stages as one system; here, as in (iii) above, the per-step impulse carries
+// the persistent friction force too.
 // Nonlinear F_int: the smooth step is solved by Newton (newton_tol on the increment, see
 // implicit_contact.hpp), refactorising S each iteration; the corrections use the last S.
 // impulses() = Lambda, the velocity jump's impulse (nu is a position correction, no momentum).
@@ -50,6 +60,7 @@ class Nsga final : public Integrator {
   static ParamSpecs parameters_spec();
 
   std::string name() const override { return "nsga"; }
+  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
 
