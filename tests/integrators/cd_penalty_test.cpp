@@ -11,8 +11,8 @@
 #include "integrators/run.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/signorini_bar.hpp"
+#include "problems/sliding_mass.hpp"
 #include "tests/support/sliding_block.hpp"
-#include "tests/support/sliding_mass.hpp"
 
 using Catch::Detail::Approx;
 
@@ -96,8 +96,13 @@ TEST_CASE("cd-penalty declines a massless dof", "[integrators][cd-penalty]") {
 }
 
 // Regularised Coulomb friction (spring_dashpot.hpp, implicit in the kick) on a mass sliding
-// down a slope (tests/support/sliding_mass.hpp).
+// down a slope (problems/sliding_mass.hpp).
 namespace {
+
+// mu 0.5, m 1 kg, g 9.81 m/s^2.
+nsb::SlidingMass sliding_mass(const std::string& alpha, const std::string& v0) {
+  return nsb::SlidingMass(nsb::Params(nsb::SlidingMass::parameters_spec(), {{"alpha", alpha}, {"mu", "0.5"}, {"v0", v0}}));
+}
 
 struct SlideRecord {
   double stop_time = NAN;   // first time the slip rate falls to v_reg
@@ -110,7 +115,7 @@ struct SlideRecord {
 // is the velocity of [t_{k+1}, t_{k+2}], sampled at t + tau / 2; before the slip reaches
 // v_reg it decreases linearly at a, so the crossing is extrapolated from the last sample
 // above v_reg, exactly for a linear slip.
-SlideRecord slide(const nsb::testing::SlidingMass& p, double tau, double v_reg, double t_end) {
+SlideRecord slide(const nsb::SlidingMass& p, double tau, double v_reg, double t_end) {
   nsb::CdPenalty integ(nsb::Params(nsb::CdPenalty::parameters_spec(), {{"friction_velocity", std::to_string(v_reg)}}));
   integ.init(p, p.initial_state());
   SlideRecord r;
@@ -120,7 +125,7 @@ SlideRecord slide(const nsb::testing::SlidingMass& p, double tau, double v_reg, 
   while (integ.state().t < t_end - 1e-12) {
     const double t = integ.state().t, v = integ.state().v[0];
     integ.step(tau);
-    if (std::isnan(r.stop_time) && integ.state().v[0] <= v_reg && t > 0.0) r.stop_time = t + tau / 2 + (v - v_reg) / -p.acceleration();
+    if (std::isnan(r.stop_time) && integ.state().v[0] <= v_reg && t > 0.0) r.stop_time = t + tau / 2 + (v - v_reg) / -p.sliding_acceleration();
     const double e = integ.energy().total();
     r.energy_scale = std::max(r.energy_scale, std::abs(e));
     r.max_energy_rise = std::max(r.max_energy_rise, e - e_prev);
@@ -143,8 +148,8 @@ TEST_CASE("cd-penalty friction: the sliding mass stops at t_s - v_reg / |a|, its
   // the dashpot (zeta = 1e3 at e = 0, implicit) takes y' to ~0 every step, so that |y'| <=
   // g cos(alpha) tau bounds it (1.5 tau). Measured: 2e-10 s to 7e-10 s from tau = 2.5e-4 to
   // 4e-3 (< 2e-7 tau), both v_reg; asserted: 1e-6 tau.
-  const nsb::testing::SlidingMass p(10.0, 0.5, 1.0);
-  const double a = p.acceleration();
+  const nsb::SlidingMass p = sliding_mass("10", "1");
+  const double a = p.sliding_acceleration();
   for (double v_reg : {1e-2, 1e-3}) {
     for (double tau : {4e-3, 1e-3, 2.5e-4}) {
       CAPTURE(v_reg, tau);
@@ -165,7 +170,7 @@ TEST_CASE("cd-penalty friction: below the friction angle the mass creeps at v_re
   // the implicit law too (header), reached after a few relaxation times v_reg / (mu g
   // cos(alpha)) = 0.2 ms. Measured over [0.5 s, 1 s]: u_c to 5e-11 (tau = 1e-3) and 1e-12
   // (tau = 1e-4), relative, every v_reg.
-  const nsb::testing::SlidingMass p(20.0, 0.5, 0.0);
+  const nsb::SlidingMass p = sliding_mass("20", "0");
   for (double v_reg : {1e-2, 1e-3, 1e-4}) {
     for (double tau : {1e-3, 1e-4}) {
       CAPTURE(v_reg, tau);

@@ -7,10 +7,10 @@
 
 #include "problems/block_2d.hpp"
 #include "problems/bouncing_mass.hpp"
+#include "problems/sliding_mass.hpp"
 #include "reference/event_driven.hpp"
 #include "studies/study.hpp"
 #include "tests/support/sliding_block.hpp"
-#include "tests/support/sliding_mass.hpp"
 
 using nsb::BouncingMass;
 using nsb::Params;
@@ -117,8 +117,13 @@ TEST_CASE("penalty-bdf on the block: no contact is lost at a switch, so the ener
 }
 
 // Regularised Coulomb friction (integrators/spring_dashpot.hpp) as the reference's force law,
-// on a mass sliding down a slope (tests/support/sliding_mass.hpp).
+// on a mass sliding down a slope (problems/sliding_mass.hpp).
 namespace {
+
+// mu 0.5, m 1 kg, g 9.81 m/s^2.
+nsb::SlidingMass sliding_mass(const std::string& alpha, const std::string& v0) {
+  return nsb::SlidingMass(nsb::Params(nsb::SlidingMass::parameters_spec(), {{"alpha", alpha}, {"mu", "0.5"}, {"v0", v0}}));
+}
 
 struct BdfSlide {
   double stop_time = NAN;  // first time the slip rate falls to v_reg
@@ -130,7 +135,7 @@ struct BdfSlide {
 
 // Before the slip reaches v_reg it decreases linearly at a, so the crossing is extrapolated
 // from the last output above v_reg (exactly, for a linear slip).
-BdfSlide bdf_slide(const nsb::testing::SlidingMass& p, double v_reg, double t_end, double dt) {
+BdfSlide bdf_slide(const nsb::SlidingMass& p, double v_reg, double t_end, double dt) {
   PenaltyBdf pen(Params(PenaltyBdf::parameters_spec(), {{"friction_velocity", fmt::format("{}", v_reg)}}));
   pen.init(p, p.initial_state());
   BdfSlide r;
@@ -140,7 +145,7 @@ BdfSlide bdf_slide(const nsb::testing::SlidingMass& p, double v_reg, double t_en
   while (pen.state().t < t_end - 1e-12) {
     const double t = pen.state().t, v = pen.state().v[0];
     pen.step(dt);
-    if (std::isnan(r.stop_time) && pen.state().v[0] <= v_reg) r.stop_time = t + (v - v_reg) / -p.acceleration();
+    if (std::isnan(r.stop_time) && pen.state().v[0] <= v_reg) r.stop_time = t + (v - v_reg) / -p.sliding_acceleration();
     const double e = pen.energy().total();
     r.energy_scale = std::max(r.energy_scale, std::abs(e));
     r.max_energy_rise = std::max(r.max_energy_rise, e - e_prev);
@@ -163,8 +168,8 @@ TEST_CASE("penalty-bdf friction: the stop time's error is the regularisation's, 
   // the linear slip exactly and the normal spring settles at a penetration of 1e-10 m: the
   // stop is measured at t_s - v_reg / |a| to 4e-16 s, every v_reg; asserted to 1e-10 s
   // (rtol 1e-9 of the slip's time scale v0 / |a|).
-  const nsb::testing::SlidingMass p(10.0, 0.5, 1.0);
-  const double a = p.acceleration();
+  const nsb::SlidingMass p = sliding_mass("10", "1");
+  const double a = p.sliding_acceleration();
   std::vector<double> v_regs = {4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4}, errors;
   for (double v_reg : v_regs) {
     CAPTURE(v_reg);
@@ -185,7 +190,7 @@ TEST_CASE("penalty-bdf friction: below the friction angle the mass creeps at v_r
           "[reference][penalty][friction]") {
   // alpha 20 deg from rest (Coulomb sticks): the regularised law's creep, measured over
   // [0.5 s, 1 s] to 1e-13 relative at v_reg = 1e-2 and round-off below; asserted: 1e-9 (rtol).
-  const nsb::testing::SlidingMass p(20.0, 0.5, 0.0);
+  const nsb::SlidingMass p = sliding_mass("20", "0");
   for (double v_reg : {1e-2, 1e-3, 1e-4}) {
     CAPTURE(v_reg);
     const double creep = v_reg * std::tan(20.0 * std::numbers::pi / 180.0) / 0.5;
