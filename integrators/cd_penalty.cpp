@@ -19,10 +19,13 @@ ParamSpecs CdPenalty::parameters_spec() {
   return {
       ParamSpec::real("penalty_factor", 2.0, 0.0, 4.0,
                       "kappa_i tau^2 / m_i (dimensionless); stable below 4, contact resolved in ~2 steps at 2", true, true),
+      ParamSpec::real("friction_velocity", 1e-3, 0.0, 1e308,
+                      "v_reg [m/s] of the regularised Coulomb law: viscous below, Coulomb above; creep v_reg F_T / (mu F_N)", true),
   };
 }
 
-CdPenalty::CdPenalty(const Params& params) : Integrator(params), factor_(params.real("penalty_factor")) {}
+CdPenalty::CdPenalty(const Params& params)
+    : Integrator(params), factor_(params.real("penalty_factor")), v_reg_(params.real("friction_velocity")) {}
 
 void CdPenalty::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
@@ -37,6 +40,16 @@ void CdPenalty::init(const Problem& problem, const State& initial) {
   for (Index i = 0; i < L_.rows(); ++i) {
     for (decltype(L_)::InnerIterator it(L_, i); it; ++it) h_diag_[i] += it.value() * it.value() * minv[it.col()];
     if (!(h_diag_[i] > 0.0)) throw InputError(fmt::format("integrator cd-penalty: problem {} has a contact ({}) with an empty row of L", problem.name(), i));
+  }
+  const Contacts& c = problem.contacts();
+  friction_ = c.has_friction();
+  if (friction_) {
+    T_ = c.tangent;
+    mu_ = c.mu;
+    w_ = c.tangent_velocity;
+    ht_diag_ = Vec::Zero(T_.rows());
+    for (Index i = 0; i < T_.rows(); ++i)
+      for (decltype(T_)::InnerIterator it(T_, i); it; ++it) ht_diag_[i] += it.value() * it.value() * minv[it.col()];
   }
   zeta_ = spring_dashpot_damping_ratio(problem.restitution(), kMaxDampingRatio);
   gap_ = L_ * state_.u + problem.gap_offset();
@@ -65,6 +78,7 @@ StepInfo CdPenalty::step(double tau) {
   gap_.noalias() = L_ * state_.u;
   gap_ += g0;
   impulses_.setZero();
+  if (friction_) tangential_impulses_.setZero();
   for (Index i = 0; i < L_.rows(); ++i) {
     if (!(gap_[i] < 0.0)) continue;
     const double mi = 1.0 / h_diag_[i];
@@ -76,6 +90,12 @@ StepInfo CdPenalty::step(double tau) {
     if (f == 0.0) continue;
     impulses_[i] = tau * f;
     for (decltype(L_)::InnerIterator it(L_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * tau * f;
+    if (!friction_ || mu_[i] == 0.0) continue;
+    double slip = -w_[i];
+    for (decltype(T_)::InnerIterator it(T_, i); it; ++it) slip += it.value() * state_.v[it.col()];
+    const double lambda_t = implicit_regularised_friction(mu_[i], impulses_[i], slip, ht_diag_[i], v_reg_);
+    tangential_impulses_[i] = lambda_t;
+    for (decltype(T_)::InnerIterator it(T_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda_t;
   }
   ++work_.steps;
   return info;

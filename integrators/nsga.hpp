@@ -40,7 +40,11 @@
 // normal (no tangential constraint on positions). Differences from Capobianco et al.: their
 // scheme carries separate contact forces and percussions, each with its own friction law,
 // and solves the stages as one system; here, as in (iii) above, the per-step impulse carries
-// the persistent friction force too.
+// the persistent friction force too. The price, measured (tests/integrators/friction_test.cpp):
+// the friction force never enters the smooth accelerations, so a stuck contact still moves
+// with the smooth step's tangential load, h^2/2 a_T per step: creep at about h a_T / 2 under a
+// static load (sliding mass, alpha 30 deg, h = 1e-3: 2.5 mm/s), which Capobianco et al.'s
+// smooth friction force removes.
 // Nonlinear F_int: the smooth step is solved by Newton (newton_tol on the increment, see
 // implicit_contact.hpp), refactorising S each iteration; the corrections use the last S.
 // impulses() = Lambda, the velocity jump's impulse (nu is a position correction, no momentum).

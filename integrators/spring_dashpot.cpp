@@ -1,5 +1,6 @@
 #include "integrators/spring_dashpot.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -28,6 +29,17 @@ double spring_dashpot_damping_ratio(double e, double max_ratio) {
     (spring_dashpot_restitution(mid) > e ? lo : hi) = mid;
   }
   return std::sqrt(lo * hi);
+}
+
+RegularisedFriction regularised_friction(double mu, double normal, double slip, double v_reg) {
+  const double x = slip / v_reg;
+  // -mu normal times phi, in this order: saturated, the force is -mu normal to the bit.
+  const double phi = std::clamp(x, -1.0, 1.0);
+  return {-mu * normal * phi, std::abs(x) < 1.0 ? -mu * normal / v_reg : 0.0, -mu * phi};
+}
+
+double implicit_regularised_friction(double mu, double normal, double slip, double h_tangent, double v_reg) {
+  return regularised_friction(mu, normal, slip, v_reg + h_tangent * mu * normal).force;
 }
 
 }  // namespace nsb

@@ -30,11 +30,16 @@ ParamSpecs PenaltyBdf::parameters_spec() {
                         "restitution: dashpot giving the problem's e; none: plain penalty k max(0, -g)"),
       ParamSpec::real("rtol", 1e-9, 0.0, 1e-2, "CVODE relative tolerance", true),
       ParamSpec::real("atol", 1e-12, 0.0, 1.0, "CVODE absolute tolerance", true),
+      ParamSpec::real("friction_velocity", 1e-3, 0.0, 1e308,
+                      "v_reg [m/s] of the regularised Coulomb law: viscous below, Coulomb above; creep v_reg F_T / (mu F_N)", true),
   };
 }
 
 PenaltyBdf::PenaltyBdf(const Params& params)
-    : Integrator(params), k_(params.real("stiffness")), damped_(params.choice("damping") == "restitution") {
+    : Integrator(params),
+      k_(params.real("stiffness")),
+      v_reg_(params.real("friction_velocity")),
+      damped_(params.choice("damping") == "restitution") {
   settings_.bdf = true;
   settings_.rtol = params.real("rtol");
   settings_.atol = params.real("atol");
@@ -61,8 +66,17 @@ void PenaltyBdf::init(const Problem& problem, const State& initial) {
     if (!(h > 0.0)) throw InputError(fmt::format("penalty-bdf: contact {} has an empty row of L", i));
     c_[i] = 2.0 * zeta * std::sqrt(k_ / h);
   }
-  y_ = Vec::Zero(2 * n + p);
-  y_ << state_.u, state_.v, Vec::Zero(p);
+  const Contacts& contacts = problem.contacts();
+  friction_ = contacts.has_friction();
+  const Index q = friction_ ? 2 * p : p;  // Lambda_N, then Lambda_T with friction
+  if (friction_) {
+    T_ = contacts.tangent;
+    mu_ = contacts.mu;
+    w_ = contacts.tangent_velocity;
+    ft_ = Vec::Zero(p);
+  }
+  y_ = Vec::Zero(2 * n + q);
+  y_ << state_.u, state_.v, Vec::Zero(q);
   force_ = Vec::Zero(n);
   fext_ = Vec::Zero(n);
   problem.external_force(state_.t, fext_);
@@ -85,8 +99,9 @@ void PenaltyBdf::init(const Problem& problem, const State& initial) {
   // gave 1e-17 s after the restart on the block (1e7 N, atol 1e-12 N s): below ulp(t) and
   // CVODE's root tolerance 100 ulp(t), so that the restarting root was reported again.
   // Lambda_i' = f_i is the force M v' carries, so the velocities' error test bounds it.
-  settings_.quadratures = p;
-  cvode_ = std::make_unique<Cvode>(static_cast<OdeSystem&>(*this), 2 * n + p, static_cast<int>(2 * p), settings_);
+  // Lambda_T likewise: T^T f_T is in M v'.
+  settings_.quadratures = q;
+  cvode_ = std::make_unique<Cvode>(static_cast<OdeSystem&>(*this), 2 * n + q, static_cast<int>(2 * p), settings_);
   set_directions();
   cvode_->restart(state_.t, y_);
   publish_work();
@@ -125,6 +140,14 @@ bool PenaltyBdf::mode(Index i, bool force_root) const {
   return force_root != static_cast<bool>(on_[i]);
 }
 
+void PenaltyBdf::friction_forces(ConstVecRef v) {
+  for (Index i = 0; i < ft_.size(); ++i) {
+    double slip = -w_[i];
+    for (RowSpMat::InnerIterator it(T_, i); it; ++it) slip += it.value() * v[it.col()];
+    ft_[i] = regularised_friction(mu_[i], fc_[i], slip, v_reg_).force;
+  }
+}
+
 void PenaltyBdf::rhs(double t, ConstVecRef y, VecRef ydot) {
   const Index n = problem_->ndof(), p = L_.rows();
   problem_->internal_force(y.head(n), force_);
@@ -136,6 +159,11 @@ void PenaltyBdf::rhs(double t, ConstVecRef y, VecRef ydot) {
     ydot[2 * n + i] = fc_[i];
   }
   force_.noalias() += L_.transpose() * fc_;
+  if (friction_) {
+    friction_forces(y.segment(n, n));
+    ydot.tail(p) = ft_;
+    force_.noalias() += T_.transpose() * ft_;
+  }
   ydot.head(n) = y.segment(n, n);
   ydot.segment(n, n) = minv_.cwiseProduct(force_);
 }
@@ -161,9 +189,42 @@ void PenaltyBdf::jacobian(double, ConstVecRef y, CsrMatrix& J) {
       }
     }
   }
-  J.resize(2 * n + p, 2 * n + p);
+  if (friction_) friction_jacobian(y, e);
+  J.resize(y.size(), y.size());
   J.setFromTriplets(e.begin(), e.end());
   J.makeCompressed();
+}
+
+void PenaltyBdf::friction_jacobian(ConstVecRef y, std::vector<Eigen::Triplet<double, sunindextype>>& e) {
+  // f_T,i = phi-law(f_i, u_T,i): through f_i = -k g_i - c_i g'_i (on) it depends on u and v
+  // along L_i, through the slip on v along T_i. Every frictional contact keeps its entries
+  // (explicit zeros while off or saturated): one pattern for the run.
+  const Index n = problem_->ndof(), p = L_.rows();
+  const auto v = y.segment(n, n);
+  gaps(y);
+  for (Index i = 0; i < p; ++i) {
+    if (mu_[i] == 0.0) continue;
+    const double on = on_[i] ? 1.0 : 0.0;
+    double slip = -w_[i];
+    for (RowSpMat::InnerIterator it(T_, i); it; ++it) slip += it.value() * v[it.col()];
+    const double fn = on * fc_[i];
+    const RegularisedFriction law = regularised_friction(mu_[i], fn, slip, v_reg_);
+    const Index row = 2 * n + p + i;
+    for (RowSpMat::InnerIterator a(L_, i); a; ++a) {
+      const double du = -on * law.d_normal * k_ * a.value(), dv = -on * law.d_normal * c_[i] * a.value();
+      e.emplace_back(row, a.col(), du);
+      e.emplace_back(row, n + a.col(), dv);
+      for (RowSpMat::InnerIterator b(T_, i); b; ++b) {
+        e.emplace_back(n + b.col(), a.col(), minv_[b.col()] * b.value() * du);
+        e.emplace_back(n + b.col(), n + a.col(), minv_[b.col()] * b.value() * dv);
+      }
+    }
+    for (RowSpMat::InnerIterator a(T_, i); a; ++a) {
+      const double dv = law.d_slip * a.value();
+      e.emplace_back(row, n + a.col(), dv);
+      for (RowSpMat::InnerIterator b(T_, i); b; ++b) e.emplace_back(n + b.col(), n + a.col(), minv_[b.col()] * b.value() * dv);
+    }
+  }
 }
 
 void PenaltyBdf::roots(double, ConstVecRef y, VecRef r) {
@@ -177,7 +238,7 @@ void PenaltyBdf::roots(double, ConstVecRef y, VecRef r) {
 StepInfo PenaltyBdf::step(double dt) {
   StepInfo info;
   const Index n = problem_->ndof(), p = L_.rows();
-  const Vec lambda_start = y_.tail(p);
+  const Vec lambda_start = y_.tail(y_.size() - 2 * n);
   const double target = state_.t + dt;
   double t = state_.t;
   for (;;) {
@@ -212,7 +273,8 @@ StepInfo PenaltyBdf::step(double dt) {
   state_.t = target;
   state_.u = y_.head(n);
   state_.v = y_.segment(n, n);
-  impulses_ = y_.tail(p) - lambda_start;
+  impulses_ = y_.segment(2 * n, p) - lambda_start.head(p);
+  if (friction_) tangential_impulses_ = y_.tail(p) - lambda_start.tail(p);
   info.dt = dt;
   publish_work();
   return info;

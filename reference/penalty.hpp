@@ -30,6 +30,23 @@
 // Lambda (the time integral of the contact force) gives impulses(): its increase over a
 // step, comparable with the impulses of the impulse-based schemes. It is a quadrature, left
 // out of CVODE's error test (see penalty.cpp): M v' carries the same forces.
+// Friction (DESIGN.md section 6; a problem with mu > 0 somewhere): cd-penalty's regularised
+// Coulomb law (integrators/spring_dashpot.hpp), here as a force of the ODE,
+//     f_T,i = -mu_i f_i [on] phi(u_T,i / v_reg),  u_T,i = T_i v - w_i,  phi = clamp(., -1, 1)
+//     v' += M^{-1} T^T f_T,   Lambda_T,i' = f_T,i   (y gains Lambda_T after Lambda)
+// v_reg = `friction_velocity`. Jacobian rows of f_T (added to v' through M^{-1} T^T and to
+// Lambda_T'): df_T/du = -mu phi (-k L_i) [on], df_T/dv = -mu phi (-c_i L_i) [on] - mu f_i / v_reg
+// T_i [|u_T| < v_reg]: exact on each branch, piecewise at |u_T| = v_reg, where the force is
+// continuous and its slope jumps. No root there: BDF's error test resolves the one kink of a
+// stop or a start of slip, and a root would restart CVODE at every entry into the band.
+// The viscous branch, c_T = mu f_i / v_reg, is stiff (relaxation time v_reg / (mu g) ~ 0.2 ms
+// for a body resting under its weight at v_reg = 1 mm/s, mu = 0.5): BDF takes it in stride.
+// As a reference its friction error is the regularisation's: a sliding body that stops
+// reaches the band |u_T| = v_reg at t_s - v_reg / |a| (a its Coulomb deceleration) and then
+// creeps at v_reg tan(alpha) / mu on a slope of angle alpha, O(v_reg) both
+// (tests/reference/penalty_test.cpp measures it against the exact stop and the creep rate).
+// Lambda_T gives tangential_impulses(), as Lambda gives impulses(). mu = 0 on every contact:
+// y, the Jacobian and the roots are those of the frictionless scheme, bit for bit.
 // energy(): kinetic + potential + penalty springs k g_i^2 / 2 of the contacts that are on.
 // Work counters as for event-driven (reference/cvode.hpp); extra: switches (on/off events),
 // missed_switches (switches without a root of their own, found at a CVODE return: a function
@@ -51,10 +68,12 @@
 // Refused (InputError): a non-diagonal or singular mass (M^{-1} in the right-hand side).
 //
 // References: P. Wriggers, Computational Contact Mechanics, 2nd ed., Springer 2006, ch. 2
-// and 6 (penalty method); K. H. Hunt, F. R. E. Crossley, J. Appl. Mech. 42 (1975) 440-445
+// and 6 (penalty method); J. T. Oden, J. A. C. Martins, Models and computational methods
+// for dynamic friction phenomena, CMAME 52 (1985) (velocity-threshold regularisation); K. H. Hunt, F. R. E. Crossley, J. Appl. Mech. 42 (1975) 440-445
 // and T. Schwager, T. Poeschel, Phys. Rev. E 75 (2007) (restitution of a clamped linear
 // spring-dashpot); SUNDIALS CVODE user guide v6.4.1 (BDF, SUNLinSol_KLU, root finding).
 #include <memory>
+#include <vector>
 
 #include "integrators/integrator.hpp"
 #include "reference/cvode.hpp"
@@ -67,6 +86,7 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
   static ParamSpecs parameters_spec();
 
   std::string name() const override { return "penalty-bdf"; }
+  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
   StepInfo step(double dt_requested) override;
   // Every switch of a contact's spring on or off (a root, or a switch found at a CVODE
@@ -85,6 +105,8 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
   void roots(double t, ConstVecRef y, VecRef g) override;
 
   void gaps(ConstVecRef y);  // g_, gdot_, f_ (penalty forces as if on)
+  void friction_forces(ConstVecRef v);  // ft_ from fc_ (zero on the contacts that are off)
+  void friction_jacobian(ConstVecRef y, std::vector<Eigen::Triplet<double, sunindextype>>& entries);
   void set_directions();
   // Mode of contact i from the state gaps() left (force_root: its force root fired).
   bool mode(Index i, bool force_root) const;
@@ -92,11 +114,15 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
 
   CvodeSettings settings_;
   double k_;
+  double v_reg_;
   bool damped_;
+  bool friction_ = false;
   bool restitution_floored_ = false;  // the problem's e was below e(max damping ratio)
   std::unique_ptr<Cvode> cvode_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
   Vec minv_, c_, y_, force_, fext_, g_, gdot_, fc_;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
+  Vec mu_, w_, ft_;
   std::vector<char> on_;
   SpMat K_;
   long switches_ = 0;

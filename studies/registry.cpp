@@ -11,6 +11,7 @@ extern const StudyEntry bar_study;
 extern const StudyEntry block_study;
 extern const StudyEntry peers_study;
 extern const StudyEntry bouncing_bar_study;
+extern const StudyEntry friction_study;
 
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
@@ -23,6 +24,7 @@ const std::vector<StudyEntry>& study_registry() {
       block_study,
       peers_study,
       bouncing_bar_study,
+      friction_study,
   };
   return entries;
 }

@@ -7,28 +7,18 @@
 //     after the step opposes Lambda_T (Lambda_T u_T(+) <= 0: friction takes energy);
 //   - mu = 0 is the frictionless block, bit for bit.
 #include <catch2/catch.hpp>
-#include <cmath>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
-#include "problems/block_2d.hpp"
 #include "tests/integrators/every_integrator.hpp"
+#include "tests/support/sliding_block.hpp"
 
-namespace {
-
-nsb::Block2d sliding_block(const std::string& mu) {
-  return nsb::Block2d(nsb::Params(nsb::Block2d::parameters_spec(), {{"mu", mu}, {"vx", "2"}, {"tilt", "0"},
-                                                                     {"height", "0.01"}, {"nx", "6"}, {"ny", "3"}}));
-}
-
-}  // namespace
+using nsb::testing::sliding_block;
 
 TEST_CASE("every integrator on the block with friction: P_x changes by the tangential impulses, the "
           "Coulomb law holds, friction takes energy",
           "[integrators][block-2d][contact][friction]") {
   const auto b = sliding_block("0.4");
   const double mu = 0.4, dt = 1e-4;
-  const nsb::SpMat& T = b.contacts().tangent;
   for (const auto& entry : nsb::integrator_registry()) {
     SECTION(entry.name) {
       std::unique_ptr<nsb::Integrator> integ;
@@ -43,44 +33,18 @@ TEST_CASE("every integrator on the block with friction: P_x changes by the tange
         if (!other->treats_friction()) CHECK_THROWS_AS(other->init(b, b.initial_state()), nsb::InputError);
         continue;
       }
-      double px_prev = b.linear_momentum(b.initial_state().v).x();
-      double worst_identity = 0.0, worst_sliding = 0.0, worst_cone = 0.0, worst_work = 0.0;
-      double total_tangential = 0.0, scale = 0.0;
-      long sliding_steps = 0;
-      nsb::Vec slip(T.rows());
-      nsb::RunOptions options{dt, 0.1, 1, false};
-      const auto r = nsb::run(b, *integ, options, [&](const nsb::Integrator& it, const nsb::StepInfo&) {
-        const nsb::Vec& n = it.impulses();
-        const nsb::Vec& t = it.tangential_impulses();
-        const double px = b.linear_momentum(it.state().v).x();
-        scale = std::max(scale, std::abs(px));
-        worst_identity = std::max(worst_identity, std::abs(px - px_prev - t.sum()));
-        bool all_forward = n.sum() > 0.0;
-        for (nsb::Index i = 0; i < n.size(); ++i)
-          if (n[i] > 0.0) all_forward = all_forward && t[i] == -mu * n[i];
-        if (all_forward) {
-          ++sliding_steps;
-          worst_sliding = std::max(worst_sliding, std::abs(px - px_prev + mu * n.sum()));
-        }
-        slip.noalias() = T * it.state().v;
-        for (nsb::Index i = 0; i < n.size(); ++i) {
-          worst_cone = std::max(worst_cone, std::abs(t[i]) - mu * n[i]);
-          worst_work = std::max(worst_work, t[i] * slip[i]);
-        }
-        total_tangential += std::abs(t.sum());
-        px_prev = px;
-      });
-      INFO(r.message);
-      REQUIRE(r.status == nsb::RunStatus::Ok);
-      REQUIRE(total_tangential > 1.0);  // friction did act (weight 4900 N x 0.1 s x mu)
-      REQUIRE(sliding_steps > 10);
+      const auto c = nsb::testing::check_block_friction(b, *integ, mu, dt, 0.1);
+      INFO(c.run.message);
+      REQUIRE(c.run.status == nsb::RunStatus::Ok);
+      REQUIRE(c.total_tangential > 1.0);  // friction did act (weight 4900 N x 0.1 s x mu)
+      REQUIRE(c.sliding_steps > 10);
       // Each step adds rounding of a few eps_mach of the momentum scale.
-      CHECK(worst_identity <= 1e-12 * scale);
-      CHECK(worst_sliding <= 1e-12 * scale);
-      CHECK(worst_cone <= 1e-12 * scale);
+      CHECK(c.worst_identity <= 1e-12 * c.scale);
+      CHECK(c.worst_sliding <= 1e-12 * c.scale);
+      CHECK(c.worst_cone <= 1e-12 * c.scale);
       // Lambda_T u_T(+) <= 0: the slip after the step never runs along the impulse (round-off
       // of the velocities, |v| ~ 2 m/s, times the impulse).
-      CHECK(worst_work <= 1e-12 * scale * 2.0);
+      CHECK(c.worst_work <= 1e-12 * c.scale * 2.0);
     }
   }
 }
@@ -91,7 +55,7 @@ TEST_CASE("block with mu = 0 is the frictionless block bit for bit", "[integrato
   const auto zero_mu = sliding_block("0");
   CHECK(!zero_mu.contacts().has_friction());
   CHECK(zero_mu.contacts().tangent.rows() == 0);
-  for (const char* name : {"cd-lagrange", "moreau-jean"}) {
+  for (const char* name : {"cd-lagrange", "moreau-jean", "cd-penalty", "penalty-bdf"}) {
     auto a = nsb::make_integrator(name), c = nsb::make_integrator(name);
     a->init(frictionless, frictionless.initial_state());
     c->init(zero_mu, zero_mu.initial_state());

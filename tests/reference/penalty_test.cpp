@@ -2,12 +2,15 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 #include <fmt/format.h>
 
 #include "problems/block_2d.hpp"
 #include "problems/bouncing_mass.hpp"
+#include "problems/sliding_mass.hpp"
 #include "reference/event_driven.hpp"
 #include "studies/study.hpp"
+#include "tests/support/sliding_block.hpp"
 
 using nsb::BouncingMass;
 using nsb::Params;
@@ -111,4 +114,105 @@ TEST_CASE("penalty-bdf on the block: no contact is lost at a switch, so the ener
     // Every root switched its contact: none was reported again after its restart.
     CHECK(pen.work().extra.at("unconfirmed_roots") == 0);
   }
+}
+
+// Regularised Coulomb friction (integrators/spring_dashpot.hpp) as the reference's force law,
+// on a mass sliding down a slope (problems/sliding_mass.hpp).
+namespace {
+
+// mu 0.5, m 1 kg, g 9.81 m/s^2.
+nsb::SlidingMass sliding_mass(const std::string& alpha, const std::string& v0) {
+  return nsb::SlidingMass(nsb::Params(nsb::SlidingMass::parameters_spec(), {{"alpha", alpha}, {"mu", "0.5"}, {"v0", v0}}));
+}
+
+struct BdfSlide {
+  double stop_time = NAN;  // first time the slip rate falls to v_reg
+  double x_end = 0.0;
+  double max_energy_rise = 0.0, energy_scale = 0.0;
+  double worst_cone = 0.0;  // max |Lambda_T| - mu Lambda_N over the steps
+  long steps = 0;
+};
+
+// Before the slip reaches v_reg it decreases linearly at a, so the crossing is extrapolated
+// from the last output above v_reg (exactly, for a linear slip).
+BdfSlide bdf_slide(const nsb::SlidingMass& p, double v_reg, double t_end, double dt) {
+  PenaltyBdf pen(Params(PenaltyBdf::parameters_spec(), {{"friction_velocity", fmt::format("{}", v_reg)}}));
+  pen.init(p, p.initial_state());
+  BdfSlide r;
+  double e_prev = pen.energy().total();
+  r.energy_scale = std::abs(e_prev);
+  const double mu = p.contacts().mu[0];
+  while (pen.state().t < t_end - 1e-12) {
+    const double t = pen.state().t, v = pen.state().v[0];
+    pen.step(dt);
+    if (std::isnan(r.stop_time) && pen.state().v[0] <= v_reg) r.stop_time = t + (v - v_reg) / -p.sliding_acceleration();
+    const double e = pen.energy().total();
+    r.energy_scale = std::max(r.energy_scale, std::abs(e));
+    r.max_energy_rise = std::max(r.max_energy_rise, e - e_prev);
+    e_prev = e;
+    r.worst_cone = std::max(r.worst_cone, std::abs(pen.tangential_impulses()[0]) - mu * pen.impulses()[0]);
+  }
+  r.x_end = pen.state().u[0];
+  r.steps = pen.work().steps;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("penalty-bdf friction: the stop time's error is the regularisation's, -v_reg / |a|, O(v_reg)",
+          "[reference][penalty][friction]") {
+  // The reference's own friction error. alpha 10 deg, mu 0.5, v0 = 1 m/s: a = -3.13 m/s^2,
+  // t_s = 0.320 s. The regularised solution is Coulomb's until the slip reaches v_reg, at
+  // t_s - v_reg / |a| (its "stop": the entry into the viscous band), so halving v_reg moves
+  // the stop by v_reg / (2 |a|) and the stop converges to t_s at first order. BDF integrates
+  // the linear slip exactly and the normal spring settles at a penetration of 1e-10 m: the
+  // stop is measured at t_s - v_reg / |a| to 4e-16 s, every v_reg; asserted to 1e-10 s
+  // (rtol 1e-9 of the slip's time scale v0 / |a|).
+  const nsb::SlidingMass p = sliding_mass("10", "1");
+  const double a = p.sliding_acceleration();
+  std::vector<double> v_regs = {4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4}, errors;
+  for (double v_reg : v_regs) {
+    CAPTURE(v_reg);
+    const BdfSlide r = bdf_slide(p, v_reg, 0.4, 1e-3);
+    CHECK(std::abs(r.stop_time - (p.stop_time() - v_reg / -a)) <= 1e-10);
+    if (!errors.empty()) CHECK(std::abs(std::abs(r.stop_time - p.stop_time()) - errors.back() / 2) <= 1e-10);
+    errors.push_back(std::abs(r.stop_time - p.stop_time()));
+    // The model dissipates (dashpot, friction): E = T + V + k g^2 / 2 never rises between
+    // outputs beyond the tolerance (rtol E); measured: not at all.
+    CHECK(r.max_energy_rise <= 1e-9 * r.energy_scale);
+    // |Lambda_T| <= mu Lambda_N: two quadratures of -mu f_N phi and f_N, to round-off.
+    CHECK(r.worst_cone <= 1e-15);
+  }
+  CHECK(nsb::fitted_order(v_regs, errors) == Approx(1.0).margin(1e-6));
+}
+
+TEST_CASE("penalty-bdf friction: below the friction angle the mass creeps at v_reg tan(alpha) / mu",
+          "[reference][penalty][friction]") {
+  // alpha 20 deg from rest (Coulomb sticks): the regularised law's creep, measured over
+  // [0.5 s, 1 s] to 1e-13 relative at v_reg = 1e-2 and round-off below; asserted: 1e-9 (rtol).
+  const nsb::SlidingMass p = sliding_mass("20", "0");
+  for (double v_reg : {1e-2, 1e-3, 1e-4}) {
+    CAPTURE(v_reg);
+    const double creep = v_reg * std::tan(20.0 * std::numbers::pi / 180.0) / 0.5;
+    const BdfSlide a = bdf_slide(p, v_reg, 0.5, 1e-2), b = bdf_slide(p, v_reg, 1.0, 1e-2);
+    CHECK((b.x_end - a.x_end) / 0.5 == Approx(creep).epsilon(1e-9));
+    CHECK(b.max_energy_rise <= 1e-9 * b.energy_scale);
+  }
+}
+
+TEST_CASE("penalty-bdf friction on the sliding block (mu = 0.5): P_x changes by the tangential impulses",
+          "[reference][penalty][friction][block-2d]") {
+  // M v' and the quadratures carry the same forces through BDF's linear formulas (the
+  // Jacobian's rows of Lambda and of sum_x M v' agree): the identity holds to round-off.
+  const auto b = nsb::testing::sliding_block("0.5");
+  PenaltyBdf pen(Params(PenaltyBdf::parameters_spec()));
+  pen.init(b, b.initial_state());
+  const auto c = nsb::testing::check_block_friction(b, pen, 0.5, 1e-4, 0.1);
+  INFO(c.run.message);
+  REQUIRE(c.run.status == nsb::RunStatus::Ok);
+  REQUIRE(c.sliding_steps > 100);
+  CHECK(c.worst_identity <= 1e-12 * c.scale);
+  CHECK(c.worst_sliding <= 1e-12 * c.scale);
+  CHECK(c.worst_cone <= 1e-12 * c.scale);
+  CHECK(c.worst_work <= 1e-12 * c.scale * 2.0);
 }
