@@ -14,9 +14,14 @@
 
 namespace {
 
-// Penalty schemes regularise the law: their creep and their O(dt)-lag are the friction study's
-// to measure, not this test's (ImpactAccuracy::restitution_exact marks them).
-bool complementarity(const nsb::Integrator& integ) { return integ.impact_accuracy().restitution_exact; }
+// The penalty schemes regularise the law (their parameter friction_velocity): they creep and
+// reach stick only asymptotically, by design; their own tests (cd_penalty_test.cpp,
+// penalty_test.cpp) hold them to the regularised law's creep and stop time.
+bool complementarity(const nsb::IntegratorEntry& entry) {
+  for (const auto& spec : entry.parameters())
+    if (spec.name == "friction_velocity") return false;
+  return true;
+}
 
 // The integrator, or null when it declines; a scheme without friction must decline, naming mu
 // when the problem is otherwise within its reach (`mu_named`: a linear problem with e = 0 and
@@ -59,7 +64,7 @@ TEST_CASE("every friction scheme on the sliding mass: stop time within O(dt), th
   for (const auto& entry : nsb::integrator_registry()) {
     SECTION(entry.name) {
       auto integ = init_or_check_decline(entry, p, true);
-      if (!integ || !complementarity(*integ)) continue;
+      if (!integ || !complementarity(entry)) continue;
       double t_stop = NAN, x_stop = NAN, worst_creep = 0.0;
       EnergyWatch energy;
       nsb::RunOptions options{dt, 2.0 * t_s, 1, false};
@@ -102,7 +107,7 @@ TEST_CASE("every friction scheme on the rolling disk: rolling onset within O(dt)
   for (const auto& entry : nsb::integrator_registry()) {
     SECTION(entry.name) {
       auto integ = init_or_check_decline(entry, p, false);
-      if (!integ || !complementarity(*integ)) continue;
+      if (!integ || !complementarity(entry)) continue;
       double t_roll = NAN;
       EnergyWatch energy;
       nsb::RunOptions options{dt, 4.0 * t_star, 1, false};
