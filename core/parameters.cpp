@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -101,8 +102,9 @@ Params::Params(const ParamSpecs& specs, const std::map<std::string, std::string>
     if (!spec) {
       std::vector<std::string> names;
       for (const auto& s : specs) names.push_back(s.name);
-      throw InputError(fmt::format("unknown parameter '{}' (valid: {})", key,
-                                   names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
+      throw InputError(names.empty() ? fmt::format("unknown parameter '{}' (valid: none)", key)
+                                     : fmt::format("unknown parameter '{}' (nearest: {}; valid: {})", key,
+                                                   nearest_name(key, names), fmt::join(names, ", ")));
     }
     spec->validate(value);
     values_[key] = value;
@@ -123,6 +125,32 @@ long Params::integer(const std::string& name) const {
 
 const std::string& Params::choice(const std::string& name) const { return text(name); }
 
+static std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string nearest_name(const std::string& word, const std::vector<std::string>& valid) {
+  std::string best;
+  std::size_t d = std::string::npos;
+  for (const auto& v : valid)
+    if (const std::size_t dv = edit_distance(word, v); dv < d) {
+      d = dv;
+      best = v;
+    }
+  return best;
+}
+
 std::pair<std::string, std::string> split_assignment(const std::string& item) {
   const auto eq = item.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
@@ -140,9 +168,13 @@ static bool declares(const ParamSpecs& specs, const std::string& key) {
   return false;
 }
 
-static std::string names_of(const ParamSpecs& specs) {
+static std::vector<std::string> names_of(const ParamSpecs& specs) {
   std::vector<std::string> names;
   for (const auto& s : specs) names.push_back(s.name);
+  return names;
+}
+
+static std::string listed(const std::vector<std::string>& names) {
   return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
 }
 
@@ -163,9 +195,13 @@ RoutedOverrides route_overrides(const std::vector<std::string>& items, const Par
     if (p && i)
       throw InputError(fmt::format("--set {}: both the problem and the integrator take '{}'; write problem.{} or integrator.{}",
                                    item, key, key, key));
-    if (!p && !i)
-      throw InputError(fmt::format("--set {}: unknown parameter '{}' (problem takes: {}; integrator takes: {})",
-                                   item, key, names_of(problem), names_of(integrator)));
+    if (!p && !i) {
+      std::vector<std::string> both = names_of(problem), ints = names_of(integrator);
+      both.insert(both.end(), ints.begin(), ints.end());
+      throw InputError(fmt::format("--set {}: unknown parameter '{}' (nearest: {}; problem takes: {}; integrator takes: {})",
+                                   item, key, both.empty() ? "none" : nearest_name(key, both), listed(names_of(problem)),
+                                   listed(ints)));
+    }
     (p ? routed.problem : routed.integrator)[key] = value;
   }
   return routed;

@@ -66,6 +66,10 @@ class Params {
 // Parses a floating-point number in full; throws InputError naming `what` otherwise.
 double parse_real(const std::string& text, const std::string& what);
 
+// The name of `valid` nearest to `word` (Levenshtein distance; the first of equals), for
+// "unknown X (nearest: Y)" messages of the CLI and the study files; "" when `valid` is empty.
+std::string nearest_name(const std::string& word, const std::vector<std::string>& valid);
+
 // Splits "key=value"; throws InputError on a malformed item.
 std::pair<std::string, std::string> split_assignment(const std::string& item);
 

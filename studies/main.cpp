@@ -25,6 +25,7 @@
 #include <optional>
 #include <regex>
 
+#include "app/cli_options.hpp"
 #include "core/build_info.hpp"
 #include "core/environment.hpp"
 #include "core/output.hpp"
@@ -128,19 +129,24 @@ int main(int argc, char** argv) {
   app.add_option("--rtol", tolerance.rtol, "--verify: relative tolerance on reals (default 1e-9)")->check(CLI::NonNegativeNumber);
   app.add_option("--atol", tolerance.atol, "--verify: absolute tolerance on reals (default 0)")->check(CLI::NonNegativeNumber);
   app.add_option("--plugin", plugins, "load integrators/problems from a plugin module (repeatable; also NSBENCH_PLUGINS)");
+  nsb::cli::one_value_each(app);
   try {
+    nsb::cli::check_option_names(app, argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "nsbench-study: error: {}\n", e.what());
+    return 2;
   }
   const auto& registry = nsb::study_registry();
-  if (names == std::vector<std::string>{"list"}) {
-    for (const auto& s : registry) fmt::print("{:<12} {}\n", s.name, s.description);
-    return 0;
-  }
   try {
     nsb::load_plugins(plugins);
+    if (names == std::vector<std::string>{"list"}) {
+      for (const auto& s : registry) fmt::print("{:<12} {}\n", s.name, s.description);
+      return 0;
+    }
     if (names[0] == "performance") {
       if (names.size() < 2) throw InputError("performance: give the benchmarks' JSON files (nsbench-study performance BENCH.json...)");
       write_performance({names.begin() + 1, names.end()}, out);
@@ -171,7 +177,8 @@ int main(int argc, char** argv) {
       if (!found) {
         std::vector<std::string> valid{"all"};
         for (const auto& s : registry) valid.push_back(s.name);
-        throw InputError(fmt::format("unknown study '{}' (valid: {})", n, fmt::join(valid, ", ")));
+        throw InputError(fmt::format("unknown study '{}' (nearest: {}; valid: {})", n, nsb::nearest_name(n, valid),
+                                     fmt::join(valid, ", ")));
       }
     }
     if (!verify) nsb::ensure_directory(out);

@@ -60,32 +60,6 @@ long json_line(const std::string& text, const std::string& path) {
   return 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
 }
 
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
-std::string nearest(const std::string& word, const std::vector<std::string>& valid) {
-  std::string best;
-  std::size_t d = std::string::npos;
-  for (const auto& v : valid)
-    if (edit_distance(word, v) < d) {
-      d = edit_distance(word, v);
-      best = v;
-    }
-  return best;
-}
-
 std::string type_name(const Json& j) {
   if (j.is_object()) return "a table";
   if (j.is_array()) return "an array";
@@ -108,7 +82,7 @@ class Checker {
   void keys(const Json& obj, const std::string& path, const std::vector<std::string>& valid) const {
     for (const auto& [k, v] : obj.items())
       if (std::find(valid.begin(), valid.end(), k) == valid.end())
-        fail(child(path, k), fmt::format("unknown key (nearest valid key: {})", nearest(k, valid)),
+        fail(child(path, k), fmt::format("unknown key (nearest valid key: {})", nearest_name(k, valid)),
              fmt::format("{}", fmt::join(valid, ", ")));
   }
 
@@ -152,7 +126,7 @@ class Checker {
   std::string choice(const Json& j, const std::string& path, const std::vector<std::string>& valid) const {
     const std::string s = string(j, path);
     if (std::find(valid.begin(), valid.end(), s) == valid.end())
-      fail(path, fmt::format("'{}' is not valid (nearest: {})", s, nearest(s, valid)), fmt::format("{}", fmt::join(valid, ", ")));
+      fail(path, fmt::format("'{}' is not valid (nearest: {})", s, nearest_name(s, valid)), fmt::format("{}", fmt::join(valid, ", ")));
     return s;
   }
   // A problem's or integrator's parameters, each checked against its declaration.
@@ -165,7 +139,7 @@ class Checker {
       const std::string p = child(path, k);
       const auto spec = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == k; });
       if (spec == specs.end())
-        fail(p, fmt::format("unknown parameter (nearest: {})", nearest(k, names)),
+        fail(p, fmt::format("unknown parameter (nearest: {})", nearest_name(k, names)),
              names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", ")));
       expect(v, p, v.is_string() || v.is_number(), "a number or a string");
       const std::string text = v.is_string() ? v.get<std::string>() : v.dump();

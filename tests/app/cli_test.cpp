@@ -52,8 +52,8 @@ TEST_CASE("cli: bad input exits 2 with a message naming the parameter and its ra
       {kRun + "--dt 1e-3 --set bogus=1" + out, "unknown parameter 'bogus'"},
       {"run --problem bouncing-mass --integrator moreau-jean --t-end 1 --dt 1e-3 --set theta=0.3" + out,
        "parameter 'theta' = 0.3 is outside its valid range [0.5, 1]"},
-      {"run --problem nope --integrator cd-lagrange --t-end 1 --dt 1e-3" + out, "unknown problem (valid: "},
-      {"run --problem bouncing-mass --integrator nope --t-end 1 --dt 1e-3" + out, "unknown integrator (valid: "},
+      {"run --problem nope --integrator cd-lagrange --t-end 1 --dt 1e-3" + out, "unknown problem (nearest: "},
+      {"run --problem bouncing-mass --integrator nope --t-end 1 --dt 1e-3" + out, "unknown integrator (nearest: "},
       {"run --problem bouncing-mass --integrator cd-lagrange --dt 1e-3 --t-end -2" + out, "--t-end -2: must be > 0"},
   };
   for (const auto& [args, message] : cases) {
@@ -64,6 +64,33 @@ TEST_CASE("cli: bad input exits 2 with a message naming the parameter and its ra
     CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
   }
   CHECK(nsbench("run --problem bouncing-mass").code == 2);  // missing required options
+}
+
+TEST_CASE("cli: a typo names the nearest option, integrator, problem or parameter, exit 2", "[app][bad-input]") {
+  const std::string out = " --out " + tmpdir("typo");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {kRun + "--dt 1e-3 --t-ned 1" + out, "--t-ned: unknown option (nearest: --t-end;"},
+      {"--plugn x.so list", "--plugn: unknown option (nearest: --plugin;"},
+      {"run --problem bouncing-mass --integrator cd-lagrang --t-end 1 --dt 1e-3" + out,
+       "--integrator 'cd-lagrang': unknown integrator (nearest: cd-lagrange;"},
+      {"run --problem bouncing-mas --integrator cd-lagrange --t-end 1 --dt 1e-3" + out,
+       "--problem 'bouncing-mas': unknown problem (nearest: bouncing-mass;"},
+      {kRun + "--dt 1e-3 --set hh0=1" + out, "unknown parameter 'hh0' (nearest: h0;"},
+      {kRun + "--dt 1e-3 --set problem.ee=0.5" + out, "unknown parameter 'ee' (nearest: e;"},
+  };
+  for (const auto& [args, message] : cases) {
+    CAPTURE(args);
+    const auto r = nsbench(args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::Contains(message));
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+  }
+  const auto study = nsb::test::run_command(std::string(NSBENCH_STUDY_CLI) + " bouncin");
+  CHECK(study.code == 2);
+  CHECK_THAT(study.output, Catch::Contains("unknown study 'bouncin' (nearest: bouncing;"));
+  const auto study_option = nsb::test::run_command(std::string(NSBENCH_STUDY_CLI) + " bouncing --verfy reports");
+  CHECK(study_option.code == 2);
+  CHECK_THAT(study_option.output, Catch::Contains("--verfy: unknown option (nearest: --verify;"));
 }
 
 TEST_CASE("cli: a run writes series.csv and summary.json", "[app]") {

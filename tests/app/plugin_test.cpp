@@ -68,7 +68,8 @@ TEST_CASE("plugin: a bad plugin gives one line naming the file and the reason, e
        "clash_example.so: integrator 'symplectic-euler' is already registered by plugin "},
   };
   for (const auto& [plugin, message] : cases) {
-    for (const std::string& tool : {std::string(NSBENCH_CLI) + " list", std::string(NSBENCH_STUDY_CLI) + " bouncing"}) {
+    for (const std::string& tool : {std::string(NSBENCH_CLI) + " list", std::string(NSBENCH_STUDY_CLI) + " bouncing",
+                                    std::string(NSBENCH_STUDY_CLI) + " list"}) {
       const auto r = run_command(tool + " --plugin " + plugin);
       INFO(tool << " --plugin " << plugin << "\n" << r.output);
       CHECK(r.code == 2);
@@ -79,4 +80,38 @@ TEST_CASE("plugin: a bad plugin gives one line naming the file and the reason, e
   const auto r = run_command("NSBENCH_PLUGINS=" + test_plugin("wrong_abi") + " " + nsbench("list"));
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Contains("wrong_abi.so: built for plugin ABI 999"));
+}
+
+TEST_CASE("plugin: --plugin (and --plugin=FILE) works before and after the subcommand or the study names",
+          "[app][plugin]") {
+  const std::string study = NSBENCH_STUDY_CLI;
+  for (const std::string& args : {"--plugin " + kPlugin + " list", "list --plugin " + kPlugin, "--plugin=" + kPlugin + " list",
+                                  "list --plugin=" + kPlugin}) {
+    const auto r = run_command(nsbench(args));
+    INFO(args << "\n" << r.output);
+    CHECK(r.code == 0);
+    CHECK_THAT(r.output, Catch::Contains("symplectic-euler"));
+  }
+  const fs::path out = fs::temp_directory_path() / "nsbench_plugin_test_order";
+  const std::string run = "run --problem bouncing-mass --integrator symplectic-euler --dt 1e-3 --t-end 0.1 --out " + out.string();
+  for (const std::string& args : {"--plugin " + kPlugin + " " + run, run + " --plugin " + kPlugin, "--plugin=" + kPlugin + " " + run}) {
+    const auto r = run_command(nsbench(args));
+    INFO(args << "\n" << r.output);
+    CHECK(r.code == 0);
+  }
+  // nsbench-study: the words after --plugin FILE are the studies, not more plugins. A study
+  // that does not exist shows what was parsed without running one.
+  for (const std::string& args : {"--plugin " + kPlugin + " no-such-study", "--plugin=" + kPlugin + " no-such-study",
+                                  "no-such-study --plugin " + kPlugin}) {
+    const auto r = run_command(study + " " + args);
+    INFO(args << "\n" << r.output);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::Contains("unknown study 'no-such-study'"));
+  }
+  const auto file = run_command(study + " --plugin " + kPlugin + " run /nonexistent/f.toml --out " + out.string());
+  CHECK(file.code == 2);
+  CHECK_THAT(file.output, Catch::Contains("/nonexistent/f.toml"));
+  const auto listed = run_command(study + " --plugin " + kPlugin + " list");
+  CHECK(listed.code == 0);
+  CHECK_THAT(listed.output, Catch::Contains("bouncing"));
 }

@@ -40,7 +40,7 @@ TEST_CASE("parameters: bad values name the parameter and the valid range", "[cor
   CHECK(error_of({{"e", "0.5x"}}) == "parameter 'e' = '0.5x' is not a finite number; valid: [0, 1]");
   CHECK(error_of({{"n", "2.5"}}) == "parameter 'n' = 2.5 is not an integer; valid: integer in [1, 1000]");
   CHECK(error_of({{"mass", "heavy"}}) == "parameter 'mass' = 'heavy' is not one of {lumped, singular}");
-  CHECK(error_of({{"zz", "1"}}) == "unknown parameter 'zz' (valid: e, dt, n, mass)");
+  CHECK(error_of({{"zz", "1"}}) == "unknown parameter 'zz' (nearest: e; valid: e, dt, n, mass)");
 }
 
 TEST_CASE("parameters: --set items are routed to the problem or the integrator", "[core]") {

@@ -79,7 +79,7 @@ TEST_CASE("studies: a bad study definition fails with the study, the case and th
   const auto cases = nsb::study_cases(bad, {});
   CHECK_THROWS_WITH(nsb::run_study_case(bad, cases[0], {}),
                     Catch::Contains("study broken, case {\"integrator\":\"no-such-scheme\"}") &&
-                        Catch::Contains("unknown integrator (valid: cd-lagrange"));
+                        Catch::Contains("unknown integrator (nearest: ") && Catch::Contains("valid: cd-lagrange"));
 }
 
 TEST_CASE("studies: NaN and overflowing numbers travel through JSON as null and come back as n/a", "[studies]") {
