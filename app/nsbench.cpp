@@ -2,9 +2,14 @@
 //
 //   nsbench [--plugin FILE]... list
 //   nsbench [--plugin FILE]... run --problem P --integrator I --dt DT --t-end T [--set key=value]... --out DIR
+//   nsbench [--plugin FILE]... check --integrator I | --problem P   the generic properties
+//                                  every integrator (problem) is held to
+//                                  (integrators/conformance.hpp), one line each; exit 1 when
+//                                  one fails
+// Every option may stand before or after the subcommand (app/cli_options.hpp).
 // Plugins (core/plugin.hpp) also come from NSBENCH_PLUGINS (colon-separated).
 //
-// Exit codes: 0 ok, 2 bad input (one line on stderr naming the parameter and its valid
+// Exit codes: 0 ok, 1 a property of check failed, 2 bad input (one line on stderr naming the parameter and its valid
 // range), 3 the run diverged (its files are still written, with status "diverged"),
 // 128 + signal number after SIGINT or SIGTERM: the run stops at the next step and its files
 // are written whole, with status "interrupted" (a second signal kills at once; the files
@@ -18,8 +23,10 @@
 #include <csignal>
 #include <iostream>
 
+#include "app/cli_options.hpp"
 #include "core/output.hpp"
 #include "core/plugin.hpp"
+#include "integrators/conformance.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
 #include "problems/registry.hpp"
@@ -105,6 +112,31 @@ int run_case(const RunArgs& a) {
   return 0;
 }
 
+int print_verdicts(const std::string& what, const std::vector<nsb::Verdict>& verdicts) {
+  fmt::print("nsbench check: {}\n", what);
+  int failed = 0;
+  for (const auto& v : verdicts) {
+    fmt::print("  {:<16} {:<13} {}\n", v.property, nsb::outcome_name(v.outcome), v.figure);
+    failed += v.outcome == nsb::Verdict::Outcome::Fail;
+  }
+  fmt::print("{}: {}\n", what, failed ? fmt::format("{} properties failed", failed) : "every measured property holds");
+  return failed;
+}
+
+int check(const std::string& integrator, const std::string& problem) {
+  if (integrator.empty() && problem.empty()) throw nsb::InputError("check: give --integrator NAME or --problem NAME (or both)");
+  int failed = 0;
+  if (!integrator.empty()) {
+    const auto& entry = nsb::find_integrator(integrator);
+    failed += print_verdicts("integrator " + entry.name, nsb::check_integrator(entry));
+  }
+  if (!problem.empty()) {
+    const auto& entry = nsb::find_problem(problem);
+    failed += print_verdicts("problem " + entry.name, nsb::check_problem(entry));
+  }
+  return failed ? 1 : 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -123,11 +155,20 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--set", a.sets, "parameter as key=value (repeatable)");
   run_cmd->add_option("--sample-every", a.sample_every, "record every k-th step (default 1)");
   run_cmd->add_option("--out", a.out, "output directory")->required();
+  auto* check_cmd = app.add_subcommand("check", "hold an integrator (a plugin's too) to the generic properties of every scheme");
+  std::string checked_integrator, checked_problem;
+  check_cmd->add_option("--integrator", checked_integrator, "integrator to check (see nsbench list)");
+  check_cmd->add_option("--problem", checked_problem, "problem to check (see nsbench list)");
+  nsb::cli::one_value_each(app);
   try {
+    nsb::cli::check_option_names(app, argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
+  } catch (const nsb::InputError& e) {
+    fmt::print(stderr, "nsbench: error: {}\n", e.what());
+    return 2;
   }
   try {
     nsb::load_plugins(plugins);
@@ -135,6 +176,7 @@ int main(int argc, char** argv) {
       list();
       return 0;
     }
+    if (check_cmd->parsed()) return check(checked_integrator, checked_problem);
     return run_case(a);
   } catch (const nsb::InputError& e) {
     fmt::print(stderr, "nsbench: error: {}\n", e.what());

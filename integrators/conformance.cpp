@@ -1,0 +1,403 @@
+#include "integrators/conformance.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/threads.hpp"
+#include "integrators/run.hpp"
+#include "problems/block_2d.hpp"
+#include "problems/bouncing_mass.hpp"
+#include "problems/sliding_mass.hpp"
+#include "problems/spring_chain.hpp"
+#include "reference/modal_exact.hpp"
+
+namespace nsb {
+
+std::unique_ptr<Integrator> init_or_decline(const IntegratorEntry& entry, const Problem& problem) {
+  auto integrator = entry.make(Params(entry.parameters()));
+  try {
+    integrator->init(problem, problem.initial_state());
+  } catch (const InputError&) {
+    return nullptr;
+  }
+  return integrator;
+}
+
+BounceObservation observe_bounces(const IntegratorEntry& entry, const BouncingMass& problem, double dt, int impacts) {
+  auto integrator = entry.make(Params(entry.parameters()));
+  integrator->init(problem, problem.initial_state());
+  RunOptions options;
+  options.dt = dt;
+  options.t_end = problem.impact_time(impacts) + 0.5 * (problem.impact_time(impacts + 1) - problem.impact_time(impacts));
+  if (problem.restitution() == 0.0) options.t_end += 0.1;  // no flight after it: watch the impact and the rest
+  options.record_series = false;
+
+  BounceObservation obs;
+  obs.accuracy = integrator->impact_accuracy();
+  const double g = 9.81;
+  double q_prev = problem.initial_state().u[0], v_prev = problem.initial_state().v[0];
+  bool in_contact = false;
+  std::size_t next_mid = 1;
+  run(problem, *integrator, options, [&](const Integrator& it, const StepInfo& info) {
+    const double lambda = it.impulses()[0];
+    const double q = it.state().u[0], v = it.state().v[0];
+    obs.min_impulse = std::min(obs.min_impulse, lambda);
+    // A contact open at both ends of the step, by more than it can close in one step.
+    const double reach = info.dt * std::max(std::abs(v_prev), std::abs(v)) + g * info.dt * info.dt;
+    if (lambda != 0.0 && std::min(q_prev, q) > reach) ++obs.impulses_on_open_gap;
+    if (lambda > 0.0 && !in_contact) obs.impact_times.push_back(it.state().t);
+    in_contact = lambda > 0.0;
+    if (next_mid <= static_cast<std::size_t>(impacts) &&
+        it.state().t >= 0.5 * (problem.impact_time(next_mid) + problem.impact_time(next_mid + 1))) {
+      obs.flight_energy.push_back(it.energy().total());
+      ++next_mid;
+    }
+    q_prev = q;
+    v_prev = v;
+  });
+  return obs;
+}
+
+BounceRatios bounce_ratios(const BounceObservation& obs, const BouncingMass& problem, double dt, int impacts) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const auto n = static_cast<std::size_t>(impacts);
+  BounceRatios r{obs.impact_times.size() < n ? inf : 0.0, obs.flight_energy.size() < n ? inf : 0.0};
+  const double lag = obs.accuracy.lag_steps, e = problem.restitution(), g = 9.81;
+  for (int i = 1; i <= impacts; ++i) {
+    const auto k = static_cast<std::size_t>(i - 1);
+    // Each impact adds at most the phase lag the scheme's own law implies (ImpactAccuracy:
+    // 2 steps for a one-step impulse law).
+    if (k < obs.impact_times.size())
+      r.impact_time = std::max(r.impact_time, std::abs(obs.impact_times[k] - problem.impact_time(i)) / (lag * i * dt));
+    // That phase error changes the impact speed by at most lag g dt per impact, an absolute
+    // error carried into flight i whose speed is e^i w1: relative energy error
+    // <= 2 (lag g dt i) / (e^i w1).
+    if (k < obs.flight_energy.size()) {
+      const double rel = std::abs(obs.flight_energy[k] / problem.energy_after_impact(i) - 1.0);
+      r.flight_energy = std::max(r.flight_energy, rel / (2.0 * lag * g * dt * i / (std::pow(e, i) * problem.first_impact_speed())));
+    }
+  }
+  return r;
+}
+
+namespace {
+
+Block2d block(const std::map<std::string, std::string>& overrides) {
+  return Block2d(Params(Block2d::parameters_spec(), overrides));
+}
+
+// sum_a m_a |v_a|: the scale of the linear momentum's round-off.
+double momentum_scale(const Block2d& b, const State& s) {
+  double p = 0.0;
+  for (Index a = 0; a < b.nodes(); ++a) p += b.lumped_mass()[2 * a] * s.v.segment<2>(2 * a).norm();
+  return p;
+}
+
+double final_error(const IntegratorEntry& entry, const Problem& chain, double dt, int steps) {
+  auto integ = entry.make(Params(entry.parameters()));
+  integ->init(chain, chain.initial_state());
+  for (int k = 0; k < steps; ++k) integ->step(dt);
+  ModalExact exact(Params(ModalExact::parameters_spec()));
+  exact.init(chain, chain.initial_state());
+  exact.step(integ->state().t - chain.initial_state().t);
+  return (integ->state().u - exact.state().u).lpNorm<Eigen::Infinity>();
+}
+
+}  // namespace
+
+std::optional<double> free_flight_momentum_drift(const IntegratorEntry& entry, int steps) {
+  // Far above the floor, translating and spinning (the spin loads the block, so the internal
+  // forces are not zero).
+  const auto b = block({{"g", "0"}, {"height", "10"}, {"vx", "0.3"}, {"vy", "0.2"}, {"spin", "3"}, {"nx", "6"}, {"ny", "3"}});
+  auto integ = init_or_decline(entry, b);
+  if (!integ) return std::nullopt;
+  const Eigen::Vector2d P0 = b.linear_momentum(b.initial_state().v);
+  double worst = 0.0;
+  for (int k = 0; k < steps; ++k) {
+    integ->step(0.5 * b.stable_step());
+    worst = std::max(worst, (b.linear_momentum(integ->state().v) - P0).norm());
+  }
+  return worst / momentum_scale(b, b.initial_state());
+}
+
+SmoothOrder smooth_order(const IntegratorEntry& entry) {
+  const SpringChain chain(Params(SpringChain::parameters_spec(), {{"n", "5"}, {"wall", "none"}}));
+  const double dt = chain.stable_step() / 8.0;
+  const int steps = 64;  // about 1.3 periods of the slowest mode at the coarsest step
+  SmoothOrder s;
+  s.error_half = final_error(entry, chain, dt / 2.0, 2 * steps);
+  s.error_quarter = final_error(entry, chain, dt / 4.0, 4 * steps);
+  s.order = std::log2(s.error_half / s.error_quarter);
+  return s;
+}
+
+const char* outcome_name(Verdict::Outcome o) {
+  switch (o) {
+    case Verdict::Outcome::Pass: return "pass";
+    case Verdict::Outcome::Fail: return "FAIL";
+    case Verdict::Outcome::NotMeasured: return "not measured";
+  }
+  return "?";
+}
+
+namespace {
+
+using Outcome = Verdict::Outcome;
+
+Verdict verdict(std::string property, bool pass, std::string figure) {
+  return {std::move(property), pass ? Outcome::Pass : Outcome::Fail, std::move(figure)};
+}
+
+std::unique_ptr<BouncingMass> bouncing_mass(double e) {
+  return std::make_unique<BouncingMass>(Params(BouncingMass::parameters_spec(), {{"e", fmt::format("{}", e)}}));
+}
+
+void contact_law(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+  const double dt = 1e-4;
+  int impacts = 5;
+  double e = 0.9;
+  auto problem = bouncing_mass(e);
+  std::string declined;
+  if (auto integ = init_or_decline(entry, *problem); !integ) {
+    // No velocity-level impact law (newmark-lm): the plastic impact, its first impact only.
+    try {
+      entry.make(Params(entry.parameters()))->init(*problem, problem->initial_state());
+    } catch (const InputError& err) {
+      declined = err.what();
+    }
+    e = 0.0;
+    impacts = 1;
+    problem = bouncing_mass(e);
+  } else if (!integ->impact_accuracy().restitution_exact) {
+    // A compliant contact's restitution is its own: held to the timing at e = 1 only.
+    e = 1.0;
+    problem = bouncing_mass(e);
+  }
+  const std::string where = fmt::format("bouncing-mass e = {}, dt = {:g}", e, dt);
+  if (!init_or_decline(entry, *problem)) {
+    for (const char* p : {"impulse sign", "open contacts", "impact times", "flight energies"})
+      out.push_back({p, Outcome::NotMeasured, fmt::format("declines the bouncing mass: {}", declined)});
+    return;
+  }
+  const BounceObservation obs = observe_bounces(entry, *problem, dt, impacts);
+  out.push_back(verdict("impulse sign", obs.min_impulse >= 0.0 && !obs.impact_times.empty(),
+                        obs.impact_times.empty() ? "no impulse at all: the mass went through the floor"
+                                                 : fmt::format("min Lambda {:.3g} (>= 0), {}", obs.min_impulse, where)));
+  out.push_back(verdict("open contacts", obs.impulses_on_open_gap == 0,
+                        fmt::format("{} steps with an impulse on an open gap (0)", obs.impulses_on_open_gap)));
+  const BounceRatios r = bounce_ratios(obs, *problem, dt, impacts);
+  out.push_back(verdict("impact times", r.impact_time <= 1.0,
+                        fmt::format("{} of {} impacts seen; worst |t_i - t_i,exact| / (lag_steps i dt) = {:.3g} (<= 1, "
+                                    "lag_steps {:g})", std::min<std::size_t>(obs.impact_times.size(), impacts), impacts,
+                                    r.impact_time, obs.accuracy.lag_steps)));
+  if (e == 0.0)
+    out.push_back({"flight energies", Outcome::NotMeasured, fmt::format("no flight after a plastic impact ({})", declined)});
+  else
+    out.push_back(verdict("flight energies", r.flight_energy <= 1.0,
+                          fmt::format("worst |E_i / (E0 e^2i) - 1| / bound = {:.3g} (<= 1)", r.flight_energy)));
+}
+
+void step_counters(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+  if (entry.reference) {
+    out.push_back({"step counters", Outcome::NotMeasured, "a reference counts its ODE solver's own steps and right-hand sides"});
+    return;
+  }
+  const auto problem = bouncing_mass(0.0);
+  auto integ = init_or_decline(entry, *problem);
+  if (!integ) {
+    out.push_back({"step counters", Outcome::NotMeasured, "declines bouncing-mass"});
+    return;
+  }
+  const int steps = 1000;
+  long bad_steps = 0, bad_forces = 0;
+  double worst_t = 0.0;
+  for (int k = 0; k < steps; ++k) {
+    const double t0 = integ->state().t;
+    const WorkCounters before = integ->work();
+    const StepInfo info = integ->step(1e-3);
+    worst_t = std::max(worst_t, std::abs(integ->state().t - (t0 + info.dt)));
+    bad_steps += integ->work().steps != before.steps + 1;
+    bad_forces += integ->work().force_evaluations < before.force_evaluations + 1;
+  }
+  out.push_back(verdict("step counters", bad_steps == 0 && bad_forces == 0 && worst_t <= 1e-12,
+                        fmt::format("over {} steps: {} without work().steps + 1, {} without a force evaluation, "
+                                    "worst |t - (t0 + dt)| {:.3g}", steps, bad_steps, bad_forces, worst_t)));
+}
+
+void momentum(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+  const auto drift = free_flight_momentum_drift(entry, 1000);
+  if (!drift)
+    out.push_back({"momentum", Outcome::NotMeasured, "declines block-2d"});
+  else
+    out.push_back(verdict("momentum", *drift <= 1e-10,
+                          fmt::format("block-2d free flight, 1000 steps: |P - P0| / sum m|v| = {:.3g} (<= 1e-10)", *drift)));
+}
+
+void order(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+  if (entry.reference) {
+    out.push_back({"order", Outcome::NotMeasured, "a reference: its error is set by its tolerance, not by dt"});
+    return;
+  }
+  try {
+    const SmoothOrder s = smooth_order(entry);
+    out.push_back(verdict("order", s.order >= 1.0 - 0.1,
+                          fmt::format("wall-free spring chain: {:.3f} (errors {:.3g}, {:.3g}; >= 0.9)", s.order,
+                                      s.error_half, s.error_quarter)));
+  } catch (const InputError& err) {
+    out.push_back({"order", Outcome::NotMeasured, fmt::format("declines spring-chain: {}", err.what())});
+  }
+}
+
+// A value outside the range of `s`, or "" when its range is the whole real line.
+std::string outside(const ParamSpec& s) {
+  if (s.kind == ParamSpec::Kind::Choice) return "no-such-choice";
+  if (s.lower > -1e308) return fmt::format("{}", s.lower_open ? s.lower : s.lower - 1.0);
+  if (s.upper < 1e308) return fmt::format("{}", s.upper_open ? s.upper : s.upper + 1.0);
+  return "";
+}
+
+// Every value outside a declared range, and a non-finite value for every real parameter,
+// must be refused (InputError) by `make`.
+template <class Make>
+Verdict refuses_bad_parameters(const ParamSpecs& specs, Make make) {
+  int tried = 0, accepted = 0;
+  std::string first;
+  auto attempt = [&](const ParamSpec& s, const std::string& value) {
+    ++tried;
+    try {
+      make(Params(specs, {{s.name, value}}));
+      if (!accepted++) first = fmt::format("; {} = {} accepted", s.name, value);
+    } catch (const InputError&) {
+    }
+  };
+  for (const auto& s : specs) {
+    if (const std::string value = outside(s); !value.empty()) attempt(s, value);
+    if (s.kind == ParamSpec::Kind::Real) attempt(s, "nan");
+  }
+  return verdict("bad parameters", accepted == 0, fmt::format("{} of {} out-of-range values rejected{}", tried - accepted, tried, first));
+}
+
+void bad_parameters(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+  out.push_back(refuses_bad_parameters(entry.parameters(), [&](const Params& p) { entry.make(p); }));
+}
+
+void determinism(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+  const auto b = block({{"height", "0.01"}, {"nx", "6"}, {"ny", "3"}, {"vx", "0.5"}, {"spin", "1"}});
+  std::vector<State> finals;
+  std::vector<Vec> impulses;
+  for (int threads : {1, 2}) {
+    ThreadScope scope(threads);
+    auto integ = init_or_decline(entry, b);
+    if (!integ) {
+      out.push_back({"determinism", Outcome::NotMeasured, "declines block-2d"});
+      return;
+    }
+    RunOptions options{1e-4, 0.03, 1, false};
+    options.max_steps = 3000;  // an adaptive step may collapse on the stiff block
+    run(b, *integ, options);
+    finals.push_back(integ->state());
+    impulses.push_back(integ->impulses());
+  }
+  const bool same = finals[0].t == finals[1].t && finals[0].u == finals[1].u && finals[0].v == finals[1].v &&
+                    impulses[0] == impulses[1];
+  out.push_back(verdict("determinism", same,
+                        fmt::format("block-2d on its floor to t = {:.3g}, 1 vs 2 threads: {}", finals[0].t,
+                                    same ? "bitwise equal" : fmt::format("max |du| {:.3g}", (finals[0].u - finals[1].u)
+                                                                                            .lpNorm<Eigen::Infinity>()))));
+}
+
+void friction(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+  const SlidingMass p(Params(SlidingMass::parameters_spec(), {{"alpha", "30"}, {"mu", "0.8"}, {"v0", "2"}}));
+  auto integ = entry.make(Params(entry.parameters()));
+  if (!integ->treats_friction()) {
+    std::string message;
+    try {
+      integ->init(p, p.initial_state());
+    } catch (const InputError& err) {
+      message = err.what();
+    }
+    out.push_back(verdict("friction", message.find("mu = ") != std::string::npos,
+                          message.empty() ? "treats_friction() is false but the sliding mass (mu = 0.8) was accepted"
+                                          : fmt::format("declines the sliding mass (mu = 0.8): {}", message)));
+    return;
+  }
+  integ->init(p, p.initial_state());
+  double worst_cone = 0.0, worst_gain = 0.0, previous = integ->energy().total();
+  RunOptions options{1e-3, 2.0 * p.stop_time(), 1, false};
+  run(p, *integ, options, [&](const Integrator& it, const StepInfo&) {
+    const double n = it.impulses()[0], t = std::abs(it.tangential_impulses()[0]);
+    worst_cone = std::max(worst_cone, t - 0.8 * n);
+    const double e = it.energy().total();
+    worst_gain = std::max(worst_gain, e - previous);
+    previous = e;
+  });
+  // Scales: the weight's impulse per step m g dt ~ 1e-2; the energy m g d ~ 10 J.
+  out.push_back(verdict("friction", worst_cone <= 1e-12 && worst_gain <= 1e-11,
+                        fmt::format("sliding mass (mu = 0.8): worst |T| - mu N = {:.3g} (<= 0), worst energy gain "
+                                    "{:.3g} J (<= 0)", worst_cone, worst_gain)));
+}
+
+}  // namespace
+
+std::vector<Verdict> check_integrator(const IntegratorEntry& entry) {
+  std::vector<Verdict> out;
+  using Property = void (*)(const IntegratorEntry&, std::vector<Verdict>&);
+  const std::vector<std::pair<const char*, Property>> properties = {
+      {"contact law", contact_law}, {"step counters", step_counters}, {"momentum", momentum}, {"order", order},
+      {"bad parameters", bad_parameters}, {"determinism", determinism}, {"friction", friction}};
+  for (const auto& [name, property] : properties) {
+    try {
+      property(entry, out);
+    } catch (const std::exception& err) {
+      out.push_back({name, Outcome::Fail, fmt::format("threw: {}", err.what())});
+    }
+  }
+  out.push_back({"allocation", Outcome::NotMeasured,
+                 "the allocation counter lives in the test binary (nsbench_tests \"[allocation]\")"});
+  return out;
+}
+
+std::vector<Verdict> check_problem(const ProblemEntry& entry) {
+  std::vector<Verdict> out;
+  std::unique_ptr<Problem> p;
+  try {
+    p = entry.make(Params(entry.parameters()));
+  } catch (const std::exception& err) {
+    out.push_back({"defaults", Outcome::Fail, fmt::format("built with its defaults it threw: {}", err.what())});
+    return out;
+  }
+  const Index n = p->ndof();
+  const State s0 = p->initial_state();
+  try {
+    check_contacts(p->contacts(), n, p->name());
+    const Contacts& c = p->contacts();
+    const double g_min = c.size() ? (c.gap_offset + c.normal * s0.u).minCoeff() : 0.0;
+    out.push_back(verdict("contacts", g_min >= -1e-12 && s0.u.size() == n && s0.v.size() == n,
+                          fmt::format("{} contacts, shapes consistent; initial min gap {:.3g} (>= 0)", c.size(), g_min)));
+  } catch (const InputError& err) {
+    out.push_back({"contacts", Outcome::Fail, err.what()});
+  }
+  const SpMat m = p->mass_matrix();
+  const double asym = (m - SpMat(m.transpose())).norm(), min_diag = m.diagonal().minCoeff();
+  out.push_back(verdict("mass", m.rows() == n && m.cols() == n && asym <= 1e-12 * m.norm() && min_diag >= 0.0,
+                        fmt::format("{} x {}, asymmetry {:.3g}, smallest diagonal {:.3g} (>= 0)", m.rows(), m.cols(), asym, min_diag)));
+  // F_int = dV/du: a central difference of the strain energy along a direction d against F_int . d.
+  Vec d = Vec::LinSpaced(n, 1.0, 2.0).cwiseProduct(Vec::LinSpaced(n, -1.0, 1.0).array().sin().matrix());
+  if (d.norm() == 0.0) d.setOnes();
+  const Vec u = s0.u + 1e-3 * d;
+  const double eps = 1e-6;
+  Vec f(n);
+  p->internal_force(u, f);
+  const double dv = (p->strain_energy(u + eps * d) - p->strain_energy(u - eps * d)) / (2.0 * eps), fd = f.dot(d);
+  const double rel = std::abs(dv - fd) / std::max({std::abs(fd), std::abs(dv), 1e-300});
+  out.push_back(verdict("force = dV/du", rel <= 1e-5 || std::abs(dv - fd) <= 1e-12,
+                        fmt::format("d V_int / du . d = {:.6g}, F_int . d = {:.6g}, relative difference {:.3g} (<= 1e-5)", dv, fd, rel)));
+  const double dt = p->stable_step();
+  out.push_back(verdict("stable step", std::isfinite(dt) && dt > 0.0, fmt::format("{:.4g} (finite, > 0)", dt)));
+  out.push_back(refuses_bad_parameters(entry.parameters(), [&](const Params& q) { entry.make(q); }));
+  return out;
+}
+
+}  // namespace nsb

@@ -1,0 +1,97 @@
+#pragma once
+// The generic properties every integrator is held to, whoever wrote it: the built-ins in the
+// Catch2 tests (tests/integrators/*_test.cpp call the measurements below) and any plugin by
+// `nsbench check --integrator NAME` (check_integrator). One implementation for both.
+//
+//   impulse sign        every impulse Lambda_i >= 0 (a positive impulse pushes apart)
+//   open contacts       no impulse on a contact open at both ends of a step by more than it
+//                       can close in that step (dt max|v| + g dt^2)
+//   impact times        on the bouncing mass (e = 0.9, dt = 1e-4, 5 impacts; e = 1 for a
+//                       scheme whose restitution is not exact; e = 0 and the first impact for
+//                       one without a velocity-level impact law, which declines e > 0):
+//                       |t_i - t_i,exact| <= lag_steps i dt (the scheme's impact_accuracy())
+//   flight energies     E in flight i within 2 lag_steps g dt i / (e^i w1) of E0 e^(2i)
+//   step counters       step() advances state().t by the StepInfo's dt and adds 1 to
+//                       work().steps and >= 1 to work().force_evaluations (not for a
+//                       reference, which counts its ODE solver's steps)
+//   momentum            block-2d in free flight (no gravity): sum_a m_a v_a kept to 1e-10 of
+//                       sum_a m_a |v_a| over 1000 steps (sum_a F_int,a = 0)
+//   order               wall-free spring chain against its modal-exact solution: the measured
+//                       order log2(e(dt/2) / e(dt/4)) is at least 0.9 (a consistent scheme;
+//                       not for a reference, whose error is its tolerance)
+//   bad parameters      every declared parameter refuses a value outside its range
+//   determinism         block-2d on its floor, 1 thread and 2 threads: bitwise equal states
+//   friction            treats_friction(): |tangential impulse| <= mu x normal impulse on
+//                       the sliding mass and no energy gain; otherwise init declines, naming mu
+//   allocation          not measured here: the allocation counter replaces malloc and lives
+//                       in the test binary (nsbench_tests "[allocation]" for the built-ins)
+//
+// Exact solutions: problems/bouncing_mass.hpp (impact times, flight energies),
+// reference/modal_exact.hpp (the chain).
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+#include "problems/problem.hpp"
+
+namespace nsb {
+
+class BouncingMass;
+
+// The integrator of `entry` with its defaults, initialised on the problem's initial state;
+// null when it declines the problem (InputError at init: a mass model, a nonlinearity,
+// friction it does not treat).
+std::unique_ptr<Integrator> init_or_decline(const IntegratorEntry& entry, const Problem& problem);
+
+struct BounceObservation {
+  std::vector<double> impact_times;   // the first step with an impulse after one without
+  std::vector<double> flight_energy;  // energy at mid-flight of flight i (i = 1, 2, ...)
+  double min_impulse = 0.0;
+  long impulses_on_open_gap = 0;
+  ImpactAccuracy accuracy;
+};
+
+// Runs `entry` (defaults) on `problem` with step dt to mid-flight after impact `impacts`.
+BounceObservation observe_bounces(const IntegratorEntry& entry, const BouncingMass& problem, double dt, int impacts);
+
+// Worst ratio of error to bound over the impacts (<= 1: within the scheme's declared
+// impact_accuracy); +inf when fewer impacts or flights than `impacts` were seen.
+struct BounceRatios {
+  double impact_time = 0.0, flight_energy = 0.0;
+};
+BounceRatios bounce_ratios(const BounceObservation& obs, const BouncingMass& problem, double dt, int impacts);
+
+// Largest |P(t) - P0| / sum_a m_a |v_a| over `steps` steps of block-2d in free flight
+// (spinning, no gravity); nullopt when the integrator declines the block.
+std::optional<double> free_flight_momentum_drift(const IntegratorEntry& entry, int steps);
+
+struct SmoothOrder {
+  double error_half = 0.0, error_quarter = 0.0, order = 0.0;  // at dt/2, dt/4 of stable_step / 8
+};
+// Displacement error at the final time on the wall-free 5-mass spring chain against its
+// modal-exact solution, 64 steps of stable_step / 8 halved twice.
+SmoothOrder smooth_order(const IntegratorEntry& entry);
+
+// One line of `nsbench check`.
+struct Verdict {
+  enum class Outcome { Pass, Fail, NotMeasured };
+  std::string property;
+  Outcome outcome = Outcome::Pass;
+  std::string figure;  // the measured figure against its bound, or why not measured
+};
+const char* outcome_name(Verdict::Outcome o);
+
+// Every property above for `entry`. An exception from the integrator (other than a declined
+// problem, which some properties expect) is a failed property, not an abort.
+std::vector<Verdict> check_integrator(const IntegratorEntry& entry);
+
+// A problem's contract (problems/problem.hpp): built with its defaults; contacts whose shapes
+// agree, initially open or touching; a symmetric mass with a non-negative diagonal;
+// F_int = dV_int/du (central difference of strain_energy along a fixed direction);
+// a finite, positive stable_step(); bad parameters refused.
+std::vector<Verdict> check_problem(const ProblemEntry& entry);
+
+}  // namespace nsb

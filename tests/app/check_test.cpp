@@ -1,0 +1,80 @@
+// `nsbench check`: every built-in integrator holds the generic properties (in process: the
+// library's check_integrator, the same code the command runs); the example plugin passes
+// through the command; the broken test plugin (tests/plugins/broken.cpp) fails it, the
+// properties it breaks named.
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "integrators/conformance.hpp"
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+#include "run_cli.hpp"
+
+namespace {
+
+using nsb::test::run_command;
+
+std::string nsbench(const std::string& args) { return std::string(NSBENCH_CLI) + " " + args; }
+std::string test_plugin(const std::string& name) { return std::string(NSBENCH_TEST_PLUGIN_DIR) + "/" + name + ".so"; }
+
+// The line of `property` in check's output.
+std::string line_of(const std::string& output, const std::string& property) {
+  const auto at = output.find("  " + property + " ");
+  if (at == std::string::npos) return "";
+  return output.substr(at, output.find('\n', at) - at);
+}
+
+}  // namespace
+
+TEST_CASE("check: every built-in integrator holds every measured property", "[app][check]") {
+  for (const auto& entry : nsb::integrator_registry()) {
+    DYNAMIC_SECTION(entry.name) {
+      for (const auto& v : nsb::check_integrator(entry)) {
+        INFO(entry.name << ": " << v.property << " " << nsb::outcome_name(v.outcome) << " " << v.figure);
+        CHECK(v.outcome != nsb::Verdict::Outcome::Fail);
+      }
+    }
+  }
+}
+
+TEST_CASE("check: every built-in problem holds its contract; the command checks one", "[app][check]") {
+  for (const auto& entry : nsb::problem_registry()) {
+    DYNAMIC_SECTION(entry.name) {
+      for (const auto& v : nsb::check_problem(entry)) {
+        INFO(entry.name << ": " << v.property << " " << nsb::outcome_name(v.outcome) << " " << v.figure);
+        CHECK(v.outcome == nsb::Verdict::Outcome::Pass);
+      }
+    }
+  }
+  const auto r = run_command(nsbench("check --problem block-2d"));
+  INFO(r.output);
+  CHECK(r.code == 0);
+  CHECK_THAT(line_of(r.output, "force = dV/du"), Catch::Contains(" pass "));
+}
+
+TEST_CASE("check: the example plugin passes, one line per property with its figure", "[app][check][plugin]") {
+  const auto r = run_command(nsbench("check --plugin " + std::string(NSBENCH_EXAMPLE_PLUGIN) + " --integrator symplectic-euler"));
+  INFO(r.output);
+  CHECK(r.code == 0);
+  for (const char* p : {"impulse sign", "open contacts", "impact times", "flight energies", "step counters", "momentum",
+                        "order", "bad parameters", "determinism", "friction", "allocation"})
+    CHECK_THAT(line_of(r.output, p), Catch::Contains(" pass ") || Catch::Contains("not measured"));
+  CHECK_THAT(line_of(r.output, "impulse sign"), Catch::Contains(" pass "));
+  CHECK_THAT(line_of(r.output, "order"), Catch::Contains(" pass "));
+}
+
+TEST_CASE("check: the broken plugin fails, naming the impulse sign and the step counters", "[app][check][plugin]") {
+  const auto r = run_command(nsbench("--plugin " + test_plugin("broken") + " check --integrator broken"));
+  INFO(r.output);
+  CHECK(r.code == 1);
+  CHECK_THAT(line_of(r.output, "impulse sign"), Catch::Contains("FAIL"));
+  CHECK_THAT(line_of(r.output, "step counters"), Catch::Contains("FAIL"));
+  CHECK_THAT(line_of(r.output, "momentum"), Catch::Contains(" pass "));  // its motion is CD-Lagrange's
+}
+
+TEST_CASE("check: an unknown integrator names the nearest, exit 2", "[app][check][bad-input]") {
+  const auto r = run_command(nsbench("check --integrator cd-lagrang"));
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Contains("--integrator 'cd-lagrang': unknown integrator (nearest: cd-lagrange;"));
+  CHECK(run_command(nsbench("check")).code == 2);
+}
