@@ -1,7 +1,7 @@
 #pragma once
 // CD-Lagrange, fixed step: explicit variational integrator for non-smooth dynamics
 // (A. Gravouil, talk at GdR GDM 2022; Fekak, Brun, Gravouil, Depale, CMAME 2017;
-// Di Stasio, Dureisseix, Gravouil et al. 2019). Impulse form of DESIGN.md section 2:
+// Di Stasio, Dureisseix, Gravouil et al. 2019). Impulse form of docs/method.md section 2:
 //
 //     U_{k+1}   = U_k + tau M^{-1} P_{k+1/2}
 //     P_free    = P_{k+1/2} + tau (F_ext(t_{k+1}) - F_int(U_{k+1}))
@@ -11,10 +11,10 @@
 //     P_{k+3/2} = P_free + L^T Lambda
 //
 // Lambda is the impulse of the step. The talk's cumulative form L^T(Lambda_{k+3/2} -
-// Lambda_{k+1/2}) with Lambda reset to 0 when the gap opens is adhesive (DESIGN.md); the
+// Lambda_{k+1/2}) with Lambda reset to 0 when the gap opens is adhesive (docs/method.md); the
 // impulse form is not.
 //
-// Coulomb friction (DESIGN.md section 6): the closed contacts take (Lambda_N, Lambda_T) from
+// Coulomb friction (docs/method.md section 6): the closed contacts take (Lambda_N, Lambda_T) from
 // the 2D Moreau–Coulomb law, P_{k+3/2} = P_free + L^T Lambda_N + T^T Lambda_T, in closed form
 // per contact where no two contacts share a dof (impulse_contact.hpp); no tangential
 // restitution.

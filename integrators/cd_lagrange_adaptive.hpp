@@ -1,5 +1,5 @@
 #pragma once
-// CD-Lagrange with an adaptive, energy-consistent step (DESIGN.md section 2). Sources:
+// CD-Lagrange with an adaptive, energy-consistent step (docs/method.md section 2). Sources:
 // A. Gravouil, talk at GdR GDM 2022 ("pas de temps adaptatif", the horizontal generator of
 // the discrete action); Kane, Marsden, Ortiz, West, "Variational integrators and the
 // Newmark algorithm for conservative and dissipative mechanical systems", IJNME 49 (2000)

@@ -43,7 +43,7 @@
 // switches no discrete invariant holds: within a contact resolved in ~2 steps the energy so
 // measured swings by up to 50% of the impact's kinetic energy at penalty_factor 2 (25% at 1;
 // g_{k+1}^2 in place of g_k g_{k+1} doubles it), the price of a coarse penalty.
-// Friction (DESIGN.md section 6): the regularised Coulomb law of spring_dashpot.hpp,
+// Friction (docs/method.md section 6): the regularised Coulomb law of spring_dashpot.hpp,
 // F_T = -mu F_N phi(u_T / v_reg), v_reg = `friction_velocity`, F_N = f_i the spring-dashpot
 // force of the step, in its implicit form: the slip after the kick, u_T(+) = T_i v_{k+3/2} -
 // w_i, is the one the law sees. Why implicit: the viscous branch is a damper of coefficient

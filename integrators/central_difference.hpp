@@ -8,7 +8,7 @@
 //
 // M diagonal (minv; 0 on massless dofs, which the scheme handles between drift and kick).
 // Both updates run on NSBENCH_THREADS threads, element-wise (core/threads.hpp): the same
-// bits for any count. Energy at the half step (the scheme's discrete energy, DESIGN.md):
+// bits for any count. Energy at the half step (the scheme's discrete energy, docs/method.md):
 //     T_{k+1/2} = 1/2 V_{k+1/2}^T M V_{k+1/2},  V_{k+1/2} = (after a step) v_prev
 //     V_{k+1/2} = 1/2 (V(U_k) + V(U_{k+1}))
 #include "integrators/integrator.hpp"

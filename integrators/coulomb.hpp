@@ -1,5 +1,5 @@
 #pragma once
-// The 2D Moreau–Coulomb contact law at velocity level (DESIGN.md section 6; J.J. Moreau,
+// The 2D Moreau–Coulomb contact law at velocity level (docs/method.md section 6; J.J. Moreau,
 // "Unilateral contact and dry friction in finite freedom dynamics", 1988; M. Jean, "The
 // non-smooth contact dynamics method", CMAME 177, 1999; V. Acary and B. Brogliato,
 // Numerical Methods for Nonsmooth Dynamical Systems, Springer 2008, ch. 3 and 12).

@@ -52,7 +52,7 @@ LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu
                              const std::function<const Vec&(Index)>& response, const LcpOptions& lcp,
                              WorkCounters& work, CorrectionBuffers& buffers);
 
-// The frictional velocity correction of an implicit scheme (DESIGN.md section 6), on the
+// The frictional velocity correction of an implicit scheme (docs/method.md section 6), on the
 // contact set `active`, S the iteration matrix:
 //     x <- x + S^{-1} (L^T Lambda_N + T^T Lambda_T),
 //     2D Moreau–Coulomb law (coulomb.hpp) with U_N = b_i + L_i x, U_T = T_i x - w_i,

@@ -11,7 +11,7 @@
 // A contact with H_ii = 0 acts on massless dofs only (minv zero there): it has no impulse
 // law and is skipped here; the caller solves it quasi-statically (cd_lagrange.hpp).
 //
-// With Coulomb friction (Contacts::mu > 0 somewhere, DESIGN.md section 6) each closed
+// With Coulomb friction (Contacts::mu > 0 somewhere, docs/method.md section 6) each closed
 // contact takes (Lambda_N, Lambda_T) from the 2D Moreau–Coulomb law (coulomb.hpp) with
 // q_N = g'_free + e g'_prev, q_T = T v_free - w and W = [L; T] M^{-1} [L; T]^T:
 //     v  <-  v_free + M^{-1} (L^T Lambda_N + T^T Lambda_T).

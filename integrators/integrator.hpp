@@ -2,6 +2,39 @@
 // Time integrator interface. An integrator is bound to one Problem by init() and then
 // advanced by step(). As in MFEM's ODESolver::Step, step() may take another step than the
 // one requested (an adaptive scheme chooses its own) and reports the step it took.
+//
+// The contract (what the studies, the tables and `nsbench check` rely on; a plugin's
+// integrator follows it like every built-in; `nsbench check --integrator NAME` tests it):
+//   constructor(const Params&)  reads its parameters (declared by a static parameters_spec(),
+//                 range-checked before it runs: a value outside is refused with InputError).
+//   init(problem, initial)  calls bind(problem, initial) first: bind() checks the contacts
+//                 (and refuses friction, mu > 0, unless treats_friction()), stores problem_,
+//                 state_ = initial, mass_ = problem.mass_matrix(), and sizes impulses_ and
+//                 tangential_impulses_ to the contacts (zero). Then it builds its caches and
+//                 throws InputError naming the problem for one it cannot run (a mass model,
+//                 a nonlinearity): the studies show that as n/a, never a wrong number.
+//   step(dt)      advances state_ by one step of dt (or of the step it chooses, returned in
+//                 StepInfo::dt): state_.t += that step; ++work_.steps;
+//                 work_.force_evaluations += the F_int evaluations made (budgets and the
+//                 work-precision tables read them); the other counters as they apply.
+//                 impulses_ holds this step's normal impulses, one Lambda_i >= 0 per contact,
+//                 0 on a contact open through the step (zero it, then fill it: never left
+//                 from an earlier step); tangential_impulses_ likewise (0 without friction).
+//   energy()      override when the scheme's own balance is another energy than
+//                 v^T M v / 2 + V(u) at state_ (a staggered scheme: the half-step energy).
+//   conditionally_stable()  true for an explicit scheme (nsbench run warns above the
+//                 problem's stable_step()).
+//   impact_accuracy()  override when one impact may lag more than 2 steps, or when the
+//                 restitution is not exact (a compliant, penalty contact).
+//   treats_friction()  true only when step() applies the Coulomb law of Contacts (fills
+//                 tangential_impulses_); otherwise bind() declines mu > 0 with a message
+//                 naming mu.
+// Helpers for a new scheme: ImpulseContact (integrators/impulse_contact.hpp: Moreau's
+// velocity-level impulse law with restitution, and Coulomb friction, given M^{-1} diagonal),
+// lcp_parameter_specs() / lcp_options() (its LCP solver's parameters, integrators/lcp.hpp),
+// CentralDifference (integrators/central_difference.hpp: the explicit staggered update), and
+// solve_coulomb_local for one contact's 2D Coulomb law. A minimal correct example:
+// examples/plugin/symplectic_euler.cpp; the method and conventions: docs/method.md.
 #include <initializer_list>
 #include <map>
 #include <string>
@@ -90,7 +123,7 @@ class Integrator {
   virtual bool conditionally_stable() const { return false; }
   // See ImpactAccuracy; valid after init().
   virtual ImpactAccuracy impact_accuracy() const { return {}; }
-  // True for a scheme that treats Coulomb friction (Contacts::mu, DESIGN.md section 6). bind()
+  // True for a scheme that treats Coulomb friction (Contacts::mu, docs/method.md section 6). bind()
   // refuses a problem with mu > 0 for every other scheme, so none ignores friction silently.
   virtual bool treats_friction() const { return false; }
 

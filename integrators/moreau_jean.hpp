@@ -1,7 +1,7 @@
 #pragma once
 // Moreau–Jean time-stepping, theta-method (M. Jean, CMAME 1999; V. Acary and B. Brogliato,
 // Numerical Methods for Nonsmooth Dynamical Systems, Springer 2008, ch. 10; Siconos'
-// MoreauJeanOSI). DESIGN.md section 2:
+// MoreauJeanOSI). docs/method.md section 2:
 //
 //     M (V_{k+1} - V_k) = h [theta F_{k+1} + (1 - theta) F_k] + L^T Lambda,  F = F_ext - F_int
 //     U_{k+1}           = U_k + h [theta V_{k+1} + (1 - theta) V_k]
@@ -15,7 +15,7 @@
 // (diagonal D: closed form; otherwise projected Gauss-Seidel to lcp_tol, see lcp.hpp), then
 //     V_{k+1} = V_free + W^{-1} L^T Lambda.
 // theta in [1/2, 1]; first order with impacts; dissipative for theta > 1/2.
-// Coulomb friction (DESIGN.md section 6; Jean 1999): on the active contacts the 2D
+// Coulomb friction (docs/method.md section 6; Jean 1999): on the active contacts the 2D
 // Moreau–Coulomb law with the local velocities U_N = g'_{k+1} + e g'_k, U_T = T V_{k+1} - w
 // and the Delassus matrix of the interleaved rows [L_i; T_i] W^{-1} [L_j; T_j]^T, solved by
 // nonsmooth Gauss–Seidel over contacts (coulomb.hpp: closed form per contact when they share

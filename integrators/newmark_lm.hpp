@@ -1,7 +1,7 @@
 #pragma once
 // Newmark with position-level Lagrange multipliers (Newmark, ASCE J. Eng. Mech. 85, 1959;
 // with contact: Carpenter, Taylor, Katona, IJNME 32, 1991; Laursen, Computational Contact
-// and Impact Mechanics, Springer 2002, ch. 8). DESIGN.md "The field's schemes":
+// and Impact Mechanics, Springer 2002, ch. 8). docs/method.md "The field's schemes":
 //
 //     M A_{k+1} + F_int(U_{k+1}) = F_ext,k+1 + L^T lambda_{k+1}
 //     0 <= lambda_{k+1}  _|_  g(U_{k+1}) = g0 + L U_{k+1} >= 0

@@ -2,7 +2,7 @@
 // Nonsmooth generalised-alpha with position and velocity levels enforced (Brüls, Acary,
 // Cardona, "Simultaneous enforcement of constraints at position and velocity levels in the
 // nonsmooth generalized-alpha scheme", CMAME 281, 2014; after Chen, Acary, Virlez, Brüls,
-// IJNME 96, 2013). DESIGN.md "The field's schemes". The velocity is a smooth part plus a
+// IJNME 96, 2013). docs/method.md "The field's schemes". The velocity is a smooth part plus a
 // jump, the position a smooth part plus a correction:
 //
 //   smooth (generalised-alpha, Arnold-Brüls form, Chung-Hulbert parameters from rho_inf):
@@ -31,7 +31,7 @@
 // not invertible but S is, and the massless rows of the smooth step are quasi-static
 // (F_int = F_ext); (iii) the persistent-contact force is carried by the per-step impulses
 // (as in Moreau-Jean), not by a separate smooth multiplier.
-// Coulomb friction (DESIGN.md section 6), at the velocity level only, in the spirit of the
+// Coulomb friction (docs/method.md section 6), at the velocity level only, in the spirit of the
 // frictional NSGA of Capobianco, Harsch, Eugster, Leine ("A nonsmooth generalized-alpha
 // method for mechanical systems with frictional contact", IJNME 122, 2021): the velocity
 // jump takes (Lambda_N, Lambda_T) from the 2D Moreau–Coulomb law with U_N = L V_{k+1} +

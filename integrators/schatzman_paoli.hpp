@@ -1,7 +1,7 @@
 #pragma once
 // Schatzman–Paoli scheme: two-step (central difference), contact at position level
 // (M. Schatzman, Nonlinear Anal. 2, 1978; L. Paoli and M. Schatzman, SIAM J. Numer. Anal. 40,
-// 2002, 702-733 and 734-768; Siconos' SchatzmanPaoliOSI). DESIGN.md "The field's schemes":
+// 2002, 702-733 and 734-768; Siconos' SchatzmanPaoliOSI). docs/method.md "The field's schemes":
 //
 //     M (U_{k+1} - 2 U_k + U_{k-1}) = h^2 (F_ext(t_k) - F_int,theta) + L^T R
 //     0 <= R  _|_  g0 + L (U_{k+1} + e U_{k-1}) / (1 + e) >= 0

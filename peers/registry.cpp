@@ -1,5 +1,5 @@
 // Peers: other codes' implementations of the schemes, wrapped as nsbench integrators
-// (DESIGN.md section 2, "Peers run side by side"). Each is optional (a CMake option) and
+// (docs/method.md section 2, "Peers run side by side"). Each is optional (a CMake option) and
 // registers itself (NSBENCH_INTEGRATOR in its .cpp, with peer = true).
 #include "integrators/registry.hpp"
 #ifdef NSBENCH_HAVE_SICONOS

@@ -1,6 +1,6 @@
 #pragma once
 // 2D block impact: a hyperelastic block (plane strain, thickness 1 m) dropped, tilted and
-// spinning, on a rigid floor y = 0, frictionless or with Coulomb friction mu (DESIGN.md section 3; the benchmark family
+// spinning, on a rigid floor y = 0, frictionless or with Coulomb friction mu (docs/method.md section 3; the benchmark family
 // of J. Di Stasio, D. Dureisseix, A. Gravouil et al., "Benchmark cases for robust explicit
 // time integrators in non-smooth transient dynamics", Advanced Modeling and Simulation in
 // Engineering Sciences (AMSES), 2019).
@@ -35,7 +35,7 @@
 // horizontal momentum P_x = sum m_a v_a,x is conserved exactly; Newton restitution e (0 by
 // default, the usual choice for a deformable body: the rebound comes from the elastic
 // energy). With mu > 0 each contact has the tangent row on its x dof, slip rate
-// u_T = v_a,x - w (w = floor_velocity, a belt), and DESIGN.md section 6's identities hold:
+// u_T = v_a,x - w (w = floor_velocity, a belt), and docs/method.md section 6's identities hold:
 // P_x changes by sum Lambda_T exactly; while every closed contact slides the same way
 // (u_T > 0, say) Delta P_x = -mu sum Lambda_N; the energy never increases (e <= 1, w = 0).
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Bouncing bar (Doyen, Ern, Piperno, SISC 33, 2011; DESIGN.md "Bouncing bar"): the Signorini
+// Bouncing bar (Doyen, Ern, Piperno, SISC 33, 2011; docs/method.md "Bouncing bar"): the Signorini
 // bar (problems/signorini_bar.hpp) dropped under gravity onto the wall, and its exact
 // continuum solution. The problem itself is a SignoriniBar (registry line bouncing-bar,
 // SignoriniBar::bouncing_parameters_spec): DEP's data L = 10, E = 900, rho = 1, A = 1, g = 10,

@@ -7,7 +7,7 @@
 // Parameters: m > 0 (mass), g > 0 (gravity), e in [0, 1] (restitution), h0 >= 0 (initial
 // height), v0 (initial velocity, positive upwards).
 //
-// Exact solution (DESIGN.md section 3). First impact t1 solves h0 + v0 t - g t^2/2 = 0:
+// Exact solution (docs/method.md section 3). First impact t1 solves h0 + v0 t - g t^2/2 = 0:
 //     t1 = (v0 + w1) / g,   w1 = sqrt(v0^2 + 2 g h0) = |q'(t1-)|
 // Flight i (after impact i >= 1) starts at t_i with speed e^i w1 and lasts 2 e^i w1 / g:
 //     t_{i+1} = t_i + 2 e^i w1 / g,    q(t) = e^i w1 s - g s^2/2,  s = t - t_i
@@ -45,6 +45,7 @@ class BouncingMass final : public Problem {
   // Exact impact sequence.
   double initial_energy() const { return 0.5 * m_ * w1_ * w1_; }
   double first_impact_speed() const { return w1_; }
+  double restitution() const { return e_; }
   // Time of impact i >= 1 (t_1 is the first); equals zeno_time() in the limit.
   double impact_time(int i) const;
   // Accumulation time of the impacts; +inf for e = 1.

@@ -1,5 +1,5 @@
 #pragma once
-// Semi-discrete non-smooth mechanical system (DESIGN.md section 1):
+// Semi-discrete non-smooth mechanical system (docs/method.md section 1):
 //
 //     M U'' + F_int(U) = F_ext(t) + L^T lambda
 //     g(U) = g0 + L U                       (one row of L per contact; g >= 0 is open)
@@ -11,6 +11,16 @@
 //
 // A Problem is pure data and physics: it knows nothing of time integration. Integrators
 // see only this interface, so any integrator runs any problem.
+//
+// The contract (a plugin's problem follows it; `nsbench check --problem NAME` tests it):
+// a constructor from its validated Params (a static parameters_spec() declares them, with
+// ranges); mass_matrix() n x n symmetric, positive semi-definite (a zero diagonal entry is a
+// massless dof); internal_force(u, f) writes F_int(u) into f (no allocation: it runs every
+// step), tangent_stiffness its Jacobian, strain_energy V_int with F_int = dV_int/du, and
+// load_potential -F_ext . u for a constant load; contacts() describes every contact once
+// (Contacts below; check_contacts() holds its shapes and ranges) and keeps g0 + L U0 >= 0;
+// stable_step() the explicit central-difference limit 2 / omega_max; exact_state() and
+// impact_times() only where the solution is known exactly (derived and tested on its own).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <optional>
@@ -35,7 +45,7 @@ struct State {
   Vec v;
 };
 
-// Every contact of a problem, described once (DESIGN.md sections 1 and 6); row i of each
+// Every contact of a problem, described once (docs/method.md sections 1 and 6); row i of each
 // operator belongs to contact i:
 //
 //     normal gap   g_i   = g0_i + L_i U          (>= 0 open; g'_i = L_i M^{-1} P)

@@ -1,7 +1,7 @@
 #pragma once
 // Rolling disk: a rigid disk (mass m, radius R, inertia kappa m R^2) on a rigid floor under
 // gravity, Coulomb friction mu and Newton restitution e, launched or dropped with spin
-// (DESIGN.md section 6).
+// (docs/method.md section 6).
 //
 //     m x'' = lambda_T,    m y'' = -m g + lambda_N,    kappa m R^2 theta'' = R lambda_T
 //     0 <= y  _|_  lambda_N >= 0,   slip s = x' + R theta'   (the contact point's velocity:

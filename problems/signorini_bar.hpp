@@ -1,5 +1,5 @@
 #pragma once
-// Signorini bar: a 1D linear elastic bar hitting a rigid wall (DESIGN.md section 3).
+// Signorini bar: a 1D linear elastic bar hitting a rigid wall (docs/method.md section 3).
 //
 //     rho A u_tt - E A u_xx = -rho A g   on (0, L),      E A u_x(L, t) = 0     (free end)
 //     g(t) = g0 + u(0, t) >= 0,   lambda >= 0,   g lambda = 0,   E A u_x(0, t) = -lambda

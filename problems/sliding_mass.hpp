@@ -1,6 +1,6 @@
 #pragma once
 // Sliding mass: a point mass on a rigid plane inclined at angle alpha, Coulomb friction mu,
-// launched along the slope at speed v0 (DESIGN.md section 6).
+// launched along the slope at speed v0 (docs/method.md section 6).
 //
 //     m x'' = m g sin(alpha) + lambda_T,        x along the slope, positive down it
 //     m y'' = -m g cos(alpha) + lambda_N,       y normal to the plane, height above it

@@ -30,7 +30,7 @@
 // Lambda (the time integral of the contact force) gives impulses(): its increase over a
 // step, comparable with the impulses of the impulse-based schemes. It is a quadrature, left
 // out of CVODE's error test (see penalty.cpp): M v' carries the same forces.
-// Friction (DESIGN.md section 6; a problem with mu > 0 somewhere): cd-penalty's regularised
+// Friction (docs/method.md section 6; a problem with mu > 0 somewhere): cd-penalty's regularised
 // Coulomb law (integrators/spring_dashpot.hpp), here as a force of the ODE,
 //     f_T,i = -mu_i f_i [on] phi(u_T,i / v_reg),  u_T,i = T_i v - w_i,  phi = clamp(., -1, 1)
 //     v' += M^{-1} T^T f_T,   Lambda_T,i' = f_T,i   (y gains Lambda_T after Lambda)

@@ -2,6 +2,7 @@
 """Renders the figures declared by the studies (REPORTS/figures.json) from their CSV tables.
 
     python3 scripts/figures.py REPORTS
+    nsbench-figures REPORTS        (the same script, installed with nsbench)
 
 Writes REPORTS/figures/<id>.png and .pdf, each stamped with the revision and build read from
 the CSV's '#' metadata lines. Rows whose x is not a number (n/a, diverged) are skipped; where
@@ -168,6 +169,9 @@ def draw(spec, reports):
 
 
 def main():
+    if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        return
     if len(sys.argv) != 2:
         sys.exit("usage: figures.py REPORTS_DIR")
     reports = sys.argv[1]

@@ -1,37 +1,60 @@
 #!/usr/bin/env bash
-# The README's "Add your integrator without forking", as CI runs it: install nsbench from
-# BUILD_DIR (default build, already built) into a temporary prefix, build examples/plugin
-# out of tree against it, list, run and study with the plugin, and check its rows are in
-# the tables. Also compiles every installed header on its own.
+# Docs are tests: every command line README.md and examples/plugin/README.md show, extracted
+# from them by scripts/doc-commands.py and run as written (those marked smoke in the doc at
+# --help level), in a scratch directory that looks like a checkout with BUILD_DIR (default
+# build, already built) as build/ and HOME inside it (the walkthrough installs nsbench into
+# $HOME/nsbench). Then checks what the plugin walkthrough produced: the plugin's rows in
+# the tables, its stamp, its `nsbench check` verdict. Also compiles every installed header
+# on its own.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build="${BUILD_DIR:-build}"
+repo="$(pwd)"
+build="$(cd "${BUILD_DIR:-build}" && pwd)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-prefix="$work/prefix"
 
-cmake --install "$build" --prefix "$prefix" > /dev/null
+# A checkout-like sandbox: the sources read-only by symlink, reports/ a copy (written to).
+sandbox="$work/checkout"
+mkdir -p "$sandbox"
+for d in scripts studies examples docs; do ln -s "$repo/$d" "$sandbox/$d"; done
+ln -s "$build" "$sandbox/build"
+cp -r "$repo/reports" "$sandbox/reports"
+export HOME="$work/home"
+mkdir -p "$HOME"
+
+run_doc() {  # FILE DIR [--smoke]: the file's commands, run in DIR
+  local file="$1" dir="$2" mode="${3:-}" cmds
+  cmds="$(/usr/bin/python3 "$repo/scripts/doc-commands.py" "$repo/$file" $mode)"
+  while IFS= read -r cmd; do
+    [ -n "$cmd" ] || continue
+    echo "+ ($file) $cmd" >&2
+    (cd "$dir" && bash -euo pipefail -c "$cmd" > "$work/last.log" 2>&1) || {
+      cat "$work/last.log" >&2; echo "$file: this documented command failed: $cmd" >&2; exit 1; }
+  done <<< "$cmds"
+}
+
+SECONDS=0
+run_doc README.md "$sandbox"
+run_doc README.md "$sandbox" --smoke
+prefix="$HOME/nsbench"
+
+# The example's own README, in a copy of the example.
+cp -r examples/plugin "$work/example"
+run_doc examples/plugin/README.md "$work/example"
+
 for h in $(cd "$prefix/include" && find nsbench -name '*.hpp' | sort); do
   echo "#include <$h>" | c++ -std=c++20 -fsyntax-only -x c++ - -I"$prefix/include" -I"$prefix/include/nsbench" \
     -I/usr/include/eigen3 || { echo "installed header $h does not compile on its own" >&2; exit 1; }
 done
+[ -x "$prefix/bin/nsbench-figures" ] || { echo "nsbench-figures is not installed" >&2; exit 1; }
 
-# --- the walkthrough (README.md) ---
-cp -r examples/plugin "$work/my-plugin"
-cmake -S "$work/my-plugin" -B "$work/my-plugin/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release > /dev/null
-cmake --build "$work/my-plugin/build" > /dev/null
-plugin="$work/my-plugin/build/symplectic_euler.so"
-# Captured, not piped: `grep -q` stops reading at its match, and under pipefail the
-# writer's SIGPIPE (exit 141) would fail the script on a correct listing.
-listing="$("$prefix/bin/nsbench" --plugin "$plugin" list)"
-grep -q '^  symplectic-euler ' <<< "$listing" || { echo "symplectic-euler not in nsbench list" >&2; exit 1; }
-"$prefix/bin/nsbench" --plugin "$plugin" run --problem bouncing-mass --integrator symplectic-euler \
-  --dt 1e-3 --t-end 2 --out "$work/run"
-NSBENCH_PLUGINS="$plugin" "$prefix/bin/nsbench-study" bouncing --out "$work/reports"
-# --- checks ---
-grep -q '"file": "symplectic_euler.so"' "$work/run/summary.json"
+# --- what the walkthrough produced ---
+grep -q '"file": "symplectic_euler.so"' "$sandbox/run/summary.json"
 for t in bouncing_mass bouncing_mass_orders; do
-  grep -q '^symplectic-euler,' "$work/reports/$t.csv" || { echo "no symplectic-euler row in $t.csv" >&2; exit 1; }
-  grep -q '^# plugins: symplectic_euler.so (fnv1a64:' "$work/reports/$t.csv" || { echo "$t.csv: no plugin stamp" >&2; exit 1; }
+  for r in "$sandbox/reports" "$work/example/reports"; do
+    grep -q '^symplectic-euler,' "$r/$t.csv" || { echo "no symplectic-euler row in $r/$t.csv" >&2; exit 1; }
+    grep -q '^# plugins: symplectic_euler.so (fnv1a64:' "$r/$t.csv" || { echo "$r/$t.csv: no plugin stamp" >&2; exit 1; }
+  done
 done
-echo "plugin example: installed, built out of tree, listed, run and studied"
+echo "docs: every command of README.md and examples/plugin/README.md ran as written (${SECONDS} s): the plugin" \
+  "installed, built out of tree, checked (nsbench check exits 1 on a failed property), run and studied"

@@ -1,4 +1,4 @@
-// Study "friction": every integrator on the Coulomb friction problems (DESIGN.md section 6);
+// Study "friction": every integrator on the Coulomb friction problems (docs/method.md section 6);
 // the schemes that do not treat friction decline in bind() and get one n/a row per table,
 // with their reason.
 //

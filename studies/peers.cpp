@@ -1,4 +1,4 @@
-// Study "peers": our schemes against a peer's implementation of the same scheme (DESIGN.md
+// Study "peers": our schemes against a peer's implementation of the same scheme (docs/method.md
 // section 2, "Peers run side by side"), e.g. moreau-jean against siconos-moreau-jean.
 //
 // Pairs (kPairs, data; a pair whose integrator is not registered is skipped, e.g. without the
@@ -26,7 +26,7 @@
 //     MoreauJeanOSI(theta, gamma)). Neither is "the" scheme: both are consistent index-set
 //     predictions, but ours at theta = 1 reduces to g_k <= 0: a contact acts only once
 //     penetrated (bouncing mass, dt = 1e-3: max penetration 4.3e-3 against Siconos' 1.0e-3,
-//     impacts one step later). DESIGN.md prescribes ours; Siconos' is the better prediction
+//     impacts one step later). docs/method.md prescribes ours; Siconos' is the better prediction
 //     away from theta = 1/2.
 //   - With friction (siconos-moreau-jean: FrictionContact(2), 2D NSGS to 1e-12): the same
 //     numbers to round-off at theta = 1/2, normal and tangential impulses included (<= 5e-13);
@@ -61,7 +61,7 @@ struct PeerPair {
 };
 
 // Schatzman-Paoli: theta = 0 on both sides (the explicit central difference: Siconos' theta
-// is not DESIGN's, they coincide at 0 only).
+// is not ours, schatzman_paoli.hpp's; they coincide at 0 only).
 const std::vector<PeerPair> kPairs = {
     {"moreau-jean", "siconos-moreau-jean", {{"theta", "0.5"}}, {{"theta", "0.5"}}, "theta = 1/2"},
     {"moreau-jean", "siconos-moreau-jean", {{"theta", "1"}}, {{"theta", "1"}}, "theta = 1"},

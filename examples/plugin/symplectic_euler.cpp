@@ -34,6 +34,8 @@ class SymplecticEuler final : public Integrator {
   static ParamSpecs parameters_spec() { return lcp_parameter_specs(); }
 
   std::string name() const override { return "symplectic-euler"; }
+  // Explicit: stable only for h below the problem's stable step (nsbench run warns above it).
+  bool conditionally_stable() const override { return true; }
 
   void init(const Problem& problem, const State& initial) override {
     bind(problem, initial);

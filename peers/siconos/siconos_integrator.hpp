@@ -1,5 +1,5 @@
 #pragma once
-// Siconos' time-stepping schemes run as nsbench integrators: the peers of DESIGN.md section 2,
+// Siconos' time-stepping schemes run as nsbench integrators: the peers of docs/method.md section 2,
 // "Peers run side by side" (Siconos 4.4 kernel, Debian libsiconos-kernel-dev). A linear
 // Problem is handed to Siconos (siconos_model.hpp) as
 //
@@ -19,7 +19,7 @@
 //                            Siconos starts from q_{-1} = q_0, q_0 <- q_0 + h v_0 (one step ahead)
 //                            and reports v = (q_{k+1} - q_{k-1}) / 2h; impulses() = R / h.
 //                            theta = 0 is the explicit central difference (Paoli & Schatzman 2002);
-//                            theta > 0 is Siconos' own linearly implicit variant, not DESIGN's
+//                            theta > 0 is Siconos' own linearly implicit variant, not ours (schatzman_paoli.hpp)
 //                            K (theta q_{k+1} + (1 - 2 theta) q_k + theta q_{k-1}).
 //   siconos-d1-minus-linear  D1MinusLinearOSI (half-explicit, acceleration level),
 //                            TimeSteppingD1Minus with an impact LCP and a contact-force LCP

@@ -1,4 +1,4 @@
-// The 2D block sliding on a floor with Coulomb friction (DESIGN.md section 6), for every
+// The 2D block sliding on a floor with Coulomb friction (docs/method.md section 6), for every
 // registered integrator that treats friction (the others must decline with mu named):
 //   - the horizontal momentum changes by the tangential impulses only, step by step:
 //       P_x,k+1 - P_x,k = sum_i Lambda_T,i     (T rows are +1 on the x dofs, sum F_int = 0)

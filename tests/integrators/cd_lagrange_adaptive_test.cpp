@@ -1,4 +1,4 @@
-// cd-lagrange-adaptive: the sanity checks of DESIGN.md section 2 (free flight keeps the
+// cd-lagrange-adaptive: the sanity checks of docs/method.md section 2 (free flight keeps the
 // step; zero net force keeps momentum for any step sequence), the discrete energy balance
 // on the steps where the energy equation has a root, and the CFL bound.
 #include <catch2/catch.hpp>

@@ -95,7 +95,7 @@ TEST_CASE("Coulomb local solve: decoupled, the closed form; mu = 0, the friction
 TEST_CASE("Coulomb impulses never add energy: kinetic change Lambda.(q + W Lambda / 2) <= 0 for e = 0",
           "[integrators][coulomb][friction]") {
   // With e = 0 and a fixed obstacle, q is the free local velocity and the impulse changes the
-  // kinetic energy by Lambda.(v- + v+)/2 = Lambda.q + Lambda.W Lambda / 2 (DESIGN.md section 6).
+  // kinetic energy by Lambda.(v- + v+)/2 = Lambda.q + Lambda.W Lambda / 2 (docs/method.md section 6).
   std::mt19937_64 rng(7);
   for (int k = 0; k < 20000; ++k) {
     const Local c = random_local(rng, true);

@@ -1,4 +1,4 @@
-// Every registered integrator on the frictional problems with exact solutions (DESIGN.md
+// Every registered integrator on the frictional problems with exact solutions (docs/method.md
 // section 6): a scheme that treats friction must stop the sliding mass within O(dt) of the
 // exact stop time and then hold it (no creep: a complementarity law sticks exactly), bring
 // the rolling disk to rolling within O(dt) of the onset time at the exact final speed, and

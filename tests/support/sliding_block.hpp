@@ -1,6 +1,6 @@
 #pragma once
 // The 2D block sliding on the floor with Coulomb friction (vx = 2, tilt 0, height 0.01,
-// 6 x 3), and the per-step checks of DESIGN.md section 6 that every friction scheme must
+// 6 x 3), and the per-step checks of docs/method.md section 6 that every friction scheme must
 // pass on it (tests/integrators/block_friction_test.cpp for all of them; the penalty
 // schemes' own tests at their mu):
 //   identity  |P_x,k+1 - P_x,k - sum_i Lambda_T,i|   (T rows +1 on the x dofs, sum F_int = 0)
