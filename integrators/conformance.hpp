@@ -91,7 +91,7 @@ std::vector<Verdict> check_integrator(const IntegratorEntry& entry);
 // A problem's contract (problems/problem.hpp): built with its defaults; contacts whose shapes
 // agree, initially open or touching; a symmetric mass with a non-negative diagonal;
 // F_int = dV_int/du (central difference of strain_energy along a fixed direction);
-// a finite, positive stable_step(); bad parameters refused.
+// a positive stable_step() (inf without stiffness); bad parameters refused.
 std::vector<Verdict> check_problem(const ProblemEntry& entry);
 
 }  // namespace nsb
