@@ -169,7 +169,8 @@ TEST_CASE("impulse-contact: the LCP path (H not diagonal) agrees with the closed
     v_prev << 1.0, 0.2, 0.1, -0.3;
     v = v_prev + nsb::Vec::Constant(4, 0.01);
     const nsb::Vec v_free = v;
-    impulses.apply(u, v_prev, v, lambda, tangential, info, work);
+    // 1: the general path (the diagonal one returns 0), its LCP diagonal, solved in one pass.
+    CHECK(impulses.apply(u, v_prev, v, lambda, tangential, info, work) == 1);
     const double h = 2.0;  // (L M^{-1} L^T)_ii
     const auto closed_form = [&](int a, int b) {
       return std::max(0.0, -((v_free[b] - v_free[a]) + 0.5 * (v_prev[b] - v_prev[a])) / h);
