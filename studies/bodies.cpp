@@ -40,6 +40,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
