@@ -8,7 +8,7 @@
 //     u = 0, u_t = 0 (bar at rest);  X(0) = 0, X'(0) = v0 (the mass touches the free end x = 0
 //     at t = 0, moving towards the clamp, +x)
 //
-// Parameters: M (default 1 = the bar's mass), v0 > 0, L, E, rho, A (defaults 1: c = 1), N
+// Parameters: M (default 1 = the bar's mass; within [0.01, 100] rho A L), v0 > 0, L, E, rho, A (defaults 1: c = 1), N
 // (linear elements, >= 2), mass = lumped | consistent | singular.
 //
 // Exact solution (derived here; it is the classical one). Z = A rho c, theta = M / Z,
@@ -44,6 +44,7 @@
 // second interval); the tests also take M = 4 rho A L (alpha = 1/4, several reflections) and
 // M = rho A L / 4 (alpha = 4).
 // Momentum: M v0 = M V(t) + int_0^t F; energy M v0^2 / 2 = kinetic + strain at all times.
+// No exact field in the bar is provided (exact_state: none); the observables carry F and V.
 //
 // Discretisation (problems/bar_elements.hpp): nodes x_i = i h, h = L/N; dofs 0..N-1 are the
 // bar's nodes 0..N-1 (node N is clamped and removed), dof N is X. Contact row: +1 on dof 0,

@@ -184,4 +184,15 @@ TEST_CASE("mass on bar: operators, contact row on both bodies, registry and bad 
   CHECK_THROWS_AS(nsb::make_problem("mass-on-bar", {{"M", "0"}}), nsb::InputError);
   CHECK_THROWS_AS(nsb::make_problem("mass-on-bar", {{"N", "1"}}), nsb::InputError);
   CHECK_THROWS_AS(nsb::make_problem("mass-on-bar", {{"v0", "-1"}}), nsb::InputError);
+  // M within [0.01, 100] bar masses (the exact sweep's range); the ends work.
+  CHECK_NOTHROW(nsb::make_problem("mass-on-bar", {{"M", "0.01"}}));
+  CHECK_NOTHROW(nsb::make_problem("mass-on-bar", {{"M", "100"}, {"L", "1"}}));
+  for (std::string M : {"0.009", "101"}) {
+    try {
+      nsb::make_problem("mass-on-bar", {{"M", M}});
+      FAIL("M = " << M << " accepted");
+    } catch (const nsb::InputError& e) {
+      CHECK(std::string(e.what()).find("M = ") != std::string::npos);
+    }
+  }
 }
