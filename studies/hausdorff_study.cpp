@@ -251,6 +251,21 @@ std::vector<Table> hausdorff_tables(const std::vector<Json>& cases, const std::v
 
 }  // namespace
 
+std::vector<HausdorffOrders> hausdorff_orders(const std::string& integrator) {
+  std::vector<Json> cases;
+  for (const auto& c : hausdorff_cases({}))
+    if (c["integrator"] == integrator) cases.push_back(c);
+  std::vector<Json> results;
+  for (const auto& c : cases) results.push_back(hausdorff_case(c));
+  const Table orders = hausdorff_tables(cases, results, {})[1];
+  std::vector<HausdorffOrders> out;
+  const auto value = [](const Cell& c) { return std::holds_alternative<double>(c) ? std::get<double>(c) : std::numeric_limits<double>::quiet_NaN(); };
+  for (const auto& row : orders.rows)
+    out.push_back({std::get<std::string>(row[0]), {value(row[2]), value(row[3]), value(row[4]), 0},
+                   {value(row[5]), value(row[6]), value(row[7]), static_cast<int>(std::get<long>(row[8]))}, std::get<std::string>(row[9])});
+  return out;
+}
+
 extern const StudyEntry hausdorff_study = {
     "hausdorff", "velocity graphs against the exact ones: max-norm error vs Hausdorff distance, orders per scheme",
     nullptr, &hausdorff_cases, &hausdorff_case, &hausdorff_tables};

@@ -5,6 +5,7 @@
 
 #include "integrators/run.hpp"
 #include "studies/hausdorff.hpp"
+#include "studies/study.hpp"
 
 namespace nsb {
 
@@ -26,5 +27,14 @@ struct GraphErrors {
 };
 GraphErrors graph_errors(const Polyline& run, const Polyline& reference, const std::function<double(double)>& reference_at,
                          double time_scale);
+
+// The study's fits for one integrator, per problem in the study's order: the problem's name and
+// the orders in dt of the max-norm error and of the Hausdorff distance (runs the 4 refinements).
+struct HausdorffOrders {
+  std::string problem;
+  OrderFit max_error, hausdorff;
+  std::string note;  // "declined", "diverged", ... or empty
+};
+std::vector<HausdorffOrders> hausdorff_orders(const std::string& integrator);
 
 }  // namespace nsb

@@ -128,3 +128,33 @@ TEST_CASE("Hausdorff: sampled_graph makes a jump vertical, at a known time or lo
     CHECK(hausdorff(g, exact) < 1e-9);
   }
 }
+
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+#include "studies/hausdorff_study.hpp"
+
+TEST_CASE("Hausdorff: order about 1 on the bouncing mass for cd-lagrange and moreau-jean, where the max norm stalls", "[hausdorff]") {
+  const auto problem = make_problem("bouncing-mass", {{"e", "0.9"}, {"h0", "1"}});
+  const double t_end = problem->impact_times(1e3).at(2) + 0.2;
+  const auto v = [](const State& s) { return s.v[0]; };
+  const Polyline exact = exact_graph(*problem, v, t_end);
+  const auto exact_at = [&](double t) { return problem->exact_state(t)->v[0]; };
+  for (const std::string name : {"cd-lagrange", "moreau-jean"}) {
+    std::vector<double> h, emax, eh;
+    for (double dt : {4e-3, 2e-3, 1e-3, 5e-4}) {
+      auto it = make_integrator(name);
+      it->init(*problem, problem->initial_state());
+      const Polyline run = run_graph(*problem, *it, dt, t_end, [](const State& s, const Vec&, double) { return s.v[0]; }, nullptr);
+      const GraphErrors e = graph_errors(run, exact, exact_at, t_end);
+      h.push_back(dt);
+      emax.push_back(e.max_error);
+      eh.push_back(e.hausdorff);
+    }
+    INFO(name);
+    const OrderFit fh = fit_order(h, eh), fm = fit_order(h, emax);
+    CHECK(fh.order > 0.6);
+    CHECK(fh.order < 1.4);
+    CHECK(std::abs(fm.order) < 0.2);  // a jump a step late is an O(1) max-norm error at any step
+    CHECK(emax.back() > 0.3);
+  }
+}
