@@ -13,6 +13,8 @@ extern const StudyEntry peers_study;
 extern const StudyEntry bouncing_bar_study;
 extern const StudyEntry friction_study;
 extern const StudyEntry bodies_study;
+extern const StudyEntry hausdorff_study;
+extern const StudyEntry claims_study;
 
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
@@ -27,6 +29,8 @@ const std::vector<StudyEntry>& study_registry() {
       bouncing_bar_study,
       friction_study,
       bodies_study,
+      hausdorff_study,
+      claims_study,
   };
   return entries;
 }

@@ -14,6 +14,11 @@
 //                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
 //                balances momentum exactly when the internal forces sum to zero.
 //   penetration  max over the steps of max(0, -g).
+//   hausdorff    H(run, ref) between the graphs {(t, o)} of an observable (the run's samples;
+//                the exact solution with its jumps as vertical segments, or the reference run's
+//                samples), in scaled coordinates (t / time_scale, o / value_scale), by default
+//                time_scale = t_end and value_scale = the reference's largest |o|
+//                (studies/hausdorff.hpp).
 #include "studies/study_file.hpp"
 
 #include <fmt/format.h>
@@ -25,6 +30,7 @@
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "reference/cache.hpp"
+#include "studies/hausdorff_study.hpp"
 #include "studies/ranking.hpp"
 
 namespace nsb {
@@ -105,6 +111,17 @@ class Reference {
     return (1 - w) * s.at(lo, col) + w * s.at(hi, col);
   }
   Vec u(double t) const { return problem_.exact_state(t)->u; }
+  // The reference's graph of an observable on [0, t_end].
+  Polyline graph(const std::string& name, double t_end, std::span<double> buffer) const {
+    if (exact_) {
+      const Vec none = Vec::Zero(problem_.ncontacts());
+      return exact_graph(problem_, [&](const State& s) { return state_observable(problem_, M_, s, none, 0.0, name, buffer, nullptr); }, t_end);
+    }
+    Polyline g;
+    const std::size_t col = run_.series.column(name);
+    for (std::size_t k = 0; k < run_.series.rows(); ++k) g.add(run_.series.at(k, t_), run_.series.at(k, col));
+    return g;
+  }
 
  private:
   const Problem& problem_;
@@ -120,6 +137,7 @@ struct Accumulator {
   double st = 0, se = 0, stt = 0, ste = 0, n = 0;  // drift fit
   std::vector<double> impacts;
   bool in_contact = false;
+  Polyline graph;  // Hausdorff: the run's samples
 };
 
 Json run_file_case(const StudySpec& spec, const Json& c) {
@@ -148,6 +166,12 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const Vec mass_row = M.transpose() * ones, gap_row = problem->gap_operator() * ones;
   Vec f_ext(problem->ndof());
   const double p0 = mass_row.dot(integrator->state().v);
+  for (std::size_t m = 0; m < spec.measures.size(); ++m)
+    if (spec.measures[m].kind == MeasureKind::Hausdorff) {
+      const Energy energy = integrator->energy();
+      const State& s = integrator->state();
+      acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0, spec.measures[m].observable, obs, &energy));
+    }
   const double e0 = integrator->energy().total();
   double impulse_sum = 0.0, t_prev = 0.0;
   IntervalMax history(spec.t_end, kHistoryIntervals, 1);
@@ -174,6 +198,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
           e = std::abs(value - ref);
           a.scale = std::max(a.scale, std::abs(ref));
         }
+      } else if (fm.kind == MeasureKind::Hausdorff) {
+        const Energy energy = it.energy();
+        a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy));
       } else if (fm.kind == MeasureKind::Energy) {
         e = (it.energy().total() - e0) / std::abs(e0);
         a.st += s.t, a.se += e, a.stt += s.t * s.t, a.ste += s.t * e, a.n += 1;
@@ -233,6 +260,15 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       }
       case MeasureKind::Momentum: v = a.largest / scale; break;
       case MeasureKind::Penetration: v = r.max_penetration; break;
+      case MeasureKind::Hausdorff: {
+        const Polyline ref = reference.graph(fm.observable, spec.t_end, obs_ref);
+        double largest = 0.0;
+        for (double x : ref.x) largest = std::max(largest, std::abs(x));
+        const double T = fm.time_scale > 0.0 ? fm.time_scale : spec.t_end;
+        const double V = fm.value_scale > 0.0 ? fm.value_scale : largest > 0.0 ? largest : 1.0;
+        v = hausdorff(scaled(a.graph, T, V), scaled(ref, T, V));
+        break;
+      }
     }
     values.push_back(real(v));
   }
@@ -265,6 +301,12 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                           "over the run; an impact time is the end of the step holding the impact (resolution: the step, for "
                           "event-driven the output step dt). Diverged, over-budget and declined runs are rows with their reason.",
                           against, cpu);
+  for (const auto& m : spec.measures)
+    if (m.kind == MeasureKind::Hausdorff)
+      t.caption += fmt::format(" {}: Hausdorff distance between the graphs of {} (jumps of the exact solution as vertical segments) "
+                               "in scaled coordinates (t / {}, value / {}).", m.label, m.observable,
+                               m.time_scale > 0.0 ? fmt::format("{:g} s", m.time_scale) : "t_end",
+                               m.value_scale > 0.0 ? fmt::format("{:g}", m.value_scale) : "the reference's largest |value|");
   t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
                {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
   for (const auto& m : spec.measures)
@@ -298,7 +340,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                  {spec.name + "_work_precision_evals", spec.title + ": " + primary->label + " against F_int evaluations", "F_int evals", primary->label, {"integrator"}, {"problem"}, true, true}};
   }
   for (const auto& m : spec.measures)
-    if (m.kind == MeasureKind::Error || m.kind == MeasureKind::ImpactTime)
+    if (m.kind == MeasureKind::Error || m.kind == MeasureKind::ImpactTime || m.kind == MeasureKind::Hausdorff)
       t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
                            "dt", m.label, {"integrator"}, {"problem"}, true, true});
 
@@ -336,10 +378,11 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     }
     ranking[pi].curves.push_back(curve);
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
-      if (spec.measures[m].kind != MeasureKind::Error && spec.measures[m].kind != MeasureKind::ImpactTime) continue;
+      const MeasureKind kind = spec.measures[m].kind;
+      if (kind != MeasureKind::Error && kind != MeasureKind::ImpactTime && kind != MeasureKind::Hausdorff) continue;
       std::vector<double> e = ys[m];
       for (double& x : e)
-        if (spec.measures[m].kind == MeasureKind::Error && !(x > kRoundOff)) x = kNaN;
+        if (kind != MeasureKind::ImpactTime && !(x > kRoundOff)) x = kNaN;
       const OrderFit fit = fit_order(xs, e);
       orders.add_row({plabel, fi.label, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
                       number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});

@@ -224,6 +224,7 @@ std::string table_to_json_text(const Table& t) {
   j["metadata"] = t.metadata;
   j["csv_only"] = t.csv_only;
   j["headline"] = t.headline;
+  j["lead"] = t.lead;
   j["figures"] = nlohmann::json::array();
   for (const auto& f : t.figures)
     j["figures"].push_back({{"id", f.id}, {"title", f.title}, {"x", f.x}, {"y", f.y}, {"series", f.series},
@@ -246,6 +247,7 @@ Table table_from_json_text(const std::string& text) {
   t.metadata = j["metadata"].get<std::vector<std::pair<std::string, std::string>>>();
   t.csv_only = j["csv_only"];
   t.headline = j["headline"];
+  t.lead = j.value("lead", false);
   for (const auto& f : j["figures"])
     t.figures.push_back({f["id"], f["title"], f["x"], f["y"], f["series"], f["panels"], f["log_x"], f["log_y"]});
   return t;
