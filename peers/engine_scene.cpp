@@ -17,6 +17,10 @@ Scene scene_of(const Problem& problem, const State& initial, double size, const 
     if (c.tangent_velocity[i] != 0.0)
       throw InputError(fmt::format("{}: problem '{}' has an obstacle moving along contact {} (tangent_velocity w = {}); the engine's plane is fixed (valid: w = 0)",
                                    who, problem.name(), i, c.tangent_velocity[i]));
+  const std::string& name = problem.name();
+  if (name != "bouncing-mass" && name != "sliding-mass" && name != "rolling-disk")
+    throw InputError(fmt::format("{}: problem '{}' is not one of the rigid problems the engine peers run (valid: bouncing-mass, sliding-mass, "
+                                 "rolling-disk); the engines see rigid bodies, not a semi-discrete continuum", who, name));
   const Params& p = problem.parameters();
   Scene s;
   s.problem = problem.name();
@@ -40,7 +44,7 @@ Scene scene_of(const Problem& problem, const State& initial, double size, const 
     s.gx = g * std::sin(alpha);
     s.gz = -g * std::cos(alpha);
     s.start = {initial.u[0], initial.u[1] + s.half_height, 0.0, initial.v[0], initial.v[1], 0.0};
-  } else if (s.problem == "rolling-disk") {
+  } else {
     s.kappa = p.real("kappa");
     s.radius = p.real("R");
     s.moves_x = s.rotates = true;
@@ -55,9 +59,6 @@ Scene scene_of(const Problem& problem, const State& initial, double size, const 
     }
     s.gz = -g;
     s.start = {initial.u[0], initial.u[1] + s.radius, -initial.u[2], initial.v[0], initial.v[1], -initial.v[2]};
-  } else {
-    throw InputError(fmt::format("{}: problem '{}' is not one of the rigid problems the engine peers run (valid: bouncing-mass, sliding-mass, "
-                                 "rolling-disk); the engines see rigid bodies, not a semi-discrete continuum", who, problem.name()));
   }
   return s;
 }
