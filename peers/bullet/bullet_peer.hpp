@@ -5,8 +5,10 @@
 // and Bullet's own contact model.
 //
 // Model. One btRigidBody (btSphereShape, btBoxShape or btCylinderShape along y) over a
-// btStaticPlaneShape z = 0. Each step: collision detection (contact points closer than the
-// contact breaking threshold, speculative ones included), then the sequential-impulse solver
+// btStaticPlaneShape z = 0. Each step: collision detection, the points at distance <= 0
+// (contact processing threshold 0: Bullet's speculative points, found ahead within the
+// breaking threshold, aim at a rebound of e |v| - d / dt and at small steps take all of it:
+// e = 1 came to rest at dt = 1e-4 with them), then the sequential-impulse solver
 // (projected Gauss-Seidel, `iterations` sweeps) on the velocities, per contact point
 //     normal:   0 <= P_N,  target normal velocity  e_c max(-v_N(-), 0)  (restitution)
 //     friction: two directions (SOLVER_USE_2_FRICTION_DIRECTIONS), each |P_T,i| <= mu_c P_N
