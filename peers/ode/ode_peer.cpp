@@ -37,6 +37,7 @@ struct OdePeer::World {
   dGeomID plane = nullptr, geom = nullptr;
   dBodyID body = nullptr;
   dJointGroupID contacts = nullptr;
+  dThreadingImplementationID threading = nullptr;
   dSurfaceParameters surface{};
   std::array<dJointFeedback, kMaxContacts> feedback{};
   double angle = 0.0;  // the disk's unwrapped angle about y
@@ -45,6 +46,7 @@ struct OdePeer::World {
     if (contacts) dJointGroupDestroy(contacts);
     if (space) dSpaceDestroy(space);  // and its geoms
     if (world) dWorldDestroy(world);  // and its body
+    if (threading) dThreadingFreeImplementation(threading);
   }
 };
 
@@ -66,6 +68,11 @@ void OdePeer::build(const engines::Scene& s) {
   ode_thread_init();
   auto w = std::make_unique<World>();
   w->world = dWorldCreate();
+  // A world steps through ODE's shared default threading object unless given its own, and two
+  // worlds stepped at once on two threads then trip its assertion (threading_fake_sync.h):
+  // each world gets its own single-threaded one.
+  w->threading = dThreadingAllocateSelfThreadedImplementation();
+  dWorldSetStepThreadingImplementation(w->world, dThreadingImplementationGetFunctions(w->threading), w->threading);
   dWorldSetGravity(w->world, s.gx, 0, s.gz);
   dWorldSetAutoDisableFlag(w->world, 0);
   w->space = dSimpleSpaceCreate(nullptr);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <thread>
 
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
@@ -129,22 +130,31 @@ TEST_CASE("engine peers: the sliding box stops; its creep is finite, bounded and
   }
 }
 
-TEST_CASE("engine peers: two identical runs are bit-identical", "[peers][engines]") {
+TEST_CASE("engine peers: two identical runs are bit-identical, alone or two at once on two threads", "[peers][engines][threads]") {
   const auto disk = nsb::make_problem("rolling-disk", {{"kappa", "0.4"}, {"h0", "0.1"}, {"omega0", "20"}, {"v0", "0"}, {"e", "0.5"}});
   for (const std::string engine : kEngines) {
     if (!built(engine)) continue;
     SECTION(engine) {
+      using Result = std::pair<nsb::State, double>;
       const auto run = [&] {
         auto integ = nsb::make_integrator(engine);
         integ->init(*disk, disk->initial_state());
-        for (int k = 0; k < 500; ++k) integ->step(1e-3);
-        return std::pair{integ->state(), integ->tangential_impulses()[0]};
+        for (int k = 0; k < 2000; ++k) integ->step(1e-3);
+        return Result{integ->state(), integ->tangential_impulses()[0]};
       };
-      const auto a = run(), b = run();
-      CHECK(a.first.u == b.first.u);
-      CHECK(a.first.v == b.first.v);
-      CHECK(a.second == b.second);
+      const Result a = run(), b = run();
+      Result c, d;
+      {
+        std::thread t1([&] { c = run(); }), t2([&] { d = run(); });
+        t1.join();
+        t2.join();
+      }
       CHECK(a.first.u.allFinite());
+      for (const Result* r : std::initializer_list<const Result*>{&b, &c, &d}) {
+        CHECK(r->first.u == a.first.u);
+        CHECK(r->first.v == a.first.v);
+        CHECK(r->second == a.second);
+      }
     }
   }
 }
