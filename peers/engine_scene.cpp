@@ -18,6 +18,9 @@ Scene scene_of(const Problem& problem, const State& initial, double size, const 
       throw InputError(fmt::format("{}: problem '{}' has an obstacle moving along contact {} (tangent_velocity w = {}); the engine's plane is fixed (valid: w = 0)",
                                    who, problem.name(), i, c.tangent_velocity[i]));
   const std::string& name = problem.name();
+  if (name == "ball-chain")
+    throw InputError(fmt::format("{}: problem 'ball-chain' is declined: its contacts are between bodies, and the engine peers map a single body "
+                                 "on a fixed plane only (bouncing-mass, sliding-mass, rolling-disk)", who));
   if (name != "bouncing-mass" && name != "sliding-mass" && name != "rolling-disk")
     throw InputError(fmt::format("{}: problem '{}' is not one of the rigid problems the engine peers run (valid: bouncing-mass, sliding-mass, "
                                  "rolling-disk); the engines see rigid bodies, not a semi-discrete continuum", who, name));

@@ -15,7 +15,8 @@
 //                  slip x' + R theta' is the engine's x' - R omega_y.
 //
 // Every other problem is declined (InputError naming the problem): the engines see rigid
-// bodies, not a semi-discrete continuum. A rolling-disk whose kappa is not a shape's (2/5,
+// bodies, not a semi-discrete continuum; ball-chain (spheres in a row, contacts between
+// bodies) is not mapped yet: one body on a fixed plane is. A rolling-disk whose kappa is not a shape's (2/5,
 // 1/2) is declined naming kappa; an obstacle moving along the contact (w != 0) naming w.
 //
 // Impulses: the engine reports the contact's normal impulse (>= 0) and the world-x component
