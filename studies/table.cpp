@@ -9,6 +9,7 @@
 #include "core/environment.hpp"
 #include "core/output.hpp"
 #include "core/plugin.hpp"
+#include "integrators/registry.hpp"  // peer_versions()
 
 #include <nlohmann/json.hpp>
 
@@ -33,6 +34,7 @@ std::vector<std::pair<std::string, std::string>> stamp(const Table& t) {
   const Environment& env = environment();
   s.emplace_back("machine", fmt::format("{}, {} cores", env.cpu, env.cores));
   s.emplace_back("libraries", env.libraries);
+  s.emplace_back("peers", peer_versions());
   if (!command_line().empty()) s.emplace_back("command", command_line());
   if (const std::string plugins = plugins_stamp(); !plugins.empty()) s.emplace_back("plugins", plugins);
   return s;
