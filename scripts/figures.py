@@ -275,6 +275,11 @@ def draw(spec, reports, paper=False):
         ax.set_xscale("log" if spec["log_x"] else "linear")
         if linthresh:
             ax.set_yscale("symlog", linthresh=linthresh, linscale=1.0)
+            # At most about six labelled decades a side: every 10th, 100th... power past that.
+            top = max(abs(y) for lines_ in panels.values() for line_ in lines_.values() for _, y in line_["pts"]
+                      if not math.isnan(y))
+            step = 10 ** max(1, math.ceil(math.log10(top / linthresh) / 6))
+            ax.yaxis.set_major_locator(ticker.SymmetricalLogLocator(linthresh=linthresh, base=step))
         else:
             ax.set_yscale("log" if spec["log_y"] else "linear")
         if drawn and spec["log_x"] and not multiples:
