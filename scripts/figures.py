@@ -120,7 +120,7 @@ def line_styles(spec, rows):
     for row in rows:
         values = row_values(row, series)
         style = scheme_style(values[k])
-        if len(others) > 1 and style["kind"] != "reference":
+        if len(others) > 1:  # a reference's mass models too: lumped, consistent, singular told apart
             style = {**style, "linestyle": DASHES[others.index(tuple(v for j, v in enumerate(values) if j != k)) % len(DASHES)]}
         styles[label(row, series)] = style
     return styles
