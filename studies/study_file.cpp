@@ -19,6 +19,10 @@
 //                samples), in scaled coordinates (t / time_scale, o / value_scale), by default
 //                time_scale = t_end and value_scale = the reference's largest |o|
 //                (studies/hausdorff.hpp).
+// Status: ok, diverged, over budget, n/a (declined), or energy blow-up: the scheme's energy
+// left E0 by more than kEnergyBlowUp |E0| at some step (no dissipation gets there: it loses at
+// most E0); the row keeps its values, the ranking leaves it out. A per-problem override of an
+// integrator's parameters shows in its rows' integrator cell, "label [key=value]".
 #include "studies/study_file.hpp"
 
 #include <fmt/format.h>
@@ -39,8 +43,16 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kHistoryIntervals = 200;
-// Errors below this are round-off: left out of the order fits (as in the precision study).
-constexpr double kRoundOff = 1e-11;
+constexpr double kEnergyBlowUp = 2.0;  // max |E - E0| / |E0| beyond which a run is not valid
+
+// The integrator's label, with the parameters a problem's override changed.
+std::string shown_label(const FileIntegrator& fi, const std::string& problem_label) {
+  std::vector<std::string> changed;
+  for (const auto& [key, value] : fi.sweep_for(problem_label).parameters)
+    if (const auto it = fi.sweep.parameters.find(key); it == fi.sweep.parameters.end() || it->second != value)
+      changed.push_back(key + "=" + value);
+  return changed.empty() ? fi.label : fmt::format("{} [{}]", fi.label, fmt::join(changed, ", "));
+}
 
 ReferenceRequest reference_request(const StudySpec& spec, const FileProblem& p) {
   const FileReference& r = spec.reference;
@@ -234,6 +246,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps},
               {"force_evaluations", r.work.force_evaluations}};
   if (r.status != RunStatus::Ok) return out;
+  if (r.max_energy_error > kEnergyBlowUp) {
+    out["status"] = "energy blow-up";
+    out["message"] = fmt::format("max |E - E0| / |E0| = {:.3g} > {}", r.max_energy_error, kEnergyBlowUp);
+  }
   if (step % spec.sample_every != 0) sample(*integrator);
   history.finish();
   Json values = Json::array();
@@ -273,7 +289,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     values.push_back(real(v));
   }
   out["values"] = values;
-  out["cpu"] = spec.cpu_repeats > 0 ? median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats) : r.cpu_seconds;
+  out["cpu"] = spec.cpu_repeats > 0 ? median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats) : r.step_cpu_seconds;
   if (history_measure != spec.measures.end())
     out["history"] = {{"t", reals(history.times())}, {"e", reals(history.largest(0))}};
   return out;
@@ -293,7 +309,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                                                      : fmt::format("{} (dt = {}, cached)", spec.reference.integrator, spec.reference.dt);
   const std::string cpu = spec.cpu_repeats > 0
                               ? fmt::format("median thread CPU time of {} unobserved runs after a warm-up", spec.cpu_repeats)
-                              : "thread CPU time of the observed run";
+                              : "thread CPU time of the stepping of the observed run (observer excluded)";
   Table t;
   t.id = spec.name + "_work_precision";
   t.title = spec.title + ": work-precision";
@@ -313,7 +329,8 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     t.columns.push_back({m.label, m.kind == MeasureKind::ImpactTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" ? "1/s" : "",
                          "{:.3e}", ""});
   t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", "", true}, {"steps", "", "", ""},
-                                     {"F_int evals", "", "", "internal force evaluations"}, {"status", "", "", ""}});
+                                     {"F_int evals", "", "", "internal force evaluations"},
+                                     {"status", "", "", fmt::format("energy blow-up: max |E - E0| / |E0| > {} (not ranked)", kEnergyBlowUp)}});
   t.metadata = meta;
   Table orders;
   orders.id = spec.name + "_orders";
@@ -342,7 +359,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   for (const auto& m : spec.measures)
     if (m.kind == MeasureKind::Error || m.kind == MeasureKind::ImpactTime || m.kind == MeasureKind::Hausdorff)
       t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
-                           "dt", m.label, {"integrator"}, {"problem"}, true, true});
+                           "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
 
   std::vector<RankingProblem> ranking;
   for (const auto& p : spec.problems)
@@ -353,14 +370,15 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     const std::size_t pi = cases[k]["problem"], ii = cases[k]["integrator"];
     const std::string& plabel = spec.problems[pi].label;
     const FileIntegrator& fi = spec.integrators[ii];
-    WorkCurve curve{fi.label, find_integrator(fi.name).reference, {}};
+    const std::string ilabel = shown_label(fi, plabel);
+    WorkCurve curve{ilabel, find_integrator(fi.name).reference, {}};
     std::vector<double> xs;
     std::vector<std::vector<double>> ys(spec.measures.size());
     for (; k < cases.size() && cases[k]["problem"] == pi && cases[k]["integrator"] == ii; ++k) {
       const Json& r = results[k];
       const bool tol = !cases[k]["tol"].is_null();
       xs.push_back(tol ? cases[k]["tol"].get<double>() : cases[k]["dt"].get<double>());
-      std::vector<Cell> row = {plabel, fi.label, cases[k]["dt"].get<double>(), number_cell(cases[k]["tol"])};
+      std::vector<Cell> row = {plabel, ilabel, cases[k]["dt"].get<double>(), number_cell(cases[k]["tol"])};
       for (std::size_t m = 0; m < spec.measures.size(); ++m) {
         const double v = r.contains("values") ? real(r["values"][m]) : kNaN;
         ys[m].push_back(v);
@@ -370,11 +388,11 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       row.insert(row.end(), {number_cell(number(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
                              status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
       t.add_row(std::move(row));
-      if (primary != spec.measures.end() && status != "n/a")
+      if (primary != spec.measures.end() && status != "n/a" && status != "energy blow-up")
         curve.points.push_back({run_label(cases[k]), number(r, "cpu"), ys[primary - spec.measures.begin()].back()});
       if (r.contains("history"))
         for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
-          history.add_row({plabel, fi.label, run_label(cases[k]), number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
+          history.add_row({plabel, ilabel, run_label(cases[k]), number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
     }
     ranking[pi].curves.push_back(curve);
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
@@ -382,9 +400,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       if (kind != MeasureKind::Error && kind != MeasureKind::ImpactTime && kind != MeasureKind::Hausdorff) continue;
       std::vector<double> e = ys[m];
       for (double& x : e)
-        if (kind != MeasureKind::ImpactTime && !(x > kRoundOff)) x = kNaN;
+        if (kind != MeasureKind::ImpactTime) x = above_round_off(x);
       const OrderFit fit = fit_order(xs, e);
-      orders.add_row({plabel, fi.label, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
+      orders.add_row({plabel, ilabel, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
                       number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});
     }
   }

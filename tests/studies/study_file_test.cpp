@@ -212,6 +212,50 @@ TEST_CASE("study file: per-problem overrides replace the sweep and merge the par
   CHECK(s.integrators[0].sweep_for("other").steps.size() == 2);
 }
 
+TEST_CASE("study file: a per-problem override shows in the rows; an energy blow-up is no 'ok' and is not ranked",
+          "[studies][study_file]") {
+  TempCache cache;
+  // moreau-jean at theta = 1 on the spring chain only; cd-lagrange at dt = 0.2 on the chain,
+  // above its stable step 0.14: its energy grows ten times a step (1.6e6 E0 after 5 steps).
+  const std::string text = R"([study]
+title = "t"
+t_end = 1.0
+
+[[problem]]
+name = "spring-chain"
+
+[[integrator]]
+name = "moreau-jean"
+steps = [0.1, 0.05]
+[integrator.per_problem.spring-chain]
+parameters = { theta = 1 }
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [0.2, 0.01]
+
+[reference]
+integrator = "modal-exact"
+dt = 1e-3
+
+[[measure]]
+kind = "error"
+observable = "kinetic"
+
+[[measure]]
+kind = "energy"
+)";
+  const auto tables = run_all(nsb::parse_study_text(text, "o.toml", false));
+  const nsb::Table& wp = table(tables, "_work_precision");
+  const std::size_t status = column(wp, "status");
+  REQUIRE(wp.rows.size() == 4);
+  CHECK(std::get<std::string>(wp.rows[0][1]) == "moreau-jean [theta=1]");
+  CHECK(std::get<std::string>(wp.rows[0][status]) == "ok");
+  CHECK_THAT(std::get<std::string>(wp.rows[2][status]), Catch::StartsWith("energy blow-up: max |E - E0| / |E0| = "));
+  CHECK(std::get<std::string>(wp.rows[3][status]) == "ok");
+  CHECK_THAT(nsb::to_csv(table(tables, "_ranking")), !Catch::Contains("dt = 2.00e-01"));
+}
+
 TEST_CASE("study file examples: the quick bouncing-mass comparison runs (reduced)", "[studies][study_file]") {
   const nsb::StudySpec spec = nsb::reduced_study(nsb::read_study_file(kExamples / "bouncing_quick.toml"), 0.5, 3, 200000);
   std::vector<nsb::Json> results;
