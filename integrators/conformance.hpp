@@ -72,8 +72,9 @@ struct SmoothOrder {
   double error_half = 0.0, error_quarter = 0.0, order = 0.0;  // at dt/2, dt/4 of stable_step / 8
 };
 // Displacement error at the final time on the wall-free 5-mass spring chain against its
-// modal-exact solution, 64 steps of stable_step / 8 halved twice.
-SmoothOrder smooth_order(const IntegratorEntry& entry);
+// modal-exact solution, 64 steps of stable_step / 8 halved twice; nullopt when the
+// integrator declines the chain.
+std::optional<SmoothOrder> smooth_order(const IntegratorEntry& entry);
 
 // One line of `nsbench check`.
 struct Verdict {

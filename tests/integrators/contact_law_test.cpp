@@ -9,6 +9,7 @@
 #include "integrators/conformance.hpp"
 #include "integrators/registry.hpp"
 #include "problems/bouncing_mass.hpp"
+#include "tests/integrators/every_integrator.hpp"
 
 TEST_CASE("every integrator: contact law, impact times and flight energies on the bouncing mass",
           "[integrators][contact]") {
@@ -31,6 +32,8 @@ TEST_CASE("every integrator: contact law, impact times and flight energies on th
         // A compliant contact's restitution is its own (tested with the scheme), and with it
         // the later impact times; at e = 1 it must still keep the energy and the timing.
         if (!obs.accuracy.restitution_exact && e < 1.0) continue;
+        // The engines' restitution is their own even at e = 1 (nsb::testing::is_engine_peer).
+        if (nsb::testing::is_engine_peer(entry.name)) continue;
         REQUIRE(obs.impact_times.size() >= static_cast<std::size_t>(impacts));
         REQUIRE(obs.flight_energy.size() == static_cast<std::size_t>(impacts));
         // Errors over bounds (nsb::bounce_ratios): impact i lags at most lag_steps i dt, and the

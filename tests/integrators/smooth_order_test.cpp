@@ -35,14 +35,19 @@ TEST_CASE("every integrator: smooth-window order on the wall-free spring chain a
   for (const auto& entry : nsb::integrator_registry()) {
     if (entry.reference) continue;
     DYNAMIC_SECTION(entry.name) {
+      // The physics-engine peers run rigid bodies only and decline the chain (engines_test.cpp).
+      const auto s = nsb::smooth_order(entry);  // also `nsbench check`'s
+      if (!s) {
+        WARN(entry.name << " declines the spring chain");
+        continue;
+      }
       const auto expected = kExpectedOrder.find(entry.name);
       INFO("integrator " << entry.name << " has no expected smooth order: declare it in kExpectedOrder "
                          "(tests/integrators/smooth_order_test.cpp)");
       REQUIRE(expected != kExpectedOrder.end());
-      const nsb::SmoothOrder s = nsb::smooth_order(entry);  // also `nsbench check`'s
-      CAPTURE(s.error_half, s.error_quarter, s.order);
-      CHECK(s.order >= expected->second - 0.1);
-      CHECK(s.order <= expected->second + 0.5);  // not an accident of error cancellation
+      CAPTURE(s->error_half, s->error_quarter, s->order);
+      CHECK(s->order >= expected->second - 0.1);
+      CHECK(s->order <= expected->second + 0.5);  // not an accident of error cancellation
     }
   }
 }
