@@ -26,7 +26,7 @@
 //   bar 1's mean velocity at t = 3 (exact 0), contact force error in the time-L1 norm
 //   sum_k |Lambda_k/dt - F(t_k - dt/2)| dt / int F dt. mass-on-bar to its last separation
 //   plus L/c: the same force error and the mass's exit velocity |V - V_exact| / v0 at the end.
-//   Orders between consecutive meshes, errors below kRoundOff carry none.
+//   Orders between consecutive meshes, errors at round-off (kRoundOffError) carry none.
 // Each run has a budget of kStepBudget F_int evaluations per step of the requested size.
 // Ranking (studies/ranking.hpp): the cheapest integrator reaching a contact-force error (the
 // time-L1 one above) of 1e-1, 5e-2, 3e-2 (two-bars) and 3e-1, 2e-1, 1e-1 (mass-on-bar; the
@@ -59,7 +59,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr long kStepBudget = 20;
 constexpr double kLawTol = 0.05;     // [v0]: a final velocity this close to a law reproduces it
-constexpr double kRoundOff = 1e-12;  // relative errors below it carry no order
 constexpr double kGap = 0.1;         // [m]: the cradle's gap when not touching
 const std::vector<double> kBarsTargets = {1e-1, 5e-2, 3e-2}, kStrikerTargets = {3e-1, 2e-1, 1e-1};
 
@@ -397,7 +396,7 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
       "sum_k |Lambda_k - F(t_k - dt/2) dt| / int F dt (time-L1, relative). Orders: log-log slope against the previous "
       "mesh; errors below {:.0e} carry none. {}",
       1.5 * two_bars.contact_end(), two_bars.contact_end(), two_bars.contact_force_level(), striker.contact_end(),
-      kRoundOff, peers);
+      kRoundOffError, peers);
   const auto order_column = [](const std::string& of) {
     return Column{"order", "", "{:.2f}", "log-log slope of " + of + " against the previous mesh"};
   };
@@ -416,10 +415,9 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
     for (const char* key : {"duration_err", "exit_err", "force_err"}) {
       const double e = value(r, key);
       cells.push_back(number_cell(e));
-      const auto above = [](double x) { return x > kRoundOff ? x : kNaN; };
       cells.push_back(previous ? number_cell(observed_order(1.0 / cases[*previous]["knob"].get<double>(),
-                                                            above(value(results[*previous], key)),
-                                                            1.0 / cases[i]["knob"].get<double>(), above(e)))
+                                                            above_round_off(value(results[*previous], key)),
+                                                            1.0 / cases[i]["knob"].get<double>(), above_round_off(e)))
                                : Cell{});
     }
     return cells;
