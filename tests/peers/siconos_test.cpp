@@ -1,6 +1,7 @@
 // The Siconos peers (peers/siconos/): built only with NSBENCH_SICONOS (tests/CMakeLists.txt
 // reports the test as skipped otherwise).
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <map>
@@ -289,7 +290,9 @@ TEST_CASE("siconos peers: siconos-moreau-jean agrees with moreau-jean step for s
           auto problem = nsb::make_problem(c.problem, c.params);
           const Strings params = {{"theta", theta}, {"gamma", gamma}};
           const Agreement a = agreement(*problem, params, params, c.dt, c.steps);
-          CAPTURE(a.du, a.dv, a.dimpulse, a.first_ours, a.first_peer);
+          // Catch prints doubles fixed to 10 decimals: round-off would read 0.0.
+          INFO(fmt::format("du {:.2e}, dv {:.2e}, dimpulse {:.2e}, first impulse at step {} / {}", a.du, a.dv, a.dimpulse,
+                           a.first_ours, a.first_peer));
           CHECK(a.impulse > 0.0);  // the contact acted
           CHECK(a.first_ours == a.first_peer);
           CHECK(a.du <= 1e-10);
@@ -316,7 +319,8 @@ TEST_CASE("siconos peers: at theta = 1 the unset gammas (ours 0, Siconos' 1/2) a
   for (const auto& [ours, peer] : {std::pair<Strings, Strings>{{{"theta", "1"}, {"gamma", "0.5"}}, {{"theta", "1"}}},
                                    std::pair<Strings, Strings>{{{"theta", "1"}}, {{"theta", "1"}, {"gamma", "0"}}}}) {
     const Agreement a = agreement(*problem, ours, peer, 1e-3, 3000);
-    CAPTURE(a.du, a.dv, a.dimpulse, a.first_ours, a.first_peer);
+    INFO(fmt::format("du {:.2e}, dv {:.2e}, dimpulse {:.2e}, first impulse at step {} / {}", a.du, a.dv, a.dimpulse,
+                     a.first_ours, a.first_peer));
     CHECK(a.first_ours == a.first_peer);
     CHECK(a.du <= 1e-10);
     CHECK(a.dv <= 1e-10);
