@@ -80,13 +80,14 @@
 #include <memory>
 #include <vector>
 
+#include "problems/bar_elements.hpp"
 #include "problems/problem.hpp"
 
 namespace nsb {
 
 class SignoriniBar final : public Problem {
  public:
-  enum class MassModel { Lumped, Consistent, Singular };
+  using MassModel = BarMassModel;
 
   explicit SignoriniBar(const Params& params, std::string name = "signorini-bar");
   // Nondimensional defaults: L = E = rho = A = v0 = 1, g0 = 0, g = 0, N = 100, lumped.
