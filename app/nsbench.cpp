@@ -42,7 +42,8 @@ extern "C" void on_interrupt(int signal) {
 
 void print_params(const nsb::ParamSpecs& specs) {
   for (const auto& s : specs)
-    fmt::print("      {:<14} default {:<10} {:<28} {}\n", s.name, s.default_value, s.range_text(), s.description);
+    fmt::print("      {:<14} default {:<10} {:<28} {}\n", s.name, s.default_value.empty() ? "unset" : s.default_value,
+               s.range_text(), s.description);
 }
 
 void list() {

@@ -46,6 +46,12 @@ ParamSpec ParamSpec::choice(std::string name, std::string default_value,
   return s;
 }
 
+ParamSpec ParamSpec::optional_real(std::string name, double lower, double upper, std::string description) {
+  ParamSpec s = real(std::move(name), 0.0, lower, upper, std::move(description));
+  s.default_value.clear();
+  return s;
+}
+
 static std::string bound_text(double v) {
   if (v <= -1e308) return "-inf";
   if (v >= 1e308) return "inf";
@@ -117,7 +123,17 @@ const std::string& Params::text(const std::string& name) const {
   return it->second;
 }
 
-double Params::real(const std::string& name) const { return parse_real(text(name), name); }
+double Params::real(const std::string& name) const {
+  const std::string& t = text(name);
+  if (t.empty()) throw std::logic_error("unset optional parameter read with real(): " + name + " (optional_real)");
+  return parse_real(t, name);
+}
+
+std::optional<double> Params::optional_real(const std::string& name) const {
+  const std::string& t = text(name);
+  if (t.empty()) return std::nullopt;
+  return parse_real(t, name);
+}
 
 long Params::integer(const std::string& name) const {
   return static_cast<long>(parse_real(text(name), name));

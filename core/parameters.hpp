@@ -4,6 +4,7 @@
 // ("key=value" strings) is validated against that list, so a bad value fails with one
 // line that names the parameter and its valid range.
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -37,6 +38,11 @@ struct ParamSpec {
                            std::string description);
   static ParamSpec choice(std::string name, std::string default_value,
                           std::vector<std::string> choices, std::string description);
+  // A real without a default value: unset unless given (an empty default_value), for a
+  // parameter whose absence means something no constant can say (e.g. moreau-jean's gamma,
+  // 1 - theta when unset). Read with Params::optional_real; the description says what
+  // unset means.
+  static ParamSpec optional_real(std::string name, double lower, double upper, std::string description);
 
   // "[0, 1]", "(0, inf)", "{lumped, consistent}" ...
   std::string range_text() const;
@@ -53,9 +59,11 @@ class Params {
   // Applies overrides on top of the defaults; throws InputError on an unknown key or bad value.
   Params(const ParamSpecs& specs, const std::map<std::string, std::string>& overrides = {});
 
-  double real(const std::string& name) const;
+  double real(const std::string& name) const;  // a logic_error on an unset optional real
+  std::optional<double> optional_real(const std::string& name) const;  // nullopt when unset
   long integer(const std::string& name) const;
   const std::string& choice(const std::string& name) const;
+  // Every declared parameter; an unset optional real holds an empty text.
   const std::map<std::string, std::string>& values() const { return values_; }
 
  private:

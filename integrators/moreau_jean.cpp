@@ -10,6 +10,7 @@ namespace nsb {
 ParamSpecs MoreauJean::parameters_spec() {
   ParamSpecs specs = {
       ParamSpec::real("theta", 0.5, 0.5, 1.0, "theta of the theta-method"),
+      ParamSpec::optional_real("gamma", 0.0, 1.0, "contacts with g_k + gamma h g'_k <= 0 are active (unset: 1 - theta)"),
       ParamSpec::choice("projection", "none", {"none", "position"}, "position: project U_{k+1} onto g >= 0 after the step (Acary 2013)"),
   };
   const ParamSpecs lcp = lcp_parameter_specs();
@@ -18,7 +19,10 @@ ParamSpecs MoreauJean::parameters_spec() {
 }
 
 MoreauJean::MoreauJean(const Params& params)
-    : Integrator(params), theta_(params.real("theta")), project_positions_(params.choice("projection") == "position") {
+    : Integrator(params),
+      theta_(params.real("theta")),
+      gamma_(params.optional_real("gamma").value_or(1.0 - theta_)),
+      project_positions_(params.choice("projection") == "position") {
   lcp_ = lcp_options(params);
 }
 
@@ -122,7 +126,7 @@ StepInfo MoreauJean::step(double h) {
   v_next_ += state_.v;  // V_free; the impulses are added to it below
   ++work_.linear_solves;
 
-  // Active set from the predicted gap.
+  // Active set from the forecast gap.
   const Vec& g0 = problem_->gap_offset();
   const double e = problem_->restitution();
   gap_.noalias() = L_ * state_.u;
@@ -130,7 +134,7 @@ StepInfo MoreauJean::step(double h) {
   gdot_.noalias() = L_ * state_.v;
   active_.clear();
   for (Index i = 0; i < L_.rows(); ++i)
-    if (gap_[i] + h * (1.0 - theta_) * gdot_[i] <= 0.0) active_.push_back(i);
+    if (gap_[i] + h * gamma_ * gdot_[i] <= 0.0) active_.push_back(i);
 
   impulses_.setZero();
   if (friction_) {

@@ -9,12 +9,19 @@
 // F_int linearised at U_k (exact for linear problems):
 //     W (V_free - V_k) = h [theta F_ext,k+1 + (1 - theta) F_ext,k - F_int(U_k)] - h^2 theta K V_k
 //     W = M + h^2 theta^2 K      (sparse Cholesky, CHOLMOD; factorised once when K is constant)
-// Contacts with predicted gap g_k + h (1 - theta) g'_k <= 0 are active; on them the Newton
-// impact law at velocity level
+// Contacts with forecast gap g_k + gamma h g'_k <= 0 are active (Siconos'
+// MoreauJeanOSI::addInteractionInIndexSet); on them the Newton impact law at velocity level
 //     0 <= Lambda  _|_  g'_{k+1} + e g'_k >= 0,   g'_{k+1} = L V_free + D Lambda,  D = L W^{-1} L^T
 // (diagonal D: closed form; otherwise projected Gauss-Seidel to lcp_tol, see lcp.hpp), then
 //     V_{k+1} = V_free + W^{-1} L^T Lambda.
 // theta in [1/2, 1]; first order with impacts; dissipative for theta > 1/2.
+// gamma in [0, 1], unset: 1 - theta, the weight of the known V_k in the position update
+// U_{k+1} = U_k + h [theta V_{k+1} + (1 - theta) V_k], i.e. the gap the step would reach
+// without V_{k+1}'s share. Siconos' MoreauJeanOSI(theta, gamma) takes gamma = 1/2 when
+// unset, whatever theta: at theta = 1 the unset values differ (0 here), and the two schemes
+// activate contacts a step apart; with the same gamma they agree to round-off
+// (tests/peers/siconos_test.cpp). gamma = 0: a contact acts only once g_k <= 0, i.e. once
+// penetrated; a larger gamma forecasts further ahead.
 // Coulomb friction (docs/method.md section 6; Jean 1999): on the active contacts the 2D
 // Moreau–Coulomb law with the local velocities U_N = g'_{k+1} + e g'_k, U_T = T V_{k+1} - w
 // and the Delassus matrix of the interleaved rows [L_i; T_i] W^{-1} [L_j; T_j]^T, solved by
@@ -85,6 +92,7 @@ class MoreauJean final : public Integrator {
   LcpResult solve_with_friction();  // on active_, b = e g'_k (restitution_rate_)
 
   double theta_;
+  double gamma_;  // activation forecast weight
   bool project_positions_;
   LcpOptions lcp_;
   SpMat K_;

@@ -208,9 +208,10 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
   const auto params = [](const Params& p) {
     json j = json::object();
     for (const auto& [k, v] : p.values()) {
+      if (v.empty()) continue;  // an unset optional parameter
       char* end = nullptr;
       const double x = std::strtod(v.c_str(), &end);
-      if (end != v.c_str() + v.size() || v.empty())
+      if (end != v.c_str() + v.size())
         j[k] = v;
       else if (x == std::floor(x) && std::abs(x) < 1e15)
         j[k] = static_cast<long long>(x);

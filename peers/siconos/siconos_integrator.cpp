@@ -39,8 +39,10 @@ std::vector<double> to_std(const Vec& x) { return {x.data(), x.data() + x.size()
 
 ParamSpecs SiconosIntegrator::parameters_spec(siconos::Scheme scheme) {
   ParamSpecs specs;
-  if (scheme == siconos::Scheme::MoreauJean)
+  if (scheme == siconos::Scheme::MoreauJean) {
     specs.push_back(ParamSpec::real("theta", 0.5, 0.5, 1.0, "theta of MoreauJeanOSI"));
+    specs.push_back(ParamSpec::real("gamma", 0.5, 0.0, 1.0, "MoreauJeanOSI's activation forecast: contacts with y_k + gamma h y'_k <= 0 are active (Siconos' default 1/2)"));
+  }
   if (scheme == siconos::Scheme::SchatzmanPaoli)
     specs.push_back(ParamSpec::real("theta", 0.0, 0.0, 1.0, "theta of SchatzmanPaoliOSI (W = M + h^2 theta^2 K; 0: explicit)"));
   specs.push_back(ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "tolerance of Siconos' Lemke LCP solver", true));
@@ -101,6 +103,7 @@ void SiconosIntegrator::build(double h) {
   siconos::ModelSpec spec;
   spec.scheme = scheme_;
   if (scheme_ != siconos::Scheme::D1MinusLinear) spec.theta = params_.real("theta");
+  if (scheme_ == siconos::Scheme::MoreauJean) spec.gamma = params_.real("gamma");
   spec.lcp_tol = params_.real("lcp_tol");
   const Contacts& contacts = problem.contacts();
   if (contacts.has_friction()) {
@@ -152,7 +155,7 @@ StepInfo SiconosIntegrator::step(double h) {
   return info;
 }
 
-NSBENCH_INTEGRATOR({"siconos-moreau-jean", "peer: Siconos MoreauJeanOSI(theta), TimeStepping, Lemke LCP, or 2D NSGS FrictionContact with friction (linear problems)", &SiconosPeer<siconos::Scheme::MoreauJean>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::MoreauJean>>, false, true});
+NSBENCH_INTEGRATOR({"siconos-moreau-jean", "peer: Siconos MoreauJeanOSI(theta, gamma), TimeStepping, Lemke LCP, or 2D NSGS FrictionContact with friction (linear problems)", &SiconosPeer<siconos::Scheme::MoreauJean>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::MoreauJean>>, false, true});
 NSBENCH_INTEGRATOR({"siconos-schatzman-paoli", "peer: Siconos SchatzmanPaoliOSI(theta), TimeStepping, position-level Lemke LCP (linear problems)", &SiconosPeer<siconos::Scheme::SchatzmanPaoli>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::SchatzmanPaoli>>, false, true});
 NSBENCH_INTEGRATOR({"siconos-d1-minus-linear", "peer: Siconos D1MinusLinearOSI, TimeSteppingD1Minus, impact and contact-force Lemke LCPs (linear problems)", &SiconosPeer<siconos::Scheme::D1MinusLinear>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::D1MinusLinear>>, false, true});
 

@@ -9,10 +9,13 @@
 //     LCP one-step NS problem   Lemke pivoting (SICONOS_LCP_LEMKE), tolerance `lcp_tol`
 //
 // with one of Siconos' one-step integrators:
-//   siconos-moreau-jean      MoreauJeanOSI(theta), TimeStepping; velocity-level LCP on the
-//                            contacts with y_k + gamma h y'_k <= 0 (Siconos: gamma = 1/2 when
-//                            unset); impulses() = lambda(1), the impulse of the step, and
-//                            tangential_impulses() its tangential component with friction
+//   siconos-moreau-jean      MoreauJeanOSI(theta, gamma), TimeStepping; velocity-level LCP on
+//                            the contacts with y_k + gamma h y'_k <= 0 (MoreauJeanOSI::
+//                            addInteractionInIndexSet). gamma defaults to 1/2, Siconos' own
+//                            value when none is given: the same bits (without gamma its
+//                            _useGamma only picks a literal 1/2 instead). impulses() =
+//                            lambda(1), the impulse of the step, and tangential_impulses()
+//                            its tangential component with friction
 //   siconos-schatzman-paoli  SchatzmanPaoliOSI(theta), TimeStepping; position-level LCP
 //                              W (q_{k+1} - q_k) = M (q_k - q_{k-1}) + h^2 (F_ext - K q_k) + L^T R,
 //                              W = M + h^2 theta^2 K,  0 <= R _|_ g0 + L q_{k+1} + e (g0 + L q_{k-1}) >= 0;

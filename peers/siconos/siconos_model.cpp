@@ -109,7 +109,7 @@ Model::Model(const ModelSpec& spec) : impl_(std::make_unique<Impl>()) {
       case Scheme::MoreauJean: {
         if (friction) m.friction = nsgs_2d(spec.friction_tol, spec.friction_max_iter);
         SP::OneStepNSProblem osnsp = m.friction ? SP::OneStepNSProblem(m.friction) : lemke(spec.lcp_tol);
-        m.time_stepping = std::make_shared<TimeStepping>(m.nsds, td, std::make_shared<MoreauJeanOSI>(spec.theta), osnsp);
+        m.time_stepping = std::make_shared<TimeStepping>(m.nsds, td, std::make_shared<MoreauJeanOSI>(spec.theta, spec.gamma), osnsp);
         m.time_stepping->initialize();
         break;
       }

@@ -12,6 +12,7 @@ enum class Scheme { MoreauJean, SchatzmanPaoli, D1MinusLinear };
 struct ModelSpec {
   Scheme scheme = Scheme::MoreauJean;
   double theta = 0.5;       // MoreauJeanOSI, SchatzmanPaoliOSI
+  double gamma = 0.5;       // MoreauJeanOSI's activation forecast y_k + gamma h y'_k <= 0
   double lcp_tol = 1e-12;   // Lemke's tolerance (frictionless contacts)
   double friction_tol = 1e-12;    // the 2D NSGS friction solver's tolerance (MoreauJean with friction)
   int friction_max_iter = 1000;   // and its cap on Gauss-Seidel sweeps

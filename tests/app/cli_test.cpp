@@ -38,6 +38,8 @@ TEST_CASE("cli: list shows every problem and integrator with parameters", "[app]
   CHECK(r.code == 0);
   CHECK_THAT(r.output, Catch::Contains("bouncing-mass") && Catch::Contains("cd-lagrange") &&
                            Catch::Contains("moreau-jean") && Catch::Contains("theta"));
+  // An optional parameter (moreau-jean's gamma) is listed as unset.
+  CHECK_THAT(r.output, Catch::Contains("gamma          default unset      [0, 1]"));
 }
 
 TEST_CASE("cli: bad input exits 2 with a message naming the parameter and its range", "[app][bad-input]") {
@@ -52,6 +54,8 @@ TEST_CASE("cli: bad input exits 2 with a message naming the parameter and its ra
       {kRun + "--dt 1e-3 --set bogus=1" + out, "unknown parameter 'bogus'"},
       {"run --problem bouncing-mass --integrator moreau-jean --t-end 1 --dt 1e-3 --set theta=0.3" + out,
        "parameter 'theta' = 0.3 is outside its valid range [0.5, 1]"},
+      {"run --problem bouncing-mass --integrator moreau-jean --t-end 1 --dt 1e-3 --set gamma=1.5" + out,
+       "parameter 'gamma' = 1.5 is outside its valid range [0, 1]"},
       {"run --problem nope --integrator cd-lagrange --t-end 1 --dt 1e-3" + out, "unknown problem (nearest: "},
       {"run --problem bouncing-mass --integrator nope --t-end 1 --dt 1e-3" + out, "unknown integrator (nearest: "},
       {"run --problem bouncing-mass --integrator cd-lagrange --dt 1e-3 --t-end -2" + out, "--t-end -2: must be > 0"},

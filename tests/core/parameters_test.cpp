@@ -55,3 +55,18 @@ TEST_CASE("parameters: --set items are routed to the problem or the integrator",
   CHECK_THROWS_WITH(nsb::route_overrides({"foo=1"}, specs, integ), Catch::Contains("unknown parameter 'foo'"));
   CHECK_THROWS_WITH(nsb::route_overrides({"novalue"}, specs, integ), Catch::Contains("expected key=value"));
 }
+
+TEST_CASE("parameters: an optional real is unset unless given, and range-checked when given", "[core]") {
+  const nsb::ParamSpecs with_optional = {ParamSpec::real("theta", 0.5, 0.5, 1.0, "theta"),
+                                         ParamSpec::optional_real("gamma", 0.0, 1.0, "unset: 1 - theta")};
+  CHECK(with_optional[1].default_value.empty());
+  const Params unset(with_optional);
+  CHECK_FALSE(unset.optional_real("gamma").has_value());
+  CHECK(unset.values().at("gamma").empty());
+  CHECK_THROWS_AS(unset.real("gamma"), std::logic_error);  // a programming error, not bad input
+  const Params given(with_optional, {{"gamma", "0"}});
+  CHECK(given.optional_real("gamma") == 0.0);
+  CHECK(given.real("gamma") == 0.0);
+  CHECK_THROWS_WITH(Params(with_optional, {{"gamma", "1.5"}}), "parameter 'gamma' = 1.5 is outside its valid range [0, 1]");
+  CHECK_THROWS_WITH(Params(with_optional, {{"gamma", ""}}), "parameter 'gamma' = '' is not a finite number; valid: [0, 1]");
+}

@@ -1,6 +1,7 @@
 // The Siconos peers (peers/siconos/): built only with NSBENCH_SICONOS (tests/CMakeLists.txt
 // reports the test as skipped otherwise).
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <map>
@@ -46,17 +47,21 @@ class OnBelt final : public nsb::Problem {
   nsb::Contacts contacts_;
 };
 
+using Strings = std::map<std::string, std::string>;
+
 struct Agreement {
   double du = 0.0, dv = 0.0;  // max over the run of the max-norm differences, over ours' largest |u|, |v| (if > 0)
   double dimpulse = 0.0;      // normal and tangential impulses' differences, over ours' largest impulse
+  double impulse = 0.0;       // sum of ours' normal impulses: a contact did act
   double slip_impulse = 0.0;  // sum of ours' |Lambda_T|: friction did act
   double v_end = 0.0;         // ours' max |v| at the end
+  int first_ours = -1, first_peer = -1;  // the first step with a normal impulse, each
 };
 
-// siconos-moreau-jean against moreau-jean in lockstep (same theta).
-Agreement agreement(const nsb::Problem& problem, const std::string& theta, double dt, int steps) {
-  auto ours = nsb::make_integrator("moreau-jean", {{"theta", theta}});
-  auto peer = nsb::make_integrator("siconos-moreau-jean", {{"theta", theta}});
+// siconos-moreau-jean against moreau-jean in lockstep.
+Agreement agreement(const nsb::Problem& problem, const Strings& ours_params, const Strings& peer_params, double dt, int steps) {
+  auto ours = nsb::make_integrator("moreau-jean", ours_params);
+  auto peer = nsb::make_integrator("siconos-moreau-jean", peer_params);
   ours->init(problem, problem.initial_state());
   peer->init(problem, problem.initial_state());
   Agreement a;
@@ -74,7 +79,10 @@ Agreement agreement(const nsb::Problem& problem, const std::string& theta, doubl
                          (ours->tangential_impulses() - peer->tangential_impulses()).lpNorm<Eigen::Infinity>()});
     impulse_scale = std::max({impulse_scale, ours->impulses().lpNorm<Eigen::Infinity>(),
                               ours->tangential_impulses().lpNorm<Eigen::Infinity>()});
+    a.impulse += ours->impulses().sum();
     a.slip_impulse += ours->tangential_impulses().cwiseAbs().sum();
+    if (a.first_ours < 0 && ours->impulses().sum() > 0.0) a.first_ours = k;
+    if (a.first_peer < 0 && peer->impulses().sum() > 0.0) a.first_peer = k;
   }
   const auto relative = [](double d, double scale) { return scale > 0.0 ? d / scale : d; };  // at rest: absolute
   a.du = relative(a.du, u_scale);
@@ -194,8 +202,7 @@ TEST_CASE("siconos peers: two runs at once give the bits of a run alone", "[peer
 
 TEST_CASE("siconos peers: siconos-moreau-jean agrees with moreau-jean under Coulomb friction to 1e-10", "[peers][siconos][friction]") {
   // theta = 1 too where the contact stays closed (g = g' = 0): there the two active-set
-  // predictions agree (studies/peers.cpp: ours g_k + (1 - theta) h g'_k, Siconos' gamma = 1/2).
-  using Strings = std::map<std::string, std::string>;
+  // forecasts agree whatever gamma (unset: ours 1 - theta = 0, Siconos' 1/2).
   struct Case {
     const char* label;
     std::string problem;
@@ -213,7 +220,7 @@ TEST_CASE("siconos peers: siconos-moreau-jean agrees with moreau-jean under Coul
     for (const char* theta : c.thetas) {
       DYNAMIC_SECTION(c.label << ", theta = " << theta) {
         auto problem = nsb::make_problem(c.problem, c.params);
-        const Agreement a = agreement(*problem, theta, 1e-3, 2000);
+        const Agreement a = agreement(*problem, {{"theta", theta}}, {{"theta", theta}}, 1e-3, 2000);
         CAPTURE(a.du, a.dv, a.dimpulse);
         CHECK(a.slip_impulse > 0.0);  // friction acted
         CHECK(a.du <= 1e-10);
@@ -233,7 +240,7 @@ TEST_CASE("siconos peers: a stuck body stays stuck in both", "[peers][siconos][f
     CHECK(peer->state().v.lpNorm<Eigen::Infinity>() <= 1e-12);
     CHECK(peer->work().lcp_iterations >= 2000);  // the friction solver's sweeps, one step or more each
     CHECK(peer->work().lcp_unconverged == 0);
-    CHECK(agreement(*problem, "0.5", 1e-3, 2000).v_end <= 1e-12);
+    CHECK(agreement(*problem, {{"theta", "0.5"}}, {{"theta", "0.5"}}, 1e-3, 2000).v_end <= 1e-12);
   }
 }
 
@@ -258,4 +265,65 @@ TEST_CASE("siconos peers: friction declined where Siconos cannot treat it, with 
   CHECK_THAT(input_error(*peer, OnBelt(sliding_mass("0.3", "2"), 1.0)), Catch::Contains("floor_velocity") && Catch::Contains("tangent_velocity"));
   // Without friction the obstacle's tangential velocity plays no part.
   CHECK(input_error(*peer, OnBelt(sliding_mass("0", "2"), 1.0)) == "no InputError");
+}
+
+// The activation forecast g_k + gamma h g'_k <= 0: gamma unset is 1 - theta in ours, 1/2 in
+// Siconos' MoreauJeanOSI. Given the same theta and gamma, the two are the same scheme.
+TEST_CASE("siconos peers: siconos-moreau-jean agrees with moreau-jean step for step at the same theta and gamma", "[peers][siconos][gamma]") {
+  struct Case {
+    const char* label;
+    std::string problem;
+    Strings params;
+    double dt;
+    int steps;
+  };
+  // The bar with consistent mass too (W not diagonal); singular mass is declined by the peer.
+  const Case cases[] = {
+      {"bouncing mass, e = 0.9", "bouncing-mass", {{"e", "0.9"}}, 1e-3, 3000},
+      {"Signorini bar, lumped", "signorini-bar", {{"N", "100"}, {"mass", "lumped"}, {"g0", "0.4937"}}, 2e-3, 1750},
+      {"Signorini bar, consistent", "signorini-bar", {{"N", "100"}, {"mass", "consistent"}, {"g0", "0.4937"}}, 2e-3, 1750},
+  };
+  for (const Case& c : cases) {
+    for (const char* theta : {"0.5", "1"}) {
+      for (const char* gamma : {"0", "0.5"}) {
+        DYNAMIC_SECTION(c.label << ", theta = " << theta << ", gamma = " << gamma) {
+          auto problem = nsb::make_problem(c.problem, c.params);
+          const Strings params = {{"theta", theta}, {"gamma", gamma}};
+          const Agreement a = agreement(*problem, params, params, c.dt, c.steps);
+          // Catch prints doubles fixed to 10 decimals: round-off would read 0.0.
+          INFO(fmt::format("du {:.2e}, dv {:.2e}, dimpulse {:.2e}, first impulse at step {} / {}", a.du, a.dv, a.dimpulse,
+                           a.first_ours, a.first_peer));
+          CHECK(a.impulse > 0.0);  // the contact acted
+          CHECK(a.first_ours == a.first_peer);
+          CHECK(a.du <= 1e-10);
+          CHECK(a.dv <= 1e-10);
+          CHECK(a.dimpulse <= 1e-10);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("siconos peers: at theta = 1 the unset gammas (ours 0, Siconos' 1/2) activate a step apart, and only they differ", "[peers][siconos][gamma]") {
+  // Bouncing mass dropped from h0 = 1, h = 1e-3, theta = 1: u_k = h0 - h^2 g k (k + 1)/2, v_k = -k h g
+  // (moreau_jean_test.cpp); gamma = 0 activates at k (k + 1) >= 2 h0 / (h^2 g) = 203873.6,
+  // k = 452; gamma = 1/2 at k^2 + 2 k >= 203873.6, k = 451: Siconos impacts a step earlier.
+  CHECK_FALSE(nsb::Params(nsb::find_integrator("moreau-jean").parameters()).optional_real("gamma"));
+  CHECK(nsb::Params(nsb::find_integrator("siconos-moreau-jean").parameters()).real("gamma") == 0.5);
+  auto problem = nsb::make_problem("bouncing-mass", {{"e", "0.9"}});
+  const Agreement unset = agreement(*problem, {{"theta", "1"}}, {{"theta", "1"}}, 1e-3, 3000);
+  CHECK(unset.first_ours == 452);
+  CHECK(unset.first_peer == 451);
+  CHECK(unset.dv > 0.1);  // the rebounds then differ by O(1) in the velocities
+  // Ours given Siconos' 1/2, Siconos given ours' 0: the same numbers.
+  for (const auto& [ours, peer] : {std::pair<Strings, Strings>{{{"theta", "1"}, {"gamma", "0.5"}}, {{"theta", "1"}}},
+                                   std::pair<Strings, Strings>{{{"theta", "1"}}, {{"theta", "1"}, {"gamma", "0"}}}}) {
+    const Agreement a = agreement(*problem, ours, peer, 1e-3, 3000);
+    INFO(fmt::format("du {:.2e}, dv {:.2e}, dimpulse {:.2e}, first impulse at step {} / {}", a.du, a.dv, a.dimpulse,
+                     a.first_ours, a.first_peer));
+    CHECK(a.first_ours == a.first_peer);
+    CHECK(a.du <= 1e-10);
+    CHECK(a.dv <= 1e-10);
+    CHECK(a.dimpulse <= 1e-10);
+  }
 }
