@@ -183,7 +183,7 @@ TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupt
 }
 
 TEST_CASE("cli: a step larger than t_end and a read-only --out are refused before the run", "[app][bad-input]") {
-  auto r = nsbench(kRun + "--dt 16 --t-end 1 --out " + tmpdir("dt16"));
+  auto r = nsbench("run --problem bouncing-mass --integrator cd-lagrange --dt 16 --t-end 1 --out " + tmpdir("dt16"));
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Contains("--dt 16 is larger than --t-end 1; valid: dt <= t_end"));
   // /proc/self exists and takes no new file, even for root.
