@@ -105,8 +105,9 @@ int run_case(const RunArgs& a) {
     fmt::print(stderr, "nsbench: run diverged: {} (files written to {})\n", result.message, a.out);
     return 3;
   }
-  fmt::print("{} on {}: {} steps, t = {:.6g}, cpu {:.3g} s, energy error {:.3e} (max {:.3e}), max penetration {:.3e}\n",
-             integrator->name(), problem->name(), result.steps, result.t_final, result.cpu_seconds,
+  fmt::print("{} on {}: {} steps, t = {:.6g}, cpu {:.3g} s (stepping {:.3g} s), energy error {:.3e} (max {:.3e}), "
+             "max penetration {:.3e}\n",
+             integrator->name(), problem->name(), result.steps, result.t_final, result.cpu_seconds, result.step_cpu_seconds,
              result.final_energy_error(), result.max_energy_error,
              result.max_penetration);
   return 0;

@@ -12,6 +12,7 @@ ImpulseContact::ImpulseContact(const Problem& problem, const Vec& minv, LcpOptio
     for (SpMat::InnerIterator it(H, j); it; ++it)
       if (it.row() != it.col() && it.value() != 0.0) h_is_diagonal_ = false;
   if (!h_is_diagonal_) h_full_ = Eigen::MatrixXd(H);
+  closed_.reserve(static_cast<std::size_t>(problem.ncontacts()));
 
   const Contacts& c = problem.contacts();
   friction_ = c.has_friction();
@@ -42,7 +43,6 @@ ImpulseContact::ImpulseContact(const Problem& problem, const Vec& minv, LcpOptio
       }
     }
   if (friction_coupled_) w_full_ = Eigen::MatrixXd(W);
-  closed_.reserve(static_cast<std::size_t>(p));
   mu_closed_ = Vec::Zero(p);
 }
 
@@ -133,16 +133,15 @@ long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef i
     }
     return 0;
   }
-  std::vector<Index> closed;
+  closed_.clear();
   for (Index i = 0; i < L_.rows(); ++i)
-    if (g0[i] + gap_[i] <= 0.0 && h_diag_[i] != 0.0) closed.push_back(i);
-  if (closed.empty()) return 0;
-  const Index a = static_cast<Index>(closed.size());
-  Eigen::MatrixXd D(a, a);
-  Vec q(a), x = Vec::Zero(a);
+    if (g0[i] + gap_[i] <= 0.0 && h_diag_[i] != 0.0) closed_.push_back(i);
+  if (closed_.empty()) return 0;
+  const Index a = static_cast<Index>(closed_.size());
+  auto& [D, q, x] = storage_.of_size(a);
   for (Index r = 0; r < a; ++r) {
-    for (Index c = 0; c < a; ++c) D(r, c) = h_full_(closed[r], closed[c]);
-    q[r] = L_.row(closed[r]).dot(v) + e * L_.row(closed[r]).dot(v_prev);
+    for (Index c = 0; c < a; ++c) D(r, c) = h_full_(closed_[r], closed_[c]);
+    q[r] = L_.row(closed_[r]).dot(v) + e * L_.row(closed_[r]).dot(v_prev);
   }
   const LcpResult res = solve_lcp(D, q, x, lcp_);
   if (!res.converged) {
@@ -150,8 +149,8 @@ long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef i
     ++work.lcp_unconverged;
   }
   for (Index r = 0; r < a; ++r) {
-    impulses[closed[r]] = x[r];
-    for (decltype(L_)::InnerIterator it(L_, closed[r]); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * x[r];
+    impulses[closed_[r]] = x[r];
+    for (decltype(L_)::InnerIterator it(L_, closed_[r]); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * x[r];
   }
   return res.iterations;
 }

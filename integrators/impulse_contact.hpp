@@ -54,6 +54,8 @@ class ImpulseContact {
   Vec h_diag_;
   bool h_is_diagonal_ = true;
   Eigen::MatrixXd h_full_;  // H, when it is not diagonal
+  std::vector<Index> closed_;  // the closed contacts of the step, when H is not diagonal
+  LcpStorage storage_;         // D, q, x per size (friction: 2 rows per contact)
 
   // Friction: T, mu, w, the local 2x2 blocks (w_nn = h_diag_), and the full interleaved
   // [L; T] M^{-1} [L; T]^T when contacts share dofs.
@@ -62,8 +64,6 @@ class ImpulseContact {
   Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
   Vec mu_, w_, w_nt_, w_tt_;
   Eigen::MatrixXd w_full_;
-  std::vector<Index> closed_;
-  LcpStorage storage_;  // D, q, x of the coupled case, per size (x: impulses, 2 per contact)
   Vec mu_closed_;
 };
 

@@ -123,6 +123,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   result.energy_scale_text = result.initial_energy != 0.0 ? "|E0|" : "E0 = 0: " + problem.energy_scale_text();
   sample(0.0);
   const double cpu_start = cpu_seconds();
+  double observe_seconds = 0.0;  // in the observer and sampling
   StepInfo info;
   const auto wall_start = std::chrono::steady_clock::now();
   double next_progress = options.progress_every;  // wall seconds
@@ -148,15 +149,19 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
       info = integrator.step(options.dt);
       ++result.steps;
       result.max_penetration = std::max(result.max_penetration, -min_gap());
-      if (observer) observer(integrator, info);
       const bool last = integrator.state().t >= options.t_end * (1.0 - 1e-12);
-      if (result.steps % options.sample_every == 0 || last) {
-        if (!finite()) {
+      const bool sampled = result.steps % options.sample_every == 0 || last;
+      if (observer || sampled) {
+        const double observe_start = cpu_seconds();
+        if (observer) observer(integrator, info);
+        const bool diverged = sampled && !finite();
+        if (sampled && !diverged) sample(info.dt);
+        observe_seconds += cpu_seconds() - observe_start;
+        if (diverged) {
           result.status = RunStatus::Diverged;
           result.message = fmt::format("non-finite state at t = {}", integrator.state().t);
           break;
         }
-        sample(info.dt);
       }
       if (result.steps >= options.max_steps) {
         result.status = RunStatus::Diverged;
@@ -177,6 +182,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     result.message = ex.what();
   }
   result.cpu_seconds = cpu_seconds() - cpu_start;
+  result.step_cpu_seconds = result.cpu_seconds - observe_seconds;
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   result.t_final = integrator.state().t;
   result.final_energy = integrator.energy().total();
@@ -295,6 +301,7 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
       {"steps", result.steps},
       {"t_final", result.t_final},
       {"cpu_seconds", result.cpu_seconds},
+      {"step_cpu_seconds", result.step_cpu_seconds},
       {"wall_seconds", result.wall_seconds},
       {"threads", run_threads()},
       {"initial_energy", result.initial_energy},

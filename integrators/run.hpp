@@ -69,6 +69,11 @@ struct RunResult {
   double t_final = 0.0;
   double cpu_seconds = 0.0;      // CPU time of the stepping loop (sampling included): the
                                  // thread's, or the process's when run_threads() > 1
+  // The same less the time spent in the observer and in sampling (the series, the energy
+  // check, the finiteness check): the integrator's cost. The clock is read only around a
+  // step that is observed or sampled; each such step's stepping time carries about one clock
+  // read (a fraction of a microsecond).
+  double step_cpu_seconds = 0.0;
   double wall_seconds = 0.0;     // elapsed time of the same loop
   double initial_energy = 0.0;
   double final_energy = 0.0;

@@ -30,23 +30,9 @@ BouncingMass::BouncingMass(const Params& params)
   contacts_.normal.makeCompressed();
   contacts_.gap_offset = Vec::Zero(1);
   contacts_.restitution = e_;
+  mass_ = Vec::Constant(1, m_);
+  load_ = Vec::Constant(1, -m_ * g_);
 }
-
-SpMat BouncingMass::mass_matrix() const {
-  SpMat M(1, 1);
-  M.insert(0, 0) = m_;
-  M.makeCompressed();
-  return M;
-}
-
-void BouncingMass::internal_force(ConstVecRef, VecRef f) const { f.setZero(); }
-
-void BouncingMass::tangent_stiffness(ConstVecRef, SpMat& K) const {
-  if (K.rows() != 1 || K.cols() != 1) K.resize(1, 1);
-  K.setZero();
-}
-
-void BouncingMass::external_force(double, VecRef f) const { f[0] = -m_ * g_; }
 
 State BouncingMass::initial_state() const {
   State s;
@@ -54,8 +40,6 @@ State BouncingMass::initial_state() const {
   s.v = Vec::Constant(1, v0_);
   return s;
 }
-
-double BouncingMass::stable_step() const { return std::numeric_limits<double>::infinity(); }
 
 double BouncingMass::impact_time(int i) const {
   if (i <= 1) return t1_;

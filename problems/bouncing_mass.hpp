@@ -15,28 +15,18 @@
 // rests on the floor. Energy (from the floor) after impact i: E0 e^{2i}, E0 = m w1^2 / 2.
 //
 // Unknown: U = q (height), so L = [1], g0 = 0.
-#include "problems/problem.hpp"
+#include "problems/rigid_problem.hpp"
 
 namespace nsb {
 
-class BouncingMass final : public Problem {
+class BouncingMass final : public RigidProblem {
  public:
   explicit BouncingMass(const Params& params);
   static ParamSpecs parameters_spec();
 
   std::string name() const override { return "bouncing-mass"; }
   const Params& parameters() const override { return params_; }
-  Index ndof() const override { return 1; }
-  SpMat mass_matrix() const override;
-  void internal_force(ConstVecRef u, VecRef f) const override;
-  void tangent_stiffness(ConstVecRef u, SpMat& K) const override;
-  bool is_linear() const override { return true; }
-  void external_force(double t, VecRef f) const override;
-  double strain_energy(ConstVecRef) const override { return 0.0; }
-  double load_potential(ConstVecRef u) const override { return m_ * g_ * u[0]; }
-  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
-  double stable_step() const override;  // no stiffness: unbounded
   std::vector<std::string> observable_names() const override;
   void observe(const State& s, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
@@ -55,7 +45,6 @@ class BouncingMass final : public Problem {
   Params params_;
   double m_, g_, e_, h0_, v0_;
   double t1_, w1_;
-  Contacts contacts_;
 };
 
 }  // namespace nsb

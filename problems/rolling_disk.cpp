@@ -93,6 +93,11 @@ RollingDisk::RollingDisk(const Params& params)
     omega_final_ = last.omega;
   }
 
+  mass_ = Vec(3);
+  mass_ << m_, m_, kappa_ * m_ * R_ * R_;
+  load_ = Vec::Zero(3);
+  load_[1] = -m_ * g_;
+
   contacts_.normal.resize(1, 3);
   contacts_.normal.insert(0, 1) = 1.0;
   contacts_.normal.makeCompressed();
@@ -107,27 +112,6 @@ RollingDisk::RollingDisk(const Params& params)
   }
 }
 
-SpMat RollingDisk::mass_matrix() const {
-  SpMat M(3, 3);
-  M.insert(0, 0) = m_;
-  M.insert(1, 1) = m_;
-  M.insert(2, 2) = kappa_ * m_ * R_ * R_;
-  M.makeCompressed();
-  return M;
-}
-
-void RollingDisk::internal_force(ConstVecRef, VecRef f) const { f.setZero(); }
-
-void RollingDisk::tangent_stiffness(ConstVecRef, SpMat& K) const {
-  if (K.rows() != 3 || K.cols() != 3) K.resize(3, 3);
-  K.setZero();
-}
-
-void RollingDisk::external_force(double, VecRef f) const {
-  f.setZero();
-  f[1] = -m_ * g_;
-}
-
 State RollingDisk::initial_state() const {
   State s;
   s.u = Vec::Zero(3);
@@ -137,8 +121,6 @@ State RollingDisk::initial_state() const {
   s.v[2] = omega0_;
   return s;
 }
-
-double RollingDisk::stable_step() const { return inf; }
 
 double RollingDisk::impact_time(int i) const {
   if (i <= 1) return t1_;

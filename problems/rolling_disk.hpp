@@ -42,11 +42,11 @@
 // kappa = 2/5, e = 0.5, mu = 0.2, v0 = 1, omega0 = 50, h0 = 0.9).
 #include <vector>
 
-#include "problems/problem.hpp"
+#include "problems/rigid_problem.hpp"
 
 namespace nsb {
 
-class RollingDisk final : public Problem {
+class RollingDisk final : public RigidProblem {
  public:
   // What one impact did; (x, theta, v, omega) is the state just after it.
   struct Impact {
@@ -65,17 +65,7 @@ class RollingDisk final : public Problem {
 
   std::string name() const override { return "rolling-disk"; }
   const Params& parameters() const override { return params_; }
-  Index ndof() const override { return 3; }
-  SpMat mass_matrix() const override;
-  void internal_force(ConstVecRef u, VecRef f) const override;
-  void tangent_stiffness(ConstVecRef u, SpMat& K) const override;
-  bool is_linear() const override { return true; }
-  void external_force(double t, VecRef f) const override;
-  double strain_energy(ConstVecRef) const override { return 0.0; }
-  double load_potential(ConstVecRef u) const override { return m_ * g_ * u[1]; }
-  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
-  double stable_step() const override;  // no stiffness: unbounded
   std::vector<std::string> observable_names() const override;
   void observe(const State& s, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
@@ -106,7 +96,6 @@ class RollingDisk final : public Problem {
   Impact start_;  // the initial horizontal state, as if an impact at t = 0
   Impact rest_;   // the horizontal state when the disk comes to lie on the floor (t = t_rest_)
   double t_rest_, t_roll_, v_final_, omega_final_;
-  Contacts contacts_;
 };
 
 }  // namespace nsb

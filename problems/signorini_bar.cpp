@@ -25,26 +25,19 @@ struct Defaults {
 
 ParamSpecs bar_spec(const Defaults& d) {
   constexpr double inf = 1e308;
-  return {
-      ParamSpec::real("L", d.L, 0.0, inf, "bar length [m]", true),
-      ParamSpec::real("E", d.E, 0.0, inf, "Young's modulus [Pa]", true),
-      ParamSpec::real("rho", d.rho, 0.0, inf, "density [kg/m^3]", true),
-      ParamSpec::real("A", d.A, 0.0, inf, "cross-section area [m^2]", true),
+  ParamSpecs specs{ParamSpec::real("L", d.L, 0.0, inf, "bar length [m]", true)};
+  const ParamSpecs material = bar_material_specs(d.E, d.rho, d.A);
+  specs.insert(specs.end(), material.begin(), material.end());
+  specs.insert(specs.end(), {
       ParamSpec::real("v0", d.v0, 0.0, inf, "initial speed towards the wall [m/s] (0: a drop from rest, under gravity g)"),
       ParamSpec::real("g0", d.g0, 0.0, inf, "initial gap to the wall [m]"),
       ParamSpec::real("g", d.g, 0.0, inf, "gravity towards the wall [m/s^2] (repeated bouncing; exact solution: problems/bouncing_bar.hpp)"),
       ParamSpec::integer("N", d.N, 1, 100'000'000, "number of linear elements"),
-      ParamSpec::choice("mass", "lumped", {"lumped", "consistent", "singular"},
-                        "mass model (singular: massless contact node, Khenous-Laborde-Renard 2008)"),
+      bar_mass_spec(),
       ParamSpec::real("stiff_ratio", 1.0, 0.0, 1e12,
                       "Young's modulus of the half at the wall over E (stiff/soft bar; no exact solution unless 1)", true),
-  };
-}
-
-SignoriniBar::MassModel parse_model(const std::string& m) {
-  if (m == "consistent") return SignoriniBar::MassModel::Consistent;
-  if (m == "singular") return SignoriniBar::MassModel::Singular;
-  return SignoriniBar::MassModel::Lumped;
+  });
+  return specs;
 }
 
 }  // namespace
@@ -74,7 +67,7 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
       gap0_(params.real("g0")),
       gravity_(params.real("g")),
       n_(params.integer("N")),
-      model_(parse_model(params.choice("mass"))),
+      model_(parse_bar_mass_model(params.choice("mass"))),
       stiff_ratio_(params.real("stiff_ratio")) {
   // Refused before anything of size N is allocated (N = 1e8 would end in bad_alloc): the
   // construction's triplet lists, K, M and ke, and a run's state vectors, together about
@@ -99,26 +92,13 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
   std::vector<Eigen::Triplet<double>> kt, mt;
   kt.reserve(4 * n_);
   mt.reserve(4 * n_);
-  for (Index e = 0; e < n_; ++e) {
-    for (Index a = 0; a < 2; ++a)
-      for (Index b = 0; b < 2; ++b) kt.emplace_back(e + a, e + b, a == b ? ke_[e] : -ke_[e]);
-    if (model_ == MassModel::Consistent) {
-      for (Index a = 0; a < 2; ++a)
-        for (Index b = 0; b < 2; ++b) mt.emplace_back(e + a, e + b, me * (a == b ? 2.0 : 1.0) / 6.0);
-    } else {
-      mt.emplace_back(e, e, 0.5 * me);
-      mt.emplace_back(e + 1, e + 1, 0.5 * me);
-    }
-  }
+  add_bar_triplets(0, ke_, me, model_, kt, mt);
   K_.resize(n, n);
   K_.setFromTriplets(kt.begin(), kt.end());
   M_.resize(n, n);
   M_.setFromTriplets(mt.begin(), mt.end());
-  if (model_ == MassModel::Singular) {
-    // The contact node's mass goes to node 1 (header: what is kept and what is not).
-    M_.coeffRef(1, 1) += M_.coeffRef(0, 0);
-    M_.coeffRef(0, 0) = 0.0;
-  }
+  // The contact node's mass goes to node 1 (header: what is kept and what is not).
+  if (model_ == MassModel::Singular) make_node_massless(M_, 0, 1);
   M_.makeCompressed();
   mass_rows_ = M_ * Vec::Ones(n);
 
@@ -163,21 +143,9 @@ void SignoriniBar::internal_force(ConstVecRef u, VecRef f) const {
   });
 }
 
-void SignoriniBar::tangent_stiffness(ConstVecRef, SpMat& K) const {
-  if (K.rows() == K_.rows() && K.cols() == K_.cols() && K.isCompressed() && K.nonZeros() == K_.nonZeros())
-    std::copy(K_.valuePtr(), K_.valuePtr() + K_.nonZeros(), K.valuePtr());
-  else
-    K = K_;
-}
+void SignoriniBar::tangent_stiffness(ConstVecRef, SpMat& K) const { copy_stiffness(K_, K); }
 
-double SignoriniBar::strain_energy(ConstVecRef u) const {
-  double s = 0.0;
-  for (Index e = 0; e < n_; ++e) {
-    const double d = u[e + 1] - u[e];
-    s += ke_[e] * d * d;
-  }
-  return 0.5 * s;
-}
+double SignoriniBar::strain_energy(ConstVecRef u) const { return bar_strain_energy(u, 0, ke_); }
 
 State SignoriniBar::initial_state() const {
   State s;

@@ -80,6 +80,7 @@
 #include <mutex>
 #include <vector>
 
+#include "problems/bar_elements.hpp"
 #include "problems/problem.hpp"
 
 namespace nsb {
@@ -88,7 +89,7 @@ class BouncingBarExact;
 
 class SignoriniBar final : public Problem {
  public:
-  enum class MassModel { Lumped, Consistent, Singular };
+  using MassModel = BarMassModel;
 
   explicit SignoriniBar(const Params& params, std::string name = "signorini-bar");
   // Nondimensional defaults: L = E = rho = A = v0 = 1, g0 = 0, g = 0, N = 100, lumped.

@@ -45,6 +45,9 @@ SlidingMass::SlidingMass(const Params& params)
     d_stop_ = inf;
   }
   x_stop_ = std::copysign(d_stop_, v0_);
+  mass_ = Vec::Constant(2, m_);
+  load_ = Vec(2);
+  load_ << m_ * g_ * sin_a, -m_ * g_ * cos_a;
 
   contacts_.normal.resize(1, 2);
   contacts_.normal.insert(0, 1) = 1.0;
@@ -59,30 +62,6 @@ SlidingMass::SlidingMass(const Params& params)
   }
 }
 
-SpMat SlidingMass::mass_matrix() const {
-  SpMat M(2, 2);
-  M.insert(0, 0) = m_;
-  M.insert(1, 1) = m_;
-  M.makeCompressed();
-  return M;
-}
-
-void SlidingMass::internal_force(ConstVecRef, VecRef f) const { f.setZero(); }
-
-void SlidingMass::tangent_stiffness(ConstVecRef, SpMat& K) const {
-  if (K.rows() != 2 || K.cols() != 2) K.resize(2, 2);
-  K.setZero();
-}
-
-void SlidingMass::external_force(double, VecRef f) const {
-  f[0] = m_ * g_ * std::sin(alpha_);
-  f[1] = -m_ * g_ * std::cos(alpha_);
-}
-
-double SlidingMass::load_potential(ConstVecRef u) const {
-  return -m_ * g_ * std::sin(alpha_) * u[0] + m_ * g_ * std::cos(alpha_) * u[1];
-}
-
 State SlidingMass::initial_state() const {
   State s;
   s.u = Vec::Zero(2);
@@ -90,8 +69,6 @@ State SlidingMass::initial_state() const {
   s.v[0] = v0_;
   return s;
 }
-
-double SlidingMass::stable_step() const { return std::numeric_limits<double>::infinity(); }
 
 std::optional<State> SlidingMass::exact_state(double t) const {
   State s;

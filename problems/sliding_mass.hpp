@@ -28,28 +28,18 @@
 //
 // Reference for the contact law: J. J. Moreau, "Unilateral contact and dry friction in finite
 // freedom analysis", Nonsmooth Mechanics and Applications, CISM 302, Springer, 1988.
-#include "problems/problem.hpp"
+#include "problems/rigid_problem.hpp"
 
 namespace nsb {
 
-class SlidingMass final : public Problem {
+class SlidingMass final : public RigidProblem {
  public:
   explicit SlidingMass(const Params& params);
   static ParamSpecs parameters_spec();
 
   std::string name() const override { return "sliding-mass"; }
   const Params& parameters() const override { return params_; }
-  Index ndof() const override { return 2; }
-  SpMat mass_matrix() const override;
-  void internal_force(ConstVecRef u, VecRef f) const override;
-  void tangent_stiffness(ConstVecRef u, SpMat& K) const override;
-  bool is_linear() const override { return true; }
-  void external_force(double t, VecRef f) const override;
-  double strain_energy(ConstVecRef) const override { return 0.0; }
-  double load_potential(ConstVecRef u) const override;
-  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
-  double stable_step() const override;  // no stiffness: unbounded
   std::vector<std::string> observable_names() const override;
   void observe(const State& s, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
@@ -69,7 +59,6 @@ class SlidingMass final : public Problem {
   double a_down_, a_first_;  // a_first_: acceleration until the stop (a_down or a_up)
   double t_stop_, d_stop_, x_stop_;
   bool sticks_;
-  Contacts contacts_;
 };
 
 }  // namespace nsb

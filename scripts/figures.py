@@ -1,14 +1,18 @@
 #!/usr/bin/python3
 """Renders the figures declared by the studies (REPORTS/figures.json) from their CSV tables.
 
-    python3 scripts/figures.py REPORTS
+    python3 scripts/figures.py REPORTS [--style paper] [--only ID]
 
 Writes REPORTS/figures/<id>.png and .pdf, each stamped with the revision and build read from
-the CSV's '#' metadata lines. Rows whose x is not a number (n/a, diverged) are skipped; where
-y is not a number (or not positive on a log scale) the line has a gap. A line keeps its colour
-and dashes in every panel and figure of a table; one legend, outside the panels, says which is
-which. A line labelled 'exact' is the reference: black, dashed, drawn over the others.
+the CSV's '#' metadata lines; --style paper writes REPORTS/figures/paper/<id>.png and .pdf
+without title or stamp, at a journal column's width. Rows whose x is not a number (n/a, diverged) are skipped; where
+y is not a number (or not positive on a log scale) the line has a gap. A scheme keeps its colour,
+marker and dashes in every panel, figure and report (scheme_style); one legend, outside the
+panels, says which is which. A line labelled 'exact' is the reference: black, dashed, drawn
+over the others. Convergence plots carry slope triangles, energy histories are small
+multiples of the signed deviation, one panel per scheme (figures.json says which).
 """
+import argparse
 import csv
 import json
 import math
@@ -19,6 +23,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib import ticker  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 
@@ -52,14 +57,77 @@ def label(row, columns):
     return ", ".join(row[c] for c in columns)
 
 
-def line_styles(names):
-    """One colour and dash pattern per line label, the same in every panel; the dashes tell
-    apart lines drawn over each other (and in black and white). 'exact' is black and dashed."""
-    cmap = plt.get_cmap("tab10")
-    dashes = ["-", "--", "-.", ":", (0, (3, 1, 1, 1, 1, 1))]
-    # Past ten lines the colours repeat with another dash pattern.
-    return {name: {"color": cmap(i % 10), "linestyle": dashes[(i + i // 10) % len(dashes)]}
-            for i, name in enumerate(names)}
+# One style per scheme, defined here once and used by every figure of every report: colour
+# (Okabe & Ito's colour-blind-safe palette, black kept for the references), marker and dash
+# pattern. The registered schemes have fixed entries; any other name (a plugin) gets one of the
+# remaining combinations from a hash of its name, so its style too is the same in every figure
+# and report. References are black or grey with crosses; a peer (siconos-*) takes the colour and
+# marker of the scheme it reimplements, hollow and dotted, so the two curves are told apart
+# where they lie on each other.
+PALETTE = ["#D55E00", "#0072B2", "#009E73", "#E69F00", "#CC79A7", "#56B4E9"]
+MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">"]
+DASHES = ["-", "--", "-.", (0, (5, 1.5, 1, 1.5, 1, 1.5))]
+# Lines within one scheme's panel (small multiples): its variants, its mass models.
+INNER_DASHES = ["-", "--", "-.", ":", (0, (5, 1.5, 1, 1.5, 1, 1.5)), (0, (8, 2)), (0, (1, 3)), (0, (3, 1, 1, 1))]
+SCHEMES = ["cd-lagrange", "moreau-jean", "schatzman-paoli", "nsga", "d1-minus-linear", "newmark-lm",
+           "cd-penalty", "cd-lagrange-adaptive", "central-difference", "symplectic-euler"]
+REFERENCES = {"exact": ("black", None, "--"), "modal-exact": ("black", "x", "--"),
+              "event-driven": ("0.35", "+", (0, (1, 1))), "penalty-bdf": ("0.55", "1", "-.")}
+PEER_PREFIX = "siconos-"
+
+
+def combination(i):
+    """The i-th (colour, marker, dashes): colours and markers cycle together (6 x 9 coprime
+    lengths: 18 distinct pairs), the dashes change every 6 so no two of 72 are alike."""
+    return PALETTE[i % len(PALETTE)], MARKERS[i % len(MARKERS)], DASHES[(i // len(PALETTE)) % len(DASHES)]
+
+
+COMBINATIONS = math.lcm(len(PALETTE), len(MARKERS)) * len(DASHES)  # 72 distinct, see combination()
+
+
+def scheme_style(name):
+    """{color, marker, linestyle, markerfacecolor, kind} of an integrator's name."""
+    if name in REFERENCES:
+        color, marker, dashes = REFERENCES[name]
+        return {"color": color, "marker": marker, "linestyle": dashes, "markerfacecolor": color, "kind": "reference"}
+    if name.startswith(PEER_PREFIX) and name != PEER_PREFIX:
+        base = scheme_style(name[len(PEER_PREFIX):])
+        return {**base, "linestyle": ":", "markerfacecolor": "none", "kind": "peer"}
+    if name in SCHEMES:
+        i = SCHEMES.index(name)
+    else:  # a plugin: a stable hash (not Python's salted hash()) onto the unused combinations
+        h = 0
+        for ch in name.encode():
+            h = (h * 131 + ch) % 1000003
+        i = len(SCHEMES) + h % (COMBINATIONS - len(SCHEMES))
+    color, marker, dashes = combination(i)
+    return {"color": color, "marker": marker, "linestyle": dashes, "markerfacecolor": color, "kind": "scheme"}
+
+
+def line_styles(spec, rows):
+    """The style of each line label of a figure. With an 'integrator' series column a line has
+    its scheme's style; the other series columns (mass, variant) change its dashes, in the
+    table's order. Without one (lines by mass, say), lines are styled by their order in the table."""
+    series = spec["series"]
+    labels = list(dict.fromkeys(label(row, series) for row in rows))
+    if "integrator" not in series:
+        return {name: ({**scheme_style(name), "linestyle": "--"} if name in REFERENCES else
+                       dict(zip(("color", "marker", "linestyle"), combination(i)), kind="scheme"))
+                for i, name in enumerate(labels)}
+    k = series.index("integrator")
+    others = list(dict.fromkeys(tuple(v for j, v in enumerate(row_values(row, series)) if j != k) for row in rows))
+    styles = {}
+    for row in rows:
+        values = row_values(row, series)
+        style = scheme_style(values[k])
+        if len(others) > 1:  # a reference's mass models too: lumped, consistent, singular told apart
+            style = {**style, "linestyle": DASHES[others.index(tuple(v for j, v in enumerate(values) if j != k)) % len(DASHES)]}
+        styles[label(row, series)] = style
+    return styles
+
+
+def row_values(row, columns):
+    return [row[c] for c in columns]
 
 
 # matplotlib's log scales overflow (limits, tick locations) near the largest double, which a
@@ -77,105 +145,231 @@ def log_limits(values):
 def panel_lines(spec, rows):
     """The points of each line of each panel: {panel key: {label: [(x, y)]}}, x sorted. A row
     without a usable x is left out; one without a usable y is a gap (NaN) in its line. Lines
-    with nothing to draw are left out."""
+    with nothing to draw are left out. Small multiples: one panel per scheme (the first series
+    column), its lines told apart by the other series and panel columns."""
     panels = {}
+    series, panel_columns = spec["series"], spec["panels"]
+    if spec.get("small_multiples"):
+        series, panel_columns = series[:1], []
+    inner = [c for c in spec["series"] + spec["panels"] if c not in series + panel_columns]
     for row in rows:
         x, y = number(row[spec["x"]]), number(row[spec["y"]])
+        if y is not None and spec.get("deviation"):
+            y -= 1.0
         if x is None or (spec["log_x"] and not 0 < x <= LOG_MAX):
             continue
-        if y is None or (spec["log_y"] and not 0 < y <= LOG_MAX):
+        if y is None or (spec["log_y"] and not 0 < y <= LOG_MAX) or abs(y) > LOG_MAX:
             y = math.nan  # nothing to draw here: a gap in a history, not a line across it
-        lines = panels.setdefault(tuple(row[c] for c in spec["panels"]), {})
-        lines.setdefault(label(row, spec["series"]), []).append((x, y))
-    return {key: {name: sorted(pts) for name, pts in lines.items() if any(not math.isnan(y) for _, y in pts)}
+        key = tuple(row[c] for c in (series if spec.get("small_multiples") else panel_columns))
+        lines = panels.setdefault(key, {})
+        name = label(row, spec["series"] + inner)  # a line per inner value too (lumped, singular)
+        lines.setdefault(name, {"style": label(row, spec["series"]), "inner": label(row, inner), "pts": []})["pts"].append((x, y))
+    return {key: {name: {**line, "pts": sorted(line["pts"])} for name, line in lines.items()
+                  if any(not math.isnan(y) for _, y in line["pts"])}
             for key, lines in panels.items()}
 
 
-def draw(spec, reports):
+def log_tick_labels(axis):
+    """At least three labelled ticks on a log axis: 1-2-5 (or every integer) multiples of each
+    decade when the axis spans too few decades for the decades alone."""
+    lo, hi = axis.get_view_interval()
+    decades = math.log10(hi) - math.log10(lo)
+    if decades >= 3:
+        return
+    subs = (1.0, 2.0, 5.0) if decades >= 1 else tuple(float(k) for k in range(1, 10))
+    axis.set_major_locator(ticker.LogLocator(base=10, subs=subs))
+    axis.set_major_formatter(ticker.LogFormatterSciNotation(labelOnlyBase=False, minor_thresholds=(10, 10)))
+    axis.set_minor_formatter(ticker.NullFormatter())
+
+
+def slope_triangles(ax, slopes, drawn, paper):
+    """Reference triangles of slope p (y ~ x^p) under the lowest data of a log-log panel, at the
+    right of its x range, each one third of a decade... of the panel's x range wide."""
+    xs, ys = [p[0] for p in drawn], [p[1] for p in drawn]
+    lx0, lx1 = math.log10(min(xs)), math.log10(max(xs))
+    ly0 = math.log10(min(ys))
+    width = max((lx1 - lx0) / 4, 0.15)
+    for i, p in enumerate(sorted(slopes, key=abs)):
+        # p > 0 (against dt): triangle at the left end; p < 0 (against N): at the right end.
+        a = lx0 + (0.15 + 0.35 * i) * (lx1 - lx0) if p > 0 else lx1 - (0.15 + 0.35 * i) * (lx1 - lx0) - width
+        b = a + width
+        base = ly0 + 0.2 if p > 0 else ly0 + 0.2 + abs(p) * width
+        corner = (b, base) if p > 0 else (a, base)
+        xs3 = [10 ** a, 10 ** b, 10 ** corner[0], 10 ** a]
+        ys3 = [10 ** base, 10 ** (base + p * width), 10 ** base, 10 ** base] if p > 0 else \
+              [10 ** base, 10 ** (base + p * width), 10 ** (base + p * width), 10 ** base]
+        ax.plot(xs3, ys3, color="0.3", linewidth=0.8, zorder=1)
+        ax.text(10 ** (b + 0.02 * width) if p > 0 else 10 ** (a - 0.02 * width),
+                10 ** (base + p * width / 2), f"{abs(p):g}", fontsize=6 if paper else 8, color="0.3",
+                ha="left" if p > 0 else "right", va="center")
+
+
+def symlog_threshold(panels):
+    """Shared signed axes over schemes whose deviations differ by orders of magnitude (one
+    blows up to 1e3, another stays at 1e-6) would show all but one as a flat zero: past a ratio
+    of 1e3 the axis is symmetric-logarithmic, linear below the 10th percentile of |y| (None:
+    a linear axis is readable)."""
+    values = sorted(abs(y) for lines in panels.values() for line in lines.values()
+                    for _, y in line["pts"] if not math.isnan(y) and y != 0)
+    if not values or values[-1] <= 1e3 * values[len(values) // 2]:
+        return None
+    return max(values[len(values) // 10], 1e-12)
+
+
+def draw(spec, reports, paper=False):
     meta, rows = read_table(os.path.join(reports, spec["csv"]))
     panels = panel_lines(spec, rows)
-    # Styles follow the table's rows (the registry's order), drawn or not: a line keeps its
-    # colour in every figure of the table. The legend lists the lines drawn.
-    styles = line_styles([name for name in dict.fromkeys(label(row, spec["series"]) for row in rows) if name != "exact"])
+    # Styles follow the integrator's name (scheme_style): a scheme looks the same in every
+    # figure of every report. The legend lists the lines drawn.
+    styles = line_styles(spec, rows)
+    multiples = bool(spec.get("small_multiples"))
+    inner_dashes = {}
+    if multiples:  # within a scheme's panel, its lines differ by dashes, the same in every panel
+        inner = dict.fromkeys(line["inner"] for lines in panels.values() for line in lines.values())
+        inner_dashes = {name: INNER_DASHES[i % len(INNER_DASHES)] for i, name in enumerate(inner)}
     names = list(dict.fromkeys(name for lines in panels.values() for name in lines))
     n = len(panels)
-    cols = min(n, 3)
+    cols = min(n, 4 if multiples else 3)
     nrows = math.ceil(n / cols)
-    fig, axes = plt.subplots(nrows, cols, figsize=(4.6 * cols, 3.6 * nrows + 0.5), squeeze=False, layout="constrained")
+    if paper:  # a journal's column (3.4 in) for one panel, its page width (7 in) for several
+        width = 3.4 if n == 1 else 7.0
+        size = (width, (2.4 if n == 1 else width / cols * (0.62 if multiples else 0.8)) * nrows + 0.3)
+    else:
+        size = (4.6 * cols, (2.6 if multiples else 3.6) * nrows + 0.5)
+    fig, axes = plt.subplots(nrows, cols, figsize=size, squeeze=False, layout="constrained",
+                             sharex=multiples, sharey=multiples)
     handles = {}
+    linthresh = symlog_threshold(panels) if multiples and not spec["log_y"] else None
+    y_name = f"{spec['y']} − 1" if spec.get("deviation") else spec["y"]
     for ax, (key, lines) in zip(axes.flat, panels.items()):
         drawn = []
-        for name, pts in lines.items():
+        for name, line in lines.items():
+            pts = line["pts"]
             ys = [p[1] for p in pts]
             # Histories (dense) are lines, markers would hide them, but a point between two gaps
             # has no line to be drawn with: it gets a dot.
             dense = len(pts) > 50
             alone = [i for i, y in enumerate(ys) if not math.isnan(y) and
                      (i == 0 or math.isnan(ys[i - 1])) and (i + 1 == len(ys) or math.isnan(ys[i + 1]))]
-            marks = {"marker": ".", "markersize": 3, "markevery": alone} if dense else {"marker": "o", "markersize": 3.5}
-            style = ({"color": "black", "linestyle": "--", "linewidth": 1.0, "zorder": 3} if name == "exact"
-                     else styles[name])
-            ax.plot([p[0] for p in pts], ys, **marks, **{"linewidth": 1.2, **style})
-            handles[name] = Line2D([], [], marker=None if dense else "o", markersize=3.5, **{"linewidth": 1.2, **style})
+            style = {k: v for k, v in styles[line["style"]].items() if k != "kind"}
+            marker = style.pop("marker")
+            face = style.pop("markerfacecolor", style["color"])
+            if multiples:
+                style["linestyle"] = inner_dashes[line["inner"]]
+            size_m = 2.5 if paper else 3.5
+            marks = ({"marker": ".", "markersize": 3, "markevery": alone} if dense else
+                     {"marker": marker or "o", "markersize": size_m, "markerfacecolor": face})
+            width_l = 0.8 if paper else 1.2
+            ax.plot([p[0] for p in pts], ys, **marks, **{"linewidth": width_l, **style},
+                    zorder=3 if styles[line["style"]]["kind"] == "reference" else 2)
+            entry = line["inner"] if multiples else name
+            if entry not in handles and multiples:  # the panels say the scheme, the legend the dashes
+                handles[entry] = Line2D([], [], color="0.3", linestyle=style["linestyle"], linewidth=width_l)
+            elif entry not in handles:
+                handles[entry] = Line2D([], [], marker=None if dense else (marker or "o"), markersize=size_m,
+                                        markerfacecolor=face, **{"linewidth": width_l, **style})
             drawn += [p for p in pts if not math.isnan(p[1])]
         if not lines:
             ax.text(0.5, 0.5, "nothing to draw\n(no positive values)" if spec["log_y"] else "nothing to draw",
                     ha="center", va="center", transform=ax.transAxes, color="0.4")
         ax.set_xscale("log" if spec["log_x"] else "linear")
-        ax.set_yscale("log" if spec["log_y"] else "linear")
-        if drawn and spec["log_x"]:
+        if linthresh:
+            ax.set_yscale("symlog", linthresh=linthresh, linscale=1.0)
+            # At most about six labelled decades a side: every 10th, 100th... power past that.
+            top = max(abs(y) for lines_ in panels.values() for line_ in lines_.values() for _, y in line_["pts"]
+                      if not math.isnan(y))
+            step = 10 ** max(1, math.ceil(math.log10(top / linthresh) / 6))
+            ax.yaxis.set_major_locator(ticker.SymmetricalLogLocator(linthresh=linthresh, base=step))
+        else:
+            ax.set_yscale("log" if spec["log_y"] else "linear")
+        if drawn and spec["log_x"] and not multiples:
             ax.set_xlim(*log_limits([p[0] for p in drawn]))
-        if drawn and spec["log_y"]:
+        if drawn and spec["log_y"] and not multiples:
             ax.set_ylim(*log_limits([p[1] for p in drawn]))
+        if drawn and spec["log_x"] and spec["log_y"] and spec.get("slopes"):
+            slope_triangles(ax, spec["slopes"], drawn, paper)
+        if spec.get("deviation") or multiples:
+            ax.axhline(0.0, color="0.5", linewidth=0.6, zorder=1)
         for axis, log in ((ax.xaxis, spec["log_x"]), (ax.yaxis, spec["log_y"])):
-            if not log:
+            if not log and hasattr(axis.get_major_formatter(), "set_useOffset"):
                 axis.get_major_formatter().set_useOffset(False)  # plain values, no "1e-6 + 0.99999"
-        ax.set_xlabel(spec["x"])
-        ax.set_ylabel(spec["y"])
-        if spec["panels"]:
-            ax.set_title(", ".join(f"{short(c)} = {v}" for c, v in zip(spec["panels"], key)), fontsize=10)
+        if not multiples or ax in axes[-1]:
+            ax.set_xlabel(spec["x"])
+        if not multiples or ax is axes[ax.get_subplotspec().rowspan.start][0]:
+            ax.set_ylabel(y_name + (" (symlog)" if linthresh else ""))
+        title = ", ".join(key) if multiples else ", ".join(f"{short(c)} = {v}" for c, v in zip(spec["panels"], key))
+        if title:
+            ax.set_title(title, fontsize=7 if paper else 10)
         ax.grid(True, which="major", alpha=0.4)
         ax.grid(True, which="minor", alpha=0.12)
     for ax in list(axes.flat)[n:]:
         ax.set_visible(False)
-    fig.suptitle(spec["title"], fontsize=12)
+    fig.canvas.draw()  # the limits settle before the log ticks are chosen
+    for ax in list(axes.flat)[:n]:
+        for axis, log in ((ax.xaxis, spec["log_x"]), (ax.yaxis, spec["log_y"])):
+            if log:
+                log_tick_labels(axis)
+    if not paper:
+        fig.suptitle(spec["title"], fontsize=12)
     # One legend for every panel, outside the data: right of a single panel, below several.
-    title = ", ".join(short(c) for c in spec["series"])
-    if n == 1:
-        legend = fig.legend([handles[name] for name in names], names, title=title, loc="center left",
-                            bbox_to_anchor=(1.0, 0.5), fontsize=8, title_fontsize=8, frameon=False)
+    legend_columns = [c for c in spec["series"] + spec["panels"] if c != spec["series"][0]] if multiples else spec["series"]
+    title = ", ".join(short(c) for c in legend_columns)
+    entries = list(handles)
+    legend = None
+    font = 6 if paper else 8
+    if not entries or entries == [""]:
+        pass
+    elif n == 1:
+        legend = fig.legend([handles[e] for e in entries], entries, title=title, loc="center left",
+                            bbox_to_anchor=(1.0, 0.5), fontsize=font, title_fontsize=font, frameon=False)
     else:  # in as many columns as fit in the figure's width
-        for ncol in range(max(len(names), 1), 0, -1):
-            legend = fig.legend([handles[name] for name in names], names, title=title, loc="upper center",
-                                bbox_to_anchor=(0.5, 0.0), ncol=ncol, fontsize=8, title_fontsize=8, frameon=False)
+        for ncol in range(max(len(entries), 1), 0, -1):
+            legend = fig.legend([handles[e] for e in entries], entries, title=title, loc="upper center",
+                                bbox_to_anchor=(0.5, 0.0), ncol=ncol, fontsize=font, title_fontsize=font, frameon=False)
             if ncol == 1 or legend.get_window_extent(fig.canvas.get_renderer()).width <= fig.bbox.width:
                 break
             legend.remove()
-    # The stamp goes below everything else.
-    fig.canvas.draw()
-    below = min(0.0, legend.get_window_extent().transformed(fig.transFigure.inverted()).y0)
-    stamp = "nsbench rev {} ({}, {})".format(meta.get("git_revision", "?"), meta.get("build_type", "?"),
-                                             meta.get("compiler", "?"))
-    fig.text(0.99, below - 0.01, stamp, ha="right", va="top", fontsize=7, color="0.4")
-    out_dir = os.path.join(reports, "figures")
+    if not paper:  # the stamp goes below everything else
+        fig.canvas.draw()
+        below = min(0.0, legend.get_window_extent().transformed(fig.transFigure.inverted()).y0) if legend else 0.0
+        stamp = "nsbench rev {} ({}, {})".format(meta.get("git_revision", "?"), meta.get("build_type", "?"),
+                                                 meta.get("compiler", "?"))
+        fig.text(0.99, below - 0.01, stamp, ha="right", va="top", fontsize=7, color="0.4")
+    out_dir = os.path.join(reports, "figures", "paper") if paper else os.path.join(reports, "figures")
     os.makedirs(out_dir, exist_ok=True)
     for ext in ("png", "pdf"):
         final = os.path.join(out_dir, f"{spec['id']}.{ext}")
         tmp = os.path.join(out_dir, f".{spec['id']}.tmp.{ext}")
-        fig.savefig(tmp, dpi=150, bbox_inches="tight")  # the legend and stamp below the panels included
+        fig.savefig(tmp, dpi=300 if paper else 150, bbox_inches="tight")  # legend and stamp below the panels included
         os.replace(tmp, final)  # whole or not at all
     plt.close(fig)
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: figures.py REPORTS_DIR")
-    reports = sys.argv[1]
-    with open(os.path.join(reports, "figures.json")) as f:
+    parser = argparse.ArgumentParser(description="Renders the figures of REPORTS/figures.json.")
+    parser.add_argument("reports", metavar="REPORTS_DIR")
+    parser.add_argument("--style", choices=("screen", "paper"), default="screen",
+                        help="screen (default): titled, stamped with the revision, to REPORTS/figures; "
+                             "paper: no title or stamp, column-width sizes, 8 pt, to REPORTS/figures/paper")
+    parser.add_argument("--only", metavar="ID", action="append", help="draw only this figure (repeatable)")
+    args = parser.parse_args()
+    paper = args.style == "paper"
+    # TrueType (Type 42) fonts embedded in the PDF, as journals ask, not Type 3.
+    matplotlib.rcParams.update({"pdf.fonttype": 42, "ps.fonttype": 42})
+    if paper:
+        matplotlib.rcParams.update({"font.size": 8, "axes.labelsize": 8, "xtick.labelsize": 7, "ytick.labelsize": 7,
+                                    "axes.titlesize": 7})
+    with open(os.path.join(args.reports, "figures.json")) as f:
         specs = json.load(f)
+    if args.only:
+        unknown = set(args.only) - {s["id"] for s in specs}
+        if unknown:
+            sys.exit(f"figures.py: --only {sorted(unknown)[0]}: no such figure in {args.reports}/figures.json")
+        specs = [s for s in specs if s["id"] in args.only]
     for spec in specs:
-        draw(spec, reports)
-    print(f"figures: {len(specs)} written to {os.path.join(reports, 'figures')}", file=sys.stderr)
+        draw(spec, args.reports, paper)
+    out = os.path.join(args.reports, "figures", "paper") if paper else os.path.join(args.reports, "figures")
+    print(f"figures: {len(specs)} written to {out}", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -12,6 +12,9 @@ packages=(
   # BLAS: nsbench's own numerics call none (moreau_jean.hpp says why); the Siconos peers do.
   # The serial OpenBLAS takes over the libblas.so.3 alternative: fast, and no thread pool.
   libopenblas0-serial
+  # Physics engines: the optional peers mujoco, bullet, ode (CMake option NSBENCH_ENGINES;
+  # each built where its package is found).
+  libmujoco-dev libbullet-dev libode-dev
 )
 missing=()
 for p in "${packages[@]}"; do

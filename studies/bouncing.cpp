@@ -68,7 +68,7 @@ CaseResult simulate(const std::string& integrator_name, double e, double dt) {
     }
   }
   c.steps = r.steps;
-  c.cpu = r.cpu_seconds;
+  c.cpu = r.step_cpu_seconds;
   c.max_penetration = r.max_penetration;
   if (r.status != RunStatus::Ok) {
     c.diverged = true;
@@ -145,8 +145,9 @@ std::vector<Table> bouncing_tables(const std::vector<Json>& cases, const std::ve
       "m = 1, g = 9.81, h0 = 1, v0 = 0. Impact times compared for the first {} impacts whose flight lasts "
       "at least 10 steps; flight energy taken at the numerical mid-flight, relative to E0 e^(2i). Zeno time "
       "detected as the first step after which |v| <= 2 g dt and q <= 2 g dt^2 for the rest of the run. "
+      "Errors at or below {:.0e} are round-off and carry no order (n/a). "
       "n/a: the scheme declines the problem (its reason in the next cell).",
-      kImpacts);
+      kImpacts, kRoundOffError);
   table.columns = {
       {"integrator", "", "", ""},
       {"e", "", "{}", "restitution"},
@@ -161,17 +162,19 @@ std::vector<Table> bouncing_tables(const std::vector<Json>& cases, const std::ve
       {"Zeno err", "s", "{:.2e}", "|detected - exact| accumulation time"},
       {"max pen.", "m", "{:.2e}", "max penetration max(0, -q)"},
       {"steps", "", "", ""},
-      {"CPU", "s", "{:.2e}", "thread CPU time of the run, per-step observation included (timed runs: study precision)", true},
+      {"CPU", "s", "{:.2e}", "thread CPU time of the stepping, per-step observation excluded (timed runs: study precision)", true},
   };
   table.figures = {
-      {"bouncing_convergence", "Bouncing mass: impact-time error against the step", "dt", "max t_i err", {"integrator"}, {"e"}, true, true},
+      {"bouncing_convergence", "Bouncing mass: impact-time error against the step", "dt", "max t_i err", {"integrator"}, {"e"}, true, true, {1, 2}},
       {"bouncing_work_precision", "Bouncing mass: impact-time error against CPU time", "CPU", "max t_i err", {"integrator"}, {"e"}, true, true},
-      {"bouncing_energy_convergence", "Bouncing mass: flight-energy error against the step", "dt", "max E_i err", {"integrator"}, {"e"}, true, true},
+      {"bouncing_energy_convergence", "Bouncing mass: flight-energy error against the step", "dt", "max E_i err", {"integrator"}, {"e"}, true, true, {1, 2}},
   };
   Table orders;
   orders.id = "bouncing_mass_orders";
   orders.title = "Bouncing mass: least-squares convergence orders";
-  orders.caption = "Slope of log(error) against log(dt) over the steps of the study (errors as in the main table).";
+  orders.caption = fmt::format("Slope of log(error) against log(dt) over the steps of the study (errors as in the main "
+                               "table); errors at or below {:.0e} are round-off and left out (n/a: fewer than two left).",
+                               kRoundOffError);
   orders.columns = {{"integrator", "", "", ""}, {"e", "", "{}", ""},
                     {"order t_i", "", "{:.2f}", "impact times"}, {"order E_i", "", "{:.2f}", "flight energies"},
                     {"order Zeno", "", "{:.2f}", "accumulation time"}};
@@ -181,7 +184,7 @@ std::vector<Table> bouncing_tables(const std::vector<Json>& cases, const std::ve
   history.caption = "E(t) / E0 with each integrator's own energy (CD-Lagrange: its discrete energy E_{k+1/2}).";
   history.columns = {{"integrator", "", "", ""}, {"e", "", "{}", ""}, {"t", "s", "{:.4f}", ""}, {"E/E0", "", "{:.6f}", ""}};
   history.csv_only = true;
-  history.figures = {{"bouncing_energy_history", history.title, "t", "E/E0", {"integrator"}, {"e"}, false, false}};
+  history.figures = {{"bouncing_energy_history", history.title, "t", "E/E0", {"integrator"}, {"e"}, false, false, {}, true, true}};
   Table energies;
   energies.id = "bouncing_mass_energy";
   energies.title = "Bouncing mass: flight energy after each impact, dt = 1e-3";
@@ -228,16 +231,19 @@ std::vector<Table> bouncing_tables(const std::vector<Json>& cases, const std::ve
         t_err.push_back(max_abs(impact_time_error));
         e_err.push_back(max_abs(rel));
         z_err.push_back(e < 1.0 ? std::abs(zeno_detected - problem.zeno_time()) : NAN);
-        const double order_t = s ? observed_order(steps[s - 1], t_err[s - 1], dt, t_err[s]) : NAN;
-        const double order_e = s ? observed_order(steps[s - 1], e_err[s - 1], dt, e_err[s]) : NAN;
+        const double order_t = s ? observed_order(steps[s - 1], above_round_off(t_err[s - 1]), dt, above_round_off(t_err[s])) : NAN;
+        const double order_e = s ? observed_order(steps[s - 1], above_round_off(e_err[s - 1]), dt, above_round_off(e_err[s])) : NAN;
         table.add_row({integrator, e, dt,
                        impact_time_error.empty() ? Cell{} : Cell{std::abs(impact_time_error[0])},
                        number_cell(t_err[s]), number_cell(order_t), number_cell(e_err[s]), number_cell(order_e),
                        static_cast<long>(impact_time_error.size()), number_cell(zeno_detected), number_cell(z_err[s]),
                        max_penetration, n_steps, cpu});
       }
-      orders.add_row({integrator, e, number_cell(fitted_order(steps, t_err)), number_cell(fitted_order(steps, e_err)),
-                      number_cell(fitted_order(steps, z_err))});
+      const auto fit = [&](std::vector<double> err) {  // errors at round-off carry no order
+        for (double& x : err) x = above_round_off(x);
+        return number_cell(fitted_order(steps, err));
+      };
+      orders.add_row({integrator, e, fit(t_err), fit(e_err), fit(z_err)});
     }
   }
   return {table, orders, energies, history};

@@ -142,7 +142,7 @@ Outcome run_hard_case(const HardCase& c, const std::string& integrator_name) {
   o.steps = r.steps;
   o.force_evaluations = r.work.force_evaluations;
   o.t_reached = r.t_final;
-  o.cpu = r.cpu_seconds;
+  o.cpu = r.step_cpu_seconds;
   o.max_penetration = r.max_penetration;
   if (const auto it = r.work.extra.find("switches"); it != r.work.extra.end()) o.switches = it->second;
   if (const auto it = r.work.extra.find("missed_switches"); it != r.work.extra.end()) o.missed_switches = it->second;
@@ -203,7 +203,7 @@ std::vector<Table> hard_tables(const std::vector<Json>& cases, const std::vector
                {"energy growth", "", "{:.2e}", "max (E - E0) / E scale"},
                {"growth tol", "", "{:.0e}", ""},
                {"final E err", "", "{:.2e}", "|E_end - E0| / E scale"},
-               {"CPU", "s", "{:.2e}", "", true},
+               {"CPU", "s", "{:.2e}", "thread CPU time of the stepping (observer excluded)", true},
                {"note", "", "", "why a run diverged, stopped or is n/a"}};
   t.metadata = {{"study", "hard"}};
   // One history table per problem, in the order the cases first use them.

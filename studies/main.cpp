@@ -14,8 +14,8 @@
 //                                  benchmarks' JSON output (studies/performance.hpp)
 //
 // Reports: DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
-// scripts/figures.py) and DIR/index.md linking them, opening with the headline tables (the
-// rankings) in full. Shards: DIR/shards/<study>-I-of-N.json.
+// scripts/figures.py) and DIR/index.md linking them, opening with the lead tables (the claims)
+// and the headline tables (the rankings) in full. Shards: DIR/shards/<study>-I-of-N.json.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -139,6 +139,7 @@ int main(int argc, char** argv) {
                                     plugged.empty() ? "" : ", plugins " + plugged);
     std::string studies;   // a section per study, after the headline
     std::string headline;  // the headline tables, shown first
+    std::string lead;      // the lead tables (the claims), shown before the headline
     std::vector<nsb::Table> all_tables;
     for (const auto* s : selected) {
       const auto start = std::chrono::steady_clock::now();
@@ -181,6 +182,8 @@ int main(int argc, char** argv) {
           studies += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", t.title, t.id, t.id, t.id);
         for (const auto& f : t.figures)
           studies += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf))\n", f.title, f.id, f.id);
+        if (t.lead)
+          lead += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", t.title, t.id, s->name, t.caption, nsb::markdown_grid(t));
         if (t.headline)
           headline += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", t.title, t.id, s->name, t.caption,
                                   nsb::markdown_grid(t));
@@ -203,6 +206,7 @@ int main(int argc, char** argv) {
                              env.cores, env.libraries, b.build_type, b.compiler, b.git_revision, nsb::command_line());
       if (spec) nsb::write_study_copy(*spec, report->path());
       nsb::write_file_atomic(report->path() / "figures.json", nsb::figures_to_json(all_tables));
+      if (!lead.empty()) index += "## Claims\n\nThe verdicts are computed from measured figures (the rules are in the caption).\n\n" + lead + "\n";
       if (!headline.empty())
         index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
                  "caption).\n\n" + headline + "\n";

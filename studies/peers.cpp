@@ -186,7 +186,7 @@ std::vector<Table> peers_tables(const std::vector<Json>& cases, const std::vecto
     t.add_row(std::move(row));
   }
   const char* blas = std::getenv("OPENBLAS_NUM_THREADS");
-  t.metadata = {{"study", "peers"}, {"peers", peer_versions()}, {"OPENBLAS_NUM_THREADS", blas ? blas : "unset"}};
+  t.metadata = {{"study", "peers"}, {"OPENBLAS_NUM_THREADS", blas ? blas : "unset"}};
   return {t};
 }
 

@@ -12,6 +12,9 @@ extern const StudyEntry block_study;
 extern const StudyEntry peers_study;
 extern const StudyEntry bouncing_bar_study;
 extern const StudyEntry friction_study;
+extern const StudyEntry bodies_study;
+extern const StudyEntry hausdorff_study;
+extern const StudyEntry claims_study;
 
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
@@ -25,6 +28,9 @@ const std::vector<StudyEntry>& study_registry() {
       peers_study,
       bouncing_bar_study,
       friction_study,
+      bodies_study,
+      hausdorff_study,
+      claims_study,
   };
   return entries;
 }

@@ -23,11 +23,15 @@ double median_cpu_seconds(const Problem& problem, const std::string& integrator,
   for (int k = 0; k <= repeats; ++k) {
     auto timed = make_integrator(integrator, params);
     timed->init(problem, problem.initial_state());
-    const double t = run(problem, *timed, options).cpu_seconds;
+    const double t = run(problem, *timed, options).step_cpu_seconds;
     if (k > 0) cpu.push_back(t);  // run 0 is the warm-up
   }
   std::sort(cpu.begin(), cpu.end());
   return cpu[cpu.size() / 2];
+}
+
+double above_round_off(double error) {
+  return error > kRoundOffError ? error : std::numeric_limits<double>::quiet_NaN();
 }
 
 Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }

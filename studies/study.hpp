@@ -92,6 +92,14 @@ class IntervalMax {
 // an n/a row; nullopt when the scheme took it.
 std::optional<std::string> init_or_decline(Integrator& integrator, const Problem& problem);
 
+// Errors at or below this are round-off (a scheme exact for the case: Moreau-Jean's velocity
+// under a constant force, a plugin at e = 1 on the bouncing mass): they carry no order and stay
+// out of every study's order fits. The studies' errors are relative, or absolute on motions of
+// size one (s, m, m/s), so one absolute threshold serves them all.
+constexpr double kRoundOffError = 1e-11;
+// The error, or NaN when it is at round-off (<= kRoundOffError) or not a number.
+double above_round_off(double error);
+
 // Observed order between two refinements: log(e1/e2) / log(h1/h2); NaN when an error is
 // not positive and finite.
 double observed_order(double h1, double e1, double h2, double e2);

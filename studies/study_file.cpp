@@ -14,6 +14,15 @@
 //                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
 //                balances momentum exactly when the internal forces sum to zero.
 //   penetration  max over the steps of max(0, -g).
+//   hausdorff    H(run, ref) between the graphs {(t, o)} of an observable (the run's samples;
+//                the exact solution with its jumps as vertical segments, or the reference run's
+//                samples), in scaled coordinates (t / time_scale, o / value_scale), by default
+//                time_scale = t_end and value_scale = the reference's largest |o|
+//                (studies/hausdorff.hpp).
+// Status: ok, diverged, over budget, n/a (declined), or energy blow-up: the scheme's energy
+// left E0 by more than kEnergyBlowUp |E0| at some step (no dissipation gets there: it loses at
+// most E0); the row keeps its values, the ranking leaves it out. A per-problem override of an
+// integrator's parameters shows in its rows' integrator cell, "label [key=value]".
 #include "studies/study_file.hpp"
 
 #include <fmt/format.h>
@@ -25,6 +34,7 @@
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "reference/cache.hpp"
+#include "studies/hausdorff_study.hpp"
 #include "studies/ranking.hpp"
 
 namespace nsb {
@@ -33,8 +43,16 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kHistoryIntervals = 200;
-// Errors below this are round-off: left out of the order fits (as in the precision study).
-constexpr double kRoundOff = 1e-11;
+constexpr double kEnergyBlowUp = 2.0;  // max |E - E0| / |E0| beyond which a run is not valid
+
+// The integrator's label, with the parameters a problem's override changed.
+std::string shown_label(const FileIntegrator& fi, const std::string& problem_label) {
+  std::vector<std::string> changed;
+  for (const auto& [key, value] : fi.sweep_for(problem_label).parameters)
+    if (const auto it = fi.sweep.parameters.find(key); it == fi.sweep.parameters.end() || it->second != value)
+      changed.push_back(key + "=" + value);
+  return changed.empty() ? fi.label : fmt::format("{} [{}]", fi.label, fmt::join(changed, ", "));
+}
 
 ReferenceRequest reference_request(const StudySpec& spec, const FileProblem& p) {
   const FileReference& r = spec.reference;
@@ -105,6 +123,17 @@ class Reference {
     return (1 - w) * s.at(lo, col) + w * s.at(hi, col);
   }
   Vec u(double t) const { return problem_.exact_state(t)->u; }
+  // The reference's graph of an observable on [0, t_end].
+  Polyline graph(const std::string& name, double t_end, std::span<double> buffer) const {
+    if (exact_) {
+      const Vec none = Vec::Zero(problem_.ncontacts());
+      return exact_graph(problem_, [&](const State& s) { return state_observable(problem_, M_, s, none, 0.0, name, buffer, nullptr); }, t_end);
+    }
+    Polyline g;
+    const std::size_t col = run_.series.column(name);
+    for (std::size_t k = 0; k < run_.series.rows(); ++k) g.add(run_.series.at(k, t_), run_.series.at(k, col));
+    return g;
+  }
 
  private:
   const Problem& problem_;
@@ -120,6 +149,7 @@ struct Accumulator {
   double st = 0, se = 0, stt = 0, ste = 0, n = 0;  // drift fit
   std::vector<double> impacts;
   bool in_contact = false;
+  Polyline graph;  // Hausdorff: the run's samples
 };
 
 Json run_file_case(const StudySpec& spec, const Json& c) {
@@ -148,6 +178,12 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const Vec mass_row = M.transpose() * ones, gap_row = problem->gap_operator() * ones;
   Vec f_ext(problem->ndof());
   const double p0 = mass_row.dot(integrator->state().v);
+  for (std::size_t m = 0; m < spec.measures.size(); ++m)
+    if (spec.measures[m].kind == MeasureKind::Hausdorff) {
+      const Energy energy = integrator->energy();
+      const State& s = integrator->state();
+      acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0, spec.measures[m].observable, obs, &energy));
+    }
   const double e0 = integrator->energy().total(), e_scale = energy_error_scale(*problem, e0);
   double impulse_sum = 0.0, t_prev = 0.0;
   IntervalMax history(spec.t_end, kHistoryIntervals, 1);
@@ -174,6 +210,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
           e = std::abs(value - ref);
           a.scale = std::max(a.scale, std::abs(ref));
         }
+      } else if (fm.kind == MeasureKind::Hausdorff) {
+        const Energy energy = it.energy();
+        a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy));
       } else if (fm.kind == MeasureKind::Energy) {
         e = (it.energy().total() - e0) / e_scale;
         a.st += s.t, a.se += e, a.stt += s.t * s.t, a.ste += s.t * e, a.n += 1;
@@ -207,6 +246,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps},
               {"force_evaluations", r.work.force_evaluations}};
   if (r.status != RunStatus::Ok) return out;
+  if (r.max_energy_error > kEnergyBlowUp) {
+    out["status"] = "energy blow-up";
+    out["message"] = fmt::format("max |E - E0| / |E0| = {:.3g} > {}", r.max_energy_error, kEnergyBlowUp);
+  }
   if (step % spec.sample_every != 0) sample(*integrator);
   history.finish();
   Json values = Json::array();
@@ -233,11 +276,20 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       }
       case MeasureKind::Momentum: v = a.largest / scale; break;
       case MeasureKind::Penetration: v = r.max_penetration; break;
+      case MeasureKind::Hausdorff: {
+        const Polyline ref = reference.graph(fm.observable, spec.t_end, obs_ref);
+        double largest = 0.0;
+        for (double x : ref.x) largest = std::max(largest, std::abs(x));
+        const double T = fm.time_scale > 0.0 ? fm.time_scale : spec.t_end;
+        const double V = fm.value_scale > 0.0 ? fm.value_scale : largest > 0.0 ? largest : 1.0;
+        v = hausdorff(scaled(a.graph, T, V), scaled(ref, T, V));
+        break;
+      }
     }
     values.push_back(real(v));
   }
   out["values"] = values;
-  out["cpu"] = spec.cpu_repeats > 0 ? median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats) : r.cpu_seconds;
+  out["cpu"] = spec.cpu_repeats > 0 ? median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats) : r.step_cpu_seconds;
   if (history_measure != spec.measures.end())
     out["history"] = {{"t", reals(history.times())}, {"e", reals(history.largest(0))}};
   return out;
@@ -257,7 +309,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                                                      : fmt::format("{} (dt = {}, cached)", spec.reference.integrator, spec.reference.dt);
   const std::string cpu = spec.cpu_repeats > 0
                               ? fmt::format("median thread CPU time of {} unobserved runs after a warm-up", spec.cpu_repeats)
-                              : "thread CPU time of the observed run";
+                              : "thread CPU time of the stepping of the observed run (observer excluded)";
   Table t;
   t.id = spec.name + "_work_precision";
   t.title = spec.title + ": work-precision";
@@ -265,13 +317,20 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                           "over the run; an impact time is the end of the step holding the impact (resolution: the step, for "
                           "event-driven the output step dt). Diverged, over-budget and declined runs are rows with their reason.",
                           against, cpu);
+  for (const auto& m : spec.measures)
+    if (m.kind == MeasureKind::Hausdorff)
+      t.caption += fmt::format(" {}: Hausdorff distance between the graphs of {} (jumps of the exact solution as vertical segments) "
+                               "in scaled coordinates (t / {}, value / {}).", m.label, m.observable,
+                               m.time_scale > 0.0 ? fmt::format("{:g} s", m.time_scale) : "t_end",
+                               m.value_scale > 0.0 ? fmt::format("{:g}", m.value_scale) : "the reference's largest |value|");
   t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
                {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
   for (const auto& m : spec.measures)
     t.columns.push_back({m.label, m.kind == MeasureKind::ImpactTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" ? "1/s" : "",
                          "{:.3e}", ""});
   t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", "", true}, {"steps", "", "", ""},
-                                     {"F_int evals", "", "", "internal force evaluations"}, {"status", "", "", ""}});
+                                     {"F_int evals", "", "", "internal force evaluations"},
+                                     {"status", "", "", fmt::format("energy blow-up: max |E - E0| / |E0| > {} (not ranked)", kEnergyBlowUp)}});
   t.metadata = meta;
   Table orders;
   orders.id = spec.name + "_orders";
@@ -298,9 +357,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                  {spec.name + "_work_precision_evals", spec.title + ": " + primary->label + " against F_int evaluations", "F_int evals", primary->label, {"integrator"}, {"problem"}, true, true}};
   }
   for (const auto& m : spec.measures)
-    if (m.kind == MeasureKind::Error || m.kind == MeasureKind::ImpactTime)
+    if (m.kind == MeasureKind::Error || m.kind == MeasureKind::ImpactTime || m.kind == MeasureKind::Hausdorff)
       t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
-                           "dt", m.label, {"integrator"}, {"problem"}, true, true});
+                           "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
 
   std::vector<RankingProblem> ranking;
   for (const auto& p : spec.problems)
@@ -311,14 +370,15 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     const std::size_t pi = cases[k]["problem"], ii = cases[k]["integrator"];
     const std::string& plabel = spec.problems[pi].label;
     const FileIntegrator& fi = spec.integrators[ii];
-    WorkCurve curve{fi.label, find_integrator(fi.name).reference, {}};
+    const std::string ilabel = shown_label(fi, plabel);
+    WorkCurve curve{ilabel, find_integrator(fi.name).reference, {}};
     std::vector<double> xs;
     std::vector<std::vector<double>> ys(spec.measures.size());
     for (; k < cases.size() && cases[k]["problem"] == pi && cases[k]["integrator"] == ii; ++k) {
       const Json& r = results[k];
       const bool tol = !cases[k]["tol"].is_null();
       xs.push_back(tol ? cases[k]["tol"].get<double>() : cases[k]["dt"].get<double>());
-      std::vector<Cell> row = {plabel, fi.label, cases[k]["dt"].get<double>(), number_cell(cases[k]["tol"])};
+      std::vector<Cell> row = {plabel, ilabel, cases[k]["dt"].get<double>(), number_cell(cases[k]["tol"])};
       for (std::size_t m = 0; m < spec.measures.size(); ++m) {
         const double v = r.contains("values") ? real(r["values"][m]) : kNaN;
         ys[m].push_back(v);
@@ -328,20 +388,21 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       row.insert(row.end(), {number_cell(number(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
                              status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
       t.add_row(std::move(row));
-      if (primary != spec.measures.end() && status != "n/a")
+      if (primary != spec.measures.end() && status != "n/a" && status != "energy blow-up")
         curve.points.push_back({run_label(cases[k]), number(r, "cpu"), ys[primary - spec.measures.begin()].back()});
       if (r.contains("history"))
         for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
-          history.add_row({plabel, fi.label, run_label(cases[k]), number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
+          history.add_row({plabel, ilabel, run_label(cases[k]), number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
     }
     ranking[pi].curves.push_back(curve);
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
-      if (spec.measures[m].kind != MeasureKind::Error && spec.measures[m].kind != MeasureKind::ImpactTime) continue;
+      const MeasureKind kind = spec.measures[m].kind;
+      if (kind != MeasureKind::Error && kind != MeasureKind::ImpactTime && kind != MeasureKind::Hausdorff) continue;
       std::vector<double> e = ys[m];
       for (double& x : e)
-        if (spec.measures[m].kind == MeasureKind::Error && !(x > kRoundOff)) x = kNaN;
+        if (kind != MeasureKind::ImpactTime) x = above_round_off(x);
       const OrderFit fit = fit_order(xs, e);
-      orders.add_row({plabel, fi.label, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
+      orders.add_row({plabel, ilabel, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
                       number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});
     }
   }

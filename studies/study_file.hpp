@@ -51,15 +51,17 @@ struct FileReference {
   double floor = 0.0;      // the reference's own error in the measures' norm (ranking)
 };
 
-enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration };
+enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff };
 
 struct FileMeasure {
   MeasureKind kind = MeasureKind::Error;
   std::string label;             // the column's name
-  std::string observable = "u";  // Error: "u" or one of the problem's observables
+  std::string observable = "u";  // Error: "u" or one of the problem's observables; Hausdorff: an observable
   std::string norm = "max";      // Error: final|max|l2; Energy: max|final|drift
   int count = 3;                 // ImpactTime: the first `count` impacts
   bool history = false;          // Energy: also a history table and figure
+  double time_scale = 0.0;       // Hausdorff: T (0: t_end)
+  double value_scale = 0.0;      // Hausdorff: V (0: the reference's largest |value|)
 };
 
 struct StudySpec {

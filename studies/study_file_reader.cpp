@@ -416,29 +416,38 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   }
 
   const Json& measures = list("measure");
-  const std::vector<std::string> kinds{"error", "impact-time", "energy", "momentum", "penetration"};
+  const std::vector<std::string> kinds{"error", "impact-time", "energy", "momentum", "penetration", "hausdorff"};
   for (std::size_t i = 0; i < measures.size(); ++i) {
     const Json& j = measures[i];
     const std::string path = element("measure", i);
     FileMeasure m;
     const std::string kind = c.choice(c.require(j, path, "kind"), child(path, "kind"), kinds);
     m.kind = static_cast<MeasureKind>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
-    if (m.kind == MeasureKind::Error) {
-      c.keys(j, path, {"kind", "label", "observable", "norm"});
-      if (!spec.has_reference) c.fail(path, "an error needs a [reference]", "[reference] solution = \"exact\" or integrator = NAME");
+    if (m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff) {
+      const bool hausdorff = m.kind == MeasureKind::Hausdorff;
+      if (hausdorff) {
+        c.keys(j, path, {"kind", "label", "observable", "time_scale", "value_scale"});
+        m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
+        if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
+        if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
+      } else {
+        c.keys(j, path, {"kind", "label", "observable", "norm"});
+      }
+      if (!spec.has_reference) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
+                                      "[reference] solution = \"exact\" or integrator = NAME");
       if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2"});
       if (const Json* v = c.find(j, "observable")) m.observable = c.string(*v, child(path, "observable"));
       for (std::size_t p = 0; p < instances.size(); ++p) {
         std::vector<std::string> valid = instances[p]->observable_names();
         valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
         if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
-        if (spec.reference.exact) valid.insert(valid.begin(), "u");
+        if (spec.reference.exact && !hausdorff) valid.insert(valid.begin(), "u");
         if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
           c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'{}", m.observable, spec.problems[p].label,
                                                         spec.reference.exact ? "" : " recorded by its reference run"),
                  fmt::format("{}", fmt::join(valid, ", ")));
       }
-      m.label = fmt::format("err {} {}", m.observable, m.norm);
+      m.label = hausdorff ? fmt::format("hausdorff {}", m.observable) : fmt::format("err {} {}", m.observable, m.norm);
     } else if (m.kind == MeasureKind::ImpactTime) {
       c.keys(j, path, {"kind", "label", "count"});
       if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,6 +11,7 @@
 #include "core/environment.hpp"
 #include "core/output.hpp"
 #include "core/plugin.hpp"
+#include "integrators/registry.hpp"  // peer_versions()
 
 #include <nlohmann/json.hpp>
 
@@ -33,6 +36,7 @@ std::vector<std::pair<std::string, std::string>> stamp(const Table& t) {
   const Environment& env = environment();
   s.emplace_back("machine", fmt::format("{}, {} cores", env.cpu, env.cores));
   s.emplace_back("libraries", env.libraries);
+  s.emplace_back("peers", peer_versions());
   if (!command_line().empty()) s.emplace_back("command", command_line());
   if (const std::string plugins = plugins_stamp(); !plugins.empty()) s.emplace_back("plugins", plugins);
   return s;
@@ -61,6 +65,8 @@ std::string csv_escape(const std::string& s) {
   return out + "\"";
 }
 
+// Every character TeX treats specially, the backslash included: a label such as
+// "x\input /etc/hostname \relax" is printed, not executed.
 std::string latex_escape(const std::string& s) {
   std::string out;
   for (char ch : s) {
@@ -69,12 +75,74 @@ std::string latex_escape(const std::string& s) {
         out += '\\';
         out += ch;
         break;
-      case '^': out += "\\^{}"; break;
-      case '~': out += "\\~{}"; break;
+      case '\\': out += "\\textbackslash{}"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '|': out += "\\textbar{}"; break;
+      case '<': out += "\\textless{}"; break;
+      case '>': out += "\\textgreater{}"; break;
       default: out += ch;
     }
   }
   return out;
+}
+
+// Escaped text with the Greek letters the labels spell out (theta = 0.5, alpha, mu, rho_inf)
+// typeset as symbols. Only whole words (runs of letters) are replaced, so the escapes'
+// own commands (\textbackslash) and longer words (beta in "betas", eta in "theta") are not.
+std::string latex_text(const std::string& s) {
+  static const std::vector<std::string> greek = {"alpha", "beta", "gamma", "delta", "epsilon", "theta", "kappa",
+                                                 "lambda", "mu", "rho", "sigma", "tau", "phi", "omega", "Delta",
+                                                 "Gamma", "Lambda", "Omega", "Phi", "Sigma", "Theta"};
+  const std::string e = latex_escape(s);
+  std::string out;
+  std::size_t i = 0;
+  while (i < e.size()) {
+    if (!std::isalpha(static_cast<unsigned char>(e[i]))) {
+      out += e[i++];
+      continue;
+    }
+    std::size_t j = i;
+    while (j < e.size() && std::isalpha(static_cast<unsigned char>(e[j]))) ++j;
+    const std::string word = e.substr(i, j - i);
+    const bool command = i > 0 && e[i - 1] == '\\';
+    const bool symbol = !command && std::find(greek.begin(), greek.end(), word) != greek.end();
+    out += symbol ? "$\\" + word + "$" : word;
+    i = j;
+  }
+  return out;
+}
+
+// Markdown cell text: a '|' would end the cell.
+std::string markdown_escape(const std::string& s) {
+  std::string out;
+  for (char ch : s) {
+    if (ch == '|') out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
+// A number column (right-aligned in LaTeX) holds more numbers than texts (n/a, diverged).
+bool numeric_column(const Table& t, std::size_t i) {
+  long numbers = 0, texts = 0;
+  for (const auto& row : t.rows) {
+    if (std::holds_alternative<double>(row[i]) || std::holds_alternative<long>(row[i])) ++numbers;
+    if (std::holds_alternative<std::string>(row[i])) ++texts;
+  }
+  return numbers > 0 && numbers >= texts;
+}
+
+// A number in LaTeX: the mantissa-exponent form of the column's format as m x 10^e (math mode,
+// the minus a true minus); the rest as text.
+std::string latex_cell(const Cell& c, const std::string& format) {
+  const std::string text = cell_text(c, format);
+  if (!std::holds_alternative<double>(c) && !std::holds_alternative<long>(c)) return latex_text(text);
+  if (text == "n/a" || text == "inf" || text == "-inf") return text == "n/a" ? text : (text[0] == '-' ? "$-\\infty$" : "$\\infty$");
+  const std::size_t e = text.find_first_of("eE");
+  if (e == std::string::npos) return "$" + text + "$";
+  const int exponent = std::stoi(text.substr(e + 1));
+  return fmt::format("${}\\times 10^{{{}}}$", text.substr(0, e), exponent);
 }
 
 }  // namespace
@@ -96,13 +164,13 @@ std::string to_csv(const Table& t) {
 std::string markdown_grid(const Table& t) {
   std::vector<std::string> head, rule;
   for (const auto& c : t.columns) {
-    head.push_back(header_text(c));
+    head.push_back(markdown_escape(header_text(c)));
     rule.push_back("---");
   }
   std::string out = fmt::format("| {} |\n| {} |\n", fmt::join(head, " | "), fmt::join(rule, " | "));
   for (const auto& row : t.rows) {
     std::vector<std::string> cells;
-    for (std::size_t i = 0; i < row.size(); ++i) cells.push_back(cell_text(row[i], t.columns[i].format));
+    for (std::size_t i = 0; i < row.size(); ++i) cells.push_back(markdown_escape(cell_text(row[i], t.columns[i].format)));
     out += fmt::format("| {} |\n", fmt::join(cells, " | "));
   }
   return out;
@@ -119,24 +187,40 @@ std::string to_markdown(const Table& t) {
   return out;
 }
 
+// A longtable (packages booktabs, longtable): it breaks across pages, its header repeated on
+// each. The title is the \caption (and the list of tables' entry); the caption's text, the
+// column descriptions and the revision follow the table as its notes.
 std::string to_latex(const Table& t) {
   std::string out;
   for (const auto& [k, v] : stamp(t)) out += fmt::format("% {}: {}\n", k, v);
-  out += "% needs \\usepackage{booktabs}\n\\begin{table}\n\\centering\n\\small\n";
-  out += fmt::format("\\caption{{{} {}}}\n\\label{{tab:{}}}\n", latex_escape(t.title), latex_escape(t.caption), t.id);
-  out += fmt::format("\\begin{{tabular}}{{{}}}\n\\toprule\n", std::string(t.columns.size(), 'l'));
+  std::string spec;
+  for (std::size_t i = 0; i < t.columns.size(); ++i) spec += numeric_column(t, i) ? 'r' : 'l';
   std::vector<std::string> head;
-  for (const auto& c : t.columns) head.push_back(latex_escape(header_text(c)));
-  out += fmt::format("{} \\\\\n\\midrule\n", fmt::join(head, " & "));
+  for (const auto& c : t.columns) head.push_back(latex_text(header_text(c)));
+  const std::string header = fmt::format("\\toprule\n{} \\\\\n\\midrule\n", fmt::join(head, " & "));
+  out += "% needs \\usepackage{booktabs,longtable}\n{\\small\n\\setlength{\\LTcapwidth}{\\linewidth}\n";
+  out += fmt::format("\\begin{{longtable}}{{@{{}}{}@{{}}}}\n\\caption{{{}}}\\label{{tab:{}}} \\\\\n", spec,
+                     latex_text(t.title), t.id);
+  out += header + "\\endfirsthead\n";
+  out += fmt::format("\\multicolumn{{{}}}{{@{{}}l}}{{\\footnotesize\\itshape Table~\\ref{{tab:{}}}, continued}} \\\\\n",
+                     t.columns.size(), t.id);
+  out += header + "\\endhead\n";
+  out += fmt::format("\\midrule\n\\multicolumn{{{}}}{{r@{{}}}}{{\\footnotesize\\itshape continued on the next page}} \\\\\n"
+                     "\\endfoot\n\\bottomrule\n\\endlastfoot\n", t.columns.size());
   for (const auto& row : t.rows) {
     std::vector<std::string> cells;
-    for (std::size_t i = 0; i < row.size(); ++i) cells.push_back(latex_escape(cell_text(row[i], t.columns[i].format)));
-    out += fmt::format("{} \\\\\n", fmt::join(cells, " & "));
+    for (std::size_t i = 0; i < row.size(); ++i) cells.push_back(latex_cell(row[i], t.columns[i].format));
+    // "{}" first: a row opening with '[' would be read as the optional argument of the \\ before it.
+    out += fmt::format("{{}}{} \\\\\n", fmt::join(cells, " & "));
   }
+  out += "\\end{longtable}\n}\n\\begingroup\\footnotesize\\noindent ";
+  out += latex_text(t.caption);
+  for (const auto& c : t.columns)
+    if (!c.description.empty()) out += fmt::format(" {}: {}.", latex_text(c.name), latex_text(c.description));
   const std::string plugins = plugins_stamp();
-  out += fmt::format("\\bottomrule\n\\end{{tabular}}\n\\par\\smallskip\\footnotesize Revision {}, {} build, {}{}.\n\\end{{table}}\n",
-                     latex_escape(build_info().git_revision), latex_escape(build_info().build_type),
-                     latex_escape(build_info().compiler), plugins.empty() ? "" : ", plugins " + latex_escape(plugins));
+  out += fmt::format(" Revision {}, {} build, {}{}.\\par\\endgroup\n", latex_escape(build_info().git_revision),
+                     latex_escape(build_info().build_type), latex_escape(build_info().compiler),
+                     plugins.empty() ? "" : ", plugins " + latex_escape(plugins));
   return out;
 }
 
@@ -168,7 +252,8 @@ std::string figures_to_json(const std::vector<Table>& tables) {
     for (const auto& f : t.figures)
       all.push_back({{"id", f.id}, {"title", f.title}, {"csv", t.id + ".csv"}, {"x", header(f.x)},
                      {"y", header(f.y)}, {"series", headers(f.series)}, {"panels", headers(f.panels)},
-                     {"log_x", f.log_x}, {"log_y", f.log_y}});
+                     {"log_x", f.log_x}, {"log_y", f.log_y}, {"slopes", f.slopes},
+                     {"small_multiples", f.small_multiples}, {"deviation", f.deviation}});
   }
   return all.dump(2) + "\n";
 }
@@ -224,10 +309,12 @@ std::string table_to_json_text(const Table& t) {
   j["metadata"] = t.metadata;
   j["csv_only"] = t.csv_only;
   j["headline"] = t.headline;
+  j["lead"] = t.lead;
   j["figures"] = nlohmann::json::array();
   for (const auto& f : t.figures)
     j["figures"].push_back({{"id", f.id}, {"title", f.title}, {"x", f.x}, {"y", f.y}, {"series", f.series},
-                            {"panels", f.panels}, {"log_x", f.log_x}, {"log_y", f.log_y}});
+                            {"panels", f.panels}, {"log_x", f.log_x}, {"log_y", f.log_y}, {"slopes", f.slopes},
+                            {"small_multiples", f.small_multiples}, {"deviation", f.deviation}});
   return j.dump();
 }
 
@@ -246,8 +333,10 @@ Table table_from_json_text(const std::string& text) {
   t.metadata = j["metadata"].get<std::vector<std::pair<std::string, std::string>>>();
   t.csv_only = j["csv_only"];
   t.headline = j["headline"];
+  t.lead = j.value("lead", false);
   for (const auto& f : j["figures"])
-    t.figures.push_back({f["id"], f["title"], f["x"], f["y"], f["series"], f["panels"], f["log_x"], f["log_y"]});
+    t.figures.push_back({f["id"], f["title"], f["x"], f["y"], f["series"], f["panels"], f["log_x"], f["log_y"],
+                         f["slopes"], f["small_multiples"], f["deviation"]});
   return t;
 }
 

@@ -33,6 +33,14 @@ struct Figure {
   std::vector<std::string> panels;
   bool log_x = false;
   bool log_y = false;
+  // Reference slopes drawn as triangles on a log-log panel: exponents p of y ~ x^p (1 and 2
+  // for errors against dt; -1 and -2 against a mesh's N).
+  std::vector<double> slopes = {};
+  // One panel per value of the first series column (the scheme), shared axes; the other
+  // series and panel columns are lines within it.
+  bool small_multiples = false;
+  // y is a ratio to its start (E/E0): draw its signed deviation y - 1.
+  bool deviation = false;
 };
 
 struct Table {
@@ -45,6 +53,7 @@ struct Table {
   std::vector<Figure> figures;
   bool csv_only = false;  // raw data behind a figure (histories): no Markdown or LaTeX
   bool headline = false;  // also shown first in index.md, under "Headline ranking"
+  bool lead = false;      // shown in full at the very top of index.md, before the headline ranking
 
   void add_row(std::vector<Cell> row);  // throws std::logic_error on a width mismatch
 };

@@ -17,7 +17,9 @@ namespace {
 // The penalty schemes regularise the law (their parameter friction_velocity): they creep and
 // reach stick only asymptotically, by design; their own tests (cd_penalty_test.cpp,
 // penalty_test.cpp) hold them to the regularised law's creep and stop time.
+// The physics engines keep their own laws (nsb::testing::is_engine_peer).
 bool complementarity(const nsb::IntegratorEntry& entry) {
+  if (nsb::testing::is_engine_peer(entry.name)) return false;
   for (const auto& spec : entry.parameters())
     if (spec.name == "friction_velocity") return false;
   return true;

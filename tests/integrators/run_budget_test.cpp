@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <time.h>
+
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
 #include "problems/registry.hpp"
@@ -44,4 +46,32 @@ TEST_CASE("run: a force-evaluation budget stops the run at the same step every t
 
 TEST_CASE("run: a negative force-evaluation budget is an input error", "[integrators][run][bad-input]") {
   CHECK_THROWS_WITH(run_with_budget("cd-lagrange", -1), Catch::Contains("max_force_evaluations -1: must be >= 0"));
+}
+
+TEST_CASE("run: the stepping time excludes the observer's and the sampling's time", "[integrators][run]") {
+  const auto problem = nsb::make_problem("bouncing-mass", {{"e", "0.5"}});
+  auto integ = nsb::make_integrator("cd-lagrange");
+  integ->init(*problem, problem->initial_state());
+  nsb::RunOptions options;
+  options.dt = 1e-3;
+  options.t_end = 0.2;
+  // An observer that spends at least 50 microseconds of this thread's CPU time per step:
+  // 200 steps, 10 ms in all, far more than the steps themselves.
+  const auto thread_cpu = [] {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+  };
+  double burnt = 0.0;
+  const auto r = nsb::run(*problem, *integ, options, [&](const nsb::Integrator&, const nsb::StepInfo&) {
+    const double start = thread_cpu();
+    while (thread_cpu() - start < 50e-6) {
+    }
+    burnt += thread_cpu() - start;
+  });
+  REQUIRE(r.steps == 200);
+  CHECK(burnt >= 0.01);
+  CHECK(r.step_cpu_seconds >= 0.0);
+  CHECK(r.step_cpu_seconds <= r.cpu_seconds);
+  CHECK(r.cpu_seconds - r.step_cpu_seconds >= burnt);  // the observer's time is all excluded
 }

@@ -212,6 +212,50 @@ TEST_CASE("study file: per-problem overrides replace the sweep and merge the par
   CHECK(s.integrators[0].sweep_for("other").steps.size() == 2);
 }
 
+TEST_CASE("study file: a per-problem override shows in the rows; an energy blow-up is no 'ok' and is not ranked",
+          "[studies][study_file]") {
+  TempCache cache;
+  // moreau-jean at theta = 1 on the spring chain only; cd-lagrange at dt = 0.2 on the chain,
+  // above its stable step 0.14: its energy grows ten times a step (1.6e6 E0 after 5 steps).
+  const std::string text = R"([study]
+title = "t"
+t_end = 1.0
+
+[[problem]]
+name = "spring-chain"
+
+[[integrator]]
+name = "moreau-jean"
+steps = [0.1, 0.05]
+[integrator.per_problem.spring-chain]
+parameters = { theta = 1 }
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [0.2, 0.01]
+
+[reference]
+integrator = "modal-exact"
+dt = 1e-3
+
+[[measure]]
+kind = "error"
+observable = "kinetic"
+
+[[measure]]
+kind = "energy"
+)";
+  const auto tables = run_all(nsb::parse_study_text(text, "o.toml", false));
+  const nsb::Table& wp = table(tables, "_work_precision");
+  const std::size_t status = column(wp, "status");
+  REQUIRE(wp.rows.size() == 4);
+  CHECK(std::get<std::string>(wp.rows[0][1]) == "moreau-jean [theta=1]");
+  CHECK(std::get<std::string>(wp.rows[0][status]) == "ok");
+  CHECK_THAT(std::get<std::string>(wp.rows[2][status]), Catch::StartsWith("energy blow-up: max |E - E0| / |E0| = "));
+  CHECK(std::get<std::string>(wp.rows[3][status]) == "ok");
+  CHECK_THAT(nsb::to_csv(table(tables, "_ranking")), !Catch::Contains("dt = 2.00e-01"));
+}
+
 TEST_CASE("study file examples: the quick bouncing-mass comparison runs (reduced)", "[studies][study_file]") {
   const nsb::StudySpec spec = nsb::reduced_study(nsb::read_study_file(kExamples / "bouncing_quick.toml"), 0.5, 3, 200000);
   std::vector<nsb::Json> results;
@@ -366,4 +410,31 @@ TEST_CASE("study file: duplicate JSON keys, overflowing numbers and impossible s
              Catch::StartsWith("f.toml:11: integrator[0].steps[0]: study.t_end / dt = 0.6 / 1e-300"));
   CHECK(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 16]")) ==
         "f.toml:11: integrator[0].steps[1]: dt = 16 is larger than study.t_end = 0.6; valid: dt <= t_end");
+}
+
+TEST_CASE("study file: a hausdorff measure converges where the max-norm velocity error does not", "[studies][study_file]") {
+  // Three impacts: the third is computed a step late at every step here (the first two land in
+  // the step that holds them), an O(1) max-norm error.
+  std::string text = replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [4e-3, 2e-3, 1e-3, 5e-4]");
+  text = replaced(text, "parameters = { e = 0.5 }", "parameters = { e = 0.9 }");
+  text = replaced(text, "t_end = 0.6", "t_end = 2.2\ncpu_repeats = 0");
+  text = replaced(text, "kind = \"error\"\n", "kind = \"error\"\nobservable = \"v\"\n\n[[measure]]\nkind = \"hausdorff\"\nobservable = \"v\"\n");
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "h.toml", false);
+  REQUIRE(spec.measures.size() == 2);
+  CHECK(spec.measures[1].label == "hausdorff v");
+  const auto tables = run_all(spec, nullptr);
+  const nsb::Table& orders = table(tables, "_orders");
+  const std::size_t order = column(orders, "order");
+  double max_norm = NAN, hausdorff = NAN;
+  for (const auto& row : orders.rows)
+    (std::get<std::string>(row[2]) == "hausdorff v" ? hausdorff : max_norm) = std::get<double>(row[order]);
+  CHECK(std::abs(max_norm) < 0.3);
+  CHECK(hausdorff == Approx(1.0).margin(0.45));
+  // Errors in the definition: the observable is required, the scales positive.
+  CHECK_THAT(error_of(replaced(text, "kind = \"hausdorff\"\nobservable = \"v\"\n", "kind = \"hausdorff\"\n")),
+             Catch::Contains("missing key 'observable'"));
+  CHECK_THAT(error_of(replaced(text, "kind = \"hausdorff\"\n", "kind = \"hausdorff\"\ntime_scale = -1\n")),
+             Catch::Contains("measure[1].time_scale"));
+  CHECK_THAT(error_of(replaced(text, "kind = \"hausdorff\"\nobservable = \"v\"\n", "kind = \"hausdorff\"\nobservable = \"u\"\n")),
+             Catch::Contains("not an observable"));
 }

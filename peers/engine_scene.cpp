@@ -1,0 +1,112 @@
+#include "peers/engine_scene.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace nsb::engines {
+
+ParamSpec size_spec() {
+  return ParamSpec::real("size", 0.1, 0.0, 10.0, "radius of the bouncing sphere, half side of the sliding box [m] (the disk keeps the problem's R)", true);
+}
+
+Scene scene_of(const Problem& problem, const State& initial, double size, const std::string& who) {
+  const Contacts& c = problem.contacts();
+  for (Index i = 0; i < c.tangent_velocity.size(); ++i)
+    if (c.tangent_velocity[i] != 0.0)
+      throw InputError(fmt::format("{}: problem '{}' has an obstacle moving along contact {} (tangent_velocity w = {}); the engine's plane is fixed (valid: w = 0)",
+                                   who, problem.name(), i, c.tangent_velocity[i]));
+  const std::string& name = problem.name();
+  if (name == "ball-chain")
+    throw InputError(fmt::format("{}: problem 'ball-chain' is declined: its contacts are between bodies, and the engine peers map a single body "
+                                 "on a fixed plane only (bouncing-mass, sliding-mass, rolling-disk)", who));
+  if (name != "bouncing-mass" && name != "sliding-mass" && name != "rolling-disk")
+    throw InputError(fmt::format("{}: problem '{}' is not one of the rigid problems the engine peers run (valid: bouncing-mass, sliding-mass, "
+                                 "rolling-disk); the engines see rigid bodies, not a semi-discrete continuum", who, name));
+  const Params& p = problem.parameters();
+  Scene s;
+  s.problem = problem.name();
+  s.restitution = c.restitution;
+  s.mu = c.max_mu();
+  s.mass = p.real("m");
+  const double g = p.real("g");
+  if (s.problem == "bouncing-mass") {
+    s.shape = Shape::Sphere;
+    s.radius = size;
+    s.kappa = 0.4;
+    s.gz = -g;
+    s.start.z = initial.u[0] + size;
+    s.start.vz = initial.v[0];
+  } else if (s.problem == "sliding-mass") {
+    s.shape = Shape::Box;
+    s.radius = size;
+    s.half_height = 0.5 * size;
+    s.moves_x = true;
+    const double alpha = p.real("alpha") * std::numbers::pi / 180.0;
+    s.gx = g * std::sin(alpha);
+    s.gz = -g * std::cos(alpha);
+    s.start = {initial.u[0], initial.u[1] + s.half_height, 0.0, initial.v[0], initial.v[1], 0.0};
+  } else {
+    s.kappa = p.real("kappa");
+    s.radius = p.real("R");
+    s.moves_x = s.rotates = true;
+    if (s.kappa == 0.4) {
+      s.shape = Shape::Sphere;
+    } else if (s.kappa == 0.5) {
+      s.shape = Shape::Cylinder;
+      s.half_height = s.radius;
+    } else {
+      throw InputError(fmt::format("{}: problem 'rolling-disk' has kappa = {}; the engine's bodies are a sphere (kappa = 2/5) and a cylinder "
+                                   "(kappa = 1/2) (valid: kappa = 0.4 or 0.5)", who, s.kappa));
+    }
+    s.gz = -g;
+    s.start = {initial.u[0], initial.u[1] + s.radius, -initial.u[2], initial.v[0], initial.v[1], -initial.v[2]};
+  }
+  return s;
+}
+
+double unwrap(double previous, double wrapped) {
+  const double two_pi = 2.0 * std::numbers::pi;
+  return wrapped + two_pi * std::round((previous - wrapped) / two_pi);
+}
+
+void to_state(const Scene& s, const Pose& pose, double t, State& out) {
+  out.t = t;
+  if (s.problem == "bouncing-mass") {
+    out.u[0] = pose.z - s.radius;
+    out.v[0] = pose.vz;
+  } else if (s.problem == "sliding-mass") {
+    out.u << pose.x, pose.z - s.half_height;
+    out.v << pose.vx, pose.vz;
+  } else {
+    out.u << pose.x, pose.z - s.radius, -pose.angle;
+    out.v << pose.vx, pose.vz, -pose.wy;
+  }
+}
+
+}  // namespace nsb::engines
+
+namespace nsb {
+
+void EnginePeer::init(const Problem& problem, const State& initial) {
+  const std::string who = fmt::format("--integrator {}", name());
+  scene_ = engines::scene_of(problem, initial, params_.real("size"), who);
+  bind(problem, initial);
+  build(scene_);
+}
+
+StepInfo EnginePeer::step(double dt) {
+  const engines::StepResult r = advance(dt);
+  engines::to_state(scene_, r.pose, state_.t + dt, state_);
+  impulses_[0] = r.normal_impulse;
+  if (scene_.moves_x) tangential_impulses_[0] = r.friction_impulse_x;
+  ++work_.steps;
+  ++work_.force_evaluations;
+  StepInfo info;
+  info.dt = dt;
+  info.iterations = r.iterations;
+  return info;
+}
+
+}  // namespace nsb

@@ -1,0 +1,99 @@
+#pragma once
+// The rigid scenes the physics-engine peers (MuJoCo, Bullet, ODE: peers/mujoco, peers/bullet,
+// peers/ode) build from nsbench's rigid problems, and the map from the engine's body back to
+// the problem's dofs. The world is z up; every body moves in the x-z plane:
+//
+//   bouncing-mass  a sphere (radius `size`) above the plane z = 0, gravity (0, 0, -g);
+//                  u = z - size (the gap), v = z'. Frictionless (the problem has mu = 0).
+//   sliding-mass   a box (half sides `size`, `size`, `size` / 2) on the plane z = 0; the slope
+//                  is made by tilting gravity, not the plane: g (sin alpha, 0, -cos alpha), so x
+//                  runs down the slope. u = (x, z - size / 2), v = (x', z'). The problem is a
+//                  point mass: an engine that can lock the box's rotation does (Scene::rotates).
+//   rolling-disk   a sphere (kappa = 2/5) or a cylinder along y (kappa = 1/2) of the problem's
+//                  radius R; u = (x, z - R, theta), theta = -(angle about +y): the problem's
+//                  counter-clockwise theta seen with x right and z up, so the contact point's
+//                  slip x' + R theta' is the engine's x' - R omega_y.
+//
+// Every other problem is declined (InputError naming the problem): the engines see rigid
+// bodies, not a semi-discrete continuum; ball-chain (spheres in a row, contacts between
+// bodies) is not mapped yet: one body on a fixed plane is. A rolling-disk whose kappa is not a shape's (2/5,
+// 1/2) is declined naming kappa; an obstacle moving along the contact (w != 0) naming w.
+//
+// Impulses: the engine reports the contact's normal impulse (>= 0) and the world-x component
+// P_x of the friction impulse on the body. The tangent row T is [1, 0] (sliding) or [1, 0, R]
+// (disk): P_x at the contact point gives the x dof P_x and the theta dof R P_x, so Lambda_T = P_x.
+#include <string>
+
+#include "integrators/integrator.hpp"
+
+namespace nsb::engines {
+
+enum class Shape { Sphere, Box, Cylinder };
+
+// The body's pose and velocity in the x-z plane; angle and spin about +y.
+struct Pose {
+  double x = 0.0, z = 0.0, angle = 0.0;
+  double vx = 0.0, vz = 0.0, wy = 0.0;
+};
+
+struct Scene {
+  std::string problem;
+  Shape shape = Shape::Sphere;
+  double radius = 0.0;       // sphere, cylinder; the box's half side in x and y
+  double half_height = 0.0;  // box: half height; cylinder: half length (along y)
+  double mass = 0.0;
+  double kappa = 0.0;        // inertia about y over m R^2 (sphere 2/5, cylinder 1/2)
+  double gx = 0.0, gz = 0.0; // gravity
+  double restitution = 0.0, mu = 0.0;
+  bool moves_x = false;      // the problem has an x dof (not the bouncing mass)
+  bool rotates = false;      // the problem has a rotation dof (the disk)
+  Pose start;
+};
+
+// The scene of `problem` from `initial`; throws InputError (starting with `who`) when the
+// problem is not one of the three, or outside what the shapes can be.
+Scene scene_of(const Problem& problem, const State& initial, double size, const std::string& who);
+// The problem's state at time t from the engine's body.
+void to_state(const Scene& scene, const Pose& pose, double t, State& out);
+
+// The angle nearest `previous` equal to `wrapped` modulo 2 pi: the disk's unbounded angle from
+// an engine that keeps orientations as quaternions (it turns less than pi per step).
+double unwrap(double previous, double wrapped);
+
+// The parameter every engine peer shares: the sphere's radius and the box's half side.
+ParamSpec size_spec();
+
+// What one engine step reports: the body after it and the step's contact impulses on the
+// body (normal, summed over the engine's contact points; world-x friction component).
+struct StepResult {
+  Pose pose;
+  double normal_impulse = 0.0, friction_impulse_x = 0.0;
+  long iterations = 0;
+};
+
+}  // namespace nsb::engines
+
+namespace nsb {
+
+// The part the three engine peers share: init() builds the scene (declining the rest) and
+// hands it to the engine; step() advances the engine by dt with its own stepper, maps its
+// body back to the problem's dofs and fills the impulses. Work: one step and one force
+// evaluation (the engine's one evaluation of gravity and contacts) per engine step.
+class EnginePeer : public Integrator {
+ public:
+  bool treats_friction() const override { return true; }
+  void init(const Problem& problem, const State& initial) override;
+  StepInfo step(double dt) override;
+
+ protected:
+  explicit EnginePeer(const Params& params) : Integrator(params) {}
+  // Builds the engine's world for the scene (called by init(); replaces an earlier one).
+  virtual void build(const engines::Scene& scene) = 0;
+  virtual engines::StepResult advance(double dt) = 0;
+  const engines::Scene& scene() const { return scene_; }
+
+ private:
+  engines::Scene scene_;
+};
+
+}  // namespace nsb

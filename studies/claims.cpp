@@ -1,0 +1,407 @@
+// Study "claims": one row per claim of the last slide of A. Gravouil's talk "CD-Lagrange"
+// (2022), each with the measurement that tests it, the figure, and the verdict computed from
+// the figure by the rules of studies/claims.hpp. The few runs it needs are redone here (a few
+// seconds), so the verdicts never depend on what else was run into the output directory:
+//   (1), (6)  cd-lagrange on the Signorini bar (lumped, N 100, dt 0.9 h/c, to t0 + 1.5 T), the
+//             rolling disk (h0 0.05, omega0 20, e 0.5, mu 0.3; dt 1e-3 to 1.2 rest times) and the
+//             spring chain between two walls (n 3, e 1, dt 0.5 stable step, to 20 s): work counters
+//   (2)       cd-lagrange in the hausdorff study's grid (studies/hausdorff_study.cpp)
+//   (3)       the rolling disk run: linear (x, y) and angular momentum about the origin,
+//                 J = m (x_c v_y - y_c v_x) + I omega,  x_c = x, y_c = y + R,
+//             against the impulses: J_{k} - J_{k-1} = x_c G_y - y_c G_x + G_theta with
+//             G = tau F_ext + L^T Lambda_N + T^T Lambda_T at the step's position (the discrete
+//             momentum map q_{k+1} x p_{k+3/2}: q_{k+1} - q_k is parallel to p_{k+1/2}); the
+//             chain run: 1^T M v against the wall impulses (the springs' forces cancel). From the
+//             state after the first step (the start's half kick is not a full step)
+//   (4), (5)  the energy study's long runs with e = 1 (bouncing mass, dt 1e-3, 100 impacts;
+//             spring chain between walls, dt 0.02 s, 40 s): cd-lagrange's own energy over each
+//             half; cd-lagrange-adaptive's over the run, its steps against the stable step
+//   (7)       the bouncing mass, e = 1, h0 = 1 (period 0.903 s), dt = 0.02 s, stepped to its
+//             1e5th impact (1e6 with --full): final energy error, largest penetration
+#include "studies/claims.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrators/registry.hpp"
+#include "integrators/run.hpp"
+#include "problems/registry.hpp"
+#include "problems/rolling_disk.hpp"
+#include "problems/signorini_bar.hpp"
+#include "studies/hausdorff_study.hpp"
+
+namespace nsb {
+
+const char* verdict_name(Verdict v) {
+  switch (v) {
+    case Verdict::Holds: return "holds";
+    case Verdict::Conditional: return "holds under the stated conditions";
+    case Verdict::Fails: return "fails";
+  }
+  return "";
+}
+
+Verdict explicit_verdict(long runs, long steps, long force_evaluations, long factorizations, long linear_solves) {
+  return steps > 0 && factorizations == 0 && linear_solves == 0 && force_evaluations <= steps + runs ? Verdict::Holds : Verdict::Fails;
+}
+
+bool hausdorff_converges(const OrderFit& fit) { return fit.order >= kHausdorffMinOrder && fit.low > 0.0; }
+
+Verdict hausdorff_verdict(const std::vector<OrderFit>& per_problem) {
+  const auto n = std::count_if(per_problem.begin(), per_problem.end(), hausdorff_converges);
+  if (n == 0) return Verdict::Fails;
+  return n == static_cast<long>(per_problem.size()) ? Verdict::Holds : Verdict::Conditional;
+}
+
+Verdict momentum_verdict(double linear_residual, double angular_residual) {
+  return linear_residual <= kMomentumTolerance && angular_residual <= kMomentumTolerance ? Verdict::Holds : Verdict::Fails;
+}
+
+Verdict energy_verdict(double fixed_first_half, double fixed_second_half, double adaptive_max) {
+  const bool fixed = fixed_second_half <= kEnergyDriftFactor * fixed_first_half + kEnergyRoundOff;
+  const bool adaptive = adaptive_max <= kEnergyExact;
+  return fixed && adaptive ? Verdict::Holds : fixed || adaptive ? Verdict::Conditional : Verdict::Fails;
+}
+
+Verdict adaptive_verdict(bool completed, double largest_step_over_stable, double largest_step, double smallest_step) {
+  return completed && largest_step_over_stable <= 1.0 && largest_step > (1.0 + 1e-6) * smallest_step ? Verdict::Holds : Verdict::Fails;
+}
+
+Verdict lcp_verdict(long contact_steps, long lcp_iterations, long factorizations, long linear_solves) {
+  return contact_steps > 0 && lcp_iterations == 0 && factorizations == 0 && linear_solves == 0 ? Verdict::Holds : Verdict::Fails;
+}
+
+Verdict robustness_verdict(bool completed, long impacts, long target, double energy_error, double penetration_over_step) {
+  return completed && impacts >= target && std::abs(energy_error) <= kRobustEnergy && penetration_over_step <= 1.0 ? Verdict::Holds
+                                                                                                                   : Verdict::Fails;
+}
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct Work {
+  long runs = 0, steps = 0, forces = 0, factorizations = 0, solves = 0, lcp = 0, contact_steps = 0;
+  void add(const WorkCounters& w, long contacts) {
+    ++runs;
+    steps += w.steps;
+    forces += w.force_evaluations;
+    factorizations += w.factorizations;
+    solves += w.linear_solves;
+    lcp += w.lcp_iterations;
+    contact_steps += contacts;
+  }
+};
+
+struct Momentum {
+  double linear = 0.0, angular = 0.0;  // largest residuals, relative
+};
+
+std::unique_ptr<Problem> problem_of(const std::string& name, const std::map<std::string, std::string>& p) { return make_problem(name, p); }
+
+// cd-lagrange on the rolling disk: work, and the linear and angular momentum residuals.
+void disk_run(Work& work, Momentum& m) {
+  const auto problem = problem_of("rolling-disk", {{"h0", "0.05"}, {"omega0", "20"}, {"e", "0.5"}, {"mu", "0.3"}});
+  const double R = problem->parameters().real("R");
+  const double t_end = 1.2 * dynamic_cast<const RollingDisk&>(*problem).rest_time();
+  const Vec M = problem->mass_matrix().diagonal();
+  auto it = make_integrator("cd-lagrange");
+  it->init(*problem, problem->initial_state());
+  Vec f(3), G(3);
+  problem->external_force(0.0, f);
+  const SpMat Lt = SpMat(problem->contacts().normal.transpose()), Tt = SpMat(problem->contacts().tangent.transpose());
+  double px = 0, py = 0, J = 0, scale_p = 0, scale_j = 0, res_p = 0, res_j = 0;
+  bool first = true;
+  long contacts = 0;
+  RunOptions o;
+  o.dt = 1e-3;
+  o.t_end = t_end;
+  o.record_series = false;
+  run(*problem, *it, o, [&](const Integrator& in, const StepInfo& info) {
+    const State& s = in.state();
+    const double xc = s.u[0], yc = s.u[1] + R;
+    const double qx = M[0] * s.v[0], qy = M[1] * s.v[1], q = M[0] * (xc * s.v[1] - yc * s.v[0]) + M[2] * s.v[2];
+    contacts += in.impulses().sum() > 0.0;
+    if (!first) {
+      G = info.dt * f + Lt * in.impulses() + Tt * in.tangential_impulses();
+      px += G[0], py += G[1], J += xc * G[1] - yc * G[0] + G[2];
+      res_p = std::max({res_p, std::abs(qx - px), std::abs(qy - py)});
+      res_j = std::max(res_j, std::abs(q - J));
+    } else {
+      px = qx, py = qy, J = q;
+      first = false;
+    }
+    scale_p = std::max({scale_p, std::abs(qx), std::abs(qy)});
+    scale_j = std::max(scale_j, std::abs(q));
+  });
+  work.add(it->work(), contacts);
+  m.linear = std::max(m.linear, res_p / scale_p);
+  m.angular = std::max(m.angular, res_j / scale_j);
+}
+
+// cd-lagrange on the spring chain between two walls: work and 1^T M v against the impulses.
+void chain_run(Work& work, Momentum& m) {
+  const auto problem = problem_of("spring-chain", {{"n", "3"}, {"wall", "both"}, {"e", "1"}});
+  const Vec M = problem->mass_matrix().diagonal();
+  auto it = make_integrator("cd-lagrange");
+  it->init(*problem, problem->initial_state());
+  double P = 0, scale = 0, res = 0;
+  bool first = true;
+  long contacts = 0;
+  RunOptions o;
+  o.dt = 0.5 * problem->stable_step();
+  o.t_end = 20.0;
+  o.record_series = false;
+  run(*problem, *it, o, [&](const Integrator& in, const StepInfo&) {
+    const double p = M.dot(in.state().v);
+    contacts += in.impulses().sum() > 0.0;
+    if (first) {
+      P = p;
+      first = false;
+    } else {
+      P += (problem->gap_operator().transpose() * in.impulses()).sum();
+      res = std::max(res, std::abs(p - P));
+    }
+    scale = std::max(scale, std::abs(p));
+  });
+  work.add(it->work(), contacts);
+  m.linear = std::max(m.linear, res / scale);
+}
+
+void bar_run(Work& work) {
+  const auto problem = problem_of("signorini-bar", {{"mass", "lumped"}, {"N", "100"}});
+  const auto& bar = dynamic_cast<const SignoriniBar&>(*problem);
+  auto it = make_integrator("cd-lagrange");
+  it->init(*problem, problem->initial_state());
+  long contacts = 0;
+  RunOptions o;
+  o.dt = 0.9 * problem->stable_step();
+  o.t_end = bar.contact_start() + 1.5 * bar.contact_duration();
+  o.record_series = false;
+  run(*problem, *it, o, [&](const Integrator& in, const StepInfo&) { contacts += in.impulses().sum() > 0.0; });
+  work.add(it->work(), contacts);
+}
+
+struct EnergyFigures {
+  double first = 0, second = 0, adaptive = 0, cfl = 0, dt_min = 1e300, dt_max = 0;
+  double no_root = 0;  // adaptive steps whose energy equation had no root
+  bool adaptive_ok = true;
+};
+
+// The energy study's two long runs (studies/energy.cpp): the bouncing mass, e = 1, dt 1e-3, 100
+// impacts; the spring chain between walls 0.5 m away, e = 1, dt 0.02 s, 40 s. Errors relative
+// to E_1, the scheme's energy after its first step.
+void energy_run(const std::string& name, const std::map<std::string, std::string>& params, double dt, double t_end,
+                EnergyFigures& e) {
+  const auto problem = problem_of(name, params);
+  RunOptions o;
+  o.dt = dt;
+  o.t_end = t_end;
+  o.record_series = false;
+  for (const char* scheme : {"cd-lagrange", "cd-lagrange-adaptive"}) {
+    const bool adaptive = std::string(scheme) == "cd-lagrange-adaptive";
+    auto it = make_integrator(scheme);
+    it->init(*problem, problem->initial_state());
+    double e1 = kNaN;
+    const RunResult r = run(*problem, *it, o, [&](const Integrator& in, const StepInfo& info) {
+      const double energy = in.energy().total();
+      if (std::isnan(e1)) e1 = energy;
+      const double err = std::abs(energy - e1) / std::abs(e1);
+      if (adaptive) {
+        e.adaptive = std::max(e.adaptive, err);
+        e.cfl = std::max(e.cfl, info.dt / problem->stable_step());
+        if (in.state().t < t_end * (1 - 1e-12)) {  // the last step is cut to land on t_end
+          e.dt_min = std::min(e.dt_min, info.dt);
+          e.dt_max = std::max(e.dt_max, info.dt);
+        }
+      } else {
+        double& half = in.state().t <= 0.5 * t_end ? e.first : e.second;
+        half = std::max(half, err);
+      }
+    });
+    if (adaptive) {
+      e.adaptive_ok = e.adaptive_ok && r.status == RunStatus::Ok;
+      const auto nr = r.work.extra.find("no_root_steps");
+      e.no_root += nr == r.work.extra.end() ? 0.0 : nr->second;
+    } else if (r.status != RunStatus::Ok) {
+      e.first = e.second = kNaN;
+    }
+  }
+}
+
+EnergyFigures energy_runs() {
+  EnergyFigures e;
+  const double period = 2.0 * std::sqrt(2.0 / 9.81);
+  energy_run("bouncing-mass", {{"e", "1"}, {"h0", "1"}}, 1e-3, 100 * period, e);
+  energy_run("spring-chain", {{"wall", "both"}, {"gap", "0.5"}}, 0.02, 40.0, e);
+  return e;
+}
+
+struct LongRun {
+  bool ok = false;
+  long impacts = 0, target = 0, steps = 0;
+  double energy = kNaN, penetration = kNaN, t_end = 0;
+};
+
+// Steps until the target-th impact (the scheme's, whatever its phase error), at most 2x the
+// exact flights' steps.
+LongRun long_run(bool full) {
+  const auto problem = problem_of("bouncing-mass", {{"e", "1"}, {"h0", "1"}});
+  const double g = 9.81, period = 2.0 * std::sqrt(2.0 * 1.0 / g), v_impact = std::sqrt(2.0 * g * 1.0), dt = 0.02;
+  LongRun l;
+  l.target = full ? 1'000'000 : 100'000;
+  const long max_steps = static_cast<long>(2.0 * static_cast<double>(l.target) * period / dt);
+  auto it = make_integrator("cd-lagrange");
+  it->init(*problem, problem->initial_state());
+  const double g0 = problem->gap_offset()[0];
+  const SpMat& L = problem->gap_operator();
+  double e1 = kNaN, penetration = 0.0;
+  bool in_contact = false;
+  l.ok = true;
+  while (l.impacts < l.target && l.steps < max_steps) {
+    it->step(dt);
+    ++l.steps;
+    const State& s = it->state();
+    if (!s.u.allFinite() || !s.v.allFinite()) {
+      l.ok = false;
+      break;
+    }
+    if (std::isnan(e1)) e1 = it->energy().total();
+    penetration = std::max(penetration, -(g0 + L.row(0).dot(s.u)));
+    const bool contact = it->impulses()[0] > 0.0;
+    l.impacts += contact && !in_contact;
+    in_contact = contact;
+  }
+  l.t_end = it->state().t;
+  l.energy = (it->energy().total() - e1) / e1;
+  l.penetration = penetration / (v_impact * dt);
+  return l;
+}
+
+std::string fmt_g(double v) { return std::isnan(v) ? "n/a" : fmt::format("{:.3g}", v); }
+
+std::vector<Table> claims_tables(const StudyOptions& options) {
+  Work work;
+  Momentum momentum;
+  bar_run(work);
+  disk_run(work, momentum);
+  chain_run(work, momentum);
+  const auto orders = hausdorff_orders("cd-lagrange");
+  const EnergyFigures energy = energy_runs();
+  const LongRun longrun = long_run(options.full);
+
+  Table m;
+  m.id = "claims_measures";
+  m.title = "Claims of CD-Lagrange: the measured figures";
+  m.caption = "The figures behind each verdict of the claims table, with the threshold the verdict rule compares them to.";
+  m.columns = {{"claim", "", "", ""}, {"quantity", "", "", ""}, {"value", "", "{:.3e}", ""}, {"threshold", "", "", ""}};
+  const auto measure = [&](long claim, const std::string& q, double v, const std::string& threshold) {
+    m.add_row({claim, q, number_cell(v), threshold});
+  };
+  measure(1, "steps (bar, disk, chain)", static_cast<double>(work.steps), "> 0");
+  measure(1, "F_int evaluations", static_cast<double>(work.forces), fmt::format("<= steps + {} (one start per run)", work.runs));
+  measure(1, "factorisations", static_cast<double>(work.factorizations), "0");
+  measure(1, "linear solves", static_cast<double>(work.solves), "0");
+  std::vector<OrderFit> fits;
+  std::vector<std::string> converging, not_converging;
+  for (const auto& o : orders) {
+    fits.push_back(o.hausdorff);
+    (hausdorff_converges(o.hausdorff) ? converging : not_converging).push_back(o.problem);
+    measure(2, o.problem + ": Hausdorff order", o.hausdorff.order, fmt::format(">= {} and CI low > 0", kHausdorffMinOrder));
+    measure(2, o.problem + ": Hausdorff order CI low", o.hausdorff.low, "> 0");
+    measure(2, o.problem + ": max-norm order", o.max_error.order, "(reported)");
+  }
+  measure(3, "linear momentum residual (disk, chain)", momentum.linear, fmt::format("<= {:g}", kMomentumTolerance));
+  measure(3, "angular momentum residual (disk)", momentum.angular, fmt::format("<= {:g}", kMomentumTolerance));
+  measure(4, "fixed step: max |E - E_1|/E_1, first half", energy.first, "(reported)");
+  measure(4, "fixed step: max |E - E_1|/E_1, second half", energy.second,
+          fmt::format("<= {:g} x first half + {:g}", kEnergyDriftFactor, kEnergyRoundOff));
+  measure(4, "adaptive: max |E - E_1|/E_1", energy.adaptive, fmt::format("<= {:g}", kEnergyExact));
+  measure(4, "adaptive: steps without a root of the energy equation", energy.no_root, "(reported)");
+  measure(5, "adaptive: largest step / stable step", energy.cfl, "<= 1");
+  measure(5, "adaptive: largest / smallest step", energy.dt_max / energy.dt_min, "> 1");
+  measure(6, "steps with an active contact", static_cast<double>(work.contact_steps), "> 0");
+  measure(6, "LCP iterations", static_cast<double>(work.lcp), "0");
+  measure(7, "impacts", static_cast<double>(longrun.impacts), fmt::format(">= {}", longrun.target));
+  measure(7, "steps", static_cast<double>(longrun.steps), "(reported)");
+  measure(7, "final (E - E_1)/E_1", longrun.energy, fmt::format("|.| <= {:g}", kRobustEnergy));
+  measure(7, "largest penetration / (v_impact dt)", longrun.penetration, "<= 1");
+
+  Table t;
+  t.id = "claims";
+  t.title = "Claims of CD-Lagrange (Gravouil 2022, last slide): verdicts";
+  t.caption = fmt::format(
+      "Each verdict is computed from the figures of claims_measures by a rule (studies/claims.hpp): (1) no factorisation or "
+      "linear solve, <= 1 F_int evaluation per step; (2) a problem converges when the Hausdorff order of the velocity graph "
+      "is >= {} with the 95% interval above 0: holds on all problems, holds under conditions on some, fails on none; (3) "
+      "momentum residuals <= {:g}; (4) energy errors against E_1 (after the first step), worst over the problems; fixed step: "
+      "second-half error <= {:g} x the first half's + {:g} (no drift), adaptive: <= {:g} (both: holds, one: under conditions); (5) steps <= the stable step and varying; (6) contacts active with 0 "
+      "LCP iterations, factorisations and solves; (7) the run reaches its {}th impact with finite states, |E_end - E_1|/E_1 <= {:g} "
+      "and penetration <= one step of travel.",
+      kHausdorffMinOrder, kMomentumTolerance, kEnergyDriftFactor, kEnergyRoundOff, kEnergyExact, longrun.target, kRobustEnergy);
+  t.columns = {{"#", "", "", ""}, {"claim (talk)", "", "", ""}, {"how nsbench tests it", "", "", ""}, {"figure", "", "", ""},
+               {"verdict", "", "", ""}, {"evidence", "", "", ""}};
+  t.lead = true;
+  t.add_row({1L, "Explicit time integration", "cd-lagrange on the Signorini bar, the rolling disk and a spring chain: work counters",
+             fmt::format("{} F_int evaluations in {} steps, {} factorisations, {} linear solves", work.forces, work.steps,
+                         work.factorizations, work.solves),
+             verdict_name(explicit_verdict(work.runs, work.steps, work.forces, work.factorizations, work.solves)),
+             "[claims_measures](claims_measures.md), [performance](performance.md)"});
+  std::string orders_text;
+  for (const auto& o : orders) orders_text += fmt::format("{}{} {}", orders_text.empty() ? "" : "; ", o.problem, fmt_g(o.hausdorff.order));
+  const Verdict hv = hausdorff_verdict(fits);
+  t.add_row({2L, "Space-time convergence in the non-smooth sense (Hausdorff)",
+             "velocity graph of the run against the exact one (jumps as vertical segments), Hausdorff distance in scaled "
+             "(t/T, v/V), 4 refinements (bars: N and dt together)",
+             fmt::format("Hausdorff orders: {}", orders_text),
+             hv == Verdict::Conditional
+                 ? fmt::format("{}: converges on {}; not on {}", verdict_name(hv), fmt::join(converging, ", "), fmt::join(not_converging, ", "))
+                 : std::string(verdict_name(hv)),
+             "[hausdorff](hausdorff.md), [hausdorff_orders](hausdorff_orders.md)"});
+  t.add_row({3L, "Discrete multi-symplectic form: linear and angular momentum balances, Lagrange multipliers included",
+             "rolling disk (friction, impacts): linear and angular momentum against the impulses; spring chain between walls",
+             fmt::format("residuals: linear {:.2e}, angular {:.2e} (relative)", momentum.linear, momentum.angular),
+             verdict_name(momentum_verdict(momentum.linear, momentum.angular)),
+             "[claims_measures](claims_measures.md), [energy](energy_long_time.md), [block](block.md)"});
+  const Verdict ev = energy_verdict(energy.first, energy.second, energy.adaptive);
+  t.add_row({4L, "Discrete energy conservation (fixed step: bounded error, no drift; adaptive step from the energy balance: exact)",
+             "the energy study's long runs, e = 1: bouncing mass (100 impacts) and spring chain between walls (40 s); "
+             "the scheme's own energy against E_1 (after the first step), worst of the two",
+             fmt::format("fixed: {:.2e} (first half), {:.2e} (second half); adaptive: {:.2e} ({:.0f} steps without a root of "
+                         "the energy equation)", energy.first, energy.second, energy.adaptive, energy.no_root),
+             ev == Verdict::Conditional
+                 ? fmt::format("{}: {}", verdict_name(ev),
+                               energy.adaptive <= kEnergyExact ? "adaptive step only" : "fixed step only")
+                 : std::string(verdict_name(ev)),
+             "[energy_long_time](energy_long_time.md), [energy_targets](energy_targets.md)"});
+  t.add_row({5L, "Automatic adaptive time step with a CFL check", "cd-lagrange-adaptive in the runs of (4): its steps",
+             fmt::format("largest step {:.3f} x stable step; steps from {:.3e} to {:.3e} s", energy.cfl, energy.dt_min, energy.dt_max),
+             verdict_name(adaptive_verdict(energy.adaptive_ok, energy.cfl, energy.dt_max, energy.dt_min)),
+             "[claims_measures](claims_measures.md), [energy_targets](energy_targets.md)"});
+  t.add_row({6L, "Matrix-free explicit LCP for deformable and rigid contact (diagonal Delassus operator: closed form)",
+             "the runs of (1): steps with an active contact, LCP iterations, factorisations, solves",
+             fmt::format("{} contact steps, {} LCP iterations, {} factorisations, {} solves", work.contact_steps, work.lcp,
+                         work.factorizations, work.solves),
+             verdict_name(lcp_verdict(work.contact_steps, work.lcp, work.factorizations, work.solves)),
+             "[claims_measures](claims_measures.md)"});
+  t.add_row({7L, "Robust over long times with very many impacts",
+             fmt::format("bouncing mass, e = 1, h0 = 1, dt = 0.02 s, run to its {}th impact{}", longrun.target,
+                         options.full ? "" : " (1e6 with --full)"),
+             fmt::format("{} impacts in {} steps (t = {:.4g} s), final energy error {:.2e}, penetration {:.2f} step of travel",
+                         longrun.impacts, longrun.steps, longrun.t_end, longrun.energy, longrun.penetration),
+             verdict_name(robustness_verdict(longrun.ok, longrun.impacts, longrun.target, longrun.energy, longrun.penetration)),
+             "[claims_measures](claims_measures.md), [bouncing_mass](bouncing_mass.md)"});
+  const std::vector<std::pair<std::string, std::string>> meta = {{"integrator", "cd-lagrange"}, {"full", options.full ? "yes" : "no"}};
+  t.metadata = meta;
+  m.metadata = meta;
+  return {t, m};
+}
+
+}  // namespace
+
+extern const StudyEntry claims_study = {"claims", "the claims of the CD-Lagrange talk, each with its measurement and verdict",
+                                        &claims_tables, nullptr, nullptr, nullptr};
+
+}  // namespace nsb

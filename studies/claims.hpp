@@ -1,0 +1,55 @@
+#pragma once
+// The claims of CD-Lagrange (A. Gravouil, "CD-Lagrange", talk 2022, last slide), each with the
+// figure nsbench measures for it and a verdict computed from that figure by the rules below
+// (studies/claims.cpp runs the measurements; the thresholds are in the claims table's caption).
+#include <string>
+#include <vector>
+
+#include "studies/study.hpp"
+
+namespace nsb {
+
+enum class Verdict { Holds, Conditional, Fails };
+// "holds", "holds under the stated conditions", "fails".
+const char* verdict_name(Verdict v);
+
+// (1) Explicit: no factorisation, no linear solve, at most one F_int evaluation per step
+// (+ 1 at the start of each of `runs` runs).
+Verdict explicit_verdict(long runs, long steps, long force_evaluations, long factorizations, long linear_solves);
+
+// (2) Hausdorff convergence: a problem converges when its fitted Hausdorff order is >= 0.5 with
+// the 95% interval's low end > 0. Holds: on every problem; conditional: on some; fails: none.
+constexpr double kHausdorffMinOrder = 0.5;
+bool hausdorff_converges(const OrderFit& fit);
+Verdict hausdorff_verdict(const std::vector<OrderFit>& per_problem);
+
+// (3) Momentum balances: the largest residual (linear and angular, relative to the largest
+// momentum) <= 1e-10.
+constexpr double kMomentumTolerance = 1e-10;
+Verdict momentum_verdict(double linear_residual, double angular_residual);
+
+// (4) Energy (E the scheme's own, errors relative to E_1, the energy after the first step, as
+// in the energy study): fixed step bounded without drift (max |E - E_1| / E_1 over the second
+// half of a long run <= 2 x that over the first half, + 1e-12 for round-off); adaptive step
+// exact (max <= 1e-9). Each figure is the worst over the problems. Holds: both; conditional: one; fails:
+// neither.
+constexpr double kEnergyDriftFactor = 2.0;
+constexpr double kEnergyRoundOff = 1e-12;
+constexpr double kEnergyExact = 1e-9;
+Verdict energy_verdict(double fixed_first_half, double fixed_second_half, double adaptive_max);
+
+// (5) Adaptive step with a CFL check: the run completes, every step <= the stable step, and the
+// step changes (largest / smallest > 1 + 1e-6).
+Verdict adaptive_verdict(bool completed, double largest_step_over_stable, double largest_step, double smallest_step);
+
+// (6) Matrix-free explicit contact: contacts were active, and no LCP iteration, factorisation
+// or linear solve was spent.
+Verdict lcp_verdict(long contact_steps, long lcp_iterations, long factorizations, long linear_solves);
+
+// (7) Robustness over long times: the run (stopped at its `target`-th impact) gets there with
+// finite states, |E_end - E_1| / E_1 <= 1e-2 and the largest penetration <= one step of travel
+// at the impact speed.
+constexpr double kRobustEnergy = 1e-2;
+Verdict robustness_verdict(bool completed, long impacts, long target, double energy_error, double penetration_over_step);
+
+}  // namespace nsb

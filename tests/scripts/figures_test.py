@@ -1,0 +1,143 @@
+#!/usr/bin/python3
+"""Tests of scripts/figures.py: the style map and a smoke test of both looks on a small report.
+
+    figures_test.py NSBENCH   (the nsbench binary: its list names every registered integrator)
+
+Exit 77 (CTest: skipped) without matplotlib (Debian python3-matplotlib)."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+try:
+    import matplotlib  # noqa: F401
+except ImportError:
+    print("SKIPPED: matplotlib absent (Debian python3-matplotlib)")
+    sys.exit(77)
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+import figures  # noqa: E402
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+
+
+def registered(nsbench):
+    """(name, kind) of every integrator `nsbench list` names; kind from its description."""
+    out = subprocess.run([nsbench, "list"], check=True, capture_output=True, text=True).stdout
+    lines = out.split("\nintegrators")[1].splitlines()[1:]
+    found = []
+    for line in lines:
+        if line.startswith("  ") and not line.startswith("    ") and line.strip():
+            name, _, rest = line.strip().partition(" ")
+            description = rest.strip()
+            kind = "reference" if description.startswith("reference:") else "peer" if description.startswith("peer:") else "scheme"
+            found.append((name, kind))
+    return found
+
+
+def style_key(style):
+    return (style["color"], style["marker"], str(style["linestyle"]), style["markerfacecolor"])
+
+
+def test_style_map(nsbench):
+    names = registered(nsbench)
+    check(len(names) >= 10, f"nsbench list named {len(names)} integrators")
+    plugins = ["symplectic-euler", "my-plugin", "another-scheme", "x"]
+    styles = {name: figures.scheme_style(name) for name, _ in names}
+    styles.update({name: figures.scheme_style(name) for name in plugins})
+    keys = {}
+    for name, style in styles.items():
+        keys.setdefault(style_key(style), []).append(name)
+    for key, same in keys.items():
+        check(len(same) == 1, f"one style for {same}: {key}")
+    for name, kind in names:
+        check(styles[name]["kind"] == kind, f"{name} is a {kind} but styled as a {styles[name]['kind']}")
+        if kind == "peer":  # the colour and marker of the scheme it reimplements, hollow
+            base = figures.scheme_style(name[len(figures.PEER_PREFIX):])
+            check((styles[name]["color"], styles[name]["marker"]) == (base["color"], base["marker"]) and
+                  styles[name]["markerfacecolor"] == "none", f"peer {name} not marked against its scheme")
+        if kind == "reference":
+            check(styles[name]["color"] in ("black", "0.35", "0.55"), f"reference {name} not in black or grey")
+    # Stable: the same name, the same style, whatever else is drawn.
+    check(figures.scheme_style("my-plugin") == figures.scheme_style("my-plugin"), "plugin style not stable")
+    check(len({style_key(figures.scheme_style(f"p{i}")) for i in range(40)}) > 30, "plugin styles collide")
+
+
+def write_report(root):
+    """A small report: a convergence table (orders 1 and 2 exact) and an energy history."""
+    with open(os.path.join(root, "conv.csv"), "w") as f:
+        f.write("# git_revision: test\nintegrator,dt [s],err,F_int evals\n")
+        for dt in (1e-2, 5e-3, 2.5e-3, 1.25e-3):
+            f.write(f"cd-lagrange,{dt},{dt},{int(1 / dt)}\n")
+            f.write(f"moreau-jean,{dt},{10 * dt * dt},{int(3 / dt)}\n")
+            f.write(f"siconos-moreau-jean,{dt},{10 * dt * dt},{int(3 / dt)}\n")
+            f.write(f"modal-exact,{dt},1e-14,{int(1 / dt)}\n")
+    with open(os.path.join(root, "hist.csv"), "w") as f:
+        f.write("# git_revision: test\nintegrator,mass,t [s],E/E0\n")
+        for k in range(200):
+            t = k / 100
+            f.write(f"cd-lagrange,lumped,{t},{1 + 1e-3 * (k % 7 - 3)}\n")
+            f.write(f"cd-lagrange,singular,{t},{1 - 1e-4 * t}\n")
+            f.write(f"newmark-lm,lumped,{t},{1 + 100 * t}\n")
+    specs = [
+        {"id": "conv", "title": "conv", "csv": "conv.csv", "x": "dt [s]", "y": "err", "series": ["integrator"],
+         "panels": [], "log_x": True, "log_y": True, "slopes": [1, 2], "small_multiples": False, "deviation": False},
+        {"id": "evals", "title": "evals", "csv": "conv.csv", "x": "F_int evals", "y": "err", "series": ["integrator"],
+         "panels": [], "log_x": True, "log_y": True},
+        {"id": "hist", "title": "hist", "csv": "hist.csv", "x": "t [s]", "y": "E/E0", "series": ["integrator"],
+         "panels": ["mass"], "log_x": False, "log_y": False, "slopes": [], "small_multiples": True, "deviation": True},
+    ]
+    with open(os.path.join(root, "figures.json"), "w") as f:
+        json.dump(specs, f)
+
+
+def test_figures():
+    import matplotlib.pyplot as plt
+    with tempfile.TemporaryDirectory() as root:
+        write_report(root)
+        script = os.path.join(os.path.dirname(figures.__file__), "figures.py")
+        for style, sub in (("screen", "figures"), ("paper", os.path.join("figures", "paper"))):
+            subprocess.run(["/usr/bin/python3", script, root, "--style", style], check=True, capture_output=True)
+            for fid in ("conv", "evals", "hist"):
+                for ext in ("png", "pdf"):
+                    path = os.path.join(root, sub, f"{fid}.{ext}")
+                    check(os.path.getsize(path) > 1000, f"{path} missing or empty")
+            with open(os.path.join(root, sub, "conv.pdf"), "rb") as f:
+                pdf = f.read()
+            check(b"/Type3" not in pdf and b"/FontFile2" in pdf, f"{style}: fonts not embedded as TrueType")
+        bad = subprocess.run(["/usr/bin/python3", script, root, "--only", "nope"], capture_output=True, text=True)
+        check(bad.returncode != 0 and "--only nope" in bad.stderr, "an unknown --only id is not one clear error")
+    # Log ticks: an axis of F_int evaluations over less than two decades shows several labels.
+    fig, ax = plt.subplots()
+    ax.set_xscale("log")
+    ax.set_xlim(300, 20000)
+    fig.canvas.draw()
+    figures.log_tick_labels(ax.xaxis)
+    fig.canvas.draw()
+    labels = [t.get_text() for t in ax.xaxis.get_ticklabels() if t.get_text() and 300 <= t.get_position()[0] <= 20000]
+    check(len(labels) >= 4, f"log axis over 1.8 decades labelled {labels}")
+    plt.close(fig)
+    # Small multiples: one panel per scheme, the mass models lines within it, deviations signed.
+    spec = {"x": "t [s]", "y": "E/E0", "series": ["integrator"], "panels": ["mass"], "log_x": False, "log_y": False,
+            "small_multiples": True, "deviation": True}
+    rows = [{"integrator": "a", "mass": "m1", "t [s]": "0", "E/E0": "0.5"},
+            {"integrator": "a", "mass": "m2", "t [s]": "0", "E/E0": "1.5"},
+            {"integrator": "b", "mass": "m1", "t [s]": "0", "E/E0": "1"}]
+    panels = figures.panel_lines(spec, rows)
+    check(sorted(panels) == [("a",), ("b",)], f"panels {sorted(panels)}")
+    check(sorted(line["pts"][0][1] for line in panels[("a",)].values()) == [-0.5, 0.5], "deviation not signed")
+
+
+if __name__ == "__main__":
+    test_style_map(sys.argv[1])
+    test_figures()
+    for f in failures:
+        print("FAILED:", f)
+    print(f"figures_test: {len(failures)} failures")
+    sys.exit(1 if failures else 0)
