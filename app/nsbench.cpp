@@ -81,7 +81,10 @@ int run_case(const RunArgs& a) {
   options.sample_every = static_cast<long>(every);
   if (!(options.dt > 0.0)) throw nsb::InputError(fmt::format("--dt {}: must be > 0", a.dt));
   if (!(options.t_end > 0.0)) throw nsb::InputError(fmt::format("--t-end {}: must be > 0", a.t_end));
+  if (options.dt > options.t_end)  // refused, not clipped: the run would end at t = dt
+    throw nsb::InputError(fmt::format("--dt {} is larger than --t-end {}; valid: dt <= t_end", a.dt, a.t_end));
   nsb::ensure_directory(a.out);
+  nsb::remove_stale_temporaries(a.out);  // a killed run's half-written files
   if (integrator->conditionally_stable() && options.dt > problem->stable_step())
     fmt::print(stderr, "nsbench: warning: --dt {} is above the stable step {:.4g} of {} for {} (ratio {:.3g}): expect a blow-up\n",
                options.dt, problem->stable_step(), problem->name(), integrator->name(), options.dt / problem->stable_step());
@@ -91,12 +94,16 @@ int run_case(const RunArgs& a) {
   std::signal(SIGTERM, on_interrupt);
 
   integrator->init(*problem, problem->initial_state());
-  const nsb::RunResult result = nsb::run(*problem, *integrator, options);
   const std::filesystem::path dir(a.out);
-  nsb::write_file_atomic(dir / "series.csv", nsb::series_to_csv(result.series));
+  nsb::CsvSeriesFile series(dir / "series.csv");  // streamed: memory bounded whatever the length
+  options.series_sink = &series;
+  const nsb::RunResult result = nsb::run(*problem, *integrator, options);
+  series.commit();
   nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));
   if (!integrator->events().empty())  // the references' located events
     nsb::write_file_atomic(dir / "events.csv", nsb::events_to_csv(integrator->events()));
+  else
+    std::filesystem::remove(dir / "events.csv");  // an earlier run's, not this one's
   if (interrupt_signal != 0) {  // during the run, or while its files were written
     fmt::print(stderr, "nsbench: interrupted by signal {}{} (files written to {})\n", static_cast<int>(interrupt_signal),
                result.status == nsb::RunStatus::Interrupted ? ", " + result.message : std::string(), a.out);
@@ -109,7 +116,7 @@ int run_case(const RunArgs& a) {
   fmt::print("{} on {}: {} steps, t = {:.6g}, cpu {:.3g} s (stepping {:.3g} s), energy error {:.3e} (max {:.3e}), "
              "max penetration {:.3e}\n",
              integrator->name(), problem->name(), result.steps, result.t_final, result.cpu_seconds, result.step_cpu_seconds,
-             nsb::relative_error(result.final_energy, result.initial_energy), result.max_energy_error,
+             result.final_energy_error(), result.max_energy_error,
              result.max_penetration);
   return 0;
 }

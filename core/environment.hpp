@@ -15,6 +15,12 @@ struct Environment {
 
 const Environment& environment();
 
+// The memory a run may take, in bytes: NSBENCH_MEMORY_LIMIT if set (bytes, or with a K, M or
+// G suffix: powers of 1024; InputError if malformed), else MemAvailable (/proc/meminfo).
+// `source` gets where the figure comes from. Used to refuse, before allocating, a problem or
+// factorisation that would not fit.
+double memory_available(std::string& source);
+
 // The command line of this process, as a shell would rerun it (set once by main; empty
 // until then, e.g. in tests).
 void set_command_line(int argc, const char* const* argv);

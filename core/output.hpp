@@ -1,14 +1,49 @@
 #pragma once
 // Output files are written whole or not at all: content goes to a temporary file in the
 // target directory, which is then renamed over the target (atomic on POSIX).
+#include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace nsb {
 
 void write_file_atomic(const std::filesystem::path& path, const std::string& content);
 
-// Creates the directory (and parents); throws InputError when that fails.
+// FNV-1a 64 of the bytes as 16 hex digits: identifies content (not a security hash).
+std::string fnv1a64(std::string_view bytes);
+
+// The whole of a regular file, at most `max_bytes` of it; throws InputError naming `what`
+// and the file when it cannot be read, is not a regular file (/dev/zero, a FIFO) or is larger.
+std::string read_file_bounded(const std::filesystem::path& path, std::size_t max_bytes, const std::string& what);
+
+// Creates the directory (and parents) and checks that a file can be created in it; throws
+// InputError when either fails (a read-only --out is reported before any computation).
 void ensure_directory(const std::filesystem::path& dir);
+
+// Removes what write_file_atomic leaves behind when its process is killed: hidden
+// ".NAME.tmp.PID" files in `dir` whose process is gone.
+void remove_stale_temporaries(const std::filesystem::path& dir);
+
+// A report directory replaced whole: its files are written into a staging sibling
+// (".NAME.staging.PID", holding hard links to the directory's current files, so that a
+// report of some studies keeps the others' files), then commit() swaps the two directories
+// in one rename (renameat2 RENAME_EXCHANGE) and removes the old one. A reader sees the old
+// report or the new one, never a mix; a process killed before commit() leaves the old
+// report as it was (and a staging directory, removed by the next ReportDirectory of that
+// target once its process is gone). Destroyed without commit(): the staging is removed.
+class ReportDirectory {
+ public:
+  explicit ReportDirectory(const std::filesystem::path& target);
+  ~ReportDirectory();
+  ReportDirectory(const ReportDirectory&) = delete;
+  ReportDirectory& operator=(const ReportDirectory&) = delete;
+  const std::filesystem::path& path() const { return staging_; }  // write here
+  void commit();
+
+ private:
+  std::filesystem::path target_, staging_;
+  bool committed_ = false;
+};
 
 }  // namespace nsb

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 namespace nsb {
 
@@ -67,13 +68,29 @@ std::string ParamSpec::range_text() const {
   return kind == Kind::Integer ? "integer in " + r : r;
 }
 
-double parse_real(const std::string& text, const std::string& what) {
+namespace {
+
+// Why `text` is no usable real number ("" when it is one, its value in v).
+std::string real_defect(const std::string& text, double& v) {
   const char* begin = text.c_str();
   char* end = nullptr;
   errno = 0;
-  const double v = std::strtod(begin, &end);
-  if (text.empty() || end != begin + text.size() || errno == ERANGE || !std::isfinite(v))
-    throw InputError(fmt::format("{}: '{}' is not a finite number", what, text));
+  v = std::strtod(begin, &end);
+  if (text.empty() || end != begin + text.size() || (!std::isfinite(v) && errno != ERANGE)) return "is not a finite number";
+  if (errno == ERANGE && std::isinf(v)) return "is beyond the largest double (1.8e308)";
+  // strtod flags an underflow; a subnormal or zero result has lost its precision.
+  if (errno == ERANGE && std::abs(v) < std::numeric_limits<double>::min())
+    return v == 0.0 ? "underflows to 0 (below the smallest double, 4.9e-324)"
+                    : "is subnormal (below 2.2e-308, the smallest normal double: too small to compute with)";
+  return "";
+}
+
+}  // namespace
+
+double parse_real(const std::string& text, const std::string& what) {
+  double v = 0.0;
+  if (const std::string defect = real_defect(text, v); !defect.empty())
+    throw InputError(fmt::format("{}: '{}' {}", what, text, defect));
   return v;
 }
 
@@ -84,11 +101,8 @@ void ParamSpec::validate(const std::string& text) const {
     throw InputError(fmt::format("parameter '{}' = '{}' is not one of {}", name, text, range_text()));
   }
   double v = 0.0;
-  try {
-    v = parse_real(text, fmt::format("parameter '{}'", name));
-  } catch (const InputError&) {
-    throw InputError(fmt::format("parameter '{}' = '{}' is not a finite number; valid: {}", name, text, range_text()));
-  }
+  if (const std::string defect = real_defect(text, v); !defect.empty())
+    throw InputError(fmt::format("parameter '{}' = '{}' {}; valid: {}", name, text, defect, range_text()));
   if (kind == Kind::Integer && v != std::floor(v))
     throw InputError(fmt::format("parameter '{}' = {} is not an integer; valid: {}", name, text,
                                  range_text()));

@@ -2,10 +2,14 @@
 
 #include <fmt/format.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <iterator>
 #include <stdexcept>
 
 #include "core/threads.hpp"
@@ -50,6 +54,11 @@ double relative_error(double value, double reference) {
   return std::abs(value - reference) / std::abs(reference);
 }
 
+double energy_error_scale(const Problem& problem, double E0) {
+  if (E0 != 0.0) return std::abs(E0);
+  return problem.energy_scale() > 0.0 ? problem.energy_scale() : std::numeric_limits<double>::quiet_NaN();
+}
+
 RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& options,
               const StepObserver& observer) {
   if (!(options.dt > 0.0) || !std::isfinite(options.dt))
@@ -69,6 +78,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   if (options.record_series) {
     result.series.columns = kGenericColumns;
     result.series.columns.insert(result.series.columns.end(), extra.begin(), extra.end());
+    if (options.series_sink) options.series_sink->columns(result.series.columns);
   }
   const SpMat& L = problem.gap_operator();
   const Vec& g0 = problem.gap_offset();
@@ -85,8 +95,8 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     const Energy E = integrator.energy();
     const Vec& lambda = integrator.impulses();
     const double E_total = E.total();
-    const double err = relative_error(E_total, result.initial_energy);
-    if (!(err <= result.max_energy_error)) result.max_energy_error = err;  // NaN (E0 = 0) sticks
+    const double err = std::abs(E_total - result.initial_energy) / result.energy_scale;
+    if (!(err <= result.max_energy_error)) result.max_energy_error = err;  // NaN (no scale) sticks
     if (!options.record_series) return;
     row[0] = s.t;
     row[1] = dt;
@@ -98,7 +108,10 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     row[7] = static_cast<double>((lambda.array() > 0.0).count());
     row[8] = integrator.tangential_impulses().cwiseAbs().sum();
     problem.observe_step(s, lambda, dt, std::span<double>(row).subspan(kGenericColumns.size()));
-    result.series.values.insert(result.series.values.end(), row.begin(), row.end());
+    if (options.series_sink)
+      options.series_sink->row(row);
+    else
+      result.series.values.insert(result.series.values.end(), row.begin(), row.end());
   };
   const auto finite = [&]() {
     const State& s = integrator.state();
@@ -106,6 +119,8 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   };
 
   result.initial_energy = integrator.energy().total();
+  result.energy_scale = energy_error_scale(problem, result.initial_energy);
+  result.energy_scale_text = result.initial_energy != 0.0 ? "|E0|" : "E0 = 0: " + problem.energy_scale_text();
   sample(0.0);
   const double cpu_start = cpu_seconds();
   double observe_seconds = 0.0;  // in the observer and sampling
@@ -118,6 +133,8 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
       if (options.interrupt && *options.interrupt) {
         result.status = RunStatus::Interrupted;
         result.message = fmt::format("interrupted at t = {}", integrator.state().t);
+        // The series ends where the summary does, at the last step taken.
+        if (result.steps % options.sample_every != 0 && finite()) sample(info.dt);
         break;
       }
       if (options.progress_every > 0.0 && result.steps % 16 == 0) {
@@ -181,16 +198,59 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
 
 namespace nsb {
 
+namespace {
+
+void append_csv_row(std::string& out, std::span<const double> values) {
+  for (std::size_t c = 0; c < values.size(); ++c) {
+    fmt::format_to(std::back_inserter(out), "{}", values[c]);
+    out += (c + 1 == values.size()) ? '\n' : ',';
+  }
+}
+
+}  // namespace
+
 std::string series_to_csv(const Series& series) {
   std::string out = fmt::format("{}\n", fmt::join(series.columns, ","));
   const std::size_t ncol = series.columns.size();
-  for (std::size_t r = 0; r < series.rows(); ++r) {
-    for (std::size_t c = 0; c < ncol; ++c) {
-      out += fmt::format("{}", series.at(r, c));
-      out += (c + 1 == ncol) ? '\n' : ',';
-    }
-  }
+  for (std::size_t r = 0; r < series.rows(); ++r) append_csv_row(out, std::span(series.values).subspan(r * ncol, ncol));
   return out;
+}
+
+CsvSeriesFile::CsvSeriesFile(std::filesystem::path path)
+    : path_(std::move(path)),
+      tmp_(path_.parent_path() / fmt::format(".{}.tmp.{}", path_.filename().string(), static_cast<long>(::getpid()))) {
+  file_ = std::fopen(tmp_.c_str(), "wb");
+  if (!file_) throw InputError(fmt::format("cannot write '{}'", path_.string()));
+}
+
+CsvSeriesFile::~CsvSeriesFile() {
+  if (!file_) return;
+  std::fclose(file_);
+  std::error_code ignored;
+  std::filesystem::remove(tmp_, ignored);
+}
+
+void CsvSeriesFile::columns(const std::vector<std::string>& names) { buffer_ += fmt::format("{}\n", fmt::join(names, ",")); }
+
+void CsvSeriesFile::row(std::span<const double> values) {
+  append_csv_row(buffer_, values);
+  if (buffer_.size() >= (1u << 16)) {  // written in blocks: a few write calls per MB
+    if (std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
+      throw InputError(fmt::format("cannot write '{}': {}", path_.string(), std::strerror(errno)));
+    buffer_.clear();
+  }
+}
+
+void CsvSeriesFile::commit() {
+  const bool ok = std::fwrite(buffer_.data(), 1, buffer_.size(), file_) == buffer_.size();
+  const bool closed = std::fclose(file_) == 0;
+  file_ = nullptr;
+  std::error_code ec;
+  if (ok && closed) std::filesystem::rename(tmp_, path_, ec);
+  if (!ok || !closed || ec) {
+    std::filesystem::remove(tmp_, ec);
+    throw InputError(fmt::format("cannot write '{}'", path_.string()));
+  }
 }
 
 }  // namespace nsb
@@ -247,8 +307,10 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
       {"threads", run_threads()},
       {"initial_energy", result.initial_energy},
       {"final_energy", result.final_energy},
-      {"final_energy_error", relative_error(result.final_energy, result.initial_energy)},
+      {"final_energy_error", result.final_energy_error()},
       {"max_energy_error", result.max_energy_error},
+      {"energy_error_scale", result.energy_scale},
+      {"energy_error_scale_is", result.energy_scale_text},
       {"max_penetration", result.max_penetration},
       {"work", work},
       {"build", {{"git_revision", b.git_revision}, {"build_type", b.build_type}, {"compiler", b.compiler}}},

@@ -5,7 +5,11 @@
 // Generic columns: t, dt, kinetic, potential, total_energy, min_gap, impulse (sum of the
 // contact impulses of the step), active_contacts (contacts with a positive impulse),
 // tangential_impulse (sum of |Lambda_T| of the step; 0 without friction).
+#include <cmath>
 #include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <span>
 #include <functional>
 #include <string>
 #include <vector>
@@ -14,11 +18,21 @@
 
 namespace nsb {
 
+// Where a run's samples go instead of RunResult::series (RunOptions::series_sink): memory
+// bounded whatever the run's length. columns() once, then row() per sample.
+class SeriesSink {
+ public:
+  virtual ~SeriesSink() = default;
+  virtual void columns(const std::vector<std::string>& names) = 0;
+  virtual void row(std::span<const double> values) = 0;
+};
+
 struct RunOptions {
   double dt = 0.0;          // requested step (> 0)
   double t_end = 0.0;       // the run stops at the first step reaching t_end
   long sample_every = 1;    // record every k-th step (and the first and last)
   bool record_series = true;
+  SeriesSink* series_sink = nullptr;  // set: the samples go there, RunResult::series stays empty
   long max_steps = 200'000'000;
   // Work budget: the run stops with status OverBudget once the integrator's F_int
   // evaluations (WorkCounters::force_evaluations) exceed it; 0: no budget. A count, not a
@@ -63,9 +77,14 @@ struct RunResult {
   double wall_seconds = 0.0;     // elapsed time of the same loop
   double initial_energy = 0.0;
   double final_energy = 0.0;
-  double max_energy_error = 0.0;  // max |E - E0| / |E0| over the samples; NaN when E0 = 0
+  // Energy errors are |E - E0| / energy_scale: |E0|, or the problem's energy_scale() when
+  // E0 = 0 (energy_scale_text says which); NaN when both are 0.
+  double energy_scale = 0.0;
+  std::string energy_scale_text;
+  double max_energy_error = 0.0;  // max over the samples
   double max_penetration = 0.0;   // max over steps of max(0, -g)
   WorkCounters work;
+  double final_energy_error() const { return std::abs(final_energy - initial_energy) / energy_scale; }
 };
 
 // Called after every step (impact detection and the like in studies).
@@ -76,6 +95,10 @@ using StepObserver = std::function<void(const Integrator&, const StepInfo&)>;
 RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& options,
               const StepObserver& observer = {});
 
+// What energy errors of a run starting at energy E0 are relative to: |E0|, or the problem's
+// energy_scale() when E0 = 0; NaN when both are 0.
+double energy_error_scale(const Problem& problem, double E0);
+
 // |value - reference| / |reference|; NaN when reference is 0 (a relative error is then
 // undefined: callers with a natural scale divide by it themselves).
 double relative_error(double value, double reference);
@@ -85,6 +108,24 @@ double relative_error(double value, double reference);
 namespace nsb {
 // The series as CSV: a header row, then one row per sample (shortest round-trip numbers).
 std::string series_to_csv(const Series& series);
+
+// The same written as the run goes, into a hidden temporary beside `path`
+// (".NAME.tmp.PID", as write_file_atomic) renamed over `path` by commit(): the run's memory
+// does not grow with its length, and a reader never sees half a series. Destroyed without
+// commit(): the temporary is removed. Write errors are InputErrors naming the file.
+class CsvSeriesFile final : public SeriesSink {
+ public:
+  explicit CsvSeriesFile(std::filesystem::path path);
+  ~CsvSeriesFile() override;
+  void columns(const std::vector<std::string>& names) override;
+  void row(std::span<const double> values) override;
+  void commit();
+
+ private:
+  std::filesystem::path path_, tmp_;
+  std::FILE* file_ = nullptr;
+  std::string buffer_;
+};
 }  // namespace nsb
 
 namespace nsb {

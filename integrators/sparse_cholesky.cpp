@@ -41,39 +41,6 @@ double gib(double bytes) { return bytes / (1024.0 * 1024.0 * 1024.0); }
 
 }  // namespace
 
-double memory_available(std::string& source) {
-  if (const char* env = std::getenv("NSBENCH_MEMORY_LIMIT"); env && *env) {
-    const auto bad = [&] {
-      return InputError(fmt::format("NSBENCH_MEMORY_LIMIT must be a positive whole number of bytes, optionally with a "
-                                    "K, M or G suffix (powers of 1024), e.g. 512M; got '{}'", env));
-    };
-    char* end = nullptr;
-    errno = 0;
-    const unsigned long long n = std::strtoull(env, &end, 10);
-    if (end == env || !std::isdigit(static_cast<unsigned char>(env[0])) || errno == ERANGE || n == 0) throw bad();
-    double scale = 1.0;
-    if (*end != '\0') {
-      const char s = static_cast<char>(std::toupper(static_cast<unsigned char>(*end)));
-      scale = s == 'K' ? 1024.0 : s == 'M' ? 1024.0 * 1024.0 : s == 'G' ? 1024.0 * 1024.0 * 1024.0 : 0.0;
-      if (scale == 0.0 || end[1] != '\0') throw bad();
-    }
-    source = "NSBENCH_MEMORY_LIMIT";
-    return static_cast<double>(n) * scale;
-  }
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  double kib = 0.0;
-  while (meminfo >> key) {
-    if (key == "MemAvailable:" && meminfo >> kib) {
-      source = "MemAvailable in /proc/meminfo; NSBENCH_MEMORY_LIMIT overrides it";
-      return kib * 1024.0;
-    }
-    meminfo.ignore(1 << 12, '\n');
-  }
-  source = "free physical memory; NSBENCH_MEMORY_LIMIT overrides it";
-  return static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
-}
-
 SparseCholesky::SparseCholesky() {
   cholmod_start(&common_);
   common_.final_asis = 0;  // as Eigen's CholmodSimplicialLLt mode

@@ -24,6 +24,7 @@
 // and an int per entry, an int per column, each) and CHOLMOD's workspace (about 5 doubles per
 // column), the estimate is 12 nnz(L) + 24 nnz(A) + 72 n bytes, against MemAvailable
 // (/proc/meminfo) or NSBENCH_MEMORY_LIMIT (bytes, or with a K, M or G suffix: powers of 1024).
+#include "core/environment.hpp"  // memory_available
 #include <Eigen/SparseLU>
 #include <cholmod.h>
 
@@ -78,9 +79,5 @@ class SparseSum {
   SpMat A_;
   std::vector<Index> from_m_, from_k_;  // position in A_ of each stored entry of M, of K
 };
-
-// The memory a factorisation may take, in bytes: NSBENCH_MEMORY_LIMIT if set (InputError if
-// malformed), else MemAvailable. `source` gets where the figure comes from.
-double memory_available(std::string& source);
 
 }  // namespace nsb

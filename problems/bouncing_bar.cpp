@@ -122,6 +122,11 @@ double BouncingBarExact::stress(double x, double t) const {
 
 double BouncingBarExact::contact_force(double t) const { return -area_ * stress(0.0, t); }
 
+double BouncingBarExact::momentum(double t) const {
+  const double s = t - t1_;
+  return rho_ * area_ * c_ * (F(s) - F(s - 2.0 * tau_)) - rho_ * area_ * len_ * grav_ * s;
+}
+
 double BouncingBarExact::field_energy(double t) const {
   // Between the points where s -+ x/c crosses a piece boundary the fields are polynomial in
   // x (velocity and stress linear, u quadratic): 2-point Gauss is exact there.

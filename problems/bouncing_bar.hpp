@@ -33,6 +33,9 @@
 // rigidly from s = 10 tau, leaving at speed V, stops at s = 13 tau at its initial height and
 // lands at s = 16 tau unstressed at speed V: periodic with period 16 tau = 16/3 for t >= 0.
 // Other data need not be periodic; the march holds for any (no closed form assumed).
+// Momentum: P = rho A int_0^L u_t dx; the two waves integrate to c (F(s) - F(s - tau)) and
+// c (F(s - tau) - F(s - 2 tau)), so P(t) = rho A c (F(s) - F(s - 2 tau)) - rho A L g s
+// (before the impact F(a) = -V a / 2: P = -rho A L (v0 + g t), the rigid fall).
 // Energy: kinetic + strain + rho A g int u dx is conserved (Lebeau and Schatzman 1984): it
 // stays rho A L v0^2 / 2 (0 for DEP: the drop's potential rho A L g g0 = 500 turns into
 // kinetic and strain energy). field_energy(t) integrates it from the exact fields.
@@ -61,6 +64,7 @@ class BouncingBarExact {
   double velocity(double x, double t) const;
   double stress(double x, double t) const;
   double contact_force(double t) const;
+  double momentum(double t) const;  // rho A int_0^L u_t dx
   // Kinetic + strain + rho A g int u dx, integrated piece by piece (exact to round-off).
   double field_energy(double t) const;
   std::size_t pieces() const { return pieces_.size(); }

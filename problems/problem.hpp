@@ -107,6 +107,11 @@ class Problem {
   // Potential of the conservative part of F_ext (gravity); F_ext = -dV_load/du for it.
   virtual double load_potential(ConstVecRef u) const = 0;
   double potential(ConstVecRef u) const { return strain_energy(u) + load_potential(u); }
+  // [J] what energy errors are relative to when the initial energy E0 is 0 (a body released
+  // from rest where the potential is zero, as the bouncing bar); 0: none (the error is NaN).
+  // energy_scale_text() says what it is, for the run's summary.
+  virtual double energy_scale() const { return 0.0; }
+  virtual std::string energy_scale_text() const { return "none"; }
 
   // The contacts (normal and tangent rows, gaps, restitution, friction); see Contacts.
   virtual const Contacts& contacts() const = 0;

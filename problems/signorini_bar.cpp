@@ -1,4 +1,5 @@
 #include "problems/signorini_bar.hpp"
+#include "problems/bouncing_bar.hpp"
 #include "problems/registry.hpp"
 
 #include <algorithm>
@@ -6,11 +7,16 @@
 #include <limits>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "core/environment.hpp"
 #include "core/threads.hpp"
 
 namespace nsb {
 
 namespace {
+
+constexpr double kBytesPerElement = 200.0;
 
 struct Defaults {
   double L, E, rho, A, v0, g0, g = 0.0;
@@ -63,7 +69,18 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
       n_(params.integer("N")),
       model_(parse_bar_mass_model(params.choice("mass"))),
       stiff_ratio_(params.real("stiff_ratio")) {
+  // Refused before anything of size N is allocated (N = 1e8 would end in bad_alloc): the
+  // construction's triplet lists, K, M and ke, and a run's state vectors, together about
+  // kBytesPerElement per element (a run of N = 1e7 peaks at 2.0 GB).
+  std::string source;
+  const double needed = kBytesPerElement * static_cast<double>(n_), available = memory_available(source);
+  if (needed > available)
+    throw InputError(fmt::format("{}: N = {} needs about {:.3g} GiB, more than the {:.3g} GiB available ({}); valid: "
+                                 "N <= {}",
+                                 name_, n_, needed / 1073741824.0, available / 1073741824.0, source,
+                                 static_cast<long>(available / kBytesPerElement)));
   c_ = std::sqrt(young_ / rho_);
+  check_representable();
   t0_ = v0_ > 0.0 ? gap0_ / v0_ : (gap0_ > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);  // at rest: never / now
   const double h = element_size();
   ke_.resize(static_cast<std::size_t>(n_));
@@ -89,6 +106,27 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
   contacts_.normal.insert(0, 0) = 1.0;
   contacts_.normal.makeCompressed();
   contacts_.gap_offset = Vec::Constant(1, gap0_);
+}
+
+// Each parameter may be in range and their products not (L = 1e308 made the momentum -inf in
+// every row): the quantities the run and the exact solution compute must be finite doubles,
+// and the masses and stiffnesses positive (an underflow to 0 would make M singular).
+void SignoriniBar::check_representable() const {
+  const double h = element_size(), m = total_mass(), v = std::max(v0_, std::sqrt(2.0 * gravity_ * gap0_));
+  const std::pair<const char*, double> positive[] = {
+      {"c = sqrt(E / rho)", c_}, {"the mass rho A L", m}, {"an element's mass rho A L / N", rho_ * area_ * h},
+      {"an element's stiffness E A N / L", young_ * area_ / h * std::max(stiff_ratio_, 1.0)}};
+  const std::pair<const char*, double> finite[] = {
+      {"the momentum rho A L (v0 + g t)", m * (v + gravity_ * len_ / c_)}, {"the energy rho A L v^2 / 2", 0.5 * m * v * v},
+      {"the contact force rho A c v", rho_ * area_ * c_ * v}, {"the weight's work rho A L g (g0 + L)", m * gravity_ * (gap0_ + len_)}};
+  for (const auto& [what, x] : positive)
+    if (!(x > 0.0) || !std::isfinite(x))
+      throw InputError(fmt::format("{}: these parameters make {} = {:g}, outside the positive finite doubles; valid: "
+                                   "parameters whose products stay within about 1e-300 to 1e300", name_, what, x));
+  for (const auto& [what, x] : finite)
+    if (!std::isfinite(x))
+      throw InputError(fmt::format("{}: these parameters make {} = {:g}, beyond the largest double; valid: parameters "
+                                   "whose products stay below about 1e300", name_, what, x));
 }
 
 // Element loop written as a tridiagonal stencil: one pass, no matrix, no allocation.
@@ -151,8 +189,20 @@ double SignoriniBar::exact_momentum(double t) const {
   return -total_mass() * v0_ + contact_force_level() * s;
 }
 
+const BouncingBarExact& SignoriniBar::bouncing_exact(double t) const {
+  const std::lock_guard lock(bouncing_mutex_);
+  if (!bouncing_ || t > bouncing_->t_end()) {
+    // Built ahead, doubling: a run asks for increasing times, so the march is redone
+    // O(log t_end) times (the first horizon covers a few periods of DEP's bar).
+    const double horizon = std::max({t, 2.0 * (bouncing_ ? bouncing_->t_end() : 0.0), 64.0 * len_ / c_});
+    bouncing_ = std::make_shared<const BouncingBarExact>(params_, horizon);
+  }
+  return *bouncing_;
+}
+
 std::optional<State> SignoriniBar::exact_state(double t) const {
-  if (gravity_ > 0.0 || stiff_ratio_ != 1.0) return std::nullopt;
+  if (stiff_ratio_ != 1.0 || !(t >= 0.0)) return std::nullopt;
+  const BouncingBarExact* bouncing = gravity_ > 0.0 ? &bouncing_exact(t) : nullptr;
   State s;
   s.t = t;
   s.u.resize(ndof());
@@ -160,8 +210,8 @@ std::optional<State> SignoriniBar::exact_state(double t) const {
   const double h = element_size();
   for (Index i = 0; i <= n_; ++i) {
     const double x = static_cast<double>(i) * h;
-    s.u[i] = exact_displacement(x, t);
-    s.v[i] = exact_velocity(x, t);
+    s.u[i] = bouncing ? bouncing->displacement(x, t) : exact_displacement(x, t);
+    s.v[i] = bouncing ? bouncing->velocity(x, t) : exact_velocity(x, t);
   }
   return s;
 }
@@ -172,15 +222,24 @@ std::vector<std::string> SignoriniBar::observable_names() const {
 }
 
 void SignoriniBar::observe(const State& s, std::span<double> out) const {
-  const bool exact = gravity_ == 0.0 && stiff_ratio_ == 1.0;  // the d'Alembert solution's scope
   out[0] = s.u[0];
   out[1] = s.v[0];
   out[2] = 0.0;  // no step, no impulse
-  out[3] = exact ? exact_displacement(0.0, s.t) : NAN;
-  out[4] = exact ? exact_velocity(0.0, s.t) : NAN;
-  out[5] = exact ? exact_contact_force(s.t) : NAN;
   out[6] = momentum(s.v);
-  out[7] = exact ? exact_momentum(s.t) : NAN;
+  if (stiff_ratio_ != 1.0 || !(s.t >= 0.0)) {  // no exact solution
+    out[3] = out[4] = out[5] = out[7] = NAN;
+  } else if (gravity_ > 0.0) {
+    const BouncingBarExact& b = bouncing_exact(s.t);
+    out[3] = b.displacement(0.0, s.t);
+    out[4] = b.velocity(0.0, s.t);
+    out[5] = b.contact_force(s.t);
+    out[7] = b.momentum(s.t);
+  } else {
+    out[3] = exact_displacement(0.0, s.t);
+    out[4] = exact_velocity(0.0, s.t);
+    out[5] = exact_contact_force(s.t);
+    out[7] = exact_momentum(s.t);
+  }
 }
 
 void SignoriniBar::observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const {

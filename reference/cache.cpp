@@ -9,6 +9,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/output.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 
@@ -16,12 +17,16 @@ namespace nsb {
 
 namespace {
 
+// Far above any reference series a study asks for (500,001 rows of a few columns: ~50 MB).
+constexpr std::size_t kMaxCacheFileBytes = std::size_t{4} << 30;
+
+// A missing, unreadable or oversized file reads as empty: the run is regenerated.
 std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  try {
+    return read_file_bounded(path, kMaxCacheFileBytes, "reference cache");
+  } catch (const InputError&) {
+    return {};
+  }
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
@@ -75,12 +80,7 @@ nlohmann::json reference_metadata(const ReferenceRequest& r) {
 }
 
 std::string reference_key(const nlohmann::json& metadata) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a
-  for (unsigned char c : metadata.dump()) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-  return fmt::format("{:016x}", h);
+  return fnv1a64(metadata.dump());
 }
 
 std::filesystem::path reference_cache_dir() {
@@ -96,7 +96,9 @@ CachedReference cached_reference(const std::filesystem::path& dir, const Referen
 
   const auto stored = nlohmann::json::parse(read_text(json_path), nullptr, /*allow_exceptions=*/false);
   if (!stored.is_discarded() && stored.value("metadata", nlohmann::json()) == ref.metadata) {
-    if (auto series = parse_series(read_text(csv_path))) {
+    const std::string csv = read_text(csv_path);
+    const auto series = stored.value("series_fnv1a64", nlohmann::json()) == fnv1a64(csv) ? parse_series(csv) : std::nullopt;
+    if (series) {
       ref.summary = stored["summary"];
       ref.series = std::move(*series);
       ref.from_cache = true;
@@ -125,8 +127,9 @@ CachedReference cached_reference(const std::filesystem::path& dir, const Referen
                  {"work", work}};
   ref.series = r.series;
   std::filesystem::create_directories(dir);
-  write_text(csv_path, series_to_csv(ref.series));
-  write_text(json_path, nlohmann::json{{"metadata", ref.metadata}, {"summary", ref.summary}}.dump(2) + "\n");
+  const std::string csv = series_to_csv(ref.series);
+  write_text(csv_path, csv);
+  write_text(json_path, nlohmann::json{{"metadata", ref.metadata}, {"summary", ref.summary}, {"series_fnv1a64", fnv1a64(csv)}}.dump(2) + "\n");
   return ref;
 }
 

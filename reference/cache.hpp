@@ -6,8 +6,9 @@
 // format version and the SUNDIALS version. key = FNV-1a 64-bit hash of that JSON (sorted
 // keys), and the run is stored as <dir>/<key>.json (metadata + the run's figures and work
 // counters) and <dir>/<key>.csv (the series, shortest round-trip numbers: reloads exactly).
-// A run is regenerated when a file is missing or unreadable, or when the stored metadata
-// differs from the requested one (stale: e.g. a parameter default changed). Bump
+// The .json also holds the FNV-1a 64 of the .csv's bytes (series_fnv1a64). A run is
+// regenerated when a file is missing or unreadable, when the .csv does not match that hash
+// (edited or cut short), or when the stored metadata differs from the requested one (stale: e.g. a parameter default changed). Bump
 // kReferenceCacheVersion when the reference integrators change their results.
 #include <filesystem>
 #include <map>
@@ -18,7 +19,7 @@
 
 namespace nsb {
 
-inline constexpr int kReferenceCacheVersion = 3;
+inline constexpr int kReferenceCacheVersion = 4;
 
 struct ReferenceRequest {
   std::string problem;

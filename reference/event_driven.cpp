@@ -14,6 +14,9 @@ namespace {
 // Events at one instant beyond this mean the event logic cycles (a bug, not physics: a
 // Zeno sequence is cut by zeno_velocity long before).
 constexpr long kMaxEventsPerStep = 100000;
+// An open contact's gap is known to about atol + rtol |u| (CVODE's error control, the root
+// located to round-off): a penetration this many times beyond it is an impact missed.
+constexpr double kPenetrationTolerance = 1e3;
 
 }  // namespace
 
@@ -22,7 +25,9 @@ ParamSpecs EventDriven::parameters_spec() {
       ParamSpec::choice("method", "bdf", {"bdf", "adams"}, "CVODE linear multistep method (bdf: Newton + KLU; adams: fixed point)"),
       ParamSpec::real("rtol", 1e-11, 0.0, 1e-2, "CVODE relative tolerance", true),
       ParamSpec::real("atol", 1e-13, 0.0, 1.0, "CVODE absolute tolerance (also the gap below which contacts hit together)", true),
-      ParamSpec::real("zeno_velocity", 1e-4, 0.0, 1e308, "rebound speed below which an impact is made plastic and the contact closes"),
+      // 0 would let the impacts accumulate until a landing is too slow for the root finder
+      // and the dof falls through the obstacle (issue 20): excluded.
+      ParamSpec::real("zeno_velocity", 1e-4, 0.0, 1e308, "rebound speed below which an impact is made plastic and the contact closes", true),
   };
 }
 
@@ -64,6 +69,12 @@ void EventDriven::init(const Problem& problem, const State& initial) {
     const double gap = c.a * (state_.u[c.dof] - c.position);
     if (gap < -settings_.atol)
       throw InputError(fmt::format("event-driven: the initial state penetrates contact {} (gap {}); valid: gap >= -atol", i, gap));
+    // Within atol of the obstacle, a contact counts as touching (handle_events): a gap that
+    // is open but that small would make the start an impact, not the problem's initial state.
+    if (gap > 0.0 && gap <= settings_.atol)
+      throw InputError(fmt::format("event-driven: contact {} starts at gap {:g}, within atol = {:g} of the obstacle, where it "
+                                   "counts as touching; valid: atol < {:g} (the smallest open initial gap)",
+                                   i, gap, settings_.atol, gap));
   }
   cvode_ = std::make_unique<Cvode>(static_cast<OdeSystem&>(*this), y_.size(), static_cast<int>(contacts_.size()), settings_);
   // Every root watches its function decreasing through zero (see the header).
@@ -231,6 +242,7 @@ StepInfo EventDriven::step(double dt) {
       throw std::runtime_error(fmt::format("event-driven: more than {} events in one step at t = {}", kMaxEventsPerStep, t));
   }
   impulses_ += y_.tail(impulses_.size()) - reaction_start;  // closed contacts' reactions
+  check_no_penetration(target);
   state_.t = target;
   state_.u = y_.head(n);
   state_.v = y_.segment(n, n);
@@ -238,6 +250,18 @@ StepInfo EventDriven::step(double dt) {
   info.iterations = events;
   publish_work();
   return info;
+}
+
+void EventDriven::check_no_penetration(double t) const {
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
+    const double gap = c.a * (y_[c.dof] - c.position);
+    const double tolerance = kPenetrationTolerance * (settings_.atol + settings_.rtol * std::abs(y_[c.dof]));
+    if (!closed_[i] && gap < -tolerance)
+      throw std::runtime_error(fmt::format("event-driven: contact {} was passed through unseen (gap {:.3g} at t = {:g}, "
+                                           "beyond {:.3g}): an impact the root finder missed; the run is not a solution",
+                                           i, gap, t, -tolerance));
+  }
 }
 
 void EventDriven::publish_work() {

@@ -23,7 +23,6 @@
 #include <fstream>
 #include <map>
 #include <optional>
-#include <regex>
 
 #include "app/cli_options.hpp"
 #include "core/build_info.hpp"
@@ -33,6 +32,7 @@
 #include "core/plugin.hpp"
 #include "studies/parallel.hpp"
 #include "studies/performance.hpp"
+#include "studies/shard.hpp"
 #include "studies/study.hpp"
 #include "studies/verify.hpp"
 #include "studies/study_file.hpp"
@@ -42,54 +42,6 @@ namespace {
 using nsb::InputError;
 using nsb::Json;
 namespace fs = std::filesystem;
-
-struct Shard {
-  int index = 0, count = 0;  // 1-based; count 0: not sharded
-};
-
-Shard parse_shard(const std::string& text) {
-  const std::regex form(R"((\d+)/(\d+))");
-  std::smatch m;
-  if (std::regex_match(text, m, form)) {
-    const int i = std::stoi(m[1]), n = std::stoi(m[2]);
-    if (n >= 1 && i >= 1 && i <= n) return {i, n};
-  }
-  throw InputError(fmt::format("--shard '{}': expected I/N with 1 <= I <= N", text));
-}
-
-fs::path shard_path(const fs::path& out, const std::string& study, int i, int n) {
-  return out / "shards" / fmt::format("{}-{}-of-{}.json", study, i, n);
-}
-
-// Results of every case of a study, read back from its shard files.
-std::vector<Json> merge_shards(const nsb::StudyEntry& study, const std::vector<Json>& cases, const fs::path& out,
-                               bool full) {
-  const std::regex name(study.name + R"(-(\d+)-of-(\d+)\.json)");
-  int count = 0;
-  if (fs::is_directory(out / "shards"))
-    for (const auto& f : fs::directory_iterator(out / "shards")) {
-      std::smatch m;
-      const std::string fname = f.path().filename().string();
-      if (std::regex_match(fname, m, name)) count = std::max(count, std::stoi(m[2]));
-    }
-  if (count == 0) throw InputError(fmt::format("--merge: no shard files for study {} in {}", study.name, (out / "shards").string()));
-  std::vector<Json> results(cases.size());
-  std::vector<bool> have(cases.size(), false);
-  for (int i = 1; i <= count; ++i) {
-    std::ifstream in(shard_path(out, study.name, i, count));
-    if (!in) throw InputError(fmt::format("--merge: shard {} of {} of study {} is missing", i, count, study.name));
-    const Json shard = Json::parse(in);
-    if (shard["cases"] != Json(cases) || shard["full"] != full)
-      throw InputError(fmt::format("--merge: shard {} of {} of study {} was made by other study definitions (stale); rerun it", i, count, study.name));
-    for (const auto& [k, r] : shard["results"].items()) {
-      results[std::stoul(k)] = r;
-      have[std::stoul(k)] = true;
-    }
-  }
-  for (std::size_t k = 0; k < have.size(); ++k)
-    if (!have[k]) throw InputError(fmt::format("--merge: case {} of study {} is in no shard", k, study.name));
-  return results;
-}
 
 // Writes the performance table into `out` and lists it in out/index.md when that exists
 // (written by the studies before the benchmarks run).
@@ -152,7 +104,8 @@ int main(int argc, char** argv) {
       write_performance({names.begin() + 1, names.end()}, out);
       return 0;
     }
-    const Shard shard = shard_text.empty() ? Shard{} : parse_shard(shard_text);
+    const nsb::Shard shard = shard_text.empty() ? nsb::Shard{} : nsb::parse_shard(shard_text);
+    nsb::study_jobs();  // a bad NSBENCH_JOBS is reported before any work
     if (shard.count && merge) throw InputError("--shard and --merge: give one of them");
     const bool verify = !verify_dir.empty();
     if (verify && (shard.count || merge)) throw InputError("--verify: recomputes whole studies, without --shard or --merge");
@@ -160,11 +113,11 @@ int main(int argc, char** argv) {
     nsb::VerifyResult verified;
     std::vector<const nsb::StudyEntry*> selected;
     std::optional<nsb::StudyEntry> file_study;  // nsbench-study run FILE
+    std::optional<nsb::StudySpec> spec;
     if (names[0] == "run") {
       if (names.size() != 2) throw InputError("run: give one study file (nsbench-study run FILE.toml)");
-      const nsb::StudySpec spec = nsb::read_study_file(names[1]);
-      if (!verify) nsb::write_study_copy(spec, out);
-      file_study = nsb::file_study(spec);
+      spec = nsb::read_study_file(names[1]);
+      file_study = nsb::file_study(*spec);
       selected.push_back(&*file_study);
     }
     for (const auto& n : file_study ? std::vector<std::string>{} : names) {
@@ -182,6 +135,9 @@ int main(int argc, char** argv) {
       }
     }
     if (!verify) nsb::ensure_directory(out);
+    // The report (tables, figures, index, a study file's copy) is staged and swapped in whole.
+    std::optional<nsb::ReportDirectory> report;
+    if (!verify && !shard.count) report.emplace(out);
     const nsb::StudyOptions options{full};
     const auto& b = nsb::build_info();
     const std::string plugged = nsb::plugins_stamp();
@@ -197,20 +153,18 @@ int main(int argc, char** argv) {
       const std::vector<Json> cases = nsb::study_cases(*s, options);
       std::vector<Json> results;
       if (merge) {
-        results = merge_shards(*s, cases, out, full);
+        results = nsb::merge_shards(s->name, cases, out, full);
       } else {
         std::vector<std::size_t> mine;
         for (std::size_t k = 0; k < cases.size(); ++k)
-          if (!shard.count || static_cast<int>(k % shard.count) == shard.index - 1) mine.push_back(k);
+          if (!shard.count || static_cast<long>(k % static_cast<std::size_t>(shard.count)) == shard.index - 1) mine.push_back(k);
         const auto computed = nsb::parallel_map<Json>(mine.size(), [&](std::size_t j) {
           return nsb::run_study_case(*s, cases[mine[j]], options);
         }, s->name);
         if (shard.count) {
-          Json file = {{"study", s->name}, {"full", full}, {"shard", shard.index}, {"of", shard.count},
-                       {"cases", cases}, {"results", Json::object()}};
-          for (std::size_t j = 0; j < mine.size(); ++j) file["results"][std::to_string(mine[j])] = computed[j];
           nsb::ensure_directory(fs::path(out) / "shards");
-          nsb::write_file_atomic(shard_path(out, s->name, shard.index, shard.count), file.dump() + "\n");
+          nsb::write_file_atomic(nsb::shard_path(out, s->name, shard.index, shard.count),
+                                 nsb::shard_text(s->name, full, shard, cases, mine, computed));
           fmt::print(stderr, "study {}: shard {}/{} ({} of {} cases) written\n", s->name, shard.index, shard.count,
                      mine.size(), cases.size());
           continue;
@@ -228,7 +182,7 @@ int main(int argc, char** argv) {
       }
       studies += fmt::format("## {}\n\n{}\n\n", s->name, s->description);
       for (const auto& t : tables) {
-        nsb::write_table(t, out);
+        nsb::write_table(t, report->path());
         if (t.csv_only)
           studies += fmt::format("- {} ([csv]({}.csv))\n", t.title, t.id);
         else
@@ -257,12 +211,14 @@ int main(int argc, char** argv) {
       const auto& env = nsb::environment();
       studies += fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, revision {}. Rerun: `{}`</sub>\n", env.cpu,
                              env.cores, env.libraries, b.build_type, b.compiler, b.git_revision, nsb::command_line());
-      nsb::write_file_atomic(fs::path(out) / "figures.json", nsb::figures_to_json(all_tables));
+      if (spec) nsb::write_study_copy(*spec, report->path());
+      nsb::write_file_atomic(report->path() / "figures.json", nsb::figures_to_json(all_tables));
       if (!lead.empty()) index += "## Claims\n\nThe verdicts are computed from measured figures (the rules are in the caption).\n\n" + lead + "\n";
       if (!headline.empty())
         index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
                  "caption).\n\n" + headline + "\n";
-      nsb::write_file_atomic(fs::path(out) / "index.md", index + studies);
+      nsb::write_file_atomic(report->path() / "index.md", index + studies);
+      report->commit();
     }
   } catch (const InputError& e) {
     fmt::print(stderr, "nsbench-study: error: {}\n", e.what());

@@ -3,20 +3,31 @@
 #include <fmt/format.h>
 
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <cstdlib>
 #include <exception>
 #include <mutex>
 #include <thread>
 
+#include "core/parameters.hpp"
 #include "core/threads.hpp"
 
 namespace nsb {
 
+namespace {
+constexpr int kMaxJobs = 4096;
+}  // namespace
+
 int study_jobs() {
-  if (const char* env = std::getenv("NSBENCH_JOBS")) {
-    const int j = std::atoi(env);
-    if (j >= 1) return j;
+  if (const char* env = std::getenv("NSBENCH_JOBS"); env && *env) {
+    int j = 0;
+    const std::string_view text(env);
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), j);
+    if (ec != std::errc() || end != text.data() + text.size() || j < 1 || j > kMaxJobs)
+      throw InputError(fmt::format("NSBENCH_JOBS='{}': expected a whole number of parallel cases; valid: 1 to {} "
+                                   "(unset: the number of cores)", text, kMaxJobs));
+    return j;
   }
   return std::max(1u, std::thread::hardware_concurrency());
 }

@@ -8,7 +8,7 @@
 //                A reference integrator's samples are interpolated linearly in time.
 //   impact-time  max over the first `count` impacts of |t_i (scheme) - t_i (exact)|, t_i the
 //                end of the first step with an impulse after a step without one [s].
-//   energy       (E - E0)/|E0|, E the scheme's own energy: max |.|, final, or drift (its
+//   energy       (E - E0)/|E0| (E0 = 0: the problem's energy_scale(), integrators/run.hpp), E the scheme's own energy: max |.|, final, or drift (its
 //                least-squares slope in time, 1/s).
 //   momentum     max over the samples of |P - P0 - sum_k (1^T F_ext(t_k) dt_k + 1^T L^T Lambda_k)|
 //                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
@@ -184,7 +184,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       const State& s = integrator->state();
       acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0, spec.measures[m].observable, obs, &energy));
     }
-  const double e0 = integrator->energy().total();
+  const double e0 = integrator->energy().total(), e_scale = energy_error_scale(*problem, e0);
   double impulse_sum = 0.0, t_prev = 0.0;
   IntervalMax history(spec.t_end, kHistoryIntervals, 1);
   const auto history_measure = std::find_if(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) {
@@ -214,7 +214,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         const Energy energy = it.energy();
         a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy));
       } else if (fm.kind == MeasureKind::Energy) {
-        e = (it.energy().total() - e0) / std::abs(e0);
+        e = (it.energy().total() - e0) / e_scale;
         a.st += s.t, a.se += e, a.stt += s.t * s.t, a.ste += s.t * e, a.n += 1;
         e = fm.norm == "final" ? e : std::abs(e);
       } else if (fm.kind == MeasureKind::Momentum) {
@@ -239,7 +239,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         if (contact && !acc[m].in_contact) acc[m].impacts.push_back(s.t);
         acc[m].in_contact = contact;
       }
-    if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(it.energy().total() - e0) / std::abs(e0)});
+    if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(it.energy().total() - e0) / e_scale});
     if (++step % spec.sample_every == 0) sample(it);
     t_prev = s.t;
   });

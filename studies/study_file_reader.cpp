@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <memory>
+#include <set>
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "core/output.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "studies/study_file.hpp"
@@ -18,6 +20,9 @@ namespace nsb {
 namespace {
 
 using Lines = std::map<std::string, long>;
+
+// A study file is a page of text; anything larger is not one (/dev/zero, a data file given by mistake).
+constexpr std::size_t kMaxStudyFileBytes = 1 << 20;
 
 std::string child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 std::string element(const std::string& path, std::size_t i) { return fmt::format("{}[{}]", path, i); }
@@ -58,6 +63,23 @@ long json_line(const std::string& text, const std::string& path) {
     if (at != std::string::npos) pos = at;
   }
   return 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+}
+
+// JSON allows a key twice in one object (the last wins); TOML does not, and neither does a
+// study file: a parser callback that fails on the second occurrence.
+Json::parser_callback_t duplicate_key_check(const std::string& text, const std::string& file) {
+  auto open = std::make_shared<std::vector<std::set<std::string>>>();
+  return [open, &text, &file](int, Json::parse_event_t event, Json& parsed) {
+    if (event == Json::parse_event_t::object_start) open->emplace_back();
+    if (event == Json::parse_event_t::object_end) open->pop_back();
+    if (event == Json::parse_event_t::key && !open->empty() && !open->back().insert(parsed.get<std::string>()).second) {
+      const std::string key = parsed.get<std::string>(), quoted = Json(key).dump();
+      const std::size_t first = text.find(quoted), second = first == std::string::npos ? first : text.find(quoted, first + 1);
+      const long line = second == std::string::npos ? 0 : 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(second), '\n'));
+      throw InputError(fmt::format("{}:{}: key '{}' given twice in one table; valid: each key once", file, line, key));
+    }
+    return true;
+  };
 }
 
 std::string type_name(const Json& j) {
@@ -174,6 +196,21 @@ std::vector<std::string> names_of(const auto& registry) {
   return names;
 }
 
+// The run driver's limits (integrators/run.cpp), checked here so that a study stops at its
+// file's line before any run or any file is written.
+void check_step(const Checker& c, double dt, const std::string& path, double t_end) {
+  const long limit = RunOptions{}.max_steps;
+  if (dt > t_end) c.fail(path, fmt::format("dt = {:g} is larger than study.t_end = {:g}", dt, t_end), "dt <= t_end");
+  if (t_end / dt > static_cast<double>(limit))
+    c.fail(path, fmt::format("study.t_end / dt = {:g} / {:g} = {:.3g} steps, more than a run's limit of {}", t_end, dt, t_end / dt, limit),
+           fmt::format("dt >= t_end / {} = {:g}", limit, t_end / static_cast<double>(limit)));
+}
+
+void check_steps(const Checker& c, const FileSweep& s, const std::string& path, double t_end) {
+  for (std::size_t i = 0; i < s.steps.size(); ++i) check_step(c, s.steps[i], element(child(path, "steps"), i), t_end);
+  if (!s.tolerances.empty()) check_step(c, s.dt, child(path, "dt"), t_end);
+}
+
 FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, const IntegratorEntry& entry,
                      const FileSweep* base) {
   FileSweep s = base ? *base : FileSweep{};
@@ -231,9 +268,11 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   Lines lines;
   if (json) {
     try {
-      root = Json::parse(text);
+      root = Json::parse(text, duplicate_key_check(text, file));
     } catch (const Json::parse_error& e) {
       throw InputError(fmt::format("{}: not valid JSON: {}", file, e.what()));
+    } catch (const Json::out_of_range& e) {  // a number beyond a double's range (406)
+      throw InputError(fmt::format("{}: a number beyond the range of a double (1.8e308): {}", file, e.what()));
     }
   } else {
     try {
@@ -250,9 +289,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   spec.file = file;
   spec.name = stem_name(file);
   spec.text = text;
-  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64
-  for (unsigned char ch : text) h = (h ^ ch) * 1099511628211ull;
-  spec.hash = fmt::format("{:016x}", h);
+  spec.hash = fnv1a64(text);
 
   const Json& study = c.require(root, "", "study");
   c.expect(study, "study", study.is_object(), "a table");
@@ -307,6 +344,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       if (q.label == it.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", it.label), "distinct labels");
     const auto& entry = find_integrator(it.name);
     it.sweep = read_sweep(c, j, path, entry, nullptr);
+    check_steps(c, it.sweep, path, spec.t_end);
     if (const Json* pp = c.find(j, "per_problem")) {
       const std::string pp_path = child(path, "per_problem");
       c.expect(*pp, pp_path, pp->is_object(), "a table keyed by problem label");
@@ -317,6 +355,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         c.expect(o, child(pp_path, label), o.is_object(), "a table");
         c.keys(o, child(pp_path, label), sweep_keys);
         it.per_problem[label] = read_sweep(c, o, child(pp_path, label), entry, &it.sweep);
+        check_steps(c, it.per_problem[label], child(pp_path, label), spec.t_end);
       }
     }
     spec.integrators.push_back(it);
@@ -341,6 +380,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       if (const Json* v = c.find(*r, "parameters"))
         ref.parameters = c.parameters(*v, "reference.parameters", find_integrator(ref.integrator).parameters());
       ref.dt = c.positive(c.require(*r, "reference", "dt"), "reference.dt");
+      check_step(c, ref.dt, "reference.dt", spec.t_end);
       if (const Json* v = c.find(*r, "sample_every")) ref.sample_every = c.integer(*v, "reference.sample_every", 1, 1L << 40);
     }
     if (const Json* v = c.find(*r, "floor")) {
@@ -408,11 +448,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 }
 
 StudySpec read_study_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot read the study file", path.string()));
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_study_text(text.str(), path.string(), path.extension() == ".json");
+  return parse_study_text(read_file_bounded(path, kMaxStudyFileBytes, "study file"), path.string(),
+                          path.extension() == ".json");
 }
 
 StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, long budget) {

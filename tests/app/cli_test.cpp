@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "problems/bouncing_mass.hpp"
@@ -165,6 +166,12 @@ TEST_CASE("cli: an explicit scheme above its stable step gets one warning line a
 TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupted), no temporaries", "[app][guardrails]") {
   const std::string dir = tmpdir("sigterm");
   std::filesystem::remove_all(dir);
+  // An earlier run's leftovers (issue 20): a killed run's temporary (its pid above any
+  // pid_max: no such process) and an events.csv this run does not make. Both go.
+  std::filesystem::create_directories(dir);
+  const std::string stale = dir + "/.series.csv.tmp.4194305";
+  std::ofstream(stale) << "t,dt\n";
+  std::ofstream(dir + "/events.csv") << "t\n";
   const pid_t child = fork();
   REQUIRE(child >= 0);
   if (child == 0) {  // a run of 2e8 steps, minutes long
@@ -175,8 +182,8 @@ TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupt
           "--t-end", "2000", "--sample-every", "1000000", "--out", dir.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  // The output directory is made just before the handlers are installed and the run starts.
-  for (int k = 0; k < 1000 && !std::filesystem::exists(dir); ++k) usleep(10'000);
+  // The stale temporary goes just before the handlers are installed and the run starts.
+  for (int k = 0; k < 1000 && std::filesystem::exists(stale); ++k) usleep(10'000);
   usleep(300'000);
   kill(child, SIGTERM);
   int status = 0;
@@ -196,4 +203,28 @@ TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupt
   std::ifstream json(dir + "/summary.json");
   const std::string summary((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   CHECK_THAT(summary, Catch::Contains("\"status\": \"interrupted\"") && Catch::EndsWith("}\n"));
+  // The series ends at the summary's last step, whatever --sample-every (1e6 here).
+  std::ifstream csv(dir + "/series.csv");
+  std::string line, last;
+  while (std::getline(csv, line)) last = line;
+  const double t_last = std::stod(last.substr(0, last.find(',')));
+  const auto j = nlohmann::json::parse(summary);
+  CHECK(t_last == j["t_final"].get<double>());
+  CHECK(j["steps"].get<long>() % 1000000 != 0);  // else the test shows nothing
+}
+
+TEST_CASE("cli: a step larger than t_end and a read-only --out are refused before the run", "[app][bad-input]") {
+  auto r = nsbench("run --problem bouncing-mass --integrator cd-lagrange --dt 16 --t-end 1 --out " + tmpdir("dt16"));
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Contains("--dt 16 is larger than --t-end 1; valid: dt <= t_end"));
+  // /proc/self exists and takes no new file, even for root.
+  r = nsbench(kRun + "--dt 1e-3 --out /proc/self");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::StartsWith("nsbench: error: --out '/proc/self': cannot write files there"));
+  r = nsb::test::run_command(fmt::format("NSBENCH_JOBS=abc '{}' bouncing --out {}", NSBENCH_STUDY_CLI, tmpdir("jobs")));
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Contains("NSBENCH_JOBS='abc': expected a whole number"));
+  r = nsb::test::run_command(fmt::format("'{}' bouncing --out /proc/self", NSBENCH_STUDY_CLI));
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Contains("--out '/proc/self': cannot write files there"));
 }

@@ -38,6 +38,13 @@ TEST_CASE("parameters: bad values name the parameter and the valid range", "[cor
   CHECK(error_of({{"e", "abc"}}) == "parameter 'e' = 'abc' is not a finite number; valid: [0, 1]");
   CHECK(error_of({{"e", "nan"}}) == "parameter 'e' = 'nan' is not a finite number; valid: [0, 1]");
   CHECK(error_of({{"e", "0.5x"}}) == "parameter 'e' = '0.5x' is not a finite number; valid: [0, 1]");
+  // Issue 20: an underflow is not "not a finite number".
+  CHECK(error_of({{"e", "5e-324"}}) ==
+        "parameter 'e' = '5e-324' is subnormal (below 2.2e-308, the smallest normal double: too small to compute with); valid: [0, 1]");
+  CHECK(error_of({{"e", "1e-400"}}) == "parameter 'e' = '1e-400' underflows to 0 (below the smallest double, 4.9e-324); valid: [0, 1]");
+  CHECK(error_of({{"e", "1e400"}}) == "parameter 'e' = '1e400' is beyond the largest double (1.8e308); valid: [0, 1]");
+  CHECK_THROWS_WITH(nsb::parse_real("5e-324", "--dt"), "--dt: '5e-324' is subnormal (below 2.2e-308, the smallest normal "
+                                                       "double: too small to compute with)");
   CHECK(error_of({{"n", "2.5"}}) == "parameter 'n' = 2.5 is not an integer; valid: integer in [1, 1000]");
   CHECK(error_of({{"mass", "heavy"}}) == "parameter 'mass' = 'heavy' is not one of {lumped, singular}");
   CHECK(error_of({{"zz", "1"}}) == "unknown parameter 'zz' (nearest: e; valid: e, dt, n, mass)");

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
 
 #include "problems/registry.hpp"
 #include "problems/signorini_bar.hpp"
@@ -179,7 +180,26 @@ TEST_CASE("signorini bar: registry, steel preset and bad input", "[problems][sig
   CHECK_THROWS_AS(nsb::make_problem("signorini-bar", {{"g0", "-1"}}), nsb::InputError);
 }
 
-TEST_CASE("signorini bar under gravity: F_ext = -grad V_load, weight rho A L g on every mass model, no exact solution",
+TEST_CASE("signorini bar: an N that cannot fit in memory is refused before allocating", "[problems][signorini-bar]") {
+  ::setenv("NSBENCH_MEMORY_LIMIT", "1G", 1);
+  // 1e8 elements would need ~20 GB (issue 20: bad_alloc under a memory limit).
+  CHECK_THROWS_WITH(nsb::make_problem("signorini-bar", {{"N", "100000000"}}),
+                    Catch::StartsWith("signorini-bar: N = 100000000 needs about 18.6 GiB, more than the 1 GiB available "
+                                      "(NSBENCH_MEMORY_LIMIT); valid: N <= 5368709"));
+  CHECK(nsb::make_problem("signorini-bar", {{"N", "1000"}})->ndof() == 1001);
+  ::unsetenv("NSBENCH_MEMORY_LIMIT");
+}
+
+TEST_CASE("signorini bar: parameters whose products overflow are refused, not run to -inf", "[problems][signorini-bar]") {
+  // Issue 20: signorini-bar-steel with L = 1e308 ran with momentum_exact = -inf, status ok.
+  CHECK_THROWS_WITH(nsb::make_problem("signorini-bar-steel", {{"L", "1e308"}}),
+                    Catch::StartsWith("signorini-bar-steel: these parameters make the mass rho A L = inf"));
+  CHECK_THROWS_WITH(nsb::make_problem("signorini-bar", {{"rho", "1e-200"}, {"A", "1e-200"}}),
+                    Catch::Contains("the mass rho A L = 0"));
+  CHECK(nsb::make_problem("signorini-bar-steel", {{"L", "1e3"}})->ndof() == 101);
+}
+
+TEST_CASE("signorini bar under gravity: F_ext = -grad V_load, weight rho A L g on every mass model",
           "[problems][signorini-bar]") {
   for (std::string mass : {"lumped", "singular", "consistent"}) {
     CAPTURE(mass);
@@ -201,10 +221,8 @@ TEST_CASE("signorini bar under gravity: F_ext = -grad V_load, weight rho A L g o
       CHECK((p.load_potential(up) - p.load_potential(um)) / (2 * h) == Approx(-f[j]).margin(1e-8));
     }
     CHECK(p.load_potential(nsb::Vec::Zero(n)) == 0.0);
-    CHECK_FALSE(p.exact_state(0.5).has_value());
-    std::vector<double> obs(p.observable_names().size());
-    p.observe(p.initial_state(), obs);
-    CHECK(std::isnan(obs[3]));  // u_contact_exact: the g = 0 solution does not apply
+    // The exact solution is the bouncing bar's (tests/problems/bouncing_bar_test.cpp).
+    CHECK(p.exact_state(0.5).has_value());
   }
   // g = 0 (the default) keeps the load-free problem and its exact solution.
   const auto p0 = bar({{"N", "6"}});

@@ -70,3 +70,34 @@ TEST_CASE("reference cache: unknown names and bad values are input errors", "[re
   r.integrator_parameters = {{"rtol", "-1"}};
   CHECK_THROWS_AS(nsb::reference_metadata(r), nsb::InputError);
 }
+
+// A series edited by hand or cut short at a row boundary still parses: only the hash in the
+// .json tells it from the run, and it is regenerated rather than used.
+TEST_CASE("reference cache: an edited or truncated series is regenerated, not used", "[reference][cache]") {
+  TempDir dir;
+  const auto first = nsb::cached_reference(dir.path, request());
+  const fs::path csv = dir.path / (nsb::reference_key(first.metadata) + ".csv");
+  const auto read = [&] {
+    std::ifstream in(csv, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string text = read();
+  const auto rewrite = [&](const std::string& t) { std::ofstream(csv, std::ios::binary | std::ios::trunc) << t; };
+
+  SECTION("truncated to whole rows") {
+    const auto cut = text.find('\n', text.size() / 3);
+    REQUIRE(cut != std::string::npos);
+    rewrite(text.substr(0, cut + 1));
+  }
+  SECTION("one value edited") {
+    std::string edited = text;
+    const auto row = edited.find('\n', edited.size() / 2);
+    edited.insert(row + 1, "5");  // a digit more in the first cell of a row: still a number
+    rewrite(edited);
+  }
+  const auto again = nsb::cached_reference(dir.path, request());
+  CHECK_FALSE(again.from_cache);
+  CHECK(again.series.values == first.series.values);
+  CHECK(read() == text);
+  CHECK(nsb::cached_reference(dir.path, request()).from_cache);
+}

@@ -103,3 +103,33 @@ TEST_CASE("event-driven: tolerances are checked", "[reference][event-driven]") {
   CHECK_THROWS_AS(EventDriven(Params(EventDriven::parameters_spec(), {{"rtol", "0"}})), nsb::InputError);
   CHECK_THROWS_AS(EventDriven(Params(EventDriven::parameters_spec(), {{"method", "rk4"}})), nsb::InputError);
 }
+
+// Issue 20: both ran to t = 10 with status ok, one through the floor (q = -9.89), one
+// starting on it.
+TEST_CASE("event-driven: zeno_velocity = 0 is refused; a missed impact stops the run as diverged", "[reference][event-driven]") {
+  CHECK_THROWS_WITH(make_ed("bdf", "0"), Catch::Contains("zeno_velocity") && Catch::Contains("(0, inf)"));
+  // A rebound threshold far below any speed the root finder can resolve: the impacts
+  // accumulate until one is missed, and the run says so instead of falling through.
+  const BouncingMass p = make(0.5);
+  auto ed = make_ed("bdf", "1e-300");
+  ed.init(p, p.initial_state());
+  nsb::RunOptions options;
+  options.dt = 0.01;
+  options.t_end = 10.0;
+  options.record_series = false;
+  const nsb::RunResult r = nsb::run(p, ed, options);
+  CHECK(r.status == nsb::RunStatus::Diverged);
+  CHECK_THAT(r.message, Catch::Contains("contact 0 was passed through unseen"));
+  CHECK(r.max_penetration < 1e-3);  // stopped at the first step beyond the tolerance
+}
+
+TEST_CASE("event-driven: an open initial gap within atol is refused, not started on the floor", "[reference][event-driven]") {
+  const BouncingMass p = make(0.9, 1.0);
+  auto ed = EventDriven(Params(EventDriven::parameters_spec(), {{"atol", "1"}}));
+  CHECK_THROWS_WITH(ed.init(p, p.initial_state()),
+                    "event-driven: contact 0 starts at gap 1, within atol = 1 of the obstacle, where it counts as "
+                    "touching; valid: atol < 1 (the smallest open initial gap)");
+  auto fine = EventDriven(Params(EventDriven::parameters_spec(), {{"atol", "1e-3"}}));
+  fine.init(p, p.initial_state());
+  CHECK(fine.state().u[0] == 1.0);
+}

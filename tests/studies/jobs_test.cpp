@@ -89,3 +89,14 @@ TEST_CASE("studies: the same outputs with 1 and 2 jobs, CPU columns aside (reduc
     CHECK(v.cells_compared == one[i].rows.size() * (one[i].columns.size() - 1));
   }
 }
+
+TEST_CASE("NSBENCH_JOBS: anything but a whole number from 1 up is refused naming the variable", "[studies][jobs]") {
+  for (const char* bad : {"0", "-1", "abc", "2x", "99999999999"}) {
+    CAPTURE(bad);
+    setenv("NSBENCH_JOBS", bad, 1);
+    CHECK_THROWS_WITH(nsb::study_jobs(), Catch::StartsWith(std::string("NSBENCH_JOBS='") + bad + "': expected a whole number"));
+  }
+  setenv("NSBENCH_JOBS", "3", 1);
+  CHECK(nsb::study_jobs() == 3);
+  unsetenv("NSBENCH_JOBS");
+}

@@ -388,6 +388,30 @@ TEST_CASE("nsbench-study run writes the tables and the file and its hash and mer
   CHECK_THAT(read(dir / "stderr"), Catch::Contains("mini.toml:3: study.tend: unknown key (nearest valid key: t_end)"));
 }
 
+// Issue 20's hostile study files: each refused at its line, before any run or file.
+TEST_CASE("study file: duplicate JSON keys, overflowing numbers and impossible step counts are refused with FILE:LINE",
+          "[studies][study_file]") {
+  const std::string json = R"({"study": {"title": "t", "t_end": 0.6},
+  "problem": [{"name": "bouncing-mass", "parameters": {"e": 0.5}}],
+  "integrator": [{"name": "cd-lagrange", "steps": [0.01, 0.005]}],
+  "reference": {"solution": "exact"},
+  "measure": [{"kind": "error"}]})";
+  CHECK(error_of(replaced(json, "\"t_end\": 0.6}", "\"t_end\": 0.6,\n \"t_end\": 5}"), true) ==
+        "f.toml:2: key 't_end' given twice in one table; valid: each key once");
+  // The same key in two tables is fine.
+  CHECK(error_of(replaced(json, "\"e\": 0.5}", "\"e\": 0.5, \"h0\": 1}"), true) == "(no error)");
+  const std::string digits(400, '7');
+  CHECK_THAT(error_of(replaced(json, "0.6}", digits + "}"), true),
+             Catch::StartsWith("f.toml: a number beyond the range of a double (1.8e308)"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 1e30")),
+             Catch::StartsWith("f.toml:11: integrator[0].steps[0]: study.t_end / dt = 1e+30 / 0.01 = 1e+32 steps, more than a "
+                               "run's limit of 200000000; valid: dt >= t_end / 200000000"));
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-300]")),
+             Catch::StartsWith("f.toml:11: integrator[0].steps[0]: study.t_end / dt = 0.6 / 1e-300"));
+  CHECK(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 16]")) ==
+        "f.toml:11: integrator[0].steps[1]: dt = 16 is larger than study.t_end = 0.6; valid: dt <= t_end");
+}
+
 TEST_CASE("study file: a hausdorff measure converges where the max-norm velocity error does not", "[studies][study_file]") {
   // Three impacts: the third is computed a step late at every step here (the first two land in
   // the step that holds them), an O(1) max-norm error.

@@ -1,0 +1,102 @@
+#include "studies/shard.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <regex>
+
+#include "core/output.hpp"
+
+namespace nsb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A shard holds cases' figures and histories, not series: far below this.
+constexpr std::size_t kMaxShardBytes = std::size_t{1} << 30;
+
+// A decimal integer in [lo, hi]; nullopt for anything else (sign, overflow, other characters).
+std::optional<long> decimal(const std::string& text, long lo, long hi) {
+  long v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || v < lo || v > hi) return std::nullopt;
+  return v;
+}
+
+std::string content_hash(Json file) {
+  file.erase("content_fnv1a64");
+  return fnv1a64(file.dump());
+}
+
+}  // namespace
+
+Shard parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  if (slash != std::string::npos) {
+    const auto n = decimal(text.substr(slash + 1), 1, kMaxShards);
+    const auto i = n ? decimal(text.substr(0, slash), 1, *n) : std::nullopt;
+    if (i) return {*i, *n};
+  }
+  throw InputError(fmt::format("--shard '{}': expected I/N with 1 <= I <= N <= {}", text, kMaxShards));
+}
+
+fs::path shard_path(const fs::path& out, const std::string& study, long i, long n) {
+  return out / "shards" / fmt::format("{}-{}-of-{}.json", study, i, n);
+}
+
+std::string shard_text(const std::string& study, bool full, const Shard& shard, const std::vector<Json>& cases,
+                       const std::vector<std::size_t>& mine, const std::vector<Json>& results) {
+  Json file = {{"study", study}, {"full", full}, {"shard", shard.index}, {"of", shard.count},
+               {"cases", cases}, {"results", Json::object()}};
+  for (std::size_t j = 0; j < mine.size(); ++j) file["results"][std::to_string(mine[j])] = results[j];
+  file["content_fnv1a64"] = content_hash(file);
+  return file.dump() + "\n";
+}
+
+std::vector<Json> merge_shards(const std::string& study, const std::vector<Json>& cases, const fs::path& out, bool full) {
+  const std::regex name(study + R"(-(\d+)-of-(\d+)\.json)");
+  long count = 0;
+  if (fs::is_directory(out / "shards"))
+    for (const auto& f : fs::directory_iterator(out / "shards")) {
+      std::smatch m;
+      const std::string fname = f.path().filename().string();
+      if (!std::regex_match(fname, m, name)) continue;
+      const auto n = decimal(m[2], 1, kMaxShards);
+      if (!n) throw InputError(fmt::format("--merge: {}: not a shard file name (at most {} shards)", f.path().string(), kMaxShards));
+      count = std::max(count, *n);
+    }
+  if (count == 0) throw InputError(fmt::format("--merge: no shard files for study {} in {}", study, (out / "shards").string()));
+  std::vector<Json> results(cases.size());
+  for (long i = 1; i <= count; ++i) {
+    const fs::path path = shard_path(out, study, i, count);
+    if (!fs::exists(path)) throw InputError(fmt::format("--merge: shard {} of {} of study {} is missing", i, count, study));
+    const auto refuse = [&](const std::string& why) {
+      return InputError(fmt::format("--merge: {}: {}; rerun this shard (--shard {}/{})", path.string(), why, i, count));
+    };
+    const Json shard = Json::parse(read_file_bounded(path, kMaxShardBytes, "--merge: shard"), nullptr, false);
+    if (shard.is_discarded() || !shard.is_object()) throw refuse("not a JSON object (damaged or cut short)");
+    for (const char* key : {"study", "full", "shard", "of", "cases", "results", "content_fnv1a64"})
+      if (!shard.contains(key)) throw refuse(fmt::format("no key '{}'", key));
+    if (!shard["content_fnv1a64"].is_string() || shard["content_fnv1a64"] != content_hash(shard))
+      throw refuse("its content does not match its content_fnv1a64 hash (edited or damaged)");
+    if (shard["study"] != study || shard["shard"] != i || shard["of"] != count)
+      throw refuse(fmt::format("it names study {} shard {} of {}", shard["study"].dump(), shard["shard"].dump(), shard["of"].dump()));
+    if (shard["cases"] != Json(cases) || shard["full"] != full)
+      throw refuse("made by other study definitions (stale)");
+    if (!shard["results"].is_object()) throw refuse("'results' is not an object");
+    for (const auto& [k, r] : shard["results"].items()) {
+      const auto index = decimal(k, 0, static_cast<long>(cases.size()) - 1);
+      if (!index || *index % count != i - 1)
+        throw refuse(fmt::format("results key '{}' is not a case of this shard (cases 0 to {}, k % {} = {})", k,
+                                 cases.size() - 1, count, i - 1));
+      if (!r.is_object()) throw refuse(fmt::format("result {} is not an object", k));
+      results[static_cast<std::size_t>(*index)] = r;
+    }
+  }
+  for (std::size_t k = 0; k < results.size(); ++k)
+    if (results[k].is_null()) throw InputError(fmt::format("--merge: case {} of study {} is in no shard", k, study));
+  return results;
+}
+
+}  // namespace nsb

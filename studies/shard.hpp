@@ -1,0 +1,36 @@
+#pragma once
+// Shards of a study (--shard I/N, --merge): the results of the cases k with k % N == I - 1,
+// written to <out>/shards/<study>-I-of-N.json and merged back into the study's results.
+//
+// A shard file is checked against its schema before any of it is used: the keys study, full,
+// shard, of, cases, results and content_fnv1a64 (FNV-1a 64 of the file's JSON without that
+// key, as nlohmann::json dumps it); `results` maps the decimal index of each case of this
+// shard (and only those) to an object. A file edited by hand, cut
+// short or from another study definition is refused with an InputError naming it.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "studies/study.hpp"
+
+namespace nsb {
+
+struct Shard {
+  long index = 0, count = 0;  // 1-based; count 0: not sharded
+};
+
+// "I/N" with 1 <= I <= N <= kMaxShards; InputError otherwise.
+Shard parse_shard(const std::string& text);
+inline constexpr long kMaxShards = 1'000'000;
+
+std::filesystem::path shard_path(const std::filesystem::path& out, const std::string& study, long i, long n);
+
+// The text of shard `shard` of `study`: `results[j]` is the result of case `mine[j]`.
+std::string shard_text(const std::string& study, bool full, const Shard& shard, const std::vector<Json>& cases,
+                       const std::vector<std::size_t>& mine, const std::vector<Json>& results);
+
+// Results of every case of a study, read back from its shard files in out/shards.
+std::vector<Json> merge_shards(const std::string& study, const std::vector<Json>& cases,
+                               const std::filesystem::path& out, bool full);
+
+}  // namespace nsb

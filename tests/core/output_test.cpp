@@ -1,0 +1,107 @@
+// Reports replaced whole (issue 20): the staging directory, its swap, leftovers of killed
+// processes.
+#include "core/output.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <sstream>
+
+#include "core/parameters.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("nsbench_output_test_" + std::to_string(::getpid()));
+  TempDir() { fs::remove_all(path); fs::create_directories(path); }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> names(const fs::path& dir) {
+  std::vector<std::string> v;
+  for (const auto& e : fs::directory_iterator(dir)) v.push_back(e.path().filename().string());
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// Above any pid_max (2^22): no such process.
+constexpr const char* kDeadPid = "4194305";
+
+}  // namespace
+
+TEST_CASE("report directory: staged beside, swapped in whole, others' files kept", "[core][output]") {
+  TempDir tmp;
+  const fs::path out = tmp.path / "report";
+  fs::create_directories(out / "figures");
+  std::ofstream(out / "other_study.md") << "kept";
+  std::ofstream(out / "table.md") << "old";
+  std::ofstream(out / "figures" / "f.png") << "png";
+  {
+    nsb::ReportDirectory report(out);
+    nsb::write_file_atomic(report.path() / "table.md", "new");
+    nsb::write_file_atomic(report.path() / "index.md", "index");
+    // Before the swap nothing of the new report is visible, and the old files are untouched
+    // (the staging holds links to them, replaced, not written through).
+    CHECK(read(out / "table.md") == "old");
+    CHECK_FALSE(fs::exists(out / "index.md"));
+    report.commit();
+    CHECK(read(out / "table.md") == "new");
+    CHECK(read(out / "index.md") == "index");
+    CHECK(read(out / "other_study.md") == "kept");
+    CHECK(read(out / "figures" / "f.png") == "png");
+  }
+  CHECK(names(tmp.path) == std::vector<std::string>{"report"});  // the old report removed
+}
+
+TEST_CASE("report directory: abandoned without commit, the old report stays; a killed run's staging goes", "[core][output]") {
+  TempDir tmp;
+  const fs::path out = tmp.path / "report";
+  fs::create_directories(out);
+  std::ofstream(out / "table.md") << "old";
+  fs::create_directories(tmp.path / (std::string(".report.staging.") + kDeadPid));
+  {
+    nsb::ReportDirectory report(out);
+    nsb::write_file_atomic(report.path() / "table.md", "half");
+    // an exception, a signal: no commit
+  }
+  CHECK(read(out / "table.md") == "old");
+  CHECK(names(tmp.path) == std::vector<std::string>{"report"});
+}
+
+TEST_CASE("stale temporaries of dead processes are removed, live ones kept", "[core][output]") {
+  TempDir tmp;
+  const std::string mine = ".series.csv.tmp." + std::to_string(::getpid());
+  std::ofstream(tmp.path / (std::string(".series.csv.tmp.") + kDeadPid)) << "x";
+  std::ofstream(tmp.path / mine) << "x";
+  std::ofstream(tmp.path / "series.csv") << "x";
+  nsb::remove_stale_temporaries(tmp.path);
+  CHECK(names(tmp.path) == std::vector<std::string>{mine, "series.csv"});
+}
+
+TEST_CASE("an --out that takes no files is an input error before any work", "[core][output]") {
+  CHECK_THROWS_WITH(nsb::ensure_directory("/proc/self"), Catch::StartsWith("--out '/proc/self': cannot write files there"));
+  CHECK_THROWS_AS(nsb::ReportDirectory("/proc/self"), nsb::InputError);
+}
+
+TEST_CASE("bounded reads: a regular file in full, else one clear error", "[core][output]") {
+  TempDir tmp;
+  std::ofstream(tmp.path / "a.toml") << "12345";
+  CHECK(nsb::read_file_bounded(tmp.path / "a.toml", 5, "study file") == "12345");
+  CHECK_THROWS_WITH(nsb::read_file_bounded(tmp.path / "a.toml", 4, "study file"),
+                    Catch::EndsWith("a.toml': 5 bytes, larger than the limit of 4 bytes"));
+  CHECK_THROWS_WITH(nsb::read_file_bounded("/dev/zero", 4, "study file"), "study file '/dev/zero': not a regular file");
+  CHECK_THROWS_WITH(nsb::read_file_bounded(tmp.path / "none", 4, "study file"), Catch::EndsWith("none': no such file"));
+  CHECK(nsb::fnv1a64("") == "cbf29ce484222325");
+  CHECK(nsb::fnv1a64("a") == "af63dc4c8601ec8c");
+}

@@ -1,0 +1,79 @@
+// The run driver's series streamed to a file (issue 20: memory bounded whatever the length)
+// and its energy-error scale when E0 = 0.
+#include "integrators/run.hpp"
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+nsb::RunResult run_case(const std::string& problem, nsb::RunOptions options, const std::string& integrator = "cd-lagrange") {
+  const auto p = nsb::make_problem(problem);
+  auto it = nsb::make_integrator(integrator);
+  it->init(*p, p->initial_state());
+  return nsb::run(*p, *it, options);
+}
+
+}  // namespace
+
+TEST_CASE("run: a streamed series is the in-memory one, byte for byte, and nothing is kept", "[integrators][run]") {
+  const fs::path dir = fs::temp_directory_path() / ("nsbench_run_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  nsb::RunOptions options;
+  options.dt = 1e-3;
+  options.t_end = 1.0;
+  options.sample_every = 7;  // the last step is sampled off the stride
+  const nsb::RunResult kept = run_case("bouncing-mass", options);
+  {
+    nsb::CsvSeriesFile file(dir / "series.csv");
+    options.series_sink = &file;
+    const nsb::RunResult streamed = run_case("bouncing-mass", options);
+    CHECK(streamed.series.values.empty());
+    CHECK(streamed.steps == kept.steps);
+    CHECK_FALSE(fs::exists(dir / "series.csv"));  // not before commit
+    file.commit();
+  }
+  std::ifstream in(dir / "series.csv");
+  std::stringstream text;
+  text << in.rdbuf();
+  CHECK(text.str() == nsb::series_to_csv(kept.series));
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+  CHECK(entries == 1);  // no temporary left
+  {
+    nsb::CsvSeriesFile abandoned(dir / "other.csv");
+    abandoned.columns({"t"});
+  }
+  CHECK_FALSE(fs::exists(dir / "other.csv"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("run: energy errors relative to the problem's energy scale when E0 = 0, said in the summary", "[integrators][run]") {
+  nsb::RunOptions options;
+  options.dt = 1e-3;
+  options.t_end = 2.0;
+  options.record_series = false;
+  const auto bar = nsb::make_problem("bouncing-bar");
+  auto it = nsb::make_integrator("moreau-jean");  // its energy is v^T M v / 2 + V(u): 0 at the start
+  it->init(*bar, bar->initial_state());
+  const nsb::RunResult r = nsb::run(*bar, *it, options);
+  REQUIRE(r.initial_energy == 0.0);
+  CHECK(r.energy_scale == 500.0);  // rho A L g g0 = 10 * 10 * 5: the kinetic energy at the impact (t = 1)
+  CHECK(std::isfinite(r.max_energy_error));
+  CHECK(r.final_energy_error() == std::abs(r.final_energy) / 500.0);
+  const auto summary = nlohmann::json::parse(nsb::summary_to_json(*bar, *it, options, r));
+  CHECK(summary["energy_error_scale"] == 500.0);
+  CHECK(summary["energy_error_scale_is"] == "E0 = 0: kinetic energy at the first impact, rho A L (v0^2 + 2 g g0) / 2");
+  // E0 != 0: |E0| as before.
+  const nsb::RunResult m = run_case("bouncing-mass", options);
+  CHECK(m.energy_scale == std::abs(m.initial_energy));
+}

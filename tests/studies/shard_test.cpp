@@ -1,0 +1,150 @@
+// Damaged shard files (issue 20): every one is refused with an InputError naming the file,
+// never a crash, an uncaught exception or edited numbers in the tables.
+#include "studies/shard.hpp"
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <fstream>
+
+#include "core/output.hpp"
+#include "../app/run_cli.hpp"
+
+namespace fs = std::filesystem;
+using nsb::Json;
+
+namespace {
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("nsbench_shard_test_" + std::to_string(::getpid()));
+  TempDir() { fs::remove_all(path); }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+const std::vector<Json> kCases = {{{"dt", 0.1}}, {{"dt", 0.05}}, {{"dt", 0.025}}};
+
+Json result(double value) { return {{"status", "ok"}, {"steps", 10}, {"values", {value}}}; }
+
+void write_shards(const fs::path& out) {
+  fs::create_directories(out / "shards");
+  nsb::write_file_atomic(nsb::shard_path(out, "s", 1, 2),
+                         nsb::shard_text("s", false, {1, 2}, kCases, {0, 2}, {result(0.0714), result(0.03)}));
+  nsb::write_file_atomic(nsb::shard_path(out, "s", 2, 2), nsb::shard_text("s", false, {2, 2}, kCases, {1}, {result(0.05)}));
+}
+
+Json read_json(const fs::path& p) { return Json::parse(std::ifstream(p)); }
+
+// Writes `j` with its content hash recomputed, as a careful forger would: the schema still holds.
+void write_rehashed(const fs::path& p, Json j) {
+  j.erase("content_fnv1a64");
+  j["content_fnv1a64"] = nsb::fnv1a64(j.dump());
+  std::ofstream(p, std::ios::trunc) << j.dump();
+}
+
+}  // namespace
+
+TEST_CASE("shards: --shard I/N parsed without overflow", "[studies][shard]") {
+  CHECK(nsb::parse_shard("3/8").index == 3);
+  CHECK(nsb::parse_shard("3/8").count == 8);
+  for (const char* bad : {"99999999999999999999/2", "1/99999999999999999999", "0/2", "3/2", "-1/2", "1/-2", "1/2x", "/2",
+                          "1/", "1/2000000"})
+    CHECK_THROWS_WITH(nsb::parse_shard(bad), Catch::StartsWith(std::string("--shard '") + bad + "': expected I/N"));
+}
+
+TEST_CASE("shards: written and merged back whole", "[studies][shard]") {
+  TempDir dir;
+  write_shards(dir.path);
+  const auto merged = nsb::merge_shards("s", kCases, dir.path, false);
+  REQUIRE(merged.size() == 3);
+  CHECK(merged[0]["values"][0] == 0.0714);
+  CHECK(merged[1]["values"][0] == 0.05);
+  CHECK(merged[2]["values"][0] == 0.03);
+}
+
+TEST_CASE("shards: a damaged shard is refused naming the file", "[studies][shard]") {
+  TempDir dir;
+  write_shards(dir.path);
+  const fs::path first = nsb::shard_path(dir.path, "s", 1, 2);
+  Json j = read_json(first);
+  std::string expected = "its content does not match its content_fnv1a64 hash";
+
+  SECTION("a value edited by hand") {
+    std::string text = j.dump();
+    std::ofstream(first, std::ios::trunc) << text.replace(text.find("0.0714"), 6, "0.5000");
+  }
+  SECTION("steps edited") {
+    j["results"]["0"]["steps"] = -5;
+    std::ofstream(first, std::ios::trunc) << j.dump();
+  }
+  SECTION("cut short") {
+    const std::string text = j.dump();
+    std::ofstream(first, std::ios::trunc) << text.substr(0, text.size() / 2);
+    expected = "not a JSON object";
+  }
+  SECTION("an empty file") {
+    std::ofstream(first, std::ios::trunc);
+    expected = "not a JSON object";
+  }
+  SECTION("hash missing") {
+    j.erase("content_fnv1a64");
+    std::ofstream(first, std::ios::trunc) << j.dump();
+    expected = "no key 'content_fnv1a64'";
+  }
+  SECTION("results key -1, rehashed") {
+    j["results"]["-1"] = result(1.0);
+    write_rehashed(first, j);
+    expected = "results key '-1' is not a case of this shard";
+  }
+  SECTION("results key 99999999999999999999, rehashed") {
+    j["results"]["99999999999999999999"] = result(1.0);
+    write_rehashed(first, j);
+    expected = "results key '99999999999999999999' is not a case of this shard";
+  }
+  SECTION("a case of the other shard (overlapping results), rehashed") {
+    j["results"]["1"] = result(1.0);
+    write_rehashed(first, j);
+    expected = "results key '1' is not a case of this shard";
+  }
+  SECTION("a result not an object, rehashed") {
+    j["results"]["0"] = Json::array();
+    write_rehashed(first, j);
+    expected = "result 0 is not an object";
+  }
+  SECTION("another study definition, rehashed") {
+    j["cases"][0]["dt"] = 0.2;
+    write_rehashed(first, j);
+    expected = "made by other study definitions (stale)";
+  }
+  CHECK_THROWS_WITH(nsb::merge_shards("s", kCases, dir.path, false),
+                    Catch::StartsWith("--merge: " + first.string() + ": ") && Catch::Contains(expected));
+}
+
+TEST_CASE("shards: a missing case or an absurd shard count in a file name is an input error", "[studies][shard]") {
+  TempDir dir;
+  write_shards(dir.path);
+  fs::remove(nsb::shard_path(dir.path, "s", 2, 2));
+  CHECK_THROWS_WITH(nsb::merge_shards("s", kCases, dir.path, false), Catch::Contains("shard 2 of 2 of study s is missing"));
+  std::ofstream(dir.path / "shards" / "s-1-of-99999999999999999999.json") << "{}";
+  CHECK_THROWS_WITH(nsb::merge_shards("s", kCases, dir.path, false), Catch::Contains("not a shard file name"));
+}
+
+TEST_CASE("nsbench-study: /dev/zero as a study file and a huge --shard are one line and exit 2", "[studies][shard][cli]") {
+  auto r = nsb::test::run_command(fmt::format("'{}' run /dev/zero --out /tmp/nsbench_never_written", NSBENCH_STUDY_CLI));
+  CHECK(r.code == 2);
+  CHECK(r.output == "nsbench-study: error: study file '/dev/zero': not a regular file\n");
+  {
+    const fs::path big = fs::temp_directory_path() / fmt::format("nsbench_big_{}.toml", ::getpid());
+    std::ofstream(big) << "#";
+    fs::resize_file(big, 2 << 20);  // sparse: a comment sign, then zeros to 2 MiB
+    r = nsb::test::run_command(fmt::format("'{}' run '{}' --out /tmp/nsbench_never_written", NSBENCH_STUDY_CLI, big.string()));
+    fs::remove(big);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::Contains("2097152 bytes, larger than the limit of 1048576 bytes"));
+  }
+  r = nsb::test::run_command(fmt::format("'{}' bouncing --shard 99999999999999999999/2 --out /tmp/nsbench_never_written", NSBENCH_STUDY_CLI));
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::StartsWith("nsbench-study: error: --shard '99999999999999999999/2': expected I/N"));
+  CHECK_FALSE(fs::exists("/tmp/nsbench_never_written"));
+}
