@@ -75,6 +75,9 @@ SCHEMES = ["cd-lagrange", "moreau-jean", "schatzman-paoli", "nsga", "d1-minus-li
 REFERENCES = {"exact": ("black", None, "--"), "modal-exact": ("black", "x", "--"),
               "event-driven": ("0.35", "+", (0, (1, 1))), "penalty-bdf": ("0.55", "1", "-.")}
 PEER_PREFIX = "siconos-"
+# Physics engines run as peers of no scheme of ours (their own contact models): hollow and
+# dotted like the Siconos peers, on colours and markers of their own.
+ENGINES = ["mujoco", "bullet", "ode"]
 
 
 def combination(i):
@@ -94,6 +97,9 @@ def scheme_style(name):
     if name.startswith(PEER_PREFIX) and name != PEER_PREFIX:
         base = scheme_style(name[len(PEER_PREFIX):])
         return {**base, "linestyle": ":", "markerfacecolor": "none", "kind": "peer"}
+    if name in ENGINES:
+        color, marker, _ = combination(len(SCHEMES) + ENGINES.index(name))
+        return {"color": color, "marker": marker, "linestyle": ":", "markerfacecolor": "none", "kind": "peer"}
     if name in SCHEMES:
         i = SCHEMES.index(name)
     else:  # a plugin: a stable hash (not Python's salted hash()) onto the unused combinations

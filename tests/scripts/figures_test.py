@@ -58,7 +58,10 @@ def test_style_map(nsbench):
         check(len(same) == 1, f"one style for {same}: {key}")
     for name, kind in names:
         check(styles[name]["kind"] == kind, f"{name} is a {kind} but styled as a {styles[name]['kind']}")
-        if kind == "peer":  # the colour and marker of the scheme it reimplements, hollow
+        if kind == "peer" and name in figures.ENGINES:  # no scheme of ours: hollow, dotted
+            check(styles[name]["markerfacecolor"] == "none" and styles[name]["linestyle"] == ":",
+                  f"engine peer {name} not marked as a peer")
+        elif kind == "peer":  # the colour and marker of the scheme it reimplements, hollow
             base = figures.scheme_style(name[len(figures.PEER_PREFIX):])
             check((styles[name]["color"], styles[name]["marker"]) == (base["color"], base["marker"]) and
                   styles[name]["markerfacecolor"] == "none", f"peer {name} not marked against its scheme")
