@@ -11,9 +11,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 what="${1:-}"
 case "$what" in
-  studies|tests) build="${BUILD_DIR:-build}"; config=(-DCMAKE_BUILD_TYPE=Release) ;;
+  # studies builds only what it runs: the study driver and the benchmarks (no tests, no plugins).
+  studies) build="${BUILD_DIR:-build}"; config=(-DCMAKE_BUILD_TYPE=Release)
+           targets=(--target nsbench-study nsbench-bench-bar nsbench-bench-block nsbench-bench-implicit) ;;
+  tests) build="${BUILD_DIR:-build}"; config=(-DCMAKE_BUILD_TYPE=Release); targets=() ;;
   sanitize) build="${BUILD_DIR:-build-asan}"
-            config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DNSBENCH_SANITIZE=ON -DNSBENCH_BENCHMARKS=OFF) ;;
+            config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DNSBENCH_SANITIZE=ON -DNSBENCH_BENCHMARKS=OFF); targets=() ;;
   *) echo "usage: scripts/run.sh studies|tests|sanitize" >&2; exit 2 ;;
 esac
 jobs="${JOBS:-$(nproc)}"
@@ -22,7 +25,7 @@ export OPENBLAS_NUM_THREADS=1
 
 bash scripts/install-deps.sh
 cmake -S . -B "$build" "${config[@]}"
-cmake --build "$build" -j "$jobs"
+cmake --build "$build" -j "$jobs" "${targets[@]}"
 
 if [ "$what" != studies ]; then
   ctest --test-dir "$build" --output-on-failure -j "$jobs"
