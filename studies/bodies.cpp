@@ -254,46 +254,22 @@ Json bodies_case(const Json& c) {
   return {};
 }
 
-double value(const Json& r, const std::string& key) { return r.contains(key) ? real(r[key]) : kNaN; }
-
-std::string note_of(const Json& r) {
-  const std::string status = r["status"];
-  return status == "ok" ? "" : fmt::format("{}: {}", status, r["message"].get<std::string>());
-}
-
-// The rows of one group's table, integrator by integrator, one per run: columns integrator,
-// case, the group's own cells of run i (previous: the run of the same case at the previous
-// knob), steps, CPU and the note. An integrator that declined every case of the group gets one
-// n/a row instead, its reason in the note.
+// The rows of one group's table, integrator by integrator, one per run (add_integrator_rows):
+// columns integrator, case, the group's own cells of run i (previous: the run of the same case
+// at the previous knob), steps, CPU and the note.
 void add_group_rows(Table& t, Group group, const std::vector<Json>& cases, const std::vector<Json>& results,
                     const std::function<std::vector<Cell>(std::size_t i, std::optional<std::size_t> previous)>& own) {
-  std::size_t k = 0;
-  while (k < cases.size()) {
-    const std::string integrator = cases[k]["integrator"];
-    std::vector<std::size_t> mine;
-    for (; k < cases.size() && cases[k]["integrator"] == integrator; ++k)
-      if (find_case(cases[k]["case"]).group == group) mine.push_back(k);
-    if (mine.empty()) continue;
-    if (std::all_of(mine.begin(), mine.end(), [&](std::size_t i) { return results[i]["status"] == "n/a"; })) {
-      std::vector<Cell> cells(t.columns.size());
-      cells[0] = integrator;
-      cells[1] = std::string("n/a");
-      cells.back() = results[mine.front()]["message"].get<std::string>();
-      t.add_row(cells);
-      continue;
-    }
-    for (std::size_t j = 0; j < mine.size(); ++j) {
-      const std::size_t i = mine[j];
-      const bool same_case = j > 0 && cases[mine[j - 1]]["case"] == cases[i]["case"];
-      const Json& r = results[i];
-      std::vector<Cell> row = {integrator, find_case(cases[i]["case"]).label};
-      for (Cell& cell : own(i, same_case ? std::optional(mine[j - 1]) : std::nullopt)) row.push_back(std::move(cell));
-      row.push_back(r.contains("steps") ? Cell{r["steps"].get<long>()} : Cell{});
-      row.push_back(r.contains("cpu") ? Cell{r["cpu"].get<double>()} : Cell{});
-      row.push_back(note_of(r));
-      t.add_row(std::move(row));
-    }
-  }
+  add_integrator_rows(
+      t, cases, results, [&](std::size_t k) { return find_case(cases[k]["case"]).group == group; },
+      [&](std::size_t i, std::optional<std::size_t> previous) {
+        const Json& r = results[i];
+        std::vector<Cell> row = {cases[i]["integrator"].get<std::string>(), find_case(cases[i]["case"]).label};
+        for (Cell& cell : own(i, previous)) row.push_back(std::move(cell));
+        row.push_back(r.contains("steps") ? Cell{r["steps"].get<long>()} : Cell{});
+        row.push_back(r.contains("cpu") ? Cell{r["cpu"].get<double>()} : Cell{});
+        row.push_back(status_note(r));
+        return row;
+      });
 }
 
 std::vector<Column> group_columns(const std::vector<Column>& own) {
@@ -345,10 +321,10 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
   add_group_rows(cradle, Group::Cradle, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
     const Json& r = results[i];
     const bool touching = find_case(cases[i]["case"]).params.at("gap") == "0";
-    return std::vector<Cell>{touching ? Cell{} : Cell{cases[i]["knob"].get<double>()}, number_cell(value(r, "dt")),
-                             number_cell(value(r, "d_sequential")), number_cell(value(r, "d_simultaneous")),
+    return std::vector<Cell>{touching ? Cell{} : Cell{cases[i]["knob"].get<double>()}, number_cell(real_or_nan(r, "dt")),
+                             number_cell(real_or_nan(r, "d_sequential")), number_cell(real_or_nan(r, "d_simultaneous")),
                              r.contains("verdict") ? Cell{r["verdict"].get<std::string>()} : Cell{},
-                             number_cell(value(r, "dP")), number_cell(value(r, "dK"))};
+                             number_cell(real_or_nan(r, "dP")), number_cell(real_or_nan(r, "dK"))};
   });
 
   Table blocks;
@@ -377,8 +353,8 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
     const Json& r = results[i];
     std::vector<Cell> cells;
     for (const char* key : {"p_residual", "step_gain", "e_gain", "cpu_step", "lcp_step", "cpu_apart", "lcp_apart"})
-      cells.push_back(number_cell(value(r, key)));
-    cells.push_back(number_cell(value(r, "cpu_step") / value(r, "cpu_apart")));
+      cells.push_back(number_cell(real_or_nan(r, key)));
+    cells.push_back(number_cell(real_or_nan(r, "cpu_step") / real_or_nan(r, "cpu_apart")));
     return cells;
   });
 
@@ -411,12 +387,12 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
   bars.metadata = metadata;
   add_group_rows(bars, Group::Bars, cases, results, [&](std::size_t i, std::optional<std::size_t> previous) {
     const Json& r = results[i];
-    std::vector<Cell> cells = {static_cast<long>(cases[i]["knob"].get<double>()), number_cell(value(r, "dt"))};
+    std::vector<Cell> cells = {static_cast<long>(cases[i]["knob"].get<double>()), number_cell(real_or_nan(r, "dt"))};
     for (const char* key : {"duration_err", "exit_err", "force_err"}) {
-      const double e = value(r, key);
+      const double e = real_or_nan(r, key);
       cells.push_back(number_cell(e));
       cells.push_back(previous ? number_cell(observed_order(1.0 / cases[*previous]["knob"].get<double>(),
-                                                            above_round_off(value(results[*previous], key)),
+                                                            above_round_off(real_or_nan(results[*previous], key)),
                                                             1.0 / cases[i]["knob"].get<double>(), above_round_off(e)))
                                : Cell{});
     }
@@ -436,8 +412,8 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
       WorkCurve curve{integrator, entry.reference, {}, entry.peer};
       for (std::size_t i = k; i < cases.size() && cases[i]["integrator"] == integrator; ++i) {
         if (cases[i]["case"] != ranked[p] || results[i]["status"] == "n/a") continue;
-        curve.points.push_back({fmt::format("N = {}", cases[i]["knob"].get<double>()), value(results[i], "cpu_median"),
-                                value(results[i], "force_err")});
+        curve.points.push_back({fmt::format("N = {}", cases[i]["knob"].get<double>()), real_or_nan(results[i], "cpu_median"),
+                                real_or_nan(results[i], "force_err")});
       }
       ranking[p].curves.push_back(curve);
     }

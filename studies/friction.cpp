@@ -289,13 +289,9 @@ struct Measure {
   Column column;
 };
 
-// A measure of a run; NaN when the run has none (n/a, diverged, or the measure does not apply).
-double value(const Json& r, const std::string& key) { return r.contains(key) ? real(r[key]) : kNaN; }
-
 // Why a run is n/a, diverged or over budget, or that it stopped where the exact solution never does.
 std::string note_of(const Json& r) {
-  const std::string status = r["status"];
-  if (status != "ok") return fmt::format("{}: {}", status, r["message"].get<std::string>());
+  if (r["status"] != "ok") return status_note(r);
   if (r["never_stops"].get<bool>() && !r["t_stop"].is_null())
     return fmt::format("stops at {:.4g} s; the exact solution never does", r["t_stop"].get<double>());
   return "";
@@ -316,37 +312,20 @@ std::vector<Column> group_columns(const std::vector<Column>& own) {
 }
 
 // The rows of one group's table (columns from group_columns), integrator by integrator, one per
-// run: `own` gives the group's own cells of run i (previous: the run of the same case at the
-// previous step, when there is one). An integrator that declined every case of the group gets
-// one n/a row instead, the reason in the note.
+// run (add_integrator_rows): `own` gives the group's own cells of run i.
 void add_group_rows(Table& t, Group group, const std::vector<Json>& cases, const std::vector<Json>& results,
                     const std::function<std::vector<Cell>(std::size_t i, std::optional<std::size_t> previous)>& own) {
-  std::size_t k = 0;
-  while (k < cases.size()) {
-    const std::string integrator = cases[k]["integrator"];
-    std::vector<std::size_t> mine;
-    for (; k < cases.size() && cases[k]["integrator"] == integrator; ++k)
-      if (find_case(cases[k]["case"]).group == group) mine.push_back(k);
-    if (mine.empty()) continue;
-    if (std::all_of(mine.begin(), mine.end(), [&](std::size_t i) { return results[i]["status"] == "n/a"; })) {
-      std::vector<Cell> cells(t.columns.size());
-      cells[0] = integrator;
-      cells[1] = std::string("n/a");
-      cells.back() = results[mine.front()]["message"].get<std::string>();
-      t.add_row(cells);
-      continue;
-    }
-    for (std::size_t j = 0; j < mine.size(); ++j) {
-      const std::size_t i = mine[j];
-      const bool same_case = j > 0 && cases[mine[j - 1]]["case"] == cases[i]["case"];
-      const Json& r = results[i];
-      std::vector<Cell> row = {integrator, find_case(cases[i]["case"]).label, cases[i]["dt"].get<double>()};
-      for (Cell& cell : own(i, same_case ? std::optional(mine[j - 1]) : std::nullopt)) row.push_back(std::move(cell));
-      row.insert(row.end(), {number_cell(value(r, "energy_gain")), number_cell(value(r, "energy_gain_t")),
-                             r["steps"].get<long>(), r["cpu"].get<double>(), note_of(r)});
-      t.add_row(std::move(row));
-    }
-  }
+  add_integrator_rows(
+      t, cases, results, [&](std::size_t k) { return find_case(cases[k]["case"]).group == group; },
+      [&](std::size_t i, std::optional<std::size_t> previous) {
+        const Json& r = results[i];
+        std::vector<Cell> row = {cases[i]["integrator"].get<std::string>(), find_case(cases[i]["case"]).label,
+                                 cases[i]["dt"].get<double>()};
+        for (Cell& cell : own(i, previous)) row.push_back(std::move(cell));
+        row.insert(row.end(), {number_cell(real_or_nan(r, "energy_gain")), number_cell(real_or_nan(r, "energy_gain_t")),
+                               r["steps"].get<long>(), r["cpu"].get<double>(), note_of(r)});
+        return row;
+      });
 }
 
 // The table of a convergence group: each measure and its order.
@@ -366,10 +345,10 @@ Table convergence_table(const std::string& id, const std::string& title, const s
   add_group_rows(t, group, cases, results, [&](std::size_t i, std::optional<std::size_t> previous) {
     std::vector<Cell> cells;
     for (const auto& m : measures) {
-      const double e = value(results[i], m.key);
+      const double e = real_or_nan(results[i], m.key);
       cells.push_back(number_cell(e));
       cells.push_back(previous ? number_cell(observed_order(cases[*previous]["dt"],
-                                                            above_round_off(value(results[*previous], m.key)),
+                                                            above_round_off(real_or_nan(results[*previous], m.key)),
                                                             cases[i]["dt"], above_round_off(e)))
                                : Cell{});
     }
@@ -446,9 +425,9 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
   block.metadata = metadata;
   add_group_rows(block, Group::Block, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
     const Json& r = results[i];
-    return std::vector<Cell>{number_cell(value(r, "px_residual")),
+    return std::vector<Cell>{number_cell(real_or_nan(r, "px_residual")),
                              r.contains("slide_steps") ? Cell{r["slide_steps"].get<long>()} : Cell{},
-                             number_cell(value(r, "slide_residual"))};
+                             number_cell(real_or_nan(r, "slide_residual"))};
   });
 
   Table hard;
@@ -479,7 +458,7 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
   add_group_rows(hard, Group::Hard, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
     std::vector<Cell> cells = {find_case(cases[i]["case"]).t_end};
     for (const char* key : {"t_stop_err", "creep", "late_creep", "v_err", "v_impact_err", "v_final_err"})
-      cells.push_back(number_cell(value(results[i], key)));
+      cells.push_back(number_cell(real_or_nan(results[i], key)));
     return cells;
   });
 
@@ -500,7 +479,7 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
       for (std::size_t i = k; i < cases.size() && cases[i]["integrator"] == integrator; ++i) {
         if (cases[i]["case"] != fc.id || results[i]["status"] == "n/a") continue;
         curve.points.push_back({fmt::format("dt = {:.0e}", cases[i]["dt"].get<double>()),
-                                value(results[i], "cpu_median"), value(results[i], "t_stop_err")});
+                                real_or_nan(results[i], "cpu_median"), real_or_nan(results[i], "t_stop_err")});
       }
       ranking[p++].curves.push_back(curve);
     }

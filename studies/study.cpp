@@ -44,6 +44,38 @@ Json reals(const std::vector<double>& v) {
 Cell number_cell(double v) { return std::isnan(v) ? Cell{} : Cell{v}; }
 Cell number_cell(const Json& j) { return j.is_number() ? number_cell(j.get<double>()) : Cell{}; }
 
+double real_or_nan(const Json& result, const std::string& key) { return result.contains(key) ? real(result[key]) : std::numeric_limits<double>::quiet_NaN(); }
+
+std::string status_note(const Json& result) {
+  const std::string status = result["status"];
+  return status == "ok" ? "" : fmt::format("{}: {}", status, result["message"].get<std::string>());
+}
+
+void add_integrator_rows(Table& t, const std::vector<Json>& cases, const std::vector<Json>& results,
+                         const std::function<bool(std::size_t k)>& member,
+                         const std::function<std::vector<Cell>(std::size_t i, std::optional<std::size_t> previous)>& row) {
+  std::size_t k = 0;
+  while (k < cases.size()) {
+    const std::string integrator = cases[k]["integrator"];
+    std::vector<std::size_t> mine;
+    for (; k < cases.size() && cases[k]["integrator"] == integrator; ++k)
+      if (member(k)) mine.push_back(k);
+    if (mine.empty()) continue;
+    if (std::all_of(mine.begin(), mine.end(), [&](std::size_t i) { return results[i]["status"] == "n/a"; })) {
+      std::vector<Cell> cells(t.columns.size());
+      cells[0] = integrator;
+      cells[1] = std::string("n/a");
+      cells.back() = results[mine.front()]["message"].get<std::string>();
+      t.add_row(cells);
+      continue;
+    }
+    for (std::size_t j = 0; j < mine.size(); ++j) {
+      const bool same_case = j > 0 && cases[mine[j - 1]]["case"] == cases[mine[j]]["case"];
+      t.add_row(row(mine[j], same_case ? std::optional(mine[j - 1]) : std::nullopt));
+    }
+  }
+}
+
 IntervalMax::IntervalMax(double t_end, int intervals, std::size_t quantities)
     : t_end_(t_end), intervals_(intervals), current_(quantities, 0.0), largest_(quantities) {}
 

@@ -57,6 +57,21 @@ Json reals(const std::vector<double>& v);  // a non-finite number (NaN, an overf
 // A number as a table cell; NaN, null or a non-number -> an empty cell (n/a).
 Cell number_cell(double v);
 Cell number_cell(const Json& j);
+// A result's number under `key`; NaN when the result has none (n/a, diverged, a measure that
+// does not apply).
+double real_or_nan(const Json& result, const std::string& key);
+
+// "status: message" for a run that did not end ok (n/a, diverged, over budget), else "".
+std::string status_note(const Json& result);
+
+// The rows of a table with a block per integrator: `cases` (each naming its "integrator" and
+// "case") come in runs of one integrator, of which member(k) picks those the table shows. An
+// integrator that declined all of them (status n/a) gets one row instead, empty but for the
+// integrator, "n/a" and its reason in the last column; otherwise row(i, previous) is run i's
+// row, previous the run of the same case just before it, when there is one (for orders).
+void add_integrator_rows(Table& t, const std::vector<Json>& cases, const std::vector<Json>& results,
+                         const std::function<bool(std::size_t k)>& member,
+                         const std::function<std::vector<Cell>(std::size_t i, std::optional<std::size_t> previous)>& row);
 
 // CPU time of a run, as the work-precision tables report it: the median thread CPU time of
 // `repeats` runs of a fresh `integrator` (with `params`) on `problem`, after a warm-up run,
