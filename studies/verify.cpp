@@ -85,18 +85,46 @@ VerifyResult verify_table(const Table& computed, const std::string& report_csv, 
     return result;
   }
   if (report.size() != fresh.size())
-    differ(fmt::format("{} rows in the report, {} now (the common rows are compared)", report.size() - 1, fresh.size() - 1));
-  const std::size_t rows = std::min(report.size(), fresh.size());
-  for (std::size_t r = 1; r < rows; ++r) {
-    if (report[r].size() != fresh[r].size()) {
-      differ(fmt::format("row {}: {} cells in the report, {} now", r, report[r].size(), fresh[r].size()));
+    differ(fmt::format("{} rows in the report, {} now", report.size() - 1, fresh.size() - 1));
+  // Rows are paired in order. With as many rows on both sides, row r with row r; otherwise
+  // (a sweep made shorter or longer) each row computed now with the next report row of the
+  // same leading labels (the text cells before its first number), the report rows passed over
+  // listed as not computed now.
+  const auto label = [&](const std::vector<std::string>& row, std::size_t r) {
+    std::vector<std::string> lead;
+    const auto& cells = computed.rows[r - 1];
+    for (std::size_t c = 0; c < std::min(row.size(), cells.size()) && std::holds_alternative<std::string>(cells[c]); ++c)
+      lead.push_back(row[c]);
+    return fmt::format("{}", fmt::join(lead, ", "));
+  };
+  const auto passed_over = [&](std::size_t first, std::size_t last, std::size_t r) {
+    if (first < last)
+      differ(fmt::format("report rows {}-{} ({} .. {}) not computed now", first, last - 1, label(report[first], r),
+                         label(report[last - 1], r)));
+  };
+  std::size_t p = 1;  // the next report row
+  for (std::size_t r = 1; r < fresh.size(); ++r) {
+    if (p >= report.size()) {
+      differ(fmt::format("row {} ({}) computed now, not in the report", r, label(fresh[r], r)));
+      continue;
+    }
+    std::size_t q = p;
+    if (report.size() != fresh.size()) {
+      const std::string key = label(fresh[r], r);
+      while (q < report.size() && !(report[q].size() == fresh[r].size() && label(report[q], r) == key)) ++q;
+      if (q == report.size()) q = p;  // no such row: compared with the next one
+    }
+    passed_over(p, q, r);
+    p = q + 1;
+    if (report[q].size() != fresh[r].size()) {
+      differ(fmt::format("row {}: {} cells in the report, {} now", r, report[q].size(), fresh[r].size()));
       continue;
     }
     for (std::size_t c = 0; c < fresh[r].size(); ++c) {
       const Column& column = computed.columns[c];
       if (column.timing) continue;
       ++result.cells_compared;
-      const std::string &was = report[r][c], &now = fresh[r][c];
+      const std::string &was = report[q][c], &now = fresh[r][c];
       if (was == now) continue;
       bool agree = false;
       std::string relative;
@@ -111,6 +139,7 @@ VerifyResult verify_table(const Table& computed, const std::string& report_csv, 
                            header_text(column), was, now, relative));
     }
   }
+  if (fresh.size() > 1) passed_over(p, report.size(), fresh.size() - 1);
   return result;
 }
 

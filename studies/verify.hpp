@@ -2,7 +2,9 @@
 // Checking a report against a recomputation (nsbench-study STUDY --verify DIR): each table
 // computed now is compared with DIR/<id>.csv cell by cell.
 //   - the header row must be the same;
-//   - the rows must be as many;
+//   - the rows must be as many; when they are not (a sweep made shorter or longer), each row
+//     computed now is compared with the next report row of the same leading labels (its text
+//     cells before the first number), and the report rows passed over are listed;
 //   - integers, statuses and other text: equal;
 //   - reals: |a - b| <= atol + rtol max(|a|, |b|); "n/a" (NaN, empty) and "inf" only equal
 //     themselves;

@@ -65,3 +65,22 @@ TEST_CASE("verify: another header, missing rows or a missing file are difference
   CHECK_THAT(nsb::verify_table(now, std::filesystem::path("/nonexistent-nsbench-dir"), {}).differences.at(0),
              Catch::Contains("t.csv: not in the report"));
 }
+
+TEST_CASE("verify: rows removed from a sweep are listed, the others compared with their own", "[studies][verify]") {
+  const nsb::Table now = table();
+  nsb::Table longer = now;  // the report of a longer sweep: a row between a and b, one after b
+  longer.rows.insert(longer.rows.begin() + 1, std::vector<nsb::Cell>{std::string("x"), 2.0, 9L, 0.1});
+  longer.add_row({std::string("y"), 3.0, 10L, 0.1});
+  const auto removed = nsb::verify_table(now, nsb::to_csv(longer), {0.0, 0.0});
+  REQUIRE(removed.differences.size() == 3);
+  CHECK_THAT(removed.differences[0], Catch::Contains("4 rows in the report, 2 now"));
+  CHECK_THAT(removed.differences[1], Catch::Contains("report rows 2-2 (x .. x) not computed now"));
+  CHECK_THAT(removed.differences[2], Catch::Contains("report rows 4-4 (y .. y) not computed now"));
+  CHECK(removed.cells_compared == 6);  // a and b, each with its own report row
+
+  // A kept row that changed is still a difference of its own.
+  longer.rows[2][1] = 1.0;  // b's err (n/a now)
+  const auto changed = nsb::verify_table(now, nsb::to_csv(longer), {0.0, 0.0}).differences;
+  REQUIRE(changed.size() == 4);
+  CHECK_THAT(changed[2], Catch::Contains("row 2 (b") && Catch::Contains("report 1, now n/a"));
+}
