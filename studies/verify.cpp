@@ -112,7 +112,10 @@ VerifyResult verify_table(const Table& computed, const std::string& report_csv, 
     if (report.size() != fresh.size()) {
       const std::string key = label(fresh[r], r);
       while (q < report.size() && !(report[q].size() == fresh[r].size() && label(report[q], r) == key)) ++q;
-      if (q == report.size()) q = p;  // no such row: compared with the next one
+      if (q == report.size()) {
+        differ(fmt::format("row {} ({}) computed now, not in the report", r, key));
+        continue;
+      }
     }
     passed_over(p, q, r);
     p = q + 1;

@@ -78,6 +78,13 @@ TEST_CASE("verify: rows removed from a sweep are listed, the others compared wit
   CHECK_THAT(removed.differences[2], Catch::Contains("report rows 4-4 (y .. y) not computed now"));
   CHECK(removed.cells_compared == 6);  // a and b, each with its own report row
 
+  // A row of a new label is listed, not compared with another.
+  nsb::Table added = now;
+  added.add_row({std::string("z"), 1.0, 1L, 0.1});
+  const auto extra = nsb::verify_table(added, nsb::to_csv(now), {0.0, 0.0}).differences;
+  REQUIRE(extra.size() == 2);
+  CHECK_THAT(extra[1], Catch::Contains("row 3 (z) computed now, not in the report"));
+
   // A kept row that changed is still a difference of its own.
   longer.rows[2][1] = 1.0;  // b's err (n/a now)
   const auto changed = nsb::verify_table(now, nsb::to_csv(longer), {0.0, 0.0}).differences;
