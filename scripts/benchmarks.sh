@@ -3,13 +3,14 @@
 # (default build, already built) with JSON output into OUT/benchmarks (default
 # reports/benchmarks), the block also on one thread for the speed-up, then
 # `nsbench-study performance` writes OUT/performance.{csv,md,tex}. Run on a quiet machine:
-# the table reads the least of the repetitions. About 3 minutes on 2 cores.
+# the table reads the least of the repetitions (3 of at least 0.1 s each). About a minute on
+# 2 quiet cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${BUILD_DIR:-build}"
 out="${1:-reports}"
 mkdir -p "$out/benchmarks"
-flags=(--benchmark_repetitions=3 --benchmark_report_aggregates_only=true --benchmark_min_time=0.2
+flags=(--benchmark_repetitions=3 --benchmark_report_aggregates_only=true --benchmark_min_time=0.1
        --benchmark_out_format=json)
 run() {  # run NAME THREADS
   local name="$1" threads="$2"
