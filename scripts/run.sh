@@ -2,9 +2,9 @@
 # One entry point for a fresh Debian machine:
 #   scripts/run.sh studies   install dependencies, build, run the default studies into reports/,
 #                            then the benchmarks and their performance table (scripts/benchmarks.sh)
-#   scripts/run.sh tests     install dependencies, build, run the test suite (CTest), verify
-#                            the bouncing study against reports/, then the out-of-tree plugin
-#                            walkthrough (scripts/plugin-example.sh)
+#   scripts/run.sh tests     install dependencies, build, run the test suite (CTest), then
+#                            README's commands (among them the bouncing study verified against
+#                            reports/) and the out-of-tree plugin walkthrough (scripts/plugin-example.sh)
 #   scripts/run.sh sanitize  the test suite built with AddressSanitizer + UBSan (build-asan/)
 # Environment: BUILD_DIR (default build), JOBS (default: number of cores).
 set -euo pipefail
@@ -29,9 +29,9 @@ cmake --build "$build" -j "$jobs" "${targets[@]}"
 
 if [ "$what" != studies ]; then
   ctest --test-dir "$build" --output-on-failure -j "$jobs"
-  # The committed reports reproduce: one small study recomputed and compared (a few seconds).
-  if [ "$what" = tests ]; then "$build"/studies/nsbench-study bouncing --verify reports; fi
-  # The sanitizer build's tests already load the example plugin (tests/main.cpp).
+  # Then README's commands, among them the check that the committed reports reproduce
+  # (`nsbench-study bouncing --verify reports`), and the plugin walkthrough. The sanitizer
+  # build's tests already load the example plugin (tests/main.cpp).
   if [ "$what" = tests ]; then BUILD_DIR="$build" bash scripts/plugin-example.sh; fi
 else
   # From scratch into reports.new, swapped in only when every study and figure succeeded.
