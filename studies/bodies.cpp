@@ -404,21 +404,10 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
       {"two-bars (L1 1, L2 2, lumped): contact force", "the exact solution", 0.0, kBarsTargets, {}},
       {"mass-on-bar (M 1, lumped): contact force", "the exact solution", 0.0, kStrikerTargets, {}}};
   const std::vector<std::string> ranked = {"two-bars", "mass-on-bar"};
-  std::size_t k = 0;
-  while (k < cases.size()) {
-    const std::string integrator = cases[k]["integrator"];
-    const IntegratorEntry& entry = find_integrator(integrator);
-    for (std::size_t p = 0; p < ranked.size(); ++p) {
-      WorkCurve curve{integrator, entry.reference, {}, entry.peer};
-      for (std::size_t i = k; i < cases.size() && cases[i]["integrator"] == integrator; ++i) {
-        if (cases[i]["case"] != ranked[p] || results[i]["status"] == "n/a") continue;
-        curve.points.push_back({fmt::format("N = {}", cases[i]["knob"].get<double>()), real_or_nan(results[i], "cpu_median"),
-                                real_or_nan(results[i], "force_err")});
-      }
-      ranking[p].curves.push_back(curve);
-    }
-    while (k < cases.size() && cases[k]["integrator"] == integrator) ++k;
-  }
+  add_ranking_curves(ranking, ranked, cases, results, [&](std::size_t i) {
+    return WorkPoint{fmt::format("N = {}", cases[i]["knob"].get<double>()), real_or_nan(results[i], "cpu_median"),
+                     real_or_nan(results[i], "force_err")};
+  });
   Table rank = ranking_table("bodies_ranking", "Cheapest integrator at each target error: contacts between bodies",
                              {"force err", "", "", "the relative time-L1 contact force error of bodies_bars"},
                              "median thread CPU time of 3 unobserved runs after a warm-up", ranking);

@@ -468,23 +468,13 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
     if (fc.ranked)
       ranking.push_back({fc.problem + ", " + fc.label + (fc.group == Group::Disk ? ": rolling onset" : ": stop time"),
                          "the exact solution", 0.0, kRankingTargets, {}});
-  std::size_t k = 0;
-  while (k < cases.size()) {
-    const std::string integrator = cases[k]["integrator"];
-    const IntegratorEntry& entry = find_integrator(integrator);
-    std::size_t p = 0;
-    for (const auto& fc : kCases) {
-      if (!fc.ranked) continue;
-      WorkCurve curve{integrator, entry.reference, {}, entry.peer};
-      for (std::size_t i = k; i < cases.size() && cases[i]["integrator"] == integrator; ++i) {
-        if (cases[i]["case"] != fc.id || results[i]["status"] == "n/a") continue;
-        curve.points.push_back({fmt::format("dt = {:.0e}", cases[i]["dt"].get<double>()),
-                                real_or_nan(results[i], "cpu_median"), real_or_nan(results[i], "t_stop_err")});
-      }
-      ranking[p++].curves.push_back(curve);
-    }
-    while (k < cases.size() && cases[k]["integrator"] == integrator) ++k;
-  }
+  std::vector<std::string> ranked;
+  for (const auto& fc : kCases)
+    if (fc.ranked) ranked.push_back(fc.id);
+  add_ranking_curves(ranking, ranked, cases, results, [&](std::size_t i) {
+    return WorkPoint{fmt::format("dt = {:.0e}", cases[i]["dt"].get<double>()), real_or_nan(results[i], "cpu_median"),
+                     real_or_nan(results[i], "t_stop_err")};
+  });
   Table rank = ranking_table("friction_ranking", "Cheapest integrator at each target error: Coulomb friction",
                              {"t err", "s", "", "t_stop err of friction_sliding (mu = 0.8) and t_roll err of friction_disk"},
                              "median thread CPU time of 3 unobserved runs after a warm-up", ranking);

@@ -76,6 +76,25 @@ void add_integrator_rows(Table& t, const std::vector<Json>& cases, const std::ve
   }
 }
 
+void add_ranking_curves(std::vector<RankingProblem>& rankings, const std::vector<std::string>& ids,
+                        const std::vector<Json>& cases, const std::vector<Json>& results,
+                        const std::function<WorkPoint(std::size_t i)>& point) {
+  std::size_t k = 0;
+  while (k < cases.size()) {
+    const std::string integrator = cases[k]["integrator"];
+    const IntegratorEntry& entry = find_integrator(integrator);
+    std::size_t end = k;
+    while (end < cases.size() && cases[end]["integrator"] == integrator) ++end;
+    for (std::size_t p = 0; p < ids.size(); ++p) {
+      WorkCurve curve{integrator, entry.reference, {}, entry.peer};
+      for (std::size_t i = k; i < end; ++i)
+        if (cases[i]["case"] == ids[p] && results[i]["status"] != "n/a") curve.points.push_back(point(i));
+      rankings[p].curves.push_back(curve);
+    }
+    k = end;
+  }
+}
+
 IntervalMax::IntervalMax(double t_end, int intervals, std::size_t quantities)
     : t_end_(t_end), intervals_(intervals), current_(quantities, 0.0), largest_(quantities) {}
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "integrators/run.hpp"
+#include "studies/ranking.hpp"
 #include "studies/table.hpp"
 
 namespace nsb {
@@ -72,6 +73,12 @@ std::string status_note(const Json& result);
 void add_integrator_rows(Table& t, const std::vector<Json>& cases, const std::vector<Json>& results,
                          const std::function<bool(std::size_t k)>& member,
                          const std::function<std::vector<Cell>(std::size_t i, std::optional<std::size_t> previous)>& row);
+// The rankings' curves read off the same blocks: for each integrator and each ranked case
+// ids[p], a curve in rankings[p] of point(i) over its runs of that case that it took (not n/a);
+// an integrator that declined the case gets an empty curve.
+void add_ranking_curves(std::vector<RankingProblem>& rankings, const std::vector<std::string>& ids,
+                        const std::vector<Json>& cases, const std::vector<Json>& results,
+                        const std::function<WorkPoint(std::size_t i)>& point);
 
 // CPU time of a run, as the work-precision tables report it: the median thread CPU time of
 // `repeats` runs of a fresh `integrator` (with `params`) on `problem`, after a warm-up run,
