@@ -29,6 +29,8 @@
 //     Lambda_T = -mu Lambda_N phi(s / (v_reg + h_T mu Lambda_N))
 // (the same law with v_reg widened by the slip the full friction impulse makes): stable for
 // any step, and u_T(+) keeps the sign of s (friction never reverses the slip).
+#include <functional>
+
 namespace nsb {
 
 // Restitution of a clamped spring-dashpot of damping ratio zeta >= 0.
@@ -36,6 +38,9 @@ double spring_dashpot_restitution(double zeta);
 // The damping ratio giving restitution e in [0, 1], at most max_ratio (e below
 // spring_dashpot_restitution(max_ratio) gets max_ratio).
 double spring_dashpot_damping_ratio(double e, double max_ratio);
+// The same for any restitution map zeta -> e(zeta) decreasing from e(0) = 1 towards 0
+// (bisection in log zeta on [1e-12, max_ratio]; cd_penalty.hpp's discrete map).
+double damping_ratio_for_restitution(double e, double max_ratio, const std::function<double(double)>& restitution);
 
 // The law above at normal force (or impulse) `normal` >= 0 and slip rate `slip`, with its
 // partial derivatives (d_slip = 0 on the saturated branches, |slip| >= v_reg).
