@@ -1,7 +1,8 @@
 #pragma once
 // Restitution of a clamped linear spring-dashpot contact (Kelvin-Voigt, force
-// f = max(0, -k g - c g') while g < 0), shared by the penalty schemes (cd_penalty.hpp,
-// reference/penalty.hpp) so that both map a Newton restitution e to the same damping:
+// f = max(0, -k g - c g') while g < 0), the map of penalty-bdf (reference/penalty.hpp),
+// which integrates the contact ODE accurately, and the limit of cd-penalty's discrete map
+// (cd_penalty.hpp) as its contact spans many steps:
 //     e(zeta) = |x'(t*)|,  x'' + 2 zeta x' + x = 0,  x(0) = 0, x'(0) = 1,
 //     t* = first t > 0 where x + 2 zeta x' = 0 (the clamped force vanishes),
 //     c = 2 zeta sqrt(k m),  m the contact's effective mass 1 / (L M^{-1} L^T)_ii
