@@ -14,6 +14,9 @@ namespace nsb {
 namespace {
 constexpr double kMaxDampingRatio = 1e3;
 constexpr long kMaxContactSteps = 10'000'000;
+// An undamped rebound this close to e needs no dashpot (at an integer half period, e = 1
+// at every phase to round-off: kept undamped bit for bit).
+constexpr double kUndampedTolerance = 1e-12;
 }  // namespace
 
 double cd_penalty_restitution(double phase, double penalty_factor, double zeta) {
@@ -28,9 +31,21 @@ double cd_penalty_restitution(double phase, double penalty_factor, double zeta) 
 }
 
 double cd_penalty_damping_ratio(double phase, double penalty_factor, double e) {
-  if (e <= 0.0) return kMaxDampingRatio;  // the bisection's answer too, without its cost
-  return damping_ratio_for_restitution(e, kMaxDampingRatio,
-                                       [&](double zeta) { return cd_penalty_restitution(phase, penalty_factor, zeta); });
+  const auto restitution = [&](double zeta) { return cd_penalty_restitution(phase, penalty_factor, zeta); };
+  const double undamped = restitution(0.0);
+  if (std::abs(undamped - e) <= kUndampedTolerance) return 0.0;
+  if (undamped > e)
+    return e <= 0.0 ? kMaxDampingRatio  // the bisection's answer too, without its cost
+                    : damping_ratio_for_restitution(e, kMaxDampingRatio, restitution);
+  // The switch lost energy at this phase: a negative dashpot, 1 + beta > 0 (restitution
+  // grows without bound as beta -> -1), bisection on (-1 / (2 sqrt(p)), 0).
+  double lo = -0.5 / std::sqrt(penalty_factor), hi = 0.0;
+  for (int it = 0; it < 200 && lo < hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    (restitution(mid) > e ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 ParamSpecs CdPenalty::parameters_spec() {

@@ -21,8 +21,7 @@ double spring_dashpot_restitution(double zeta) {
 }
 
 double damping_ratio_for_restitution(double e, double max_ratio, const std::function<double(double)>& restitution) {
-  if (e >= 1.0) return 0.0;
-  // restitution(zeta) decreases from 1 (zeta = 0) to 0 (zeta -> inf): bisection in log zeta.
+  // restitution(zeta) decreases towards 0 as zeta grows: bisection in log zeta.
   double lo = 1e-12, hi = max_ratio;
   if (restitution(hi) >= e) return hi;
   for (int it = 0; it < 200 && hi / lo > 1.0 + 1e-15; ++it) {
@@ -33,6 +32,7 @@ double damping_ratio_for_restitution(double e, double max_ratio, const std::func
 }
 
 double spring_dashpot_damping_ratio(double e, double max_ratio) {
+  if (e >= 1.0) return 0.0;
   return damping_ratio_for_restitution(e, max_ratio, spring_dashpot_restitution);
 }
 

@@ -39,8 +39,8 @@ double spring_dashpot_restitution(double zeta);
 // The damping ratio giving restitution e in [0, 1], at most max_ratio (e below
 // spring_dashpot_restitution(max_ratio) gets max_ratio).
 double spring_dashpot_damping_ratio(double e, double max_ratio);
-// The same for any restitution map zeta -> e(zeta) decreasing from e(0) = 1 towards 0
-// (bisection in log zeta on [1e-12, max_ratio]; cd_penalty.hpp's discrete map).
+// The same for any restitution map zeta -> e(zeta) decreasing towards 0, with
+// e(1e-12) > e: bisection in log zeta on [1e-12, max_ratio] (cd_penalty.hpp's discrete map).
 double damping_ratio_for_restitution(double e, double max_ratio, const std::function<double(double)>& restitution);
 
 // The law above at normal force (or impulse) `normal` >= 0 and slip rate `slip`, with its
