@@ -108,8 +108,9 @@ namespace nsb {
 // The discrete restitution e_d(phi, p, zeta) of the header: impact phase phi in (0, 1],
 // p = penalty_factor, damping ratio zeta >= 0.
 double cd_penalty_restitution(double phase, double penalty_factor, double zeta);
-// The zeta >= 0 with e_d(phi, p, zeta) = e (e in [0, 1]; the cap 1e3 when e is below
-// e_d(phi, p, 1e3)).
+// The zeta with e_d(phi, p, zeta) = e, e in [0, 1]: 0 when e_d(phi, p, 0) = e to 1e-12,
+// negative (above -1 / (2 sqrt(p))) when e_d(phi, p, 0) < e, the cap 1e3 when e is below
+// e_d(phi, p, 1e3).
 double cd_penalty_damping_ratio(double phase, double penalty_factor, double e);
 
 class CdPenalty final : public Integrator {
