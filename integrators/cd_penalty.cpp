@@ -13,6 +13,39 @@ namespace nsb {
 
 namespace {
 constexpr double kMaxDampingRatio = 1e3;
+constexpr long kMaxContactSteps = 10'000'000;
+// An undamped rebound this close to e needs no dashpot (at an integer half period, e = 1
+// at every phase to round-off: kept undamped bit for bit).
+constexpr double kUndampedTolerance = 1e-12;
+}  // namespace
+
+double cd_penalty_restitution(double phase, double penalty_factor, double zeta) {
+  const double a = 1.0 / (1.0 + 2.0 * zeta * std::sqrt(penalty_factor));
+  double x = -phase, s = -1.0;
+  for (long n = 0; n < kMaxContactSteps; ++n) {
+    s = std::max(s, a * (s - penalty_factor * x));
+    x += s;
+    if (x >= 0.0) return s;
+  }
+  return 0.0;
+}
+
+double cd_penalty_damping_ratio(double phase, double penalty_factor, double e) {
+  const auto restitution = [&](double zeta) { return cd_penalty_restitution(phase, penalty_factor, zeta); };
+  const double undamped = restitution(0.0);
+  if (std::abs(undamped - e) <= kUndampedTolerance) return 0.0;
+  if (undamped > e)
+    return e <= 0.0 ? kMaxDampingRatio  // the bisection's answer too, without its cost
+                    : damping_ratio_for_restitution(e, kMaxDampingRatio, restitution);
+  // The switch lost energy at this phase: a negative dashpot, 1 + beta > 0 (restitution
+  // grows without bound as beta -> -1), bisection on (-1 / (2 sqrt(p)), 0).
+  double lo = -0.5 / std::sqrt(penalty_factor), hi = 0.0;
+  for (int it = 0; it < 200 && lo < hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    (restitution(mid) > e ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 ParamSpecs CdPenalty::parameters_spec() {
@@ -51,7 +84,8 @@ void CdPenalty::init(const Problem& problem, const State& initial) {
     for (Index i = 0; i < T_.rows(); ++i)
       for (decltype(T_)::InnerIterator it(T_, i); it; ++it) ht_diag_[i] += it.value() * it.value() * minv[it.col()];
   }
-  zeta_ = spring_dashpot_damping_ratio(problem.restitution(), kMaxDampingRatio);
+  e_ = problem.restitution();
+  zeta_ = Vec::Constant(L_.rows(), cd_penalty_damping_ratio(1.0, factor_, e_));
   gap_ = L_ * state_.u + problem.gap_offset();
   gap_prev_ = gap_;
   tau_ = 0.0;
@@ -81,9 +115,10 @@ StepInfo CdPenalty::step(double tau) {
   if (friction_) tangential_impulses_.setZero();
   for (Index i = 0; i < L_.rows(); ++i) {
     if (!(gap_[i] < 0.0)) continue;
+    if (!(gap_prev_[i] < 0.0)) zeta_[i] = cd_penalty_damping_ratio(-gap_[i] / (gap_prev_[i] - gap_[i]), factor_, e_);
     const double mi = 1.0 / h_diag_[i];
     const double kappa = factor_ * mi / (tau * tau);
-    const double c = 2.0 * zeta_ * std::sqrt(kappa * mi);
+    const double c = 2.0 * zeta_[i] * std::sqrt(kappa * mi);
     double gdot = 0.0;
     for (decltype(L_)::InnerIterator it(L_, i); it; ++it) gdot += it.value() * state_.v[it.col()];
     const double f = std::max(0.0, (-kappa * gap_[i] - c * gdot) / (1.0 + c * tau * h_diag_[i]));

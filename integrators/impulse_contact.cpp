@@ -52,6 +52,13 @@ void ImpulseContact::add_impulse(Index i, double n, double t, VecRef v) const {
     for (decltype(T_)::InnerIterator it(T_, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * t;
 }
 
+Index ImpulseContact::collect_closed(const Vec& g0) {
+  closed_.clear();
+  for (Index i = 0; i < L_.rows(); ++i)
+    if (is_closed(i, g0)) closed_.push_back(i);
+  return static_cast<Index>(closed_.size());
+}
+
 long ImpulseContact::apply_with_friction(ConstVecRef v_prev, VecRef v, VecRef impulses, VecRef tangential,
                                          StepInfo& info, WorkCounters& work, double e) {
   const Vec& g0 = problem_->gap_offset();
@@ -67,7 +74,7 @@ long ImpulseContact::apply_with_friction(ConstVecRef v_prev, VecRef v, VecRef im
   };
   if (!friction_coupled_) {
     for (Index i = 0; i < L_.rows(); ++i) {
-      if (g0[i] + gap_[i] > 0.0 || h_diag_[i] == 0.0) continue;
+      if (!is_closed(i, g0)) continue;
       const CoulombImpulse r = solve_coulomb_local(h_diag_[i], w_nt_[i], w_tt_[i],
                                                    normal_rate(i, v) + e * normal_rate(i, v_prev), slip_rate(i), mu_[i]);
       if (r.normal == 0.0) continue;
@@ -77,11 +84,8 @@ long ImpulseContact::apply_with_friction(ConstVecRef v_prev, VecRef v, VecRef im
     }
     return 0;
   }
-  closed_.clear();
-  for (Index i = 0; i < L_.rows(); ++i)
-    if (g0[i] + gap_[i] <= 0.0 && h_diag_[i] != 0.0) closed_.push_back(i);
-  if (closed_.empty()) return 0;
-  const Index a = static_cast<Index>(closed_.size());
+  const Index a = collect_closed(g0);
+  if (a == 0) return 0;
   auto& [D, q, x] = storage_.of_size(2 * a);
   for (Index r = 0; r < 2 * a; ++r)
     for (Index c = 0; c < 2 * a; ++c) D(r, c) = w_full_(2 * closed_[r / 2] + r % 2, 2 * closed_[c / 2] + c % 2);
@@ -120,7 +124,7 @@ long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef i
   }
   if (h_is_diagonal_) {
     for (Index i = 0; i < L_.rows(); ++i) {
-      if (g0[i] + gap_[i] > 0.0 || h_diag_[i] == 0.0) continue;
+      if (!is_closed(i, g0)) continue;
       double gdot_free = 0.0, gdot_prev = 0.0;
       for (decltype(L_)::InnerIterator it(L_, i); it; ++it) {
         gdot_free += it.value() * v[it.col()];
@@ -133,11 +137,8 @@ long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef i
     }
     return 0;
   }
-  closed_.clear();
-  for (Index i = 0; i < L_.rows(); ++i)
-    if (g0[i] + gap_[i] <= 0.0 && h_diag_[i] != 0.0) closed_.push_back(i);
-  if (closed_.empty()) return 0;
-  const Index a = static_cast<Index>(closed_.size());
+  const Index a = collect_closed(g0);
+  if (a == 0) return 0;
   auto& [D, q, x] = storage_.of_size(a);
   for (Index r = 0; r < a; ++r) {
     for (Index c = 0; c < a; ++c) D(r, c) = h_full_(closed_[r], closed_[c]);

@@ -45,6 +45,11 @@ class ImpulseContact {
                            WorkCounters& work, double e);
   // v += M^{-1} (L_i^T n + T_i^T t)
   void add_impulse(Index i, double n, double t, VecRef v) const;
+  // Contact i is closed at the new position and has a mass to act on (a contact on massless
+  // dofs only carries no impulse: the quasi-static treatment holds it).
+  bool is_closed(Index i, const Vec& g0) const { return g0[i] + gap_[i] <= 0.0 && h_diag_[i] != 0.0; }
+  // Fills closed_ with the closed contacts, in order; returns how many.
+  Index collect_closed(const Vec& g0);
 
   const Problem* problem_ = nullptr;
   Vec minv_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 namespace nsb {
@@ -19,16 +20,20 @@ double spring_dashpot_restitution(double zeta) {
   return std::abs((r1 * std::exp(r1 * t) - r2 * std::exp(r2 * t)) / (r1 - r2));
 }
 
-double spring_dashpot_damping_ratio(double e, double max_ratio) {
-  if (e >= 1.0) return 0.0;
-  // e(zeta) decreases from 1 (zeta = 0) to 0 (zeta -> inf): bisection in log zeta.
+double damping_ratio_for_restitution(double e, double max_ratio, const std::function<double(double)>& restitution) {
+  // restitution(zeta) decreases towards 0 as zeta grows: bisection in log zeta.
   double lo = 1e-12, hi = max_ratio;
-  if (spring_dashpot_restitution(hi) >= e) return hi;
+  if (restitution(hi) >= e) return hi;
   for (int it = 0; it < 200 && hi / lo > 1.0 + 1e-15; ++it) {
     const double mid = std::sqrt(lo * hi);
-    (spring_dashpot_restitution(mid) > e ? lo : hi) = mid;
+    (restitution(mid) > e ? lo : hi) = mid;
   }
   return std::sqrt(lo * hi);
+}
+
+double spring_dashpot_damping_ratio(double e, double max_ratio) {
+  if (e >= 1.0) return 0.0;
+  return damping_ratio_for_restitution(e, max_ratio, spring_dashpot_restitution);
 }
 
 RegularisedFriction regularised_friction(double mu, double normal, double slip, double v_reg) {

@@ -1,7 +1,8 @@
 #pragma once
 // Restitution of a clamped linear spring-dashpot contact (Kelvin-Voigt, force
-// f = max(0, -k g - c g') while g < 0), shared by the penalty schemes (cd_penalty.hpp,
-// reference/penalty.hpp) so that both map a Newton restitution e to the same damping:
+// f = max(0, -k g - c g') while g < 0), the map of penalty-bdf (reference/penalty.hpp),
+// which integrates the contact ODE accurately, and the limit of cd-penalty's discrete map
+// (cd_penalty.hpp) as its contact spans many steps:
 //     e(zeta) = |x'(t*)|,  x'' + 2 zeta x' + x = 0,  x(0) = 0, x'(0) = 1,
 //     t* = first t > 0 where x + 2 zeta x' = 0 (the clamped force vanishes),
 //     c = 2 zeta sqrt(k m),  m the contact's effective mass 1 / (L M^{-1} L^T)_ii
@@ -29,6 +30,8 @@
 //     Lambda_T = -mu Lambda_N phi(s / (v_reg + h_T mu Lambda_N))
 // (the same law with v_reg widened by the slip the full friction impulse makes): stable for
 // any step, and u_T(+) keeps the sign of s (friction never reverses the slip).
+#include <functional>
+
 namespace nsb {
 
 // Restitution of a clamped spring-dashpot of damping ratio zeta >= 0.
@@ -36,6 +39,9 @@ double spring_dashpot_restitution(double zeta);
 // The damping ratio giving restitution e in [0, 1], at most max_ratio (e below
 // spring_dashpot_restitution(max_ratio) gets max_ratio).
 double spring_dashpot_damping_ratio(double e, double max_ratio);
+// The same for any restitution map zeta -> e(zeta) decreasing towards 0, with
+// e(1e-12) > e: bisection in log zeta on [1e-12, max_ratio] (cd_penalty.hpp's discrete map).
+double damping_ratio_for_restitution(double e, double max_ratio, const std::function<double(double)>& restitution);
 
 // The law above at normal force (or impulse) `normal` >= 0 and slip rate `slip`, with its
 // partial derivatives (d_slip = 0 on the saturated branches, |slip| >= v_reg).

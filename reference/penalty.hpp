@@ -9,7 +9,7 @@
 // (contact duration, penetration and phase errors of order 1/omega_i = sqrt(m_i / k),
 // m_i = 1 / (L M^{-1} L^T)_ii, i.e. rate 1/2 in k).
 // Damping: with `damping = restitution`, c_i = 2 zeta sqrt(k m_i) with zeta chosen so that
-// (integrators/spring_dashpot.hpp, shared with cd-penalty)
+// (integrators/spring_dashpot.hpp; cd-penalty uses its own discrete map, cd_penalty.hpp)
 // an isolated clamped contact rebounds with exactly the problem's restitution e:
 //     e(zeta) = |x'(t*)|,  x'' + 2 zeta x' + x = 0,  x(0) = 0, x'(0) = 1,
 //     t* = first t > 0 where x + 2 zeta x' = 0 (the clamped force vanishes)

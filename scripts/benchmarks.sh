@@ -3,8 +3,8 @@
 # (default build, already built) with JSON output into OUT/benchmarks (default
 # reports/benchmarks), the block also on one thread for the speed-up, then
 # `nsbench-study performance` writes OUT/performance.{csv,md,tex}. Run on a quiet machine:
-# the table reads the least of the repetitions (3 of at least 0.1 s each). About a minute on
-# 2 quiet cores.
+# the table reads the least of the repetitions (3 of at least 0.1 s each). About 3 minutes on
+# 2 cores (estimated).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${BUILD_DIR:-build}"
@@ -23,6 +23,9 @@ run bar "$cores"
 run block 1
 [ "$cores" -eq 1 ] || run block "$cores"
 run implicit "$cores"
+# The memory bound: one run per length is enough (the peak RSS does not vary), 40 s at 2e6 steps.
+echo "benchmarks: nsbench-bench-memory" >&2
+"$build/studies/nsbench-bench-memory" --benchmark_out_format=json --benchmark_out="$out/benchmarks/memory-1.json" > /dev/null
 files=()
 for f in "$out"/benchmarks/*.json; do files+=("$f"); done
 "$build/studies/nsbench-study" performance "${files[@]}" --out "$out"

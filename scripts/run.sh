@@ -13,7 +13,7 @@ what="${1:-}"
 case "$what" in
   # studies builds only what it runs: the study driver and the benchmarks (no tests, no plugins).
   studies) build="${BUILD_DIR:-build}"; config=(-DCMAKE_BUILD_TYPE=Release)
-           targets=(--target nsbench-study nsbench-bench-bar nsbench-bench-block nsbench-bench-implicit) ;;
+           targets=(--target nsbench-study nsbench-benchmarks) ;;
   tests) build="${BUILD_DIR:-build}"; config=(-DCMAKE_BUILD_TYPE=Release); targets=() ;;
   sanitize) build="${BUILD_DIR:-build-asan}"
             config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DNSBENCH_SANITIZE=ON -DNSBENCH_BENCHMARKS=OFF); targets=() ;;

@@ -18,6 +18,7 @@ struct Measured {
   std::string family, name, limit;
   double ns = 0.0;                  // time per step (per call)
   std::optional<double> limit_ns;   // the limit's time per step
+  std::optional<double> peak_rss_mb;  // a whole run's peak resident set (the memory benchmark)
   long threads = 0, units = 0;
 };
 
@@ -79,6 +80,7 @@ std::vector<Measured> read_file(const std::filesystem::path& file, std::vector<s
       m.name = name;
       m.ns = to_ns(b.at("real_time").get<double>(), b.at("time_unit").get<std::string>(), file);
       if (b.contains("limit_ns")) m.limit_ns = b["limit_ns"].get<double>();
+      if (b.contains("peak_rss_mb")) m.peak_rss_mb = b["peak_rss_mb"].get<double>();
       if (b.contains("run_threads")) m.threads = std::lround(b["run_threads"].get<double>());
       if (b.contains("units")) m.units = std::lround(b["units"].get<double>());
       const std::string label = b.value("label", std::string());
@@ -118,7 +120,9 @@ Table performance_table(const std::vector<std::filesystem::path>& benchmark_file
       "in the last-level cache and the step's 88 MB do not, at 1e7 both stream from memory), the element force's flops at the "
       "build's peak multiply-add rate, the bare force evaluation for the block's CD-Lagrange step, the bare "
       "CHOLMOD solve (and factorisation) of the same matrix for the implicit schemes. ratio = step / limit. "
-      "speed-up: against the same benchmark on one thread.";
+      "speed-up: against the same benchmark on one thread. peak RSS: the memory benchmark's `nsbench run` of the "
+      "bouncing mass, one row per length (its time the whole run's, units its steps): flat in the length, the "
+      "series streamed to disk (studies/benchmarks/memory.cpp).";
   t.columns = {{"family", "", "", "benchmark binary nsbench-bench-<family>"},
                {"benchmark", "", "", ""},
                {"threads", "", "", ""},
@@ -128,7 +132,8 @@ Table performance_table(const std::vector<std::filesystem::path>& benchmark_file
                {"limit", "", "", ""},
                {"limit per step", "us", "{:.4g}", "", true},
                {"ratio", "", "{:.2f}", "step / limit", true},
-               {"speed-up", "", "{:.2f}", "one thread's time / this", true}};
+               {"speed-up", "", "{:.2f}", "one thread's time / this", true},
+               {"peak RSS", "MB", "{:.1f}", "the run's peak resident set (memory benchmark)", true}};
   for (const auto& m : all) {
     std::optional<double> speed_up;
     if (m.threads > 1)
@@ -138,7 +143,7 @@ Table performance_table(const std::vector<std::filesystem::path>& benchmark_file
     t.add_row({m.family, m.name, m.threads ? Cell{m.threads} : Cell{}, m.units ? Cell{m.units} : Cell{}, m.ns * 1e-3,
                m.units ? Cell{m.ns / static_cast<double>(m.units)} : Cell{}, m.limit.empty() ? Cell{} : Cell{m.limit},
                m.limit_ns ? Cell{*m.limit_ns * 1e-3} : Cell{}, m.limit_ns ? Cell{m.ns / *m.limit_ns} : Cell{},
-               cell(speed_up)});
+               cell(speed_up), cell(m.peak_rss_mb)});
   }
   t.metadata = machine;
   std::string files;

@@ -206,6 +206,23 @@ void check_step(const Checker& c, double dt, const std::string& path, double t_e
            fmt::format("dt >= t_end / {} = {:g}", limit, t_end / static_cast<double>(limit)));
 }
 
+// A series held in memory whole (a reference run's samples; a run's graph for a Hausdorff
+// distance) is bounded before any work: at most kMaxHeldSamples samples (1e7: 160 MB as a
+// Hausdorff graph, 80 MB a column of a reference).
+constexpr double kMaxHeldSamples = 1e7;
+
+void check_held_samples(const Checker& c, double dt, long sample_every, double t_end, const std::string& path,
+                        const std::string& what, const std::string& sample_key) {
+  const auto samples = [&](double every) { return t_end / dt / every; };
+  if (samples(static_cast<double>(sample_every)) > kMaxHeldSamples) {
+    double least = std::ceil(samples(kMaxHeldSamples));  // the least sample_every that fits, to the rounding
+    if (samples(least) > kMaxHeldSamples) ++least;
+    c.fail(path, fmt::format("{} holds t_end / dt / sample_every = {:g} / {:g} / {} = {:.3g} samples in memory, more than the limit of {:g}",
+                             what, t_end, dt, sample_every, samples(static_cast<double>(sample_every)), kMaxHeldSamples),
+           fmt::format("{} >= {:.0f}", sample_key, least));
+  }
+}
+
 void check_steps(const Checker& c, const FileSweep& s, const std::string& path, double t_end) {
   for (std::size_t i = 0; i < s.steps.size(); ++i) check_step(c, s.steps[i], element(child(path, "steps"), i), t_end);
   if (!s.tolerances.empty()) check_step(c, s.dt, child(path, "dt"), t_end);
@@ -382,6 +399,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       ref.dt = c.positive(c.require(*r, "reference", "dt"), "reference.dt");
       check_step(c, ref.dt, "reference.dt", spec.t_end);
       if (const Json* v = c.find(*r, "sample_every")) ref.sample_every = c.integer(*v, "reference.sample_every", 1, 1L << 40);
+      check_held_samples(c, ref.dt, ref.sample_every, spec.t_end, "reference.dt", "the reference run", "reference.sample_every");
     }
     if (const Json* v = c.find(*r, "floor")) {
       c.expect(*v, "reference.floor", v->is_number() && v->get<double>() >= 0.0, "a number >= 0");
@@ -444,6 +462,20 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       if (q.label == m.label) c.fail(path, fmt::format("a second measure labelled '{}'", m.label), "distinct labels (label = ...)");
     spec.measures.push_back(m);
   }
+  if (std::any_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; }))
+    for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
+      const auto held = [&](const FileSweep& sweep, const std::string& path) {
+        for (std::size_t k = 0; k < sweep.steps.size(); ++k)
+          check_held_samples(c, sweep.steps[k], spec.sample_every, spec.t_end, element(child(path, "steps"), k),
+                             "a run's graph for a Hausdorff distance", "study.sample_every");
+        if (!sweep.tolerances.empty())
+          check_held_samples(c, sweep.dt, spec.sample_every, spec.t_end, child(path, "dt"), "a run's graph for a Hausdorff distance",
+                             "study.sample_every");
+      };
+      const std::string path = element("integrator", i);
+      held(spec.integrators[i].sweep, path);
+      for (const auto& [label, sweep] : spec.integrators[i].per_problem) held(sweep, child(child(path, "per_problem"), label));
+    }
   return spec;
 }
 

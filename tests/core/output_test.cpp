@@ -79,6 +79,25 @@ TEST_CASE("report directory: abandoned without commit, the old report stays; a k
   CHECK(names(tmp.path) == std::vector<std::string>{"report"});
 }
 
+TEST_CASE("report directory: only our own staging of a dead process goes; a live one's and other names stay", "[core][output]") {
+  // A killed study (SIGKILL) leaves ".report.staging.PID"; the next ReportDirectory of
+  // "report" removes it once kill(PID, 0) says ESRCH. The parent's (alive), another
+  // report's, a name without the leading dot and a non-numeric pid are not ours to remove.
+  TempDir tmp;
+  const fs::path out = tmp.path / "report";
+  const std::string dead = std::string(".report.staging.") + kDeadPid, live = ".report.staging." + std::to_string(::getppid());
+  const std::vector<std::string> kept = {std::string(".other.staging.") + kDeadPid, live,
+                                         std::string(".report.staging.") + kDeadPid + "x", std::string("report.staging.") + kDeadPid};
+  for (const std::string& d : kept) fs::create_directories(tmp.path / d);
+  fs::create_directories(tmp.path / dead / "sub");
+  std::ofstream(tmp.path / dead / "sub" / "table.md") << "half";
+  { nsb::ReportDirectory report(out); }
+  std::vector<std::string> expected = kept;
+  expected.push_back("report");
+  std::sort(expected.begin(), expected.end());
+  CHECK(names(tmp.path) == expected);
+}
+
 TEST_CASE("stale temporaries of dead processes are removed, live ones kept", "[core][output]") {
   TempDir tmp;
   const std::string mine = ".series.csv.tmp." + std::to_string(::getpid());

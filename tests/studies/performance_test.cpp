@@ -56,6 +56,18 @@ TEST_CASE("performance: the min aggregate or the least repetition, the ratio to 
   CHECK(std::holds_alternative<std::monostate>(t.rows[0][9]));  // one thread: no speed-up
   CHECK(std::get<double>(t.rows[2][9]) == Approx(2.0));         // the 2-thread rows against the 1-thread ones
   CHECK(std::get<double>(t.rows[3][9]) == Approx(2.0));
+  CHECK(std::holds_alternative<std::monostate>(t.rows[0][10]));  // no peak_rss_mb counter
+}
+
+TEST_CASE("performance: the memory benchmark's peak RSS in its own column", "[studies][performance]") {
+  nsb::Json j = {{"context", {{"executable", "/x/build/studies/nsbench-bench-memory"}}},
+                 {"benchmarks", {entry("BM_PeakRss/bouncing-mass/2000000/real_time", "iteration", "", 5.0, "s", 1)}}};
+  j["benchmarks"][0]["peak_rss_mb"] = 16.8;
+  const nsb::Table t = nsb::performance_table({write_json("nsbench_perf_memory.json", j)});
+  REQUIRE(t.rows.size() == 1);
+  CHECK(std::get<std::string>(t.rows[0][0]) == "memory");
+  CHECK(std::get<std::string>(t.rows[0][1]) == "PeakRss/bouncing-mass/2000000");
+  CHECK(std::get<double>(t.rows[0][10]) == 16.8);
 }
 
 TEST_CASE("performance: a file that is missing, not JSON or not benchmark output is named in the error",

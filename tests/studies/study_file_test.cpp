@@ -412,6 +412,25 @@ TEST_CASE("study file: duplicate JSON keys, overflowing numbers and impossible s
         "f.toml:11: integrator[0].steps[1]: dt = 16 is larger than study.t_end = 0.6; valid: dt <= t_end");
 }
 
+TEST_CASE("study file: a series held in memory whole is bounded before any work", "[studies][study_file]") {
+  // A reference run's samples and a run's graph for a Hausdorff distance are kept whole: more
+  // than 1e7 samples is refused at the file's line, with the sample_every that fits.
+  const std::string reference = replaced(replaced(kMinimal, "solution = \"exact\"", "integrator = \"event-driven\"\ndt = 1e-8"),
+                                         "kind = \"error\"\n", "kind = \"error\"\nobservable = \"q\"\n");
+  CHECK_THAT(error_of(reference),
+             Catch::StartsWith("f.toml:15: reference.dt: the reference run holds t_end / dt / sample_every = 0.6 / 1e-08 / 1 = 6e+07 "
+                               "samples in memory, more than the limit of 1e+07; valid: reference.sample_every >= "));
+  const std::string least = error_of(reference).substr(error_of(reference).rfind(">= ") + 3);
+  CHECK((least == "6" || least == "7"));  // 6e7 / 1e7, up to the rounding of t_end / dt
+  CHECK(error_of(replaced(reference, "dt = 1e-8", "dt = 1e-8\nsample_every = " + least)) == "(no error)");
+  const std::string hausdorff =
+      replaced(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 1e-8]"), "kind = \"error\"\n",
+               "kind = \"hausdorff\"\nobservable = \"v\"\n");
+  CHECK_THAT(error_of(hausdorff), Catch::StartsWith("f.toml:11: integrator[0].steps[1]: a run's graph for a Hausdorff distance holds"));
+  CHECK(error_of(replaced(hausdorff, "t_end = 0.6", "t_end = 0.6\nsample_every = 7")) == "(no error)");
+  CHECK(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 1e-8]")) == "(no error)");  // streamed measures
+}
+
 TEST_CASE("study file: a hausdorff measure converges where the max-norm velocity error does not", "[studies][study_file]") {
   // Three impacts: the third is computed a step late at every step here (the first two land in
   // the step that holds them), an O(1) max-norm error.
