@@ -32,6 +32,9 @@
 // the cradle with gap 0.1, e = 0.5 at dt v0 / gap = 0.1, each scheme in its panel over the exact
 // march (BallChain::exact_state). In the centre-of-mass frame (it drifts at v0 / n) each
 // collision is a kink between flat or sloped lines, which the drift would flatten out.
+// Deformed blocks (tables bodies_blocks_deformed and bodies_blocks_deformed_impulses, figure
+// bodies_blocks_deformed): the mu = 0 two-blocks run of kSnapshotSchemes at the initial state,
+// the first contact, the largest strain energy and the end (studies/snapshots.hpp).
 // Each run has a budget of kStepBudget F_int evaluations per step of the requested size.
 // Ranking (studies/ranking.hpp): the cheapest integrator reaching a contact-force error (the
 // time-L1 one above) of 1e-1, 5e-2, 3e-2 (two-bars) and 3e-1, 2e-1, 1e-1 (mass-on-bar; the
@@ -55,6 +58,7 @@
 #include "problems/two_bars.hpp"
 #include "problems/two_blocks.hpp"
 #include "studies/ranking.hpp"
+#include "studies/snapshots.hpp"
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -83,6 +87,9 @@ const std::vector<double> kRatios = {0.01, 0.1, 1, 10};
 const std::string kTrajectoryCase = "cradle-gap-e05";
 constexpr double kTrajectoryRatio = 0.1;
 constexpr int kExactSamples = 600;
+// The two-blocks runs pictured deformed: the scheme under study and the reference.
+const std::string kSnapshotCase = "blocks";
+const std::vector<std::string> kSnapshotSchemes = {"cd-lagrange", "penalty-bdf"};
 // The Siconos peers take at most 128 dofs (dense matrices): two-bars at N = 40 has 122.
 const std::vector<double> kMeshes = {10, 20, 40};
 const std::map<std::string, std::string> kBlocks = {{"g", "0"}, {"upper_vx", "0.5"}, {"upper_vy", "-1"}, {"e", "0"}};
@@ -182,8 +189,14 @@ Json run_blocks(const BodiesCase& bc, const std::string& integrator_name, double
   for (Index a = 0; a < blocks.ndof() / 2; ++a) p_scale += M.coeff(2 * a, 2 * a) * v_prev.segment<2>(2 * a).norm();
   const double e0 = integrator->energy().total();
   double residual = 0.0, between = 0.0, e_prev = e0, e_max = e0, step_gain = 0.0;
+  std::optional<MeshSnapshots> pictures;
+  if (bc.id == kSnapshotCase && std::count(kSnapshotSchemes.begin(), kSnapshotSchemes.end(), integrator_name)) {
+    pictures.emplace(blocks, "sigma_yy");
+    pictures->add(integrator->state(), Vec(), Vec());
+  }
   const RunOptions options = options_for(dt, kEnd);
   const RunResult r = run(blocks, *integrator, options, [&](const Integrator& it, const StepInfo&) {
+    if (pictures) pictures->add(it.state(), it.impulses(), it.tangential_impulses());
     const Eigen::Vector2d dP = blocks.linear_momentum(it.state().v) - blocks.linear_momentum(v_prev);
     const Eigen::Vector2d floor(it.tangential_impulses().head(pf).sum(), it.impulses().head(pf).sum());
     residual = std::max(residual, (dP - floor).norm() / p_scale);
@@ -195,6 +208,7 @@ Json run_blocks(const BodiesCase& bc, const std::string& integrator_name, double
     e_prev = e;
   });
   Json out = status_of(r);
+  if (pictures) out["snapshots"] = pictures->finish();
   if (r.status != RunStatus::Ok) return out;
   const auto [cpu, lcp] = cost_per_step(blocks, integrator_name, options);
   // The same blocks apart: block-2d problems with the two-blocks' own block parameters.
@@ -508,7 +522,20 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
     std::vector<Json> exact(u.begin(), u.end());
     add_positions("exact", t, exact);
   }
-  return {cradle, blocks, bars, rank, trajectory};
+  SnapshotTables deformed = snapshot_tables(
+      "bodies_blocks_deformed", "Two blocks (mu = 0): deformed meshes coloured by sigma_yy, contact impulses",
+      fmt::format("The two blocks of bodies_blocks with mu = 0 (g = 0, upper block at (0.5, -1) m/s, e = 0, dt = 1e-4 s, "
+                  "to t = 0.1 s), {}: the meshes deformed at true scale (the initial state, the first step with a "
+                  "contact impulse, the step of largest strain energy and the end), cells coloured by sigma_yy "
+                  "(Cauchy stress, mean over the cell's Gauss points; negative: compression), the step's contact "
+                  "impulses L^T Lambda at the nodes as arrows (node-to-segment: spread over the segment's nodes, "
+                  "opposite on the two blocks), scaled to the largest in the figure. The floor is y = 0.",
+                  fmt::join(kSnapshotSchemes, " and ")),
+      "sigma_yy");
+  deformed.cells.metadata = deformed.arrows.metadata = metadata;
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    if (results[i].contains("snapshots")) add_snapshot_rows(deformed, cases[i]["integrator"], results[i]["snapshots"]);
+  return {cradle, blocks, bars, rank, trajectory, deformed.cells, deformed.arrows};
 }
 
 }  // namespace
