@@ -358,15 +358,17 @@ def panel_grid(keys):
     return {k: (rows.index(k[1]) if len(k) > 1 and k[1] else 0, columns.index(k[0])) for k in keys}, len(rows), len(columns)
 
 
-def colour_scale(values):
+def colour_scale(values, reference=()):
     """A colour map and its limits for values: a diverging map (ColorBrewer RdBu, colour-blind
-    safe) centred on 0 when the values take both signs, a sequential one (viridis) otherwise;
-    the limit at the 99.9th percentile of |value| (the colour bar's arrows say when some values
-    lie beyond), so that one spike does not wash the others out."""
+    safe) centred on 0 when the values take both signs, a sequential one (viridis) otherwise.
+    The limit: 1.5 times the reference's largest |value| when there is a reference (the exact
+    solution: a scheme that blows up is drawn saturated, not the others washed out), else the
+    99.9th percentile of |value|; the colour bar's arrows say when some values lie beyond."""
     finite = sorted(abs(v) for v in values if v is not None)
     if not finite:
         return "RdBu_r", -1.0, 1.0, "neither"
-    limit = finite[min(len(finite) - 1, int(0.999 * len(finite)))] or 1.0
+    ref = [abs(v) for v in reference if v is not None]
+    limit = (1.5 * max(ref) if ref and max(ref) > 0 else finite[min(len(finite) - 1, int(0.999 * len(finite)))]) or 1.0
     beyond = finite[-1] > limit
     if any(v is not None and v < 0 for v in values) and any(v is not None and v > 0 for v in values):
         return "RdBu_r", -limit, limit, "both" if beyond else "neither"
@@ -412,7 +414,9 @@ def draw_space_time(spec, reports, paper=False):
         t = number(row[spec["y"]])
         if t is not None:
             data.setdefault(tuple(row[c] for c in spec["panels"]), []).append((t, [number(row[c]) for c in spec["values"]]))
-    cmap, vmin, vmax, extend = colour_scale([v for series in data.values() for _, vs in series for v in vs])
+    cmap, vmin, vmax, extend = colour_scale([v for series in data.values() for _, vs in series for v in vs],
+                                            [v for key, series in data.items() if key[0] in REFERENCES
+                                             for _, vs in series for v in vs])
     fig, axes, where = grid_figure(keys, paper, (1.15, 1.7) if paper else (2.3, 3.2), ("x", spec["y"]))
     xs = spec["positions"]
     mesh = None
@@ -426,7 +430,7 @@ def draw_space_time(spec, reports, paper=False):
             mesh = ax.pcolormesh(xs, ts, z, cmap=cmap, vmin=vmin, vmax=vmax, shading="nearest", rasterized=True)
         else:
             ax.text(0.5, 0.5, "no run", ha="center", va="center", transform=ax.transAxes, color="0.4")
-        ax.set_title(", ".join(k for k in key if k), fontsize=7 if paper else 9)
+        ax.set_title("\n".join(k for k in key if k), fontsize=7 if paper else 9)  # narrow panels: a line each
     if mesh is not None:
         bar = fig.colorbar(mesh, ax=axes.ravel().tolist(), extend=extend, shrink=0.9, pad=0.02)
         bar.set_label(spec.get("value_label", ""))
