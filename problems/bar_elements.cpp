@@ -63,4 +63,31 @@ double bar_strain_energy(ConstVecRef u, Index first_dof, std::span<const double>
   return 0.5 * s;
 }
 
+void add_bar_field_mesh(FieldMesh& mesh, double x0, double h, Index elements, Index first_dof, bool clamped_end,
+                        int body) {
+  FieldMesh bar;
+  bar.dimension = 1;
+  bar.points = Eigen::MatrixXd::Zero(elements + 1, 2);
+  bar.point_dofs.resize(elements + 1, 1);
+  bar.cells.resize(elements, 2);
+  for (Index i = 0; i <= elements; ++i) {
+    bar.points(i, 0) = x0 + static_cast<double>(i) * h;
+    bar.point_dofs(i, 0) = clamped_end && i == elements ? -1 : static_cast<int>(i);
+  }
+  for (Index e = 0; e < elements; ++e) bar.cells.row(e) << static_cast<int>(e), static_cast<int>(e + 1);
+  mesh.dimension = 1;
+  mesh.stress_components = {"sigma"};
+  mesh.append(bar, first_dof, body);
+}
+
+void bar_stress(ConstVecRef u, Index first_dof, std::span<const double> ke, double area, bool clamped_end,
+                Eigen::Ref<Vec> out) {
+  const Index n = static_cast<Index>(ke.size());
+  for (Index e = 0; e < n; ++e) {
+    const Index i = first_dof + e;
+    const double right = clamped_end && e == n - 1 ? 0.0 : u[i + 1];
+    out[e] = ke[static_cast<std::size_t>(e)] * (right - u[i]) / area;
+  }
+}
+
 }  // namespace nsb

@@ -46,4 +46,16 @@ void copy_stiffness(const SpMat& from, SpMat& K);
 // sum over the bar's elements of ke[e] (u_{e+1} - u_e)^2 / 2, nodes from first_dof.
 double bar_strain_energy(ConstVecRef u, Index first_dof, std::span<const double> ke);
 
+// Field output (FieldMesh in problem.hpp): appends a bar of `elements` elements of length h
+// from x0 along +x, node i at (x0 + i h, 0) on dof first_dof + i, except that a clamped
+// last node has none (-1), and its line cells with body id `body`.
+void add_bar_field_mesh(FieldMesh& mesh, double x0, double h, Index elements, Index first_dof, bool clamped_end,
+                        int body);
+
+// The stress sigma_e = E_e (u_{e+1} - u_e) / h = ke[e] (u_{e+1} - u_e) / A of each element,
+// constant over it, nodes from first_dof (clamped_end: the last node is fixed, u = 0),
+// written into out (ke.size() entries).
+void bar_stress(ConstVecRef u, Index first_dof, std::span<const double> ke, double area, bool clamped_end,
+                Eigen::Ref<Vec> out);
+
 }  // namespace nsb

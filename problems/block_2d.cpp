@@ -378,6 +378,38 @@ double Block2d::strain_energy(ConstVecRef u) const {
   return W;
 }
 
+std::optional<FieldMesh> Block2d::field_mesh() const {
+  FieldMesh mesh;
+  mesh.dimension = 2;
+  mesh.points = X_.transpose();
+  mesh.point_dofs.resize(nodes(), 2);
+  for (Index a = 0; a < nodes(); ++a) mesh.point_dofs.row(a) << static_cast<int>(2 * a), static_cast<int>(2 * a + 1);
+  mesh.cells.resize(nx_ * ny_, 4);
+  for (Index e = 0; e < nx_ * ny_; ++e)
+    for (int k = 0; k < 4; ++k) mesh.cells(e, k) = static_cast<int>(element_nodes(e)[k]);
+  mesh.cell_body.assign(static_cast<std::size_t>(nx_ * ny_), 0);
+  mesh.stress_components = {"sigma_xx", "sigma_yy", "sigma_xy"};
+  return mesh;
+}
+
+void Block2d::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const {
+  Eigen::Matrix2d F;
+  Eigen::Matrix<double, 3, 8> B;
+  Eigen::Vector3d S;
+  for (Index e = 0; e < nx_ * ny_; ++e) {
+    const auto ue = element_dofs(e, u);
+    Eigen::Matrix2d mean = Eigen::Matrix2d::Zero();
+    for (int q = 0; q < 4; ++q) {
+      kinematics(ue, gauss_[q].dN, F, B);
+      material(F, S, nullptr);
+      Eigen::Matrix2d Sm;
+      Sm << S[0], S[2], S[2], S[1];
+      mean += F * Sm * F.transpose() / F.determinant();
+    }
+    out.row(e) << 0.25 * mean(0, 0), 0.25 * mean(1, 1), 0.25 * mean(0, 1);
+  }
+}
+
 SpMat Block2d::mass_matrix() const {
   SpMat M(ndof(), ndof());
   M.reserve(Eigen::VectorXi::Ones(ndof()));

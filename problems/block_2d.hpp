@@ -81,6 +81,11 @@ class Block2d final : public Problem {
   double stable_step() const override { return stable_step_; }
   std::vector<std::string> observable_names() const override;
   void observe(const State& s, std::span<double> out) const override;
+  // Field output: the nodes at their reference positions (node a on dofs 2a, 2a + 1), the
+  // Q4 elements counter-clockwise; stress: the Cauchy stress sigma = F S F^T / J (plane
+  // strain, in-plane components xx, yy, xy) averaged over the element's 2x2 Gauss points.
+  std::optional<FieldMesh> field_mesh() const override;
+  void cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const override;
 
   Index nodes() const { return (nx_ + 1) * (ny_ + 1); }
   const Vec& lumped_mass() const { return m_; }

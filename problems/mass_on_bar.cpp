@@ -144,6 +144,16 @@ double MassOnBar::strain_energy(ConstVecRef u) const {
          0.5 * ke_.back() * last * last;
 }
 
+std::optional<FieldMesh> MassOnBar::field_mesh() const {
+  FieldMesh mesh;
+  add_bar_field_mesh(mesh, 0.0, len_ / static_cast<double>(n_), n_, 0, true, 0);
+  return mesh;
+}
+
+void MassOnBar::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const {
+  bar_stress(u, 0, ke_, area_, true, out.col(0));
+}
+
 State MassOnBar::initial_state() const {
   State s;
   s.u = Vec::Zero(ndof());

@@ -82,6 +82,12 @@ class MassOnBar final : public Problem {
   void observe(const State& s, std::span<double> out) const override;
   void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   std::vector<double> impact_times(double t_end) const override;
+  // Field output: the bar only, nodes x_i = i h on dof i, the clamped node N on none (its
+  // displacement is 0); sigma = E (u_{i+1} - u_i) / h on each element, constant over it. The
+  // rigid striker (dof N, a point with no extent) is not part of the mesh: its displacement
+  // and velocity are the series' columns, and the contact impulse sits on node 0.
+  std::optional<FieldMesh> field_mesh() const override;
+  void cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const override;
 
   // Exact contact force and mass velocity (header; after the last separation F = 0 and V
   // is constant).

@@ -19,6 +19,18 @@ std::optional<Vec> diagonal_mass(const SpMat& M) {
   return d;
 }
 
+void FieldMesh::append(const FieldMesh& part, Index dof_offset, int body) {
+  const Index p0 = npoints(), c0 = ncells();
+  points.conservativeResize(p0 + part.npoints(), 2);
+  points.bottomRows(part.npoints()) = part.points;
+  point_dofs.conservativeResize(p0 + part.npoints(), dimension);
+  point_dofs.bottomRows(part.npoints()) =
+      (part.point_dofs.array() < 0).select(-1, part.point_dofs.array() + static_cast<int>(dof_offset));
+  cells.conservativeResize(c0 + part.ncells(), part.cells.cols());
+  cells.bottomRows(part.ncells()) = part.cells.array() + static_cast<int>(p0);
+  cell_body.resize(static_cast<std::size_t>(c0 + part.ncells()), body);
+}
+
 void Contacts::set_friction(SpMat tangent_rows, double mu_all, double w_all) {
   tangent = std::move(tangent_rows);
   tangent.makeCompressed();

@@ -21,6 +21,10 @@
 // (Contacts below; check_contacts() holds its shapes and ranges) and keeps g0 + L U0 >= 0;
 // stable_step() the explicit central-difference limit 2 / omega_max; exact_state() and
 // impact_times() only where the solution is known exactly (derived and tested on its own).
+// A problem with a body mesh (bars, blocks) describes it once in field_mesh() (FieldMesh
+// below) and writes each cell's stress in cell_stress(u, out) (no allocation: `nsbench run
+// --fields` calls it at every written step); a problem without one (point masses, rigid
+// bodies) keeps the defaults, and has no field output.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <optional>
@@ -72,6 +76,33 @@ struct Contacts {
   double max_mu() const { return mu.size() > 0 ? mu.maxCoeff() : 0.0; }
   // Sets T, mu (the same on every contact) and w (the same on every contact).
   void set_friction(SpMat tangent_rows, double mu_all, double w_all);
+};
+
+// A body's mesh, for field output (ParaView) and pictures of the fields. Displacement and
+// velocity are point values taken from the dofs; stress is one value per cell and component.
+//
+//     point a          reference position points.row(a) (y = 0 for bars)
+//     its component k  displacement u[point_dofs(a, k)], 0 where point_dofs(a, k) = -1 (a
+//                      clamped node)
+//     cell c           points cells.row(c): a line (2 points, along +x) or a bilinear quad
+//                      (4 points, counter-clockwise), of body cell_body[c]
+//
+// What the stress is (which measure, where in the cell) is stated by each problem's
+// cell_stress(); a point mass or rigid body attached to a mesh (mass-on-bar's striker) is
+// not part of it.
+struct FieldMesh {
+  int dimension = 1;                           // 1: bars along x; 2: plane bodies in (x, y)
+  Eigen::MatrixXd points;                      // npoints x 2, reference coordinates
+  Eigen::MatrixXi point_dofs;                  // npoints x dimension, dof of each component or -1
+  Eigen::MatrixXi cells;                       // ncells x (2: line | 4: quad), point indices
+  std::vector<int> cell_body;                  // ncells, body id (0 when there is one body)
+  std::vector<std::string> stress_components;  // the columns of cell_stress()
+
+  Index npoints() const { return points.rows(); }
+  Index ncells() const { return cells.rows(); }
+  // Appends `part` (a mesh of the same dimension and stress components) with its dofs
+  // shifted by dof_offset and its cells given body id `body`.
+  void append(const FieldMesh& part, Index dof_offset, int body);
 };
 
 // Throws InputError naming `problem` when the operators' shapes disagree (rows of T, sizes of
@@ -138,6 +169,12 @@ class Problem {
   virtual void observe_step(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
     observe(s, out);
   }
+
+  // The body's mesh (FieldMesh), for problems that have one; nullopt otherwise.
+  virtual std::optional<FieldMesh> field_mesh() const { return std::nullopt; }
+  // The stress of each cell of field_mesh() at u, written into out (ncells x
+  // stress_components.size()) without allocating. Only called when field_mesh() has a value.
+  virtual void cell_stress(ConstVecRef /*u*/, Eigen::Ref<Eigen::MatrixXd> /*out*/) const {}
 
   // Exact solution where one is known.
   virtual std::optional<State> exact_state(double /*t*/) const { return std::nullopt; }

@@ -129,6 +129,16 @@ void SignoriniBar::check_representable() const {
                                    "whose products stay below about 1e300", name_, what, x));
 }
 
+std::optional<FieldMesh> SignoriniBar::field_mesh() const {
+  FieldMesh mesh;
+  add_bar_field_mesh(mesh, 0.0, element_size(), n_, 0, false, 0);
+  return mesh;
+}
+
+void SignoriniBar::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const {
+  bar_stress(u, 0, ke_, area_, false, out.col(0));
+}
+
 // Element loop written as a tridiagonal stencil: one pass, no matrix, no allocation.
 void SignoriniBar::internal_force(ConstVecRef u, VecRef f) const {
   const Index n = n_;

@@ -126,6 +126,12 @@ class SignoriniBar final : public Problem {
   void observe(const State& s, std::span<double> out) const override;
   void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
+  // Field output: the bar's nodes x_i = i h (dof i) and elements; one stress component,
+  // sigma = E_e (u_{i+1} - u_i) / h on element i (nodes i, i + 1), constant over it (so the
+  // exact piecewise-constant sigma of a wave front is met element by element). The same for
+  // all three mass models (the mass model changes no node or element).
+  std::optional<FieldMesh> field_mesh() const override;
+  void cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const override;
 
   // Exact field at any (x, t), x in [0, L].
   double exact_displacement(double x, double t) const;

@@ -68,6 +68,18 @@ double TwoBars::strain_energy(ConstVecRef u) const {
   return bar_strain_energy(u, dof(1, 0), ke1_) + bar_strain_energy(u, dof(2, 0), ke2_);
 }
 
+std::optional<FieldMesh> TwoBars::field_mesh() const {
+  FieldMesh mesh;
+  add_bar_field_mesh(mesh, 0.0, element_size(1), n1_, dof(1, 0), false, 0);
+  add_bar_field_mesh(mesh, len1_ + gap0_, element_size(2), n2_, dof(2, 0), false, 1);
+  return mesh;
+}
+
+void TwoBars::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const {
+  bar_stress(u, dof(1, 0), ke1_, area_, false, out.col(0).head(n1_));
+  bar_stress(u, dof(2, 0), ke2_, area_, false, out.col(0).tail(n2_));
+}
+
 State TwoBars::initial_state() const {
   State s;
   s.u = Vec::Zero(ndof());

@@ -77,6 +77,10 @@ class TwoBars final : public Problem {
   void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;
+  // Field output: bar 1 (body 0) then bar 2 (body 1) at their reference positions, node i
+  // of a bar on dof(bar, i); sigma = E (u_{i+1} - u_i) / h on each element, constant over it.
+  std::optional<FieldMesh> field_mesh() const override;
+  void cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const override;
 
   // Exact fields; bar = 1 or 2, x in the bar's reference position.
   double exact_displacement(int bar, double x, double t) const;

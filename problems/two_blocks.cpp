@@ -175,6 +175,18 @@ double TwoBlocks::load_potential(ConstVecRef u) const {
   return lower_->load_potential(u.head(nl_)) + upper_->load_potential(u.tail(ndof() - nl_));
 }
 
+std::optional<FieldMesh> TwoBlocks::field_mesh() const {
+  FieldMesh mesh = *lower_->field_mesh();
+  mesh.append(*upper_->field_mesh(), nl_, 1);
+  return mesh;
+}
+
+void TwoBlocks::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const {
+  const Index cl = lower_->parameters().integer("nx") * lower_->parameters().integer("ny");
+  lower_->cell_stress(u.head(nl_), out.topRows(cl));
+  upper_->cell_stress(u.tail(ndof() - nl_), out.bottomRows(out.rows() - cl));
+}
+
 State TwoBlocks::initial_state() const {
   const State l = lower_->initial_state(), h = upper_->initial_state();
   State s;

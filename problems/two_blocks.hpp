@@ -64,6 +64,10 @@ class TwoBlocks final : public Problem {
   double stable_step() const override;
   std::vector<std::string> observable_names() const override;
   void observe(const State& s, std::span<double> out) const override;
+  // Field output: the lower block's mesh (body 0), then the upper block's (body 1, dofs
+  // shifted by lower_dofs()); stress as block-2d's (Cauchy, Gauss-point mean).
+  std::optional<FieldMesh> field_mesh() const override;
+  void cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const override;
 
   const Block2d& lower() const { return *lower_; }
   const Block2d& upper() const { return *upper_; }

@@ -159,6 +159,8 @@ def panel_lines(spec, rows):
     if spec.get("small_multiples"):
         series, panel_columns = series[:1], []
     inner = [c for c in spec["series"] + spec["panels"] if c not in series + panel_columns]
+    overlay = spec.get("overlay") if spec.get("small_multiples") else None
+    overlaid = {}  # the overlay's lines (the exact solution), drawn in every panel
     for row in rows:
         x, y = number(row[spec["x"]]), number(row[spec["y"]])
         if y is not None and spec.get("deviation"):
@@ -168,9 +170,12 @@ def panel_lines(spec, rows):
         if y is None or (spec["log_y"] and not 0 < y <= LOG_MAX) or abs(y) > LOG_MAX:
             y = math.nan  # nothing to draw here: a gap in a history, not a line across it
         key = tuple(row[c] for c in (series if spec.get("small_multiples") else panel_columns))
-        lines = panels.setdefault(key, {})
+        lines = overlaid if overlay and key == (overlay,) else panels.setdefault(key, {})
         name = label(row, spec["series"] + inner)  # a line per inner value too (lumped, singular)
-        lines.setdefault(name, {"style": label(row, spec["series"]), "inner": label(row, inner), "pts": []})["pts"].append((x, y))
+        lines.setdefault(name, {"style": label(row, spec["series"]), "inner": label(row, inner), "pts": [],
+                                "overlay": lines is overlaid})["pts"].append((x, y))
+    for lines in panels.values():
+        lines.update(overlaid)
     return {key: {name: {**line, "pts": sorted(line["pts"])} for name, line in lines.items()
                   if any(not math.isnan(y) for _, y in line["pts"])}
             for key, lines in panels.items()}
@@ -246,7 +251,8 @@ def draw(spec, reports, paper=False):
     fig, axes = plt.subplots(nrows, cols, figsize=size, squeeze=False, layout="constrained",
                              sharex=multiples, sharey=multiples)
     handles = {}
-    linthresh = symlog_threshold(panels) if multiples and not spec["log_y"] else None
+    # A trajectory against the exact one (an overlay) reads on linear axes.
+    linthresh = symlog_threshold(panels) if multiples and not spec["log_y"] and not spec.get("overlay") else None
     y_name = f"{spec['y']} − 1" if spec.get("deviation") else spec["y"]
     for ax, (key, lines) in zip(axes.flat, panels.items()):
         drawn = []
@@ -261,16 +267,20 @@ def draw(spec, reports, paper=False):
             style = {k: v for k, v in styles[line["style"]].items() if k != "kind"}
             marker = style.pop("marker")
             face = style.pop("markerfacecolor", style["color"])
-            if multiples:
+            if line.get("overlay"):  # the exact solution over the scheme's lines: thin, black, dotted
+                style.update(color="black", linestyle=(0, (1.5, 1.5)))
+            elif multiples:
                 style["linestyle"] = inner_dashes[line["inner"]]
             size_m = 2.5 if paper else 3.5
             marks = ({"marker": ".", "markersize": 3, "markevery": alone} if dense else
                      {"marker": marker or "o", "markersize": size_m, "markerfacecolor": face})
-            width_l = 0.8 if paper else 1.2
+            width_l = (0.8 if paper else 1.2) * (0.75 if line.get("overlay") else 1.0)
             ax.plot([p[0] for p in pts], ys, **marks, **{"linewidth": width_l, **style},
                     zorder=3 if styles[line["style"]]["kind"] == "reference" else 2)
-            entry = line["inner"] if multiples else name
-            if entry not in handles and multiples:  # the panels say the scheme, the legend the dashes
+            entry = spec["overlay"] if line.get("overlay") else line["inner"] if multiples else name
+            if entry not in handles and line.get("overlay"):
+                handles[entry] = Line2D([], [], color="black", linestyle=style["linestyle"], linewidth=width_l)
+            elif entry not in handles and multiples:  # the panels say the scheme, the legend the dashes
                 handles[entry] = Line2D([], [], color="0.3", linestyle=style["linestyle"], linewidth=width_l)
             elif entry not in handles:
                 handles[entry] = Line2D([], [], marker=None if dense else (marker or "o"), markersize=size_m,
@@ -321,10 +331,10 @@ def draw(spec, reports, paper=False):
     # One legend for every panel, outside the data: right of a single panel, below several.
     legend_columns = [c for c in spec["series"] + spec["panels"] if c != spec["series"][0]] if multiples else spec["series"]
     title = ", ".join(short(c) for c in legend_columns)
-    entries = list(handles)
+    entries = [e for e in handles if e]  # a scheme's only line needs no entry: its panel's title names it
     legend = None
     font = 6 if paper else 8
-    if not entries or entries == [""]:
+    if not entries:
         pass
     elif n == 1:
         legend = fig.legend([handles[e] for e in entries], entries, title=title, loc="center left",
@@ -336,6 +346,160 @@ def draw(spec, reports, paper=False):
             if ncol == 1 or legend.get_window_extent(fig.canvas.get_renderer()).width <= fig.bbox.width:
                 break
             legend.remove()
+    save(fig, spec, meta, reports, paper, legend)
+
+
+def panel_grid(keys):
+    """Where each panel goes: (row, column) of a grid whose columns are the first panel column's
+    values and rows the second's, in the table's order; a key whose second value is empty (the
+    exact solution, the same for every mass model) takes the top row of its column."""
+    columns = list(dict.fromkeys(k[0] for k in keys))
+    rows = list(dict.fromkeys(k[1] for k in keys if len(k) > 1 and k[1])) or [""]
+    return {k: (rows.index(k[1]) if len(k) > 1 and k[1] else 0, columns.index(k[0])) for k in keys}, len(rows), len(columns)
+
+
+def colour_scale(values, reference=()):
+    """A colour map and its limits for values: a diverging map (ColorBrewer RdBu, colour-blind
+    safe) centred on 0 when the values take both signs, a sequential one (viridis) otherwise.
+    The limit: 1.5 times the reference's largest |value| when there is a reference (the exact
+    solution: a scheme that blows up is drawn saturated, not the others washed out), else the
+    99.9th percentile of |value|; the colour bar's arrows say when some values lie beyond."""
+    finite = sorted(abs(v) for v in values if v is not None)
+    if not finite:
+        return "RdBu_r", -1.0, 1.0, "neither"
+    ref = [abs(v) for v in reference if v is not None]
+    limit = (1.5 * max(ref) if ref and max(ref) > 0 else finite[min(len(finite) - 1, int(0.999 * len(finite)))]) or 1.0
+    beyond = finite[-1] > limit
+    if any(v is not None and v < 0 for v in values) and any(v is not None and v > 0 for v in values):
+        return "RdBu_r", -limit, limit, "both" if beyond else "neither"
+    if all(v is None or v <= 0 for v in values):
+        return "viridis_r", -limit, 0.0, "min" if beyond else "neither"
+    return "viridis", 0.0, limit, "max" if beyond else "neither"
+
+
+def grid_figure(keys, paper, panel_size, labels):
+    """The figure and axes of a grid of panels (panel_grid), shared axes labelled (x, y) =
+    labels, unused cells hidden."""
+    where, nrows, ncols = panel_grid(keys)
+    w, h = panel_size
+    scale = min(1.0, 7.0 / (w * ncols)) if paper else 1.0  # a page's width at most
+    fig, axes = plt.subplots(nrows, ncols, figsize=(w * ncols * scale + 0.9, h * nrows * scale + 0.5), squeeze=False,
+                             layout="constrained", sharex=True, sharey=True)
+    used = set(where.values())
+    for r in range(nrows):
+        for c in range(ncols):
+            if (r, c) not in used:
+                axes[r][c].set_visible(False)
+    # Shared axes label only the outer panels: a panel over an empty cell, or the first of its
+    # row, shows its own.
+    for r, c in used:
+        ax = axes[r][c]
+        if all((below, c) not in used for below in range(r + 1, nrows)):
+            ax.tick_params(labelbottom=True)
+            ax.set_xlabel(labels[0])
+        if all((r, left) not in used for left in range(c)):
+            ax.tick_params(labelleft=True)
+            ax.set_ylabel(labels[1])
+    return fig, axes, where
+
+
+def draw_space_time(spec, reports, paper=False):
+    """A field over position (horizontal) and time (vertical), one panel per scheme and mass
+    model, on one colour scale (colour_scale): spec's `values` columns at `positions`, time in
+    column `y`. A panel whose run has no row (declined, diverged) says so."""
+    meta, rows = read_table(os.path.join(reports, spec["csv"]))
+    keys = list(dict.fromkeys(tuple(row[c] for c in spec["panels"]) for row in rows))
+    data = {}
+    for row in rows:
+        t = number(row[spec["y"]])
+        if t is not None:
+            data.setdefault(tuple(row[c] for c in spec["panels"]), []).append((t, [number(row[c]) for c in spec["values"]]))
+    cmap, vmin, vmax, extend = colour_scale([v for series in data.values() for _, vs in series for v in vs],
+                                            [v for key, series in data.items() if key[0] in REFERENCES
+                                             for _, vs in series for v in vs])
+    fig, axes, where = grid_figure(keys, paper, (1.15, 1.7) if paper else (2.3, 3.2), ("x", spec["y"]))
+    xs = spec["positions"]
+    mesh = None
+    for key in keys:
+        r, c = where[key]
+        ax = axes[r][c]
+        series = sorted(data.get(key, []), key=lambda p: p[0])
+        if series:
+            ts = [t for t, _ in series]
+            z = [[math.nan if v is None else v for v in vs] for _, vs in series]
+            mesh = ax.pcolormesh(xs, ts, z, cmap=cmap, vmin=vmin, vmax=vmax, shading="nearest", rasterized=True)
+        else:
+            ax.text(0.5, 0.5, "no run", ha="center", va="center", transform=ax.transAxes, color="0.4")
+        ax.set_title("\n".join(k for k in key if k), fontsize=7 if paper else 9)  # narrow panels: a line each
+    if mesh is not None:
+        bar = fig.colorbar(mesh, ax=axes.ravel().tolist(), extend=extend, shrink=0.9, pad=0.02)
+        bar.set_label(spec.get("value_label", ""))
+    if not paper:
+        fig.suptitle(spec["title"], fontsize=12)
+    save(fig, spec, meta, reports, paper)
+
+
+def draw_deformed(spec, reports, paper=False):
+    """Deformed quadrilateral cells (corners in spec's `values` columns) coloured by column `y`
+    on one colour scale, one panel per value of the panel columns (scheme, instant), with the
+    contact impulses of the `arrows_csv` table as arrows, all scaled by the largest impulse."""
+    from matplotlib.collections import PolyCollection
+    meta, rows = read_table(os.path.join(reports, spec["csv"]))
+    keys = list(dict.fromkeys(tuple(row[c] for c in spec["panels"]) for row in rows))
+    cells = {}
+    for row in rows:
+        corners = [number(row[c]) for c in spec["values"]]
+        if None not in corners:
+            cells.setdefault(tuple(row[c] for c in spec["panels"]), []).append(
+                (list(zip(corners[0::2], corners[1::2])), number(row[spec["y"]])))
+    arrows = {}
+    if spec.get("arrows_csv"):
+        _, arrow_rows = read_table(os.path.join(reports, spec["arrows_csv"]))
+        for row in arrow_rows:
+            x, y, ax_, ay = (number(row[c]) for c in list(row)[len(spec["panels"]):len(spec["panels"]) + 4])
+            if None not in (x, y, ax_, ay):
+                arrows.setdefault(tuple(row[c] for c in spec["panels"]), []).append((x, y, ax_, ay))
+    cmap, vmin, vmax, extend = colour_scale([v for cs in cells.values() for _, v in cs])
+    points = [p for cs in cells.values() for quad, _ in cs for p in quad]
+    span = max(max(p[0] for p in points) - min(p[0] for p in points), max(p[1] for p in points) - min(p[1] for p in points))
+    largest = max((math.hypot(a[2], a[3]) for arr in arrows.values() for a in arr), default=0.0)
+    fig, axes, where = grid_figure(keys, paper, (1.7, 1.5) if paper else (3.0, 2.6), ("x [m]", "y [m]"))
+    coll = None
+    for key in keys:
+        r, c = where[key]
+        ax = axes[r][c]
+        quads = cells.get(key, [])
+        coll = PolyCollection([q for q, _ in quads], array=[math.nan if v is None else v for _, v in quads], cmap=cmap,
+                              edgecolors="0.25", linewidths=0.3)
+        coll.set_clim(vmin, vmax)
+        ax.add_collection(coll)
+        for x, y, lx, ly in arrows.get(key, []):
+            if largest > 0 and math.hypot(lx, ly) > 1e-3 * largest:
+                k = 0.25 * span / largest
+                ax.annotate("", xy=(x, y), xytext=(x - k * lx, y - k * ly),
+                            arrowprops={"arrowstyle": "-|>", "color": "black", "linewidth": 0.8, "shrinkA": 0, "shrinkB": 0,
+                                        "mutation_scale": 6 if paper else 8})
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        ax.set_title(", ".join(k for k in key if k), fontsize=7 if paper else 9)
+        ax.axhline(0.0, color="0.4", linewidth=0.8, zorder=0)  # the floor
+    for ax in axes.flat:
+        ax.set_xlim(min(p[0] for p in points) - 0.05 * span, max(p[0] for p in points) + 0.05 * span)
+        ax.set_ylim(min(min(p[1] for p in points), 0.0) - 0.3 * span, max(p[1] for p in points) + 0.05 * span)
+    if coll is not None:
+        bar = fig.colorbar(coll, ax=axes.ravel().tolist(), extend=extend, shrink=0.9, pad=0.02)
+        bar.set_label(spec.get("value_label", ""))
+    if not paper:
+        fig.suptitle(spec["title"], fontsize=12)
+    save(fig, spec, meta, reports, paper)
+
+
+DRAWERS = {"space_time": draw_space_time, "deformed": draw_deformed}
+
+
+def save(fig, spec, meta, reports, paper, legend=None):
+    """Stamps (screen look) and writes REPORTS/figures[/paper]/<id>.png and .pdf, each whole or
+    not at all."""
     if not paper:  # the stamp goes below everything else
         fig.canvas.draw()
         below = min(0.0, legend.get_window_extent().transformed(fig.transFigure.inverted()).y0) if legend else 0.0
@@ -374,7 +538,7 @@ def main():
             sys.exit(f"figures.py: --only {sorted(unknown)[0]}: no such figure in {args.reports}/figures.json")
         specs = [s for s in specs if s["id"] in args.only]
     for spec in specs:
-        draw(spec, args.reports, paper)
+        DRAWERS.get(spec.get("kind"), draw)(spec, args.reports, paper)
     out = os.path.join(args.reports, "figures", "paper") if paper else os.path.join(args.reports, "figures")
     print(f"figures: {len(specs)} written to {out}", file=sys.stderr)
 

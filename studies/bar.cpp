@@ -35,8 +35,16 @@
 // step (t_j - dt, t_j], t_j = j dt, over dt A rho c v0, in the N = 100, alpha = 0.9 runs of
 // the grid, lumped and singular mass, against the exact 0 -> 1 -> 0. For fixed-step schemes
 // a bin is a step; the adaptive scheme's many small steps are summed into the bins.
+// Space-time stress (table bar_space_time, figure of the same name): the element stresses
+// (Problem::cell_stress) after every step of the N = 50, alpha = 0.9 runs of the grid of the
+// kSpaceTimeSchemes, lumped and singular mass, and the exact d'Alembert stress at the element
+// centres at kSpaceTimeSamples times: where the lumped model's contact node chatters, its
+// spurious stress waves run into the bar (the picture of Doyen, Ern and Piperno, "Time-
+// integration schemes for the finite element dynamic Signorini problem", SIAM J. Sci. Comput.
+// 33 (2011), figures of the stress in the (x, t) plane).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -58,6 +66,18 @@ constexpr double kHorizon = 1.5;  // t_end in contact durations
 // The runs whose contact-force history is kept.
 bool keeps_history(const Json& c) {
   return c["N"].get<long>() == 100 && c["alpha"].get<double>() == 0.9 && c["mass"] != "consistent";
+}
+
+// The runs whose stress field over (x, t) is kept: one mesh and step, the schemes of the
+// DEP paper's comparison and ours, the two mass models that CD-Lagrange takes.
+const std::vector<std::string> kSpaceTimeSchemes = {"cd-lagrange", "moreau-jean", "schatzman-paoli", "newmark-lm",
+                                                    "cd-penalty"};
+constexpr long kSpaceTimeN = 50;
+constexpr double kSpaceTimeAlpha = 0.9;
+constexpr int kSpaceTimeSamples = 300;  // times of the exact field over [0, t_end]
+bool keeps_space_time(const Json& c) {
+  return c["N"].get<long>() == kSpaceTimeN && c["alpha"].get<double>() == kSpaceTimeAlpha && c["mass"] != "consistent" &&
+         std::find(kSpaceTimeSchemes.begin(), kSpaceTimeSchemes.end(), c["integrator"]) != kSpaceTimeSchemes.end();
 }
 
 std::vector<long> study_meshes(const StudyOptions& opt) {
@@ -125,6 +145,20 @@ Json bar_case(const Json& c) {
   std::vector<double> force;     // relative contact force of the steps inside the contact
   std::vector<double> history;  // impulse per nominal step
   const bool keep_history = keeps_history(c);
+  // The element stresses after every step, step by step (the first row: the initial state).
+  const bool keep_field = keeps_space_time(c);
+  std::vector<double> field_t, field_stress;
+  Eigen::MatrixXd stress;
+  const auto keep_stress = [&](const State& s) {
+    p.cell_stress(s.u, stress);
+    field_t.push_back(s.t);
+    field_stress.insert(field_stress.end(), stress.col(0).begin(), stress.col(0).end());
+  };
+  if (keep_field) {
+    const FieldMesh mesh = p.field_mesh().value();
+    stress.resize(mesh.ncells(), static_cast<Index>(mesh.stress_components.size()));
+    keep_stress(integrator->state());
+  }
   RunOptions options;
   options.dt = dt;
   options.t_end = t0 + kHorizon * T;
@@ -145,6 +179,7 @@ Json bar_case(const Json& c) {
       last = t;
     }
     if (t - info.dt > t0 && t + info.dt < t0 + T) force.push_back(lambda / info.dt / F);
+    if (keep_field) keep_stress(it.state());
     if (keep_history) {
       const auto j = static_cast<std::size_t>(std::ceil(t / dt - 1e-9));
       if (history.size() <= j) history.resize(j + 1, 0.0);
@@ -159,6 +194,10 @@ Json bar_case(const Json& c) {
     }
     out["history_t"] = history_t;
     out["history_force"] = history_force;
+  }
+  if (keep_field) {
+    out["field_t"] = field_t;
+    out["field_stress"] = reals(field_stress);
   }
   double osc_sq = 0.0, chatter_sq = 0.0;
   long lost = 0;
@@ -271,6 +310,41 @@ std::vector<Table> bar_tables(const std::vector<Json>& cases, const std::vector<
   history.figures = {{"bar_contact_force", history.title, "t", "F / (A rho c v0)", {"mass"}, {"integrator"}, false, false}};
   history.metadata = metadata;
 
+  // The exact field first: its panel leads the figure.
+  const SignoriniBar field_bar(Params(SignoriniBar::parameters_spec(), {{"N", fmt::format("{}", kSpaceTimeN)}}));
+  const FieldMesh field_mesh = field_bar.field_mesh().value();
+  std::vector<double> centres;
+  for (Index e = 0; e < field_mesh.ncells(); ++e)
+    centres.push_back(0.5 * (field_mesh.points(field_mesh.cells(e, 0), 0) + field_mesh.points(field_mesh.cells(e, 1), 0)));
+  Table space_time;
+  space_time.id = "bar_space_time";
+  space_time.title = fmt::format("Signorini bar, N = {}, alpha = {}: stress over (x, t), lumped against singular mass",
+                                 kSpaceTimeN, kSpaceTimeAlpha);
+  space_time.caption = fmt::format(
+      "{} Element stress sigma_e = E (u_e+1 - u_e) / h (over rho c v0 = 1; negative: compression) after every step of "
+      "dt = {} * h / c = {:g} (N = {} elements), lumped and singular mass; exact: the d'Alembert stress at the element "
+      "centres, -rho c v0 where t - x/c > 0 and t < (2L - x)/c, else 0, at {} times. The wall is at x = 0.",
+      setup, kSpaceTimeAlpha, kSpaceTimeAlpha * field_bar.stable_step(), kSpaceTimeN, kSpaceTimeSamples + 1);
+  space_time.columns = {{"integrator", "", "", ""}, {"mass", "", "", ""}, {"t", "", "{:.4f}", ""}};
+  std::vector<std::string> field_columns;
+  for (double x : centres) {
+    field_columns.push_back(fmt::format("sigma(x = {:g})", x));
+    space_time.columns.push_back({field_columns.back(), "", "{:.4f}", "element stress over rho c v0"});
+  }
+  space_time.csv_only = true;
+  space_time.metadata = metadata;
+  space_time.metadata.emplace_back("space-time schemes", fmt::format("{}", fmt::join(kSpaceTimeSchemes, " ")));
+  space_time.figures = {{"bar_space_time", space_time.title, "", "t", {}, {"integrator", "mass"}, false, false, {}, false,
+                         false, "", "", "space_time", field_columns, centres, "sigma / (rho c v0)"}};
+  const double t_end = field_bar.contact_start() + kHorizon * field_bar.contact_duration();
+  for (int k = 0; k <= kSpaceTimeSamples; ++k) {
+    const double t = t_end * k / kSpaceTimeSamples;
+    std::vector<Cell> row = {std::string("exact"), std::string(), t};
+    for (double x : centres) row.push_back(field_bar.exact_stress(x, t));
+    space_time.add_row(std::move(row));
+  }
+  std::vector<std::string> declined;
+
   // Cases come in blocks of meshes for each (integrator, mass, alpha).
   for (std::size_t b = 0; b < cases.size(); b += meshes.size()) {
     const std::string integrator = cases[b]["integrator"], mass = cases[b]["mass"];
@@ -297,6 +371,17 @@ std::vector<Table> bar_tables(const std::vector<Json>& cases, const std::vector<
       row.push_back(r.contains("cpu") ? r["cpu"].get<double>() : NAN);
       row.push_back(r["message"].get<std::string>());
       table.add_row(std::move(row));
+      if (r.contains("field_t")) {
+        const std::vector<double> ft = r["field_t"];
+        const Json& fs = r["field_stress"];
+        for (std::size_t k = 0; k < ft.size(); ++k) {
+          std::vector<Cell> row = {integrator, mass, ft[k]};
+          for (std::size_t e = 0; e < centres.size(); ++e) row.push_back(number_cell(fs[k * centres.size() + e]));
+          space_time.add_row(std::move(row));
+        }
+      } else if (keeps_space_time(cases[b + m])) {
+        declined.push_back(fmt::format("{} ({}): {}", integrator, mass, status));
+      }
       if (r.contains("history_t")) {
         const std::vector<double> ht = r["history_t"], hf = r["history_force"];
         const SignoriniBar exact(Params(SignoriniBar::parameters_spec(), {}));
@@ -331,7 +416,10 @@ std::vector<Table> bar_tables(const std::vector<Json>& cases, const std::vector<
     row.push_back(number_cell(dts.size() < 2 ? NAN : fitted_order(dts, errs)));
     time_orders.add_row(std::move(row));
   }
-  return {table, orders, time_orders, headline, history};
+  auto& figure = space_time.figures.front();
+  figure.caption = space_time.caption + " One panel per scheme and mass model, one colour scale" +
+                   (declined.empty() ? "." : fmt::format("; no panel for {}.", fmt::join(declined, ", ")));
+  return {table, orders, time_orders, headline, history, space_time};
 }
 
 }  // namespace

@@ -31,6 +31,10 @@
 // Momentum histories at dt = 1e-4 (table block_momentum_history, figures
 // block_momentum_px and block_momentum_j): the largest P_x error and J residual over each of
 // 150 equal intervals of the run, at the interval's last step.
+// Deformed block (tables block_deformed and block_deformed_impulses, figure block_deformed):
+// the 8x8 mesh at dt = 1e-4 of kSnapshotSchemes at the initial state, the first contact, the
+// largest compression (largest strain energy) and the end of the run, cells coloured by
+// sigma_yy (Cauchy, cell mean), contact impulses as arrows (studies/snapshots.hpp).
 // Ranking (studies/ranking.hpp): the cheapest integrator, over every mesh and step, whose
 // y_c error reaches 1e-3, 1e-4, 3e-5 and 1e-5 m (3e-5: the explicit schemes' best on
 // 32x32). The floor is the reference's own error as a solution of the 32x32 problem
@@ -45,6 +49,7 @@
 #include "problems/block_2d.hpp"
 #include "reference/cache.hpp"
 #include "studies/ranking.hpp"
+#include "studies/snapshots.hpp"
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -57,6 +62,10 @@ constexpr double kSample = 0.01;  // y_c sampling period [s]
 const std::vector<double> kRankingTargets = {1e-3, 1e-4, 3e-5, 1e-5};  // y_c error [m]
 constexpr double kDetailDt = 1e-4;  // the step of the cost table and the momentum histories
 constexpr int kHistoryPoints = 150;
+// The runs pictured deformed: the scheme under study and the reference, on a mesh whose cells
+// can be seen, at the detail step.
+const std::vector<std::string> kSnapshotSchemes = {"cd-lagrange", "penalty-bdf"};
+constexpr long kSnapshotMesh = 8;
 
 Block2d make_block(long n) {
   return Block2d(Params(Block2d::parameters_spec(),
@@ -71,9 +80,10 @@ struct CaseResult {
   double lcp_residual = NAN;
   long impacts = 0, max_active = 0, steps = 0, lcp_iterations = 0;
   IntervalMax history;  // P_x error, J residual (when asked for)
+  Json snapshots = Json::array();  // the deformed mesh at chosen instants (when asked for)
 };
 
-CaseResult run_case(const std::string& integrator_name, long n, double dt, double t_end, bool history) {
+CaseResult run_case(const std::string& integrator_name, long n, double dt, double t_end, bool history, bool snapshots) {
   const Block2d b = make_block(n);
   auto integ = make_integrator(integrator_name);
   const State s0 = b.initial_state();
@@ -99,6 +109,11 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
   Vec lambda_prev = Vec::Zero(L.rows()), force(b.ndof());
   long k = 0;
   c.history = IntervalMax(t_end, kHistoryPoints, 2);
+  std::optional<MeshSnapshots> pictures;
+  if (snapshots) {
+    pictures.emplace(b, "sigma_yy");
+    pictures->add(s0, Vec(), Vec());
+  }
   RunOptions options;
   options.dt = dt;
   options.t_end = t_end;
@@ -124,6 +139,7 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
     }
     J_prev = J;
     if (history) c.history.add(s.t, {px, j_res});
+    if (pictures) pictures->add(s, lambda, it.tangential_impulses());
     long active = 0;
     for (Index i = 0; i < lambda.size(); ++i) {
       active += lambda[i] > 0.0;
@@ -134,6 +150,7 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
     if (std::abs(s.t - kSample * static_cast<double>(c.yc.size())) < 0.5 * info.dt) c.yc.push_back(centre_height(s.u));
   });
   c.history.finish();
+  if (pictures) c.snapshots = pictures->finish();
   c.steps = r.steps;
   c.cpu = r.step_cpu_seconds;  // the observer's time excluded by run()
   c.lcp_iterations = r.work.lcp_iterations;
@@ -235,7 +252,9 @@ Json block_case(const Json& c, const StudyOptions& opt) {
   }
   CaseResult r;
   try {
-    r = run_case(c["integrator"], c["n"], c["dt"], g.t_end, c["dt"] == kDetailDt);
+    const bool pictured = c["n"] == kSnapshotMesh && c["dt"] == kDetailDt &&
+                          std::count(kSnapshotSchemes.begin(), kSnapshotSchemes.end(), c["integrator"]);
+    r = run_case(c["integrator"], c["n"], c["dt"], g.t_end, c["dt"] == kDetailDt, pictured);
   } catch (const InputError& e) {
     r.diverged = true;
     r.status = "n/a";
@@ -246,7 +265,7 @@ Json block_case(const Json& c, const StudyOptions& opt) {
           {"cpu", r.cpu}, {"lcp_residual", real(r.lcp_residual)}, {"impacts", r.impacts},
           {"max_active", r.max_active}, {"steps", r.steps}, {"lcp_iterations", r.lcp_iterations},
           {"history_t", r.history.times()}, {"history_px", reals(r.history.largest(0))},
-          {"history_j", reals(r.history.largest(1))}};
+          {"history_j", reals(r.history.largest(1))}, {"snapshots", r.snapshots}};
 }
 
 std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vector<Json>& results,
@@ -334,6 +353,19 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
       {"block_momentum_px", "2D block: horizontal momentum error, dt = 1e-4 s", "t", "P_x err", {"integrator"}, {"mesh"}, false, true},
       {"block_momentum_j", "2D block: angular momentum balance residual, dt = 1e-4 s", "t", "J res.", {"integrator"}, {"mesh"}, false, true}};
 
+  SnapshotTables deformed = snapshot_tables(
+      "block_deformed",
+      fmt::format("2D block, {}x{}, dt = {:g} s: deformed mesh coloured by sigma_yy, contact impulses", kSnapshotMesh,
+                  kSnapshotMesh, kDetailDt),
+      fmt::format("The block of the block table (vx = {} m/s) on {}x{} Q4 at dt = {:g} s, {}: the mesh deformed at "
+                  "true scale (the initial state, the first step with a contact impulse, the step of largest strain "
+                  "energy and t = {} s), cells coloured by sigma_yy (Cauchy stress, mean over the cell's Gauss points; "
+                  "negative: compression), the step's contact impulses L^T Lambda at the nodes as arrows, scaled to "
+                  "the largest in the figure. The floor is y = 0.",
+                  kVx, kSnapshotMesh, kSnapshotMesh, kDetailDt, fmt::join(kSnapshotSchemes, " and "), t_end),
+      "sigma_yy");
+  deformed.cells.metadata = deformed.arrows.metadata = cases_table.metadata;
+
   RankingProblem ranking{"2D block", fmt::format("the penalty-bdf reference on {}x{}", n_ref, n_ref),
                          ref_penalty_error + ref_tolerance_error + ref_restitution_error, kRankingTargets, {}};
   std::size_t k = kRefCases;
@@ -353,6 +385,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
         const std::vector<double> ht = c["history_t"];  // up to where the run stopped
         for (std::size_t j = 0; j < ht.size(); ++j)
           momentum.add_row({integrator, mesh, ht[j], number_cell(c["history_px"][j]), number_cell(c["history_j"][j])});
+        if (c.contains("snapshots")) add_snapshot_rows(deformed, integrator, c["snapshots"]);
         if (c["diverged"].get<bool>()) {
           if (c["status"] != "n/a") curve.points.push_back({run, cpu, NAN});
           cases_table.add_row({integrator, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(), c["status"].get<std::string>(),
@@ -380,7 +413,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
                              {"y_c err", "m", "", "centre-of-mass height error, as in the block table"},
                              "thread CPU time of the run, observer excluded", {ranking});
   rank.metadata = cases_table.metadata;
-  return {cases_table, cost, rank, momentum};
+  return {cases_table, cost, rank, momentum, deformed.cells, deformed.arrows};
 }
 
 }  // namespace

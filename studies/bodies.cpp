@@ -27,6 +27,14 @@
 //   sum_k |Lambda_k/dt - F(t_k - dt/2)| dt / int F dt. mass-on-bar to its last separation
 //   plus L/c: the same force error and the mass's exit velocity |V - V_exact| / v0 at the end.
 //   Orders between consecutive meshes, errors at round-off (kRoundOffError) carry none.
+// Trajectories (table bodies_cradle_trajectory, figure of the same name): each ball's position
+// x_i = (i - 1) gap + U_i relative to the centre of mass, x_i - mean_j x_j, after every step of
+// the cradle with gap 0.1, e = 0.5 at dt v0 / gap = 0.1, each scheme in its panel over the exact
+// march (BallChain::exact_state). In the centre-of-mass frame (it drifts at v0 / n) each
+// collision is a kink between flat or sloped lines, which the drift would flatten out.
+// Deformed blocks (tables bodies_blocks_deformed and bodies_blocks_deformed_impulses, figure
+// bodies_blocks_deformed): the mu = 0 two-blocks run of kSnapshotSchemes at the initial state,
+// the first contact, the largest strain energy and the end (studies/snapshots.hpp).
 // Each run has a budget of kStepBudget F_int evaluations per step of the requested size.
 // Ranking (studies/ranking.hpp): the cheapest integrator reaching a contact-force error (the
 // time-L1 one above) of 1e-1, 5e-2, 3e-2 (two-bars) and 3e-1, 2e-1, 1e-1 (mass-on-bar; the
@@ -50,6 +58,7 @@
 #include "problems/two_bars.hpp"
 #include "problems/two_blocks.hpp"
 #include "studies/ranking.hpp"
+#include "studies/snapshots.hpp"
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -74,6 +83,13 @@ struct BodiesCase {
 };
 
 const std::vector<double> kRatios = {0.01, 0.1, 1, 10};
+// The run whose ball positions are kept, and the exact march's samples for its figure.
+const std::string kTrajectoryCase = "cradle-gap-e05";
+constexpr double kTrajectoryRatio = 0.1;
+constexpr int kExactSamples = 600;
+// The two-blocks runs pictured deformed: the scheme under study and the reference.
+const std::string kSnapshotCase = "blocks";
+const std::vector<std::string> kSnapshotSchemes = {"cd-lagrange", "penalty-bdf"};
 // The Siconos peers take at most 128 dofs (dense matrices): two-bars at N = 40 has 122.
 const std::vector<double> kMeshes = {10, 20, 40};
 const std::map<std::string, std::string> kBlocks = {{"g", "0"}, {"upper_vx", "0.5"}, {"upper_vy", "-1"}, {"e", "0"}};
@@ -121,10 +137,20 @@ Json run_cradle(const BodiesCase& bc, const std::string& integrator_name, double
   auto integrator = make_integrator(integrator_name);
   if (const auto declined = init_or_decline(*integrator, chain)) return {{"status", "n/a"}, {"message", *declined}};
   const Vec v0 = chain.initial_state().v;
-  const RunResult r = run(chain, *integrator, options_for(dt, std::max(3.0, 20 * dt)));
+  const bool trajectory = bc.id == kTrajectoryCase && knob == kTrajectoryRatio;
+  std::vector<double> trajectory_t = {0.0}, trajectory_u(v0.size(), 0.0);
+  const RunResult r = run(chain, *integrator, options_for(dt, std::max(3.0, 20 * dt)), [&](const Integrator& it, const StepInfo&) {
+    if (!trajectory) return;
+    trajectory_t.push_back(it.state().t);
+    trajectory_u.insert(trajectory_u.end(), it.state().u.begin(), it.state().u.end());
+  });
   Json out = status_of(r);
   out["dt"] = dt;
   if (r.status != RunStatus::Ok) return out;
+  if (trajectory) {
+    out["trajectory_t"] = trajectory_t;
+    out["trajectory_u"] = reals(trajectory_u);  // step by step, ball by ball
+  }
   const Vec& v = integrator->state().v;
   const double scale = std::abs(v0[0]), seq = (v - chain.sequential_outcome()).cwiseAbs().maxCoeff() / scale,
                sim = (v - chain.simultaneous_outcome()).cwiseAbs().maxCoeff() / scale;
@@ -163,8 +189,14 @@ Json run_blocks(const BodiesCase& bc, const std::string& integrator_name, double
   for (Index a = 0; a < blocks.ndof() / 2; ++a) p_scale += M.coeff(2 * a, 2 * a) * v_prev.segment<2>(2 * a).norm();
   const double e0 = integrator->energy().total();
   double residual = 0.0, between = 0.0, e_prev = e0, e_max = e0, step_gain = 0.0;
+  std::optional<MeshSnapshots> pictures;
+  if (bc.id == kSnapshotCase && std::count(kSnapshotSchemes.begin(), kSnapshotSchemes.end(), integrator_name)) {
+    pictures.emplace(blocks, "sigma_yy");
+    pictures->add(integrator->state(), Vec(), Vec());
+  }
   const RunOptions options = options_for(dt, kEnd);
   const RunResult r = run(blocks, *integrator, options, [&](const Integrator& it, const StepInfo&) {
+    if (pictures) pictures->add(it.state(), it.impulses(), it.tangential_impulses());
     const Eigen::Vector2d dP = blocks.linear_momentum(it.state().v) - blocks.linear_momentum(v_prev);
     const Eigen::Vector2d floor(it.tangential_impulses().head(pf).sum(), it.impulses().head(pf).sum());
     residual = std::max(residual, (dP - floor).norm() / p_scale);
@@ -176,6 +208,7 @@ Json run_blocks(const BodiesCase& bc, const std::string& integrator_name, double
     e_prev = e;
   });
   Json out = status_of(r);
+  if (pictures) out["snapshots"] = pictures->finish();
   if (r.status != RunStatus::Ok) return out;
   const auto [cpu, lcp] = cost_per_step(blocks, integrator_name, options);
   // The same blocks apart: block-2d problems with the two-blocks' own block parameters.
@@ -412,7 +445,62 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
                              {"force err", "", "", "the relative time-L1 contact force error of bodies_bars"},
                              "median thread CPU time of 3 unobserved runs after a warm-up", ranking);
   rank.metadata = metadata;
-  return {cradle, blocks, bars, rank};
+
+  const BallChain chain(Params(BallChain::parameters_spec(), find_case(kTrajectoryCase).params));
+  Table trajectory;
+  trajectory.id = "bodies_cradle_trajectory";
+  trajectory.title = fmt::format("Newton's cradle (3 balls, gap {} m, e = 0.5): ball positions against the exact ones, "
+                                 "dt = {:g} s", kGap, kTrajectoryRatio * kGap);
+  trajectory.caption = fmt::format(
+      "ball-chain, n = 3, m = 1 kg, gap = {} m, e = 0.5, ball 1 launched at v0 = 1 m/s, dt = {:g} s (dt v0 / gap = {}), "
+      "to t = 3 s: each ball's position x_i = (i - 1) gap + U_i relative to the centre of mass (x_i - x_G, x_G the "
+      "mean, drifting at v0 / 3) after every step, against the exact binary-collision march (collisions at {:.4g} s; "
+      "final velocities {}).",
+      kGap, kTrajectoryRatio * kGap, kTrajectoryRatio, fmt::join(chain.impact_times(3.0), ", "),
+      vec(chain.sequential_outcome()));
+  trajectory.columns = {{"integrator", "", "", ""}, {"ball", "", "", ""}, {"t", "s", "{:.4f}", ""},
+                        {"x - x_G", "m", "{:.4e}", "(i - 1) gap + U_i less the mean over the balls"}};
+  trajectory.csv_only = true;
+  trajectory.metadata = metadata;
+  trajectory.figures = {{"bodies_cradle_trajectory", trajectory.title, "t", "x - x_G", {"integrator", "ball"}, {},
+                         false, false, {}, true, false, "exact",
+                         trajectory.caption + " One panel per scheme, the balls told apart by dashes; dotted: exact."}};
+  const auto add_positions = [&](const std::string& name, double t, const auto& u) {
+    std::vector<double> x;
+    for (Index b = 0; b < chain.ndof(); ++b) x.push_back(static_cast<double>(b) * kGap + real(u[b]));
+    double mean = 0.0;
+    for (double xb : x) mean += xb / static_cast<double>(x.size());
+    for (std::size_t b = 0; b < x.size(); ++b) trajectory.add_row({name, fmt::format("ball {}", b + 1), t, number_cell(x[b] - mean)});
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    if (results[i].contains("trajectory_t")) {
+      const std::vector<double> t = results[i]["trajectory_t"];
+      const Json& u = results[i]["trajectory_u"];
+      for (std::size_t k = 0; k < t.size(); ++k)
+        add_positions(cases[i]["integrator"], t[k], std::vector<Json>(u.begin() + static_cast<long>(k * chain.ndof()),
+                                                                      u.begin() + static_cast<long>((k + 1) * chain.ndof())));
+    }
+  const double t_end = 3.0;
+  for (int k = 0; k <= kExactSamples; ++k) {
+    const double t = t_end * k / kExactSamples;
+    const Vec u = chain.exact_state(t)->u;
+    std::vector<Json> exact(u.begin(), u.end());
+    add_positions("exact", t, exact);
+  }
+  SnapshotTables deformed = snapshot_tables(
+      "bodies_blocks_deformed", "Two blocks (mu = 0): deformed meshes coloured by sigma_yy, contact impulses",
+      fmt::format("The two blocks of bodies_blocks with mu = 0 (g = 0, upper block at (0.5, -1) m/s, e = 0, dt = 1e-4 s, "
+                  "to t = 0.1 s), {}: the meshes deformed at true scale (the initial state, the first step with a "
+                  "contact impulse, the step of largest strain energy and the end), cells coloured by sigma_yy "
+                  "(Cauchy stress, mean over the cell's Gauss points; negative: compression), the step's contact "
+                  "impulses L^T Lambda at the nodes as arrows (node-to-segment: spread over the segment's nodes, "
+                  "opposite on the two blocks), scaled to the largest in the figure. The floor is y = 0.",
+                  fmt::join(kSnapshotSchemes, " and ")),
+      "sigma_yy");
+  deformed.cells.metadata = deformed.arrows.metadata = metadata;
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    if (results[i].contains("snapshots")) add_snapshot_rows(deformed, cases[i]["integrator"], results[i]["snapshots"]);
+  return {cradle, blocks, bars, rank, trajectory, deformed.cells, deformed.arrows};
 }
 
 }  // namespace

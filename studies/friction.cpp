@@ -38,6 +38,9 @@
 //   sliding contact's impulse is -s mu Lambda_N).
 // Orders: log-log slope between consecutive steps. Each run has a budget of kStepBudget F_int
 // evaluations per step (an adaptive scheme whose step collapses stops, "over budget").
+// Trajectory (table friction_disk_trajectory, figure of the same name): the disk's slip
+// s = x' + R theta' after every step of the disk case at dt = kTrajectoryStep, each scheme in
+// its panel over the exact s(t) (sampled at kExactSamples times).
 // Ranking (studies/ranking.hpp): the cheapest integrator reaching a stop-time error (sliding
 // mass, mu = 0.8) and a rolling-onset error (disk) of 1e-2, 1e-3 and 1e-4 s, cost the median
 // CPU time of 3 unobserved runs.
@@ -68,6 +71,10 @@ constexpr double kSlipTol = 1e-9;  // [m/s]: at rest or rolling (every case move
 constexpr long kStepBudget = 20;   // F_int evaluations allowed per step of the requested size
 constexpr double kHardStep = 1e-3;
 const std::vector<double> kRankingTargets = {1e-2, 1e-3, 1e-4};  // [s]
+// The disk's slip history: the coarsest step, where the schemes' steps are told apart.
+const std::string kTrajectoryCase = "disk";
+constexpr double kTrajectoryStep = 1e-2;
+constexpr int kExactSamples = 500;
 
 enum class Group { Sliding, Disk, Block, Hard };
 
@@ -169,6 +176,8 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
   const Vec m = diagonal_mass(problem->mass_matrix()).value();
   const double p_scale = m.dot(s0.v.cwiseAbs());
 
+  const bool trajectory = fc.id == kTrajectoryCase && dt == kTrajectoryStep;
+  std::vector<double> trajectory_t, trajectory_slip;
   Observables obs(*problem);
   const std::size_t ix = obs.index("x"), iv = obs.index("v"), iv_exact = obs.index("v_exact"), ipx = obs.index("px");
   const bool has_px = ipx < problem->observable_names().size();
@@ -177,6 +186,10 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
   double px_prev = obs[ipx], px0 = px_prev;
 
   Vec slip = contacts.tangent * s0.v - w, u_prev = s0.u;
+  if (trajectory) {
+    trajectory_t.push_back(s0.t);
+    trajectory_slip.push_back(slip[0]);
+  }
   const double sign0 = slip.size() ? (slip[0] > 0.0) - (slip[0] < 0.0) : 0.0;
   // Rest: the slip is small from t_rest on (NaN while it is not); first stop: the slip of the
   // first contact has lost its initial sign. Each with the tangential path travelled by then.
@@ -205,6 +218,10 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
     obs.update(s, normal, info.dt);
     slip.noalias() = contacts.tangent * s.v;
     slip -= w;
+    if (trajectory) {
+      trajectory_t.push_back(s.t);
+      trajectory_slip.push_back(slip[0]);
+    }
     if (slip.size()) path += std::abs(contacts.tangent.row(0).dot(s.u - u_prev));
     u_prev = s.u;
     if (slip.size() && slip.cwiseAbs().maxCoeff() > kSlipTol) {
@@ -268,6 +285,10 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
               {"px_residual", real(has_px ? px_residual : kNaN)},
               {"slide_residual", real(slide_steps ? slide_residual : kNaN)}});
   if (has_px) out["slide_steps"] = slide_steps;
+  if (trajectory) {
+    out["trajectory_t"] = trajectory_t;
+    out["trajectory_slip"] = reals(trajectory_slip);
+  }
   if (fc.ranked) out["cpu_median"] = median_cpu_seconds(*problem, integrator_name, {}, options);
   return out;
 }
@@ -479,7 +500,32 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
                              {"t err", "s", "", "t_stop err of friction_sliding (mu = 0.8) and t_roll err of friction_disk"},
                              "median thread CPU time of 3 unobserved runs after a warm-up", ranking);
   rank.metadata = metadata;
-  return {sliding, rolling, block, hard, rank};
+
+  Table trajectory;
+  trajectory.id = "friction_disk_trajectory";
+  trajectory.title = fmt::format("Rolling disk: slip velocity against the exact one, dt = {} s", kTrajectoryStep);
+  trajectory.caption = fmt::format(
+      "The disk of friction_disk (R = 0.1 m, kappa = 1/2, mu = 0.3, v0 = 1 m/s, omega0 = 0, on the floor): the contact "
+      "point's slip s = x' + R theta' after every step of dt = {} s (the reported velocity), against the exact s(t), "
+      "which falls linearly to 0 at t* = {:.4f} s and stays 0 (rolling).",
+      kTrajectoryStep, disk.rolling_onset_time());
+  trajectory.columns = {{"integrator", "", "", ""}, {"t", "s", "{:.4f}", ""}, {"slip", "m/s", "{:.4e}", "x' + R theta'"}};
+  trajectory.csv_only = true;
+  trajectory.metadata = metadata;
+  trajectory.figures = {{"friction_disk_trajectory", trajectory.title, "t", "slip", {"integrator"}, {}, false, false,
+                         {}, true, false, "exact", trajectory.caption + " One panel per scheme; dotted: exact."}};
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    if (results[i].contains("trajectory_t")) {
+      const std::vector<double> t = results[i]["trajectory_t"];
+      for (std::size_t k = 0; k < t.size(); ++k)
+        trajectory.add_row({cases[i]["integrator"].get<std::string>(), t[k], number_cell(results[i]["trajectory_slip"][k])});
+    }
+  const double t_end = find_case(kTrajectoryCase).t_end;
+  for (int k = 0; k <= kExactSamples; ++k) {
+    const double t = t_end * k / kExactSamples;
+    trajectory.add_row({std::string("exact"), t, (disk.contacts().tangent * disk.exact_state(t)->v)(0)});
+  }
+  return {sliding, rolling, block, hard, rank, trajectory};
 }
 
 }  // namespace

@@ -188,7 +188,8 @@ int main(int argc, char** argv) {
         else
           studies += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", t.title, t.id, t.id, t.id);
         for (const auto& f : t.figures)
-          studies += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf))\n", f.title, f.id, f.id);
+          studies += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf)){}\n", f.title, f.id, f.id,
+                                 f.caption.empty() ? "" : "\n\n  " + f.caption);
         if (t.lead)
           lead += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", t.title, t.id, s->name, t.caption, nsb::markdown_grid(t));
         if (t.headline)

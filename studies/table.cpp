@@ -249,11 +249,21 @@ std::string figures_to_json(const std::vector<Table>& tables) {
       for (const auto& n : names) h.push_back(header(n));
       return h;
     };
-    for (const auto& f : t.figures)
-      all.push_back({{"id", f.id}, {"title", f.title}, {"csv", t.id + ".csv"}, {"x", header(f.x)},
+    for (const auto& f : t.figures) {
+      all.push_back({{"id", f.id}, {"title", f.title}, {"csv", t.id + ".csv"}, {"x", f.x.empty() ? std::string() : header(f.x)},
                      {"y", header(f.y)}, {"series", headers(f.series)}, {"panels", headers(f.panels)},
                      {"log_x", f.log_x}, {"log_y", f.log_y}, {"slopes", f.slopes},
                      {"small_multiples", f.small_multiples}, {"deviation", f.deviation}});
+      auto& j = all.back();
+      // Only where set: the figures of lines keep their entries as they were.
+      if (!f.overlay.empty()) j["overlay"] = f.overlay;
+      if (!f.caption.empty()) j["caption"] = f.caption;
+      if (!f.kind.empty()) {
+        j.update({{"kind", f.kind}, {"values", headers(f.values)}, {"positions", f.positions},
+                  {"value_label", f.value_label}});
+        if (!f.arrows.empty()) j["arrows_csv"] = f.arrows + ".csv";
+      }
+    }
   }
   return all.dump(2) + "\n";
 }
@@ -314,7 +324,9 @@ std::string table_to_json_text(const Table& t) {
   for (const auto& f : t.figures)
     j["figures"].push_back({{"id", f.id}, {"title", f.title}, {"x", f.x}, {"y", f.y}, {"series", f.series},
                             {"panels", f.panels}, {"log_x", f.log_x}, {"log_y", f.log_y}, {"slopes", f.slopes},
-                            {"small_multiples", f.small_multiples}, {"deviation", f.deviation}});
+                            {"small_multiples", f.small_multiples}, {"deviation", f.deviation},
+                            {"overlay", f.overlay}, {"caption", f.caption}, {"kind", f.kind}, {"values", f.values},
+                            {"positions", f.positions}, {"value_label", f.value_label}, {"arrows", f.arrows}});
   return j.dump();
 }
 
@@ -336,7 +348,9 @@ Table table_from_json_text(const std::string& text) {
   t.lead = j.value("lead", false);
   for (const auto& f : j["figures"])
     t.figures.push_back({f["id"], f["title"], f["x"], f["y"], f["series"], f["panels"], f["log_x"], f["log_y"],
-                         f["slopes"], f["small_multiples"], f["deviation"]});
+                         f["slopes"], f["small_multiples"], f["deviation"], f.value("overlay", ""),
+                         f.value("caption", ""), f.value("kind", ""), f.value("values", std::vector<std::string>{}),
+                         f.value("positions", std::vector<double>{}), f.value("value_label", ""), f.value("arrows", "")});
   return t;
 }
 

@@ -41,6 +41,25 @@ struct Figure {
   bool small_multiples = false;
   // y is a ratio to its start (E/E0): draw its signed deviation y - 1.
   bool deviation = false;
+  // Small multiples: the value of the first series column (the exact solution) whose lines are
+  // drawn in every panel, black and dashed, over the scheme's own.
+  std::string overlay = {};
+  // What the figure shows and at which parameters: index.md prints it under the picture.
+  std::string caption = {};
+  // Pictures of the motion, other than lines (kind empty):
+  // - "space_time": a colour map of a field over position (horizontal) and time, the column `y`
+  //   (vertical; `x` empty), one panel per distinct value of `panels`; each row is one time, the
+  //   field's values at the positions `positions` in the columns `values` (a shared, diverging
+  //   colour scale, `value_label`).
+  // - "deformed": one panel per distinct value of `panels`, each row a quadrilateral cell by its
+  //   corners' columns `values` (x1, y1, ..., x4, y4, deformed) coloured by the column `y` (`x`
+  //   empty); the contact impulses, arrows from (x, y) along (Lambda_x, Lambda_y), in the table
+  //   `arrows` (the same panel columns, then x, y, Lambda_x, Lambda_y).
+  std::string kind = {};
+  std::vector<std::string> values = {};
+  std::vector<double> positions = {};
+  std::string value_label = {};
+  std::string arrows = {};
 };
 
 struct Table {

@@ -201,3 +201,60 @@ TEST_CASE("block-2d: bad parameters name the parameter and its range", "[problem
   CHECK_THROWS_WITH(block({{"nx", "0"}}), Catch::Contains("nx"));
   CHECK_THROWS_WITH(block({{"material", "rubber"}}), Catch::Contains("material"));
 }
+
+TEST_CASE("block-2d: field mesh and Cauchy cell stress (rotation, finite stretch, linearised limit)",
+          "[problems][block-2d][field-mesh]") {
+  const double E = 1e6, nu = 0.3, lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+  for (const char* material : kMaterials) {
+    INFO(material);
+    const auto b = block({{"material", material}, {"nx", "4"}, {"ny", "3"}, {"tilt", "20"}});
+    const auto mesh = b.field_mesh();
+    REQUIRE(mesh.has_value());
+    REQUIRE(mesh->npoints() == b.nodes());
+    REQUIRE(mesh->ncells() == 12);
+    for (nsb::Index a = 0; a < b.nodes(); ++a) {
+      CHECK(mesh->points.row(a).transpose() == b.reference_position(a));
+      CHECK(mesh->point_dofs(a, 0) == 2 * a);
+      CHECK(mesh->point_dofs(a, 1) == 2 * a + 1);
+    }
+    // u = G X (a uniform displacement gradient G), X from the mesh's own points.
+    const auto uniform = [&](const Eigen::Matrix2d& G) {
+      nsb::Vec u(b.ndof());
+      for (nsb::Index a = 0; a < b.nodes(); ++a) u.segment<2>(2 * a) = G * mesh->points.row(a).transpose();
+      return u;
+    };
+    Eigen::MatrixXd sigma(12, 3);
+    // A rigid rotation: no stress (Cauchy and PK2 alike).
+    b.cell_stress(uniform(Eigen::Rotation2Dd(0.7).toRotationMatrix() - Eigen::Matrix2d::Identity()), sigma);
+    CHECK(sigma.cwiseAbs().maxCoeff() <= 1e-9 * E);
+    // A small strain eps: sigma = lambda tr(eps) I + 2 mu eps + O(|eps|^2).
+    for (const double scale : {1e-3, 1e-4}) {
+      Eigen::Matrix2d G;
+      G << 0.7, 0.4, -0.2, -0.5;
+      G *= scale;
+      const Eigen::Matrix2d eps = 0.5 * (G + G.transpose());
+      const Eigen::Matrix2d lin = lambda * eps.trace() * Eigen::Matrix2d::Identity() + 2 * mu * eps;
+      b.cell_stress(uniform(G), sigma);
+      for (nsb::Index e = 0; e < 12; ++e) {
+        CHECK(std::abs(sigma(e, 0) - lin(0, 0)) <= 5 * E * scale * scale);
+        CHECK(std::abs(sigma(e, 1) - lin(1, 1)) <= 5 * E * scale * scale);
+        CHECK(std::abs(sigma(e, 2) - lin(0, 1)) <= 5 * E * scale * scale);
+      }
+      CHECK(std::abs(sigma(0, 0) - lin(0, 0)) >= 1e-3 * E * scale * scale);  // not the linear law itself
+    }
+  }
+  // A finite stretch F = diag(1 + a, 1) of the untilted SVK block, Cauchy sigma = F S F^T / J:
+  //     S_11 = (lambda + 2 mu) E_11, S_22 = lambda E_11, E_11 = a + a^2/2;
+  //     sigma_xx = (1 + a) S_11, sigma_yy = S_22 / (1 + a), sigma_xy = 0.
+  const auto b = block({{"tilt", "0"}, {"nx", "3"}, {"ny", "2"}});
+  const double a = 0.2, E11 = a + 0.5 * a * a;
+  nsb::Vec u = nsb::Vec::Zero(b.ndof());
+  for (nsb::Index n = 0; n < b.nodes(); ++n) u[2 * n] = a * b.reference_position(n).x();
+  Eigen::MatrixXd sigma(6, 3);
+  b.cell_stress(u, sigma);
+  for (nsb::Index e = 0; e < 6; ++e) {
+    CHECK(sigma(e, 0) == Approx((1 + a) * (lambda + 2 * mu) * E11).epsilon(1e-12));
+    CHECK(sigma(e, 1) == Approx(lambda * E11 / (1 + a)).epsilon(1e-12));
+    CHECK(std::abs(sigma(e, 2)) <= 1e-12 * E);
+  }
+}

@@ -196,3 +196,25 @@ TEST_CASE("mass on bar: operators, contact row on both bodies, registry and bad 
     }
   }
 }
+
+TEST_CASE("mass on bar: field mesh of the bar (clamped node without dof) and element stress",
+          "[problems][mass-on-bar][field-mesh]") {
+  for (const char* mass : {"lumped", "consistent", "singular"}) {
+    INFO(mass);
+    const MassOnBar p = MassOnBar(Params(MassOnBar::parameters_spec(), {{"N", "8"}, {"E", "3"}, {"mass", mass}}));
+    const auto mesh = p.field_mesh();
+    REQUIRE(mesh.has_value());
+    REQUIRE(mesh->npoints() == 9);
+    REQUIRE(mesh->ncells() == 8);
+    for (nsb::Index i = 0; i < 8; ++i) CHECK(mesh->point_dofs(i, 0) == i);
+    CHECK(mesh->point_dofs(8, 0) == -1);  // the clamp; the striker (dof 8) is not a point
+    // u = eps (x - L): uniform strain, u = 0 at the clamp; the striker's dof is not read.
+    const double eps = -2e-3;
+    nsb::Vec u(p.ndof());
+    for (nsb::Index i = 0; i < 8; ++i) u[i] = eps * (mesh->points(i, 0) - 1.0);
+    u[p.mass_dof()] = 1e6;
+    Eigen::MatrixXd sigma(8, 1);
+    p.cell_stress(u, sigma);
+    for (nsb::Index e = 0; e < 8; ++e) CHECK(sigma(e, 0) == Approx(3.0 * eps));
+  }
+}

@@ -275,3 +275,46 @@ TEST_CASE("signorini bar: stiff_ratio stiffens the half at the wall; the stable 
   }
   CHECK(bar({{"stiff_ratio", "1"}}).exact_state(0.5).has_value());
 }
+
+TEST_CASE("signorini bar: field mesh and element stress (uniform strain, the exact field between fronts)",
+          "[problems][signorini-bar][field-mesh]") {
+  for (const char* mass : {"lumped", "consistent", "singular"}) {
+    INFO(mass);
+    // A uniform strain eps gives E_e eps in every element: r E in the half at the wall.
+    const SignoriniBar p = bar({{"E", "2"}, {"stiff_ratio", "3"}, {"N", "10"}, {"mass", mass}});
+    const auto mesh = p.field_mesh();
+    REQUIRE(mesh.has_value());
+    REQUIRE(mesh->npoints() == p.ndof());
+    const double eps = 1e-3, h = p.element_size();
+    nsb::Vec u(p.ndof());
+    for (nsb::Index i = 0; i < p.ndof(); ++i) {
+      CHECK(mesh->point_dofs(i, 0) == i);
+      CHECK(mesh->points(i, 0) == Approx(i * h));
+      u[i] = eps * mesh->points(i, 0);
+    }
+    Eigen::MatrixXd sigma(mesh->ncells(), 1);
+    p.cell_stress(u, sigma);
+    for (nsb::Index e = 0; e < mesh->ncells(); ++e) CHECK(sigma(e, 0) == Approx((e < 5 ? 3.0 : 1.0) * 2.0 * eps));
+  }
+  // The exact field's nodal values: the element's stress is the exact one away from the
+  // fronts (x = c s and 2L - c s, s = t - t0), where the exact u is linear.
+  const SignoriniBar p = bar({{"N", "20"}, {"g0", "0.1"}});
+  const auto mesh = p.field_mesh();
+  Eigen::MatrixXd sigma(mesh->ncells(), 1);
+  for (const double t : {0.41, 1.52}) {
+    const auto s = p.exact_state(t);
+    REQUIRE(s.has_value());
+    p.cell_stress(s->u, sigma);
+    const double front1 = t - p.contact_start(), front2 = 2.0 - front1, h = p.element_size();
+    int compared = 0, loaded = 0;
+    for (nsb::Index e = 0; e < mesh->ncells(); ++e) {
+      const double mid = (e + 0.5) * h;
+      if (std::abs(mid - front1) < h || std::abs(mid - front2) < h) continue;
+      CHECK(sigma(e, 0) == Approx(p.exact_stress(mid, t)).margin(1e-12));
+      ++compared;
+      loaded += p.exact_stress(mid, t) < 0.0;
+    }
+    CHECK(compared >= 17);
+    CHECK(loaded >= 5);
+  }
+}

@@ -187,3 +187,28 @@ TEST_CASE("two-blocks: bad input names the parameter and its range", "[problems]
   CHECK_THROWS_AS(nsb::make_problem("two-blocks", {{"lower_height", "-1"}}), nsb::InputError);
   CHECK_NOTHROW(nsb::make_problem("two-blocks", {{"upper_nx", "3"}}));
 }
+
+TEST_CASE("two-blocks: field mesh is the lower block's then the upper block's (dofs shifted), stress per block",
+          "[problems][two-blocks][field-mesh]") {
+  const auto p = blocks();
+  const auto mesh = p.field_mesh();
+  const auto lower = p.lower().field_mesh(), upper = p.upper().field_mesh();
+  REQUIRE(mesh.has_value());
+  REQUIRE(mesh->npoints() == lower->npoints() + upper->npoints());
+  REQUIRE(mesh->ncells() == lower->ncells() + upper->ncells());
+  const nsb::Index pl = lower->npoints(), cl = lower->ncells();
+  CHECK(mesh->point_dofs.topRows(pl) == lower->point_dofs);
+  CHECK(mesh->point_dofs.bottomRows(upper->npoints()) == (upper->point_dofs.array() + int(p.lower_dofs())).matrix());
+  CHECK(mesh->cells.bottomRows(upper->ncells()) == (upper->cells.array() + int(pl)).matrix());
+  CHECK(mesh->points.bottomRows(upper->npoints()) == upper->points);
+  for (nsb::Index c = 0; c < mesh->ncells(); ++c) CHECK(mesh->cell_body[c] == (c < cl ? 0 : 1));
+  // Each block's part of the stress is that block's own cell stress.
+  const nsb::Vec u = 1e-3 * nsb::Vec::LinSpaced(p.ndof(), -1.0, 2.0);
+  Eigen::MatrixXd sigma(mesh->ncells(), 3), sl(cl, 3), su(upper->ncells(), 3);
+  p.cell_stress(u, sigma);
+  p.lower().cell_stress(u.head(p.lower_dofs()), sl);
+  p.upper().cell_stress(u.tail(p.ndof() - p.lower_dofs()), su);
+  CHECK(sigma.topRows(cl) == sl);
+  CHECK(sigma.bottomRows(su.rows()) == su);
+  CHECK(sl.cwiseAbs().maxCoeff() > 0.0);
+}

@@ -88,7 +88,37 @@ def write_report(root):
             f.write(f"cd-lagrange,lumped,{t},{1 + 1e-3 * (k % 7 - 3)}\n")
             f.write(f"cd-lagrange,singular,{t},{1 - 1e-4 * t}\n")
             f.write(f"newmark-lm,lumped,{t},{1 + 100 * t}\n")
+    # Pictures of the motion: a trajectory over the exact one, a space-time field, deformed cells.
+    with open(os.path.join(root, "traj.csv"), "w") as f:
+        f.write("# git_revision: test\nintegrator,ball,t [s],x [m]\n")
+        for k in range(101):
+            t = k / 100
+            for name, x in (("cd-lagrange", t), ("moreau-jean", 1.01 * t), ("exact", t)):
+                f.write(f"{name},ball 1,{t},{x}\n{name},ball 2,{t},{1 - x}\n")
+    with open(os.path.join(root, "field.csv"), "w") as f:
+        f.write("# git_revision: test\nintegrator,mass,t,s(0.25),s(0.75)\n")
+        for k in range(20):
+            f.write(f"exact,,{k / 10},-1,0\n")
+            f.write(f"cd-lagrange,lumped,{k / 10},{-1 + 0.3 * (-1) ** k},0.1\n")
+            f.write(f"cd-lagrange,singular,{k / 10},-1,n/a\n")
+    with open(os.path.join(root, "cells.csv"), "w") as f:
+        f.write("# git_revision: test\nintegrator,instant,x1,y1,x2,y2,x3,y3,x4,y4,sigma_yy [Pa]\n")
+        for instant, dy in (("t = 0.1", 0.1), ("t = 0.2", 0.0)):
+            for i in range(2):
+                f.write(f"cd-lagrange,{instant},{i},{dy},{i + 1},{dy},{i + 1},{dy + 1},{i},{dy + 1},{-1e5 * i - 1}\n")
+    with open(os.path.join(root, "arrows.csv"), "w") as f:
+        f.write("# git_revision: test\nintegrator,instant,x [m],y [m],Lambda_x [N s],Lambda_y [N s]\n")
+        f.write("cd-lagrange,t = 0.2,0,0,0.1,2\ncd-lagrange,t = 0.2,2,0,0,1\n")
     specs = [
+        {"id": "traj", "title": "traj", "csv": "traj.csv", "x": "t [s]", "y": "x [m]", "series": ["integrator", "ball"],
+         "panels": [], "log_x": False, "log_y": False, "small_multiples": True, "overlay": "exact"},
+        {"id": "field", "title": "field", "csv": "field.csv", "x": "", "y": "t", "series": [], "panels": ["integrator", "mass"],
+         "log_x": False, "log_y": False, "kind": "space_time", "values": ["s(0.25)", "s(0.75)"], "positions": [0.25, 0.75],
+         "value_label": "sigma / (rho c v0)"},
+        {"id": "cells", "title": "cells", "csv": "cells.csv", "x": "", "y": "sigma_yy [Pa]", "series": [],
+         "panels": ["integrator", "instant"], "log_x": False, "log_y": False, "kind": "deformed",
+         "values": ["x1", "y1", "x2", "y2", "x3", "y3", "x4", "y4"], "positions": [], "value_label": "sigma_yy [Pa]",
+         "arrows_csv": "arrows.csv"},
         {"id": "conv", "title": "conv", "csv": "conv.csv", "x": "dt [s]", "y": "err", "series": ["integrator"],
          "panels": [], "log_x": True, "log_y": True, "slopes": [1, 2], "small_multiples": False, "deviation": False},
         {"id": "evals", "title": "evals", "csv": "conv.csv", "x": "F_int evals", "y": "err", "series": ["integrator"],
@@ -107,7 +137,7 @@ def test_figures():
         script = os.path.join(os.path.dirname(figures.__file__), "figures.py")
         for style, sub in (("screen", "figures"), ("paper", os.path.join("figures", "paper"))):
             subprocess.run(["/usr/bin/python3", script, root, "--style", style], check=True, capture_output=True)
-            for fid in ("conv", "evals", "hist"):
+            for fid in ("conv", "evals", "hist", "traj", "field", "cells"):
                 for ext in ("png", "pdf"):
                     path = os.path.join(root, sub, f"{fid}.{ext}")
                     check(os.path.getsize(path) > 1000, f"{path} missing or empty")
@@ -134,6 +164,17 @@ def test_figures():
             {"integrator": "b", "mass": "m1", "t [s]": "0", "E/E0": "1"}]
     panels = figures.panel_lines(spec, rows)
     check(sorted(panels) == [("a",), ("b",)], f"panels {sorted(panels)}")
+    # An overlay (the exact solution) is no panel of its own but a line in every panel.
+    over = dict(spec, deviation=False, overlay="exact")
+    overlaid = figures.panel_lines(over, rows + [{"integrator": "exact", "mass": "m1", "t [s]": "0", "E/E0": "1"}])
+    check(sorted(overlaid) == [("a",), ("b",)], f"overlay panels {sorted(overlaid)}")
+    check(all(any(line["overlay"] for line in lines.values()) for lines in overlaid.values()), "overlay not in every panel")
+    # Space-time grids: the exact solution (no mass model) heads its column; the colour scale is
+    # diverging and centred on 0 for signed values, its limit at a high percentile of |value|.
+    where, nrows, ncols = figures.panel_grid([("exact", ""), ("s", "lumped"), ("s", "singular")])
+    check((where[("exact", "")], where[("s", "singular")], nrows, ncols) == ((0, 0), (1, 1), 2, 2), f"grid {where}")
+    cmap, lo, hi, extend = figures.colour_scale([-1.0] * 2000 + [0.5, 40.0])
+    check(cmap == "RdBu_r" and lo == -hi and hi == 1.0 and extend == "both", f"colour scale {cmap} {lo} {hi} {extend}")
     check(sorted(line["pts"][0][1] for line in panels[("a",)].values()) == [-0.5, 0.5], "deviation not signed")
 
 
