@@ -2,6 +2,8 @@
 //
 //   nsbench [--plugin FILE]... list
 //   nsbench [--plugin FILE]... run --problem P --integrator I --dt DT --t-end T [--set key=value]... --out DIR
+//                                  [--fields DIR [--fields-every K]]   ParaView field output
+//                                  (integrators/field_output.hpp) of problems with a body mesh
 //   nsbench [--plugin FILE]... check --integrator I | --problem P   the generic properties
 //                                  every integrator (problem) is held to
 //                                  (integrators/conformance.hpp), one line each; exit 1 when
@@ -20,13 +22,16 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <algorithm>
 #include <csignal>
 #include <iostream>
+#include <optional>
 
 #include "app/cli_options.hpp"
 #include "core/output.hpp"
 #include "core/plugin.hpp"
 #include "integrators/conformance.hpp"
+#include "integrators/field_output.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
 #include "problems/registry.hpp"
@@ -60,8 +65,28 @@ void list() {
   }
 }
 
+// --fields DIR before any work: the problem has a body mesh (naming those that do), and DIR
+// is not --out nor holds it (DIR is replaced whole when the run ends).
+void check_fields_dir(const nsb::Problem& problem, const std::string& fields, const std::string& out) {
+  if (!problem.field_mesh()) {
+    std::vector<std::string> meshed;
+    for (const auto& e : nsb::problem_registry())
+      if (e.make(nsb::Params(e.parameters()))->field_mesh()) meshed.push_back(e.name);
+    throw nsb::InputError(fmt::format("--fields: problem {} has no body mesh to write; valid: a problem built from bars "
+                                      "or plane bodies ({})",
+                                      problem.name(), fmt::join(meshed, ", ")));
+  }
+  namespace fs = std::filesystem;
+  const fs::path f = fs::weakly_canonical(fields), o = fs::weakly_canonical(out);
+  const auto [end, rest] = std::mismatch(f.begin(), f.end(), o.begin(), o.end());
+  if (end == f.end())
+    throw nsb::InputError(fmt::format("--fields '{}': is or contains --out '{}', and is replaced whole when the run ends; "
+                                      "valid: another directory (e.g. {}/fields)",
+                                      fields, out, out));
+}
+
 struct RunArgs {
-  std::string problem, integrator, dt, t_end, out, sample_every = "1";
+  std::string problem, integrator, dt, t_end, out, sample_every = "1", fields, fields_every;
   std::vector<std::string> sets;
 };
 
@@ -79,6 +104,17 @@ int run_case(const RunArgs& a) {
   if (every < 1 || every != static_cast<long>(every))
     throw nsb::InputError(fmt::format("--sample-every {}: must be an integer >= 1", a.sample_every));
   options.sample_every = static_cast<long>(every);
+  if (!a.fields_every.empty() && a.fields.empty())
+    throw nsb::InputError(fmt::format("--fields-every {}: given without --fields DIR", a.fields_every));
+  options.state_every = options.sample_every;
+  if (!a.fields_every.empty()) {
+    const double k = nsb::parse_real(a.fields_every, "--fields-every");
+    if (k < 1 || k != static_cast<long>(k) || k > 1e15)
+      throw nsb::InputError(fmt::format("--fields-every {}: must be an integer >= 1 (every k-th step; the first and last "
+                                        "states are always written)", a.fields_every));
+    options.state_every = static_cast<long>(k);
+  }
+  if (!a.fields.empty()) check_fields_dir(*problem, a.fields, a.out);
   if (!(options.dt > 0.0)) throw nsb::InputError(fmt::format("--dt {}: must be > 0", a.dt));
   if (!(options.t_end > 0.0)) throw nsb::InputError(fmt::format("--t-end {}: must be > 0", a.t_end));
   if (options.dt > options.t_end)  // refused, not clipped: the run would end at t = dt
@@ -94,11 +130,17 @@ int run_case(const RunArgs& a) {
   std::signal(SIGTERM, on_interrupt);
 
   integrator->init(*problem, problem->initial_state());
+  std::optional<nsb::FieldWriter> fields;
+  if (!a.fields.empty()) {
+    fields.emplace(*problem, a.fields, "--fields", static_cast<long>(options.t_end / options.dt) / options.state_every + 2);
+    options.state_sink = &*fields;
+  }
   const std::filesystem::path dir(a.out);
   nsb::CsvSeriesFile series(dir / "series.csv");  // streamed: memory bounded whatever the length
   options.series_sink = &series;
   const nsb::RunResult result = nsb::run(*problem, *integrator, options);
   series.commit();
+  if (fields) fields->commit();
   nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));
   if (!integrator->events().empty())  // the references' located events
     nsb::write_file_atomic(dir / "events.csv", nsb::events_to_csv(integrator->events()));
@@ -164,6 +206,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--set", a.sets, "parameter as key=value (repeatable)");
   run_cmd->add_option("--sample-every", a.sample_every, "record every k-th step (default 1)");
   run_cmd->add_option("--out", a.out, "output directory")->required();
+  run_cmd->add_option("--fields", a.fields, "write ParaView fields (fields.pvd, fields_NNNNNN.vtu) into this directory");
+  run_cmd->add_option("--fields-every", a.fields_every, "write the fields every k-th step (default: --sample-every)");
   auto* check_cmd = app.add_subcommand("check", "hold an integrator (a plugin's too) to the generic properties of every scheme");
   std::string checked_integrator, checked_problem;
   check_cmd->add_option("--integrator", checked_integrator, "integrator to check (see nsbench list)");

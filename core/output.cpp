@@ -63,16 +63,16 @@ std::string read_file_bounded(const std::filesystem::path& path, std::size_t max
   return text;
 }
 
-void ensure_directory(const std::filesystem::path& dir) {
+void ensure_directory(const std::filesystem::path& dir, const std::string& option) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir))
-    throw InputError(fmt::format("--out '{}': cannot create directory{}", dir.string(),
+    throw InputError(fmt::format("{} '{}': cannot create directory{}", option, dir.string(),
                                  ec ? ": " + ec.message() : ""));
   const auto probe = dir / fmt::format(".nsbench.probe.tmp.{}", static_cast<long>(::getpid()));
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0)
-    throw InputError(fmt::format("--out '{}': cannot write files there: {}", dir.string(), std::strerror(errno)));
+    throw InputError(fmt::format("{} '{}': cannot write files there: {}", option, dir.string(), std::strerror(errno)));
   ::close(fd);
   std::filesystem::remove(probe, ec);
 }
@@ -120,13 +120,13 @@ void link_tree(const std::filesystem::path& from, const std::filesystem::path& t
 
 }  // namespace
 
-ReportDirectory::ReportDirectory(const std::filesystem::path& target) {
+ReportDirectory::ReportDirectory(const std::filesystem::path& target, const std::string& option) : option_(option) {
   namespace fs = std::filesystem;
-  ensure_directory(target);
+  ensure_directory(target, option);
   target_ = fs::canonical(target);  // "out/", ".": a name and a parent to stage beside
   const fs::path parent = target_.parent_path();
   const std::string name = target_.filename().string();
-  if (name.empty()) throw InputError(fmt::format("--out '{}': the root directory cannot be a report", target.string()));
+  if (name.empty()) throw InputError(fmt::format("{} '{}': the root directory cannot be a report", option, target.string()));
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(parent, ec)) {  // earlier runs' leftovers
     const std::string entry = e.path().filename().string();
@@ -138,10 +138,10 @@ ReportDirectory::ReportDirectory(const std::filesystem::path& target) {
   try {
     fs::create_directory(staging_);
     link_tree(target_, staging_);
-    ensure_directory(staging_);
+    ensure_directory(staging_, option);
   } catch (const fs::filesystem_error& e) {
     fs::remove_all(staging_, ec);
-    throw InputError(fmt::format("--out '{}': cannot stage the report beside it: {}", target_.string(), e.what()));
+    throw InputError(fmt::format("{} '{}': cannot stage the report beside it: {}", option, target_.string(), e.what()));
   }
 }
 
@@ -156,7 +156,7 @@ void ReportDirectory::commit() {
     // A file system without the exchange (EINVAL): two renames, the report absent between them.
     const std::filesystem::path old = staging_.string() + ".old";
     if (errno != EINVAL || ::rename(target_.c_str(), old.c_str()) != 0 || ::rename(staging_.c_str(), target_.c_str()) != 0)
-      throw InputError(fmt::format("--out '{}': cannot replace the report: {}", target_.string(), std::strerror(errno)));
+      throw InputError(fmt::format("{} '{}': cannot replace the report: {}", option_, target_.string(), std::strerror(errno)));
     staging_ = old;
   }
   committed_ = true;

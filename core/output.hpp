@@ -18,8 +18,9 @@ std::string fnv1a64(std::string_view bytes);
 std::string read_file_bounded(const std::filesystem::path& path, std::size_t max_bytes, const std::string& what);
 
 // Creates the directory (and parents) and checks that a file can be created in it; throws
-// InputError when either fails (a read-only --out is reported before any computation).
-void ensure_directory(const std::filesystem::path& dir);
+// InputError naming `option` when either fails (a read-only --out is reported before any
+// computation).
+void ensure_directory(const std::filesystem::path& dir, const std::string& option = "--out");
 
 // Removes what write_file_atomic leaves behind when its process is killed: hidden
 // ".NAME.tmp.PID" files in `dir` whose process is gone.
@@ -34,7 +35,8 @@ void remove_stale_temporaries(const std::filesystem::path& dir);
 // target once its process is gone). Destroyed without commit(): the staging is removed.
 class ReportDirectory {
  public:
-  explicit ReportDirectory(const std::filesystem::path& target);
+  // Errors name `option`, the command-line option that gave `target`.
+  explicit ReportDirectory(const std::filesystem::path& target, const std::string& option = "--out");
   ~ReportDirectory();
   ReportDirectory(const ReportDirectory&) = delete;
   ReportDirectory& operator=(const ReportDirectory&) = delete;
@@ -43,6 +45,7 @@ class ReportDirectory {
 
  private:
   std::filesystem::path target_, staging_;
+  std::string option_;
   bool committed_ = false;
 };
 

@@ -69,6 +69,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     throw InputError(fmt::format("max_force_evaluations {}: must be >= 0 (0: no budget)", options.max_force_evaluations));
   if (options.sample_every < 1)
     throw InputError(fmt::format("sample_every {}: must be >= 1", options.sample_every));
+  if (options.state_every < 1) throw InputError(fmt::format("state_every {}: must be >= 1", options.state_every));
   if (options.t_end / options.dt > static_cast<double>(options.max_steps))
     throw InputError(fmt::format("--dt {} with --t-end {} needs more than {} steps; valid: t_end/dt <= {}",
                                  options.dt, options.t_end, options.max_steps, options.max_steps));
@@ -117,11 +118,18 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     const State& s = integrator.state();
     return s.u.allFinite() && s.v.allFinite() && std::isfinite(integrator.energy().total());
   };
+  long state_written = -1;  // the step of the last state given to the sink
+  const auto write_state = [&]() {
+    if (!options.state_sink || state_written == result.steps) return;
+    options.state_sink->state(integrator.state(), integrator.impulses(), integrator.tangential_impulses());
+    state_written = result.steps;
+  };
 
   result.initial_energy = integrator.energy().total();
   result.energy_scale = energy_error_scale(problem, result.initial_energy);
   result.energy_scale_text = result.initial_energy != 0.0 ? "|E0|" : "E0 = 0: " + problem.energy_scale_text();
   sample(0.0);
+  write_state();
   const double cpu_start = cpu_seconds();
   double observe_seconds = 0.0;  // in the observer and sampling
   StepInfo info;
@@ -151,11 +159,15 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
       result.max_penetration = std::max(result.max_penetration, -min_gap());
       const bool last = integrator.state().t >= options.t_end * (1.0 - 1e-12);
       const bool sampled = result.steps % options.sample_every == 0 || last;
-      if (observer || sampled) {
+      const bool stored = options.state_sink && (result.steps % options.state_every == 0 || last);
+      if (observer || sampled || stored) {
         const double observe_start = cpu_seconds();
         if (observer) observer(integrator, info);
         const bool diverged = sampled && !finite();
         if (sampled && !diverged) sample(info.dt);
+        // Divergence is found where it was without a sink (the run's numbers do not change);
+        // a non-finite state is not written.
+        if (stored && !diverged && finite()) write_state();
         observe_seconds += cpu_seconds() - observe_start;
         if (diverged) {
           result.status = RunStatus::Diverged;
@@ -180,6 +192,11 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   } catch (const std::exception& ex) {
     result.status = RunStatus::Diverged;
     result.message = ex.what();
+  }
+  if (options.state_sink && state_written != result.steps && finite()) {  // stopped early: the last state too
+    const double observe_start = cpu_seconds();
+    write_state();
+    observe_seconds += cpu_seconds() - observe_start;
   }
   result.cpu_seconds = cpu_seconds() - cpu_start;
   result.step_cpu_seconds = result.cpu_seconds - observe_seconds;

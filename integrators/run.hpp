@@ -27,12 +27,24 @@ class SeriesSink {
   virtual void row(std::span<const double> values) = 0;
 };
 
+// Where a run's states go (RunOptions::state_sink; field output, integrators/field_output.hpp):
+// the initial state, every state_every-th step's and the last one's (the state the summary
+// reports, also when the run stops early), with the impulses of the step that ended there
+// (zero for the initial state). It only reads: the run's numbers are the same without it.
+class StateSink {
+ public:
+  virtual ~StateSink() = default;
+  virtual void state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses) = 0;
+};
+
 struct RunOptions {
   double dt = 0.0;          // requested step (> 0)
   double t_end = 0.0;       // the run stops at the first step reaching t_end
   long sample_every = 1;    // record every k-th step (and the first and last)
   bool record_series = true;
   SeriesSink* series_sink = nullptr;  // set: the samples go there, RunResult::series stays empty
+  StateSink* state_sink = nullptr;    // set: states go there (StateSink)
+  long state_every = 1;               // every k-th step's state (and the first and last)
   long max_steps = 200'000'000;
   // Work budget: the run stops with status OverBudget once the integrator's F_int
   // evaluations (WorkCounters::force_evaluations) exceed it; 0: no budget. A count, not a

@@ -7,6 +7,7 @@ packages=(
   catch2 libbenchmark-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libtomlplusplus-dev  # study files (nsbench-study run FILE.toml)
   python3 python3-matplotlib
+  python3-meshio  # tests only: tests/scripts/fields_test.py reads nsbench run --fields back (VTK files)
   # Siconos kernel: the optional peers (siconos-* integrators, CMake option NSBENCH_SICONOS).
   libsiconos-kernel-dev
   # BLAS: nsbench's own numerics call none (moreau_jean.hpp says why); the Siconos peers do.

@@ -228,3 +228,45 @@ TEST_CASE("cli: a step larger than t_end and a read-only --out are refused befor
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Contains("--out '/proc/self': cannot write files there"));
 }
+
+TEST_CASE("cli: --fields writes ParaView files and changes nothing else; bad field options exit 2 before the run",
+          "[app][fields]") {
+  const std::string run = "run --problem block-2d --integrator cd-lagrange --dt 1e-4 --t-end 0.02 --set nx=4 --set ny=2 ";
+  const std::string plain = tmpdir("fields_plain"), out = tmpdir("fields_out"), fields = tmpdir("fields_dir");
+  for (const auto& d : {plain, out, fields}) std::filesystem::remove_all(d);
+  REQUIRE(nsbench(run + "--sample-every 10 --out " + plain).code == 0);
+  REQUIRE(nsbench(run + "--sample-every 10 --out " + out + " --fields " + fields).code == 0);
+  const auto read = [](const std::string& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  CHECK(read(plain + "/series.csv") == read(out + "/series.csv"));
+  auto a = nlohmann::json::parse(read(plain + "/summary.json")), b = nlohmann::json::parse(read(out + "/summary.json"));
+  for (const char* timing : {"cpu_seconds", "step_cpu_seconds", "wall_seconds"}) {
+    a.erase(timing);
+    b.erase(timing);
+  }
+  CHECK(a == b);
+  // Every 10th of 200 steps by default (--sample-every), the first and the last.
+  std::size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(fields)) files += e.path().extension() == ".vtu";
+  CHECK(files == 21);
+  CHECK_THAT(read(fields + "/fields.pvd"), Catch::Contains("timestep=\"0\"") && Catch::Contains("fields_000020.vtu"));
+
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"run --problem bouncing-mass --integrator cd-lagrange --dt 1e-3 --t-end 0.1 --out " + out + " --fields " + fields,
+       "--fields: problem bouncing-mass has no body mesh to write; valid: a problem built from bars or plane bodies ("},
+      {run + "--out " + out + " --fields " + fields + " --fields-every 0", "--fields-every 0: must be an integer >= 1"},
+      {run + "--out " + out + " --fields-every 5", "--fields-every 5: given without --fields DIR"},
+      {run + "--out " + out + " --fields " + out, "--fields '" + out + "': is or contains --out"},
+  };
+  for (const auto& [args, message] : bad) {
+    const auto r = nsbench(args);
+    INFO(args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::StartsWith("nsbench: error: " + message.substr(0, 12)) && Catch::Contains(message));
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+  }
+  CHECK_THAT(nsbench(bad[0].first).output, Catch::Contains("block-2d") && Catch::Contains("signorini-bar"));
+  for (const auto& d : {plain, out, fields}) std::filesystem::remove_all(d);
+}

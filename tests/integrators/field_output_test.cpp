@@ -1,0 +1,207 @@
+// Field output (integrators/field_output.hpp): a run with a FieldWriter writes the first,
+// every k-th and the last state, the .pvd lists them with the steps' times, the values read
+// back are the run's doubles exactly, writing allocates nothing and changes no number of
+// the run.
+#include "integrators/field_output.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+#include "tests/support/allocation_counter.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("nsbench_fields_test_{}_{}", name, ::getpid());
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  REQUIRE(in.good());
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The numbers of a .vtu DataArray named `name`, parsed with strtod.
+std::vector<double> data_array(const std::string& vtu, const std::string& name) {
+  const auto at = vtu.find("Name=\"" + name + "\"");
+  REQUIRE(at != std::string::npos);
+  const auto begin = vtu.find('>', at) + 1, end = vtu.find("</DataArray>", begin);
+  std::vector<double> values;
+  const char* p = vtu.c_str() + begin;
+  const char* stop = vtu.c_str() + end;
+  while (true) {
+    char* next = nullptr;
+    const double x = std::strtod(p, &next);
+    if (next == p || next > stop) break;
+    values.push_back(x);
+    p = next;
+  }
+  return values;
+}
+
+std::vector<double> pvd_times(const std::string& pvd, std::vector<std::string>& files) {
+  std::vector<double> times;
+  const std::regex entry(R"re(<DataSet timestep="([^"]+)" group="" part="0" file="([^"]+)"/>)re");
+  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry); it != std::sregex_iterator(); ++it) {
+    times.push_back(std::strtod((*it)[1].str().c_str(), nullptr));
+    files.push_back((*it)[2].str());
+  }
+  return times;
+}
+
+}  // namespace
+
+TEST_CASE("fields: the first, every k-th and the last state, read back exactly; the run's numbers unchanged",
+          "[integrators][fields]") {
+  const auto problem = nsb::make_problem("signorini-bar", {{"N", "10"}, {"g0", "0.05"}});
+  nsb::RunOptions options;
+  options.dt = 0.01;
+  options.t_end = 0.5;  // 50 steps
+  options.state_every = 7;
+  auto plain = nsb::make_integrator("cd-lagrange");
+  plain->init(*problem, problem->initial_state());
+  const nsb::RunResult reference = nsb::run(*problem, *plain, options);
+
+  const fs::path dir = scratch("bar");
+  auto integrator = nsb::make_integrator("cd-lagrange");
+  integrator->init(*problem, problem->initial_state());
+  nsb::FieldWriter writer(*problem, dir, "--fields", 9);
+  options.state_sink = &writer;
+  const nsb::RunResult result = nsb::run(*problem, *integrator, options);
+  writer.commit();
+  // The same run, sample for sample and state for state.
+  CHECK(result.series.values == reference.series.values);
+  CHECK(integrator->state().u == plain->state().u);
+  CHECK(integrator->state().v == plain->state().v);
+  CHECK(result.steps == 50);
+
+  std::vector<std::string> files;
+  const std::vector<double> times = pvd_times(slurp(dir / "fields.pvd"), files);
+  const std::vector<long> steps = {0, 7, 14, 21, 28, 35, 42, 49, 50};
+  REQUIRE(times.size() == steps.size());
+  CHECK(writer.files() == 9);
+  const std::size_t t_col = reference.series.column("t");
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    CHECK(times[i] == reference.series.at(static_cast<std::size_t>(steps[i]), t_col));
+    CHECK(files[i] == fmt::format("fields_{:06d}.vtu", i));
+    CHECK(fs::exists(dir / files[i]));
+  }
+  CHECK(times.back() == result.t_final);
+  // The last file is the final state, exactly.
+  const std::string vtu = slurp(dir / files.back());
+  const auto u = data_array(vtu, "displacement"), v = data_array(vtu, "velocity");
+  const auto mesh = problem->field_mesh();
+  Eigen::MatrixXd sigma(mesh->ncells(), 1);
+  problem->cell_stress(integrator->state().u, sigma);
+  REQUIRE(u.size() == 33);
+  for (nsb::Index a = 0; a < 11; ++a) {
+    CHECK(u[3 * a] == integrator->state().u[a]);
+    CHECK(v[3 * a] == integrator->state().v[a]);
+    CHECK(u[3 * a + 1] == 0.0);
+  }
+  const auto stress = data_array(vtu, "sigma");
+  REQUIRE(stress.size() == 10);
+  for (nsb::Index e = 0; e < 10; ++e) CHECK(stress[e] == sigma(e, 0));
+  CHECK(data_array(vtu, "reference_position")[3] == 0.1);
+  CHECK(data_array(vtu, "connectivity") == std::vector<double>{0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7, 8, 8, 9, 9, 10});
+  CHECK(data_array(vtu, "types") == std::vector<double>(10, 3.0));  // VTK_LINE
+  // The contact impulse sits on node 0 (the contact row's dof), the first file has none.
+  bool impulse = false;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const auto lambda = data_array(slurp(dir / files[i]), "contact_impulse");
+    for (std::size_t k = 1; k < lambda.size(); ++k) CHECK(lambda[k] == 0.0);
+    impulse = impulse || lambda[0] > 0.0;
+    if (i == 0) CHECK(lambda[0] == 0.0);
+  }
+  CHECK(impulse);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("fields: a run stopped early writes its last state; earlier runs' files are not kept", "[integrators][fields]") {
+  const auto problem = nsb::make_problem("block-2d", {{"nx", "4"}, {"ny", "2"}});
+  const fs::path dir = scratch("budget");
+  fs::create_directories(dir);
+  std::ofstream(dir / "fields_000099.vtu") << "stale";
+  std::ofstream(dir / "notes.txt") << "kept";
+  auto integrator = nsb::make_integrator("cd-lagrange");
+  integrator->init(*problem, problem->initial_state());
+  nsb::FieldWriter writer(*problem, dir, "--fields", 4);
+  nsb::RunOptions options;
+  options.dt = 1e-5;
+  options.t_end = 1.0;
+  options.state_every = 1000;
+  options.max_force_evaluations = 25;  // stops after about 25 steps
+  options.state_sink = &writer;
+  const nsb::RunResult result = nsb::run(*problem, *integrator, options);
+  writer.commit();
+  REQUIRE(result.status == nsb::RunStatus::OverBudget);
+  std::vector<std::string> files;
+  const auto times = pvd_times(slurp(dir / "fields.pvd"), files);
+  REQUIRE(times.size() == 2);
+  CHECK(times[0] == 0.0);
+  CHECK(times[1] == result.t_final);
+  CHECK_FALSE(fs::exists(dir / "fields_000099.vtu"));
+  CHECK(slurp(dir / "notes.txt") == "kept");
+  const auto u = data_array(slurp(dir / files[1]), "displacement");
+  REQUIRE(u.size() == 3 * 15);
+  for (nsb::Index a = 0; a < 15; ++a) {
+    CHECK(u[3 * a] == integrator->state().u[2 * a]);
+    CHECK(u[3 * a + 1] == integrator->state().u[2 * a + 1]);
+  }
+  CHECK(data_array(slurp(dir / files[1]), "types") == std::vector<double>(8, 9.0));  // VTK_QUAD
+  fs::remove_all(dir);
+}
+
+TEST_CASE("fields: writing a state allocates nothing; a problem without a mesh is refused", "[integrators][fields]") {
+  const auto problem = nsb::make_problem("two-blocks", {{"mu", "0.3"}});  // tangent rows too
+  const fs::path dir = scratch("alloc");
+  {
+    nsb::FieldWriter writer(*problem, dir, "--fields", 3);
+    nsb::State s = problem->initial_state();
+    s.u = nsb::Vec::LinSpaced(problem->ndof(), -1e-3, 1e-3);
+    const nsb::Vec normal = nsb::Vec::Ones(problem->ncontacts()), tangential = 0.5 * normal;
+    writer.state(s, normal, tangential);
+    long allocations = 0;
+    {
+      nsb::test::CountAllocations count;
+      writer.state(s, normal, tangential);
+      s.t = 1.0;
+      writer.state(s, normal, tangential);
+      allocations = count.count();
+    }
+    CHECK(allocations == 0);
+    writer.commit();
+    // L^T Lambda_N + T^T Lambda_T over the points: the node-to-segment rows' weights sum to
+    // zero, so the total is the floor rows' (1 per row along y, 0.5 along x).
+    std::vector<std::string> files;
+    REQUIRE(pvd_times(slurp(dir / "fields.pvd"), files).size() == 3);
+    const auto lambda = data_array(slurp(dir / files[2]), "contact_impulse");
+    double x = 0.0, y = 0.0;
+    for (std::size_t k = 0; k < lambda.size(); k += 3) {
+      x += lambda[k];
+      y += lambda[k + 1];
+    }
+    const auto floors = static_cast<double>(problem->ncontacts() - 8);  // upper_nx + 1 = 8 node-to-segment rows
+    CHECK(y == Approx(floors).epsilon(1e-12));
+    CHECK(x == Approx(0.5 * floors).epsilon(1e-12));
+  }
+  fs::remove_all(dir);
+  const auto mass = nsb::make_problem("bouncing-mass");
+  CHECK_THROWS_WITH(nsb::FieldWriter(*mass, dir, "--fields", 1),
+                    Catch::Contains("--fields") && Catch::Contains("bouncing-mass") && Catch::Contains("no body mesh"));
+  CHECK_FALSE(fs::exists(dir));
+}
