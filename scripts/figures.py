@@ -403,6 +403,16 @@ def grid_figure(keys, paper, panel_size, labels):
     return fig, axes, where
 
 
+def finish_coloured(fig, axes, mappable, extend, spec, meta, reports, paper):
+    """One colour bar for every panel (none when no panel drew), the title, then save."""
+    if mappable is not None:
+        bar = fig.colorbar(mappable, ax=axes.ravel().tolist(), extend=extend, shrink=0.9, pad=0.02)
+        bar.set_label(spec.get("value_label", ""))
+    if not paper:
+        fig.suptitle(spec["title"], fontsize=12)
+    save(fig, spec, meta, reports, paper)
+
+
 def draw_space_time(spec, reports, paper=False):
     """A field over position (horizontal) and time (vertical), one panel per scheme and mass
     model, on one colour scale (colour_scale): spec's `values` columns at `positions`, time in
@@ -431,12 +441,7 @@ def draw_space_time(spec, reports, paper=False):
         else:
             ax.text(0.5, 0.5, "no run", ha="center", va="center", transform=ax.transAxes, color="0.4")
         ax.set_title("\n".join(k for k in key if k), fontsize=7 if paper else 9)  # narrow panels: a line each
-    if mesh is not None:
-        bar = fig.colorbar(mesh, ax=axes.ravel().tolist(), extend=extend, shrink=0.9, pad=0.02)
-        bar.set_label(spec.get("value_label", ""))
-    if not paper:
-        fig.suptitle(spec["title"], fontsize=12)
-    save(fig, spec, meta, reports, paper)
+    finish_coloured(fig, axes, mesh, extend, spec, meta, reports, paper)
 
 
 def draw_deformed(spec, reports, paper=False):
@@ -486,12 +491,7 @@ def draw_deformed(spec, reports, paper=False):
     for ax in axes.flat:
         ax.set_xlim(min(p[0] for p in points) - 0.05 * span, max(p[0] for p in points) + 0.05 * span)
         ax.set_ylim(min(min(p[1] for p in points), 0.0) - 0.3 * span, max(p[1] for p in points) + 0.05 * span)
-    if coll is not None:
-        bar = fig.colorbar(coll, ax=axes.ravel().tolist(), extend=extend, shrink=0.9, pad=0.02)
-        bar.set_label(spec.get("value_label", ""))
-    if not paper:
-        fig.suptitle(spec["title"], fontsize=12)
-    save(fig, spec, meta, reports, paper)
+    finish_coloured(fig, axes, coll, extend, spec, meta, reports, paper)
 
 
 DRAWERS = {"space_time": draw_space_time, "deformed": draw_deformed}
