@@ -7,13 +7,10 @@
 
 #include "problems/signorini_bar.hpp"
 #include "studies/study.hpp"
+#include "tests/support/registered_study.hpp"
 
 namespace {
-const nsb::StudyEntry& study() {
-  for (const auto& s : nsb::study_registry())
-    if (s.name == "bar") return s;
-  throw std::logic_error("study bar not registered");
-}
+const nsb::StudyEntry& study() { return nsb::test::registered_study("bar"); }
 }  // namespace
 
 TEST_CASE("bar study: space-time stress of the exact solution and of a scheme from its initial state", "[studies][bar]") {

@@ -6,13 +6,10 @@
 #include <string>
 
 #include "studies/study.hpp"
+#include "tests/support/registered_study.hpp"
 
 namespace {
-const nsb::StudyEntry& study() {
-  for (const auto& s : nsb::study_registry())
-    if (s.name == "bodies") return s;
-  throw std::logic_error("study bodies not registered");
-}
+const nsb::StudyEntry& study() { return nsb::test::registered_study("bodies"); }
 
 // The tables of the given cases, run.
 std::vector<nsb::Table> tables_of(const std::vector<nsb::Json>& cases) {

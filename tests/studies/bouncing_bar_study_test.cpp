@@ -7,13 +7,10 @@
 
 #include "integrators/registry.hpp"
 #include "studies/study.hpp"
+#include "tests/support/registered_study.hpp"
 
 namespace {
-const nsb::StudyEntry& study() {
-  for (const auto& s : nsb::study_registry())
-    if (s.name == "bouncing-bar") return s;
-  throw std::logic_error("study bouncing-bar not registered");
-}
+const nsb::StudyEntry& study() { return nsb::test::registered_study("bouncing-bar"); }
 }  // namespace
 
 TEST_CASE("bouncing-bar study: every integrator x mass model; N 50..400 and 20 periods by default", "[studies][bouncing-bar]") {

@@ -7,13 +7,10 @@
 #include <string>
 
 #include "studies/study.hpp"
+#include "tests/support/registered_study.hpp"
 
 namespace {
-const nsb::StudyEntry& study() {
-  for (const auto& s : nsb::study_registry())
-    if (s.name == "friction") return s;
-  throw std::logic_error("study friction not registered");
-}
+const nsb::StudyEntry& study() { return nsb::test::registered_study("friction"); }
 
 nsb::Json run(const std::string& the_case, const std::string& integrator, double dt) {
   return nsb::run_study_case(study(), {{"case", the_case}, {"integrator", integrator}, {"dt", dt}}, {});
