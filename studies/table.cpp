@@ -151,7 +151,8 @@ std::optional<std::string> siunitx_number(const Cell& c, const std::string& form
 // What is not a number, in LaTeX: infinities as symbols, the rest as escaped text.
 std::string latex_word(const Cell& c, const std::string& format) {
   const std::string text = cell_text(c, format);
-  if (std::holds_alternative<double>(c) && std::isinf(std::get<double>(c))) return text[0] == '-' ? "$-\\infty$" : "$\\infty$";
+  if (std::holds_alternative<double>(c) && std::isinf(std::get<double>(c)))
+    return text[0] == '-' ? "$-\\infty$" : "$\\infty$";
   return latex_text(text);
 }
 

@@ -291,7 +291,8 @@ def compile_tables(engine, texts, work):
             f.write(text)
         body.append(f"% {name}\n\\input{{{path}}}\n")
     with open(os.path.join(work, "doc.tex"), "w") as f:
-        f.write(f"\\documentclass{{article}}\n\\usepackage{{{','.join(names)}}}\n\\begin{{document}}\n{''.join(body)}\\end{{document}}\n")
+        f.write(f"\\documentclass{{article}}\n\\usepackage{{{','.join(names)}}}\n\\begin{{document}}\n"
+                f"{''.join(body)}\\end{{document}}\n")
     r = subprocess.run([engine, "-interaction=nonstopmode", "-halt-on-error", "doc.tex"], cwd=work,
                        capture_output=True, text=True)
     return None if r.returncode == 0 else r.stdout[-1500:]
