@@ -3,7 +3,7 @@
 //   nsbench [--plugin FILE]... list
 //   nsbench [--plugin FILE]... run --problem P --integrator I --dt DT --t-end T [--set key=value]... --out DIR
 //                                  [--fields DIR [--fields-every K]]   ParaView field output
-//                                  (integrators/field_output.hpp) of problems with a body mesh
+//                                  (integrators/field_output.hpp) of the problem's bodies
 //   nsbench [--plugin FILE]... check --integrator I | --problem P   the generic properties
 //                                  every integrator (problem) is held to
 //                                  (integrators/conformance.hpp), one line each; exit 1 when

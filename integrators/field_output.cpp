@@ -23,6 +23,31 @@ void open_array(std::string& out, const char* type, const std::string& name, int
 
 int vtk_type(int points) { return points == 1 ? kVtkVertex : points == 2 ? kVtkLine : kVtkQuad; }
 
+// A plugin's mesh is not otherwise checked: one clear line rather than a crash or a file
+// ParaView cannot read.
+void check_mesh(const FieldMesh& m, const Problem& p, const std::string& option) {
+  const auto fail = [&](const std::string& why) {
+    throw InputError(fmt::format("{}: problem {}: field_mesh(): {}", option, p.name(), why));
+  };
+  if (m.dimension != 1 && m.dimension != 2) fail(fmt::format("dimension {}; valid: 1 or 2", m.dimension));
+  if (m.points.cols() != 2 || m.point_dofs.rows() != m.npoints() || m.point_dofs.cols() != m.dimension)
+    fail("points must be npoints x 2 and point_dofs npoints x dimension");
+  if (m.point_dofs.size() > 0 && (m.point_dofs.minCoeff() < -1 || m.point_dofs.maxCoeff() >= p.ndof()))
+    fail(fmt::format("a point dof outside [-1, ndof = {})", p.ndof()));
+  if (m.cell_body.size() != static_cast<std::size_t>(m.ncells())) fail("cell_body needs one entry per cell");
+  for (Index c = 0; c < m.ncells(); ++c) {
+    const int n = m.cell_size(c);
+    if (n != 1 && n != 2 && n != 4) fail(fmt::format("cell {} has {} points; valid: 1, 2 or 4", c, n));
+    for (Index k = 0; k < m.cells.cols(); ++k)
+      if (const int a = m.cells(c, k); k < n ? a >= m.npoints() : a != -1)
+        fail(fmt::format("cell {}: point {} outside [0, {}) or not padded with -1", c, a, m.npoints()));
+  }
+  if (m.nelements() > 0 && m.stress_components.empty()) fail("element cells and no stress component");
+  for (const FieldArray& a : m.body_arrays)
+    if (a.components != 1 && a.components != 3)
+      fail(fmt::format("body array {}: {} components; valid: 1 or 3", a.name, a.components));
+}
+
 }  // namespace
 
 FieldWriter::Part FieldWriter::make_part(bool elements) const {
@@ -72,7 +97,8 @@ FieldWriter::Part FieldWriter::make_part(bool elements) const {
   for (const Index c : part.cells) fmt::format_to(out, "{}\n", vtk_type(mesh_.cell_size(c)));
   part.head += "</DataArray>\n</Cells>\n";
   open_array(part.tail, "Int32", "body", 1);
-  for (const Index c : part.cells) fmt::format_to(std::back_inserter(part.tail), "{}\n", mesh_.cell_body[static_cast<std::size_t>(c)]);
+  for (const Index c : part.cells)
+    fmt::format_to(std::back_inserter(part.tail), "{}\n", mesh_.cell_body[static_cast<std::size_t>(c)]);
   part.tail += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   return part;
 }
@@ -85,6 +111,7 @@ FieldWriter::FieldWriter(const Problem& problem, const std::filesystem::path& di
         if (!mesh)
           throw InputError(fmt::format("{}: problem {} describes no bodies to write (Problem::field_mesh())", option,
                                        problem.name()));
+        check_mesh(*mesh, problem, option);
         return std::move(*mesh);
       }()),
       dir_(dir, option) {

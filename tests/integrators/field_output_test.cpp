@@ -65,10 +65,10 @@ std::vector<double> pvd_times(const std::string& pvd, std::vector<std::string>& 
   return times;
 }
 
-// A problem that describes no bodies (as a plugin's may): one free mass, no contact.
+// A plugin-like problem: one free mass, no contact, and the mesh it is given (none by default).
 class Meshless final : public nsb::RigidProblem {
  public:
-  Meshless() {
+  explicit Meshless(std::optional<nsb::FieldMesh> mesh = std::nullopt) : mesh_(std::move(mesh)) {
     mass_ = nsb::Vec::Ones(1);
     load_ = nsb::Vec::Zero(1);
     contacts_.normal.resize(0, 1);
@@ -77,9 +77,11 @@ class Meshless final : public nsb::RigidProblem {
   std::string name() const override { return "meshless"; }
   const nsb::Params& parameters() const override { return params_; }
   nsb::State initial_state() const override { return {0.0, nsb::Vec::Zero(1), nsb::Vec::Zero(1)}; }
+  std::optional<nsb::FieldMesh> field_mesh() const override { return mesh_; }
 
  private:
   nsb::Params params_;
+  std::optional<nsb::FieldMesh> mesh_;
 };
 
 }  // namespace
@@ -223,6 +225,25 @@ TEST_CASE("fields: writing a state allocates nothing; a problem that describes n
   const Meshless meshless;
   CHECK_THROWS_WITH(nsb::FieldWriter(meshless, dir, "--fields", 1),
                     Catch::Contains("--fields") && Catch::Contains("meshless") && Catch::Contains("describes no bodies"));
+  // A malformed mesh: one line naming what is wrong, and no directory.
+  nsb::FieldMesh good;
+  good.add_vertex(0.0, 0.0, {0}, 0);
+  CHECK_NOTHROW(nsb::FieldWriter(Meshless(good), dir, "--fields", 1));
+  fs::remove_all(dir);
+  nsb::FieldMesh bad = good;
+  bad.point_dofs(0, 0) = 1;  // ndof = 1
+  CHECK_THROWS_WITH(nsb::FieldWriter(Meshless(bad), dir, "--fields", 1),
+                    "--fields: problem meshless: field_mesh(): a point dof outside [-1, ndof = 1)");
+  bad = good;
+  bad.points = Eigen::MatrixXd::Zero(3, 2);
+  bad.point_dofs = Eigen::MatrixXi::Constant(3, 1, -1);
+  bad.cells = Eigen::MatrixXi(1, 3);
+  bad.cells << 0, 1, 2;
+  CHECK_THROWS_WITH(nsb::FieldWriter(Meshless(bad), dir, "--fields", 1),
+                    "--fields: problem meshless: field_mesh(): cell 0 has 3 points; valid: 1, 2 or 4");
+  bad.cells << 0, 1, -1;
+  CHECK_THROWS_WITH(nsb::FieldWriter(Meshless(bad), dir, "--fields", 1),
+                    "--fields: problem meshless: field_mesh(): element cells and no stress component");
   CHECK_FALSE(fs::exists(dir));
 }
 
