@@ -3,7 +3,7 @@
 //   nsbench [--plugin FILE]... list
 //   nsbench [--plugin FILE]... run --problem P --integrator I --dt DT --t-end T [--set key=value]... --out DIR
 //                                  [--fields DIR [--fields-every K]]   ParaView field output
-//                                  (integrators/field_output.hpp) of problems with a body mesh
+//                                  (integrators/field_output.hpp) of the problem's bodies
 //   nsbench [--plugin FILE]... check --integrator I | --problem P   the generic properties
 //                                  every integrator (problem) is held to
 //                                  (integrators/conformance.hpp), one line each; exit 1 when
@@ -65,17 +65,9 @@ void list() {
   }
 }
 
-// --fields DIR before any work: the problem has a body mesh (naming those that do), and DIR
-// is not --out nor holds it (DIR is replaced whole when the run ends).
-void check_fields_dir(const nsb::Problem& problem, const std::string& fields, const std::string& out) {
-  if (!problem.field_mesh()) {
-    std::vector<std::string> meshed;
-    for (const auto& e : nsb::problem_registry())
-      if (e.make(nsb::Params(e.parameters()))->field_mesh()) meshed.push_back(e.name);
-    throw nsb::InputError(fmt::format("--fields: problem {} has no body mesh to write; valid: a problem built from bars "
-                                      "or plane bodies ({})",
-                                      problem.name(), fmt::join(meshed, ", ")));
-  }
+// --fields DIR before any work: DIR is not --out nor holds it (DIR is replaced whole when
+// the run ends). A problem that describes no bodies (a plugin's) is refused by FieldWriter.
+void check_fields_dir(const std::string& fields, const std::string& out) {
   namespace fs = std::filesystem;
   const fs::path f = fs::weakly_canonical(fields), o = fs::weakly_canonical(out);
   const auto [end, rest] = std::mismatch(f.begin(), f.end(), o.begin(), o.end());
@@ -114,7 +106,7 @@ int run_case(const RunArgs& a) {
                                         "states are always written)", a.fields_every));
     options.state_every = static_cast<long>(k);
   }
-  if (!a.fields.empty()) check_fields_dir(*problem, a.fields, a.out);
+  if (!a.fields.empty()) check_fields_dir(a.fields, a.out);
   if (!(options.dt > 0.0)) throw nsb::InputError(fmt::format("--dt {}: must be > 0", a.dt));
   if (!(options.t_end > 0.0)) throw nsb::InputError(fmt::format("--t-end {}: must be > 0", a.t_end));
   if (options.dt > options.t_end)  // refused, not clipped: the run would end at t = dt

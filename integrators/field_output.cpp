@@ -14,14 +14,94 @@ namespace nsb {
 
 namespace {
 
-constexpr int kVtkLine = 3, kVtkQuad = 9;
+constexpr int kVtkVertex = 1, kVtkLine = 3, kVtkQuad = 9;
 
 void open_array(std::string& out, const char* type, const std::string& name, int components) {
   fmt::format_to(std::back_inserter(out), "<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
                  type, name, components);
 }
 
+int vtk_type(int points) { return points == 1 ? kVtkVertex : points == 2 ? kVtkLine : kVtkQuad; }
+
+// A plugin's mesh is not otherwise checked: one clear line rather than a crash or a file
+// ParaView cannot read.
+void check_mesh(const FieldMesh& m, const Problem& p, const std::string& option) {
+  const auto fail = [&](const std::string& why) {
+    throw InputError(fmt::format("{}: problem {}: field_mesh(): {}", option, p.name(), why));
+  };
+  if (m.dimension != 1 && m.dimension != 2) fail(fmt::format("dimension {}; valid: 1 or 2", m.dimension));
+  if (m.points.cols() != 2 || m.point_dofs.rows() != m.npoints() || m.point_dofs.cols() != m.dimension)
+    fail("points must be npoints x 2 and point_dofs npoints x dimension");
+  if (m.point_dofs.size() > 0 && (m.point_dofs.minCoeff() < -1 || m.point_dofs.maxCoeff() >= p.ndof()))
+    fail(fmt::format("a point dof outside [-1, ndof = {})", p.ndof()));
+  if (m.cell_body.size() != static_cast<std::size_t>(m.ncells())) fail("cell_body needs one entry per cell");
+  for (Index c = 0; c < m.ncells(); ++c) {
+    const int n = m.cell_size(c);
+    if (n != 1 && n != 2 && n != 4) fail(fmt::format("cell {} has {} points; valid: 1, 2 or 4", c, n));
+    for (Index k = 0; k < m.cells.cols(); ++k)
+      if (const int a = m.cells(c, k); k < n ? a >= m.npoints() : a != -1)
+        fail(fmt::format("cell {}: point {} outside [0, {}) or not padded with -1", c, a, m.npoints()));
+  }
+  if (m.nelements() > 0 && m.stress_components.empty()) fail("element cells and no stress component");
+  for (const FieldArray& a : m.body_arrays)
+    if (a.components != 1 && a.components != 3)
+      fail(fmt::format("body array {}: {} components; valid: 1 or 3", a.name, a.components));
+}
+
 }  // namespace
+
+FieldWriter::Part FieldWriter::make_part(bool elements) const {
+  Part part;
+  part.name = elements ? "fields_" : "bodies_";
+  part.elements = elements;
+  // Local point numbers: elements' points in the mesh's order (a mesh of elements only is
+  // written as it is); a point per vertex cell in the cells' order (the rows of body_data()).
+  std::vector<Index> local(static_cast<std::size_t>(mesh_.npoints()), -1);
+  for (Index c = 0; c < mesh_.ncells(); ++c) {
+    if ((mesh_.cell_size(c) >= 2) != elements) continue;
+    part.cells.push_back(c);
+    if (elements)
+      for (Index k = 0; k < mesh_.cell_size(c); ++k) local[static_cast<std::size_t>(mesh_.cells(c, k))] = 0;
+  }
+  if (elements) {
+    for (Index a = 0; a < mesh_.npoints(); ++a)
+      if (local[static_cast<std::size_t>(a)] == 0) {
+        local[static_cast<std::size_t>(a)] = static_cast<Index>(part.points.size());
+        part.points.push_back(a);
+      }
+  } else {
+    for (const Index c : part.cells) part.points.push_back(mesh_.cells(c, 0));
+  }
+  const auto np = part.points.size(), nc = part.cells.size();
+  auto out = std::back_inserter(part.head);
+  fmt::format_to(out,
+                 "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+                 "<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n<Points>\n",
+                 np, nc);
+  open_array(part.head, "Float64", "reference_position", 3);
+  for (const Index a : part.points) fmt::format_to(out, "{} {} 0\n", mesh_.points(a, 0), mesh_.points(a, 1));
+  part.head += "</DataArray>\n</Points>\n<Cells>\n";
+  open_array(part.head, "Int64", "connectivity", 1);
+  for (std::size_t j = 0; j < nc; ++j) {
+    const Index c = part.cells[j];
+    for (Index k = 0; k < mesh_.cell_size(c); ++k)
+      fmt::format_to(out, "{} ", elements ? local[static_cast<std::size_t>(mesh_.cells(c, k))] : static_cast<Index>(j));
+    part.head.back() = '\n';
+  }
+  part.head += "</DataArray>\n";
+  open_array(part.head, "Int64", "offsets", 1);
+  Index offset = 0;
+  for (const Index c : part.cells) fmt::format_to(out, "{}\n", offset += mesh_.cell_size(c));
+  part.head += "</DataArray>\n";
+  open_array(part.head, "UInt8", "types", 1);
+  for (const Index c : part.cells) fmt::format_to(out, "{}\n", vtk_type(mesh_.cell_size(c)));
+  part.head += "</DataArray>\n</Cells>\n";
+  open_array(part.tail, "Int32", "body", 1);
+  for (const Index c : part.cells)
+    fmt::format_to(std::back_inserter(part.tail), "{}\n", mesh_.cell_body[static_cast<std::size_t>(c)]);
+  part.tail += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  return part;
+}
 
 FieldWriter::FieldWriter(const Problem& problem, const std::filesystem::path& dir, const std::string& option,
                          long expected_writes)
@@ -29,9 +109,9 @@ FieldWriter::FieldWriter(const Problem& problem, const std::filesystem::path& di
       mesh_([&] {
         auto mesh = problem.field_mesh();
         if (!mesh)
-          throw InputError(fmt::format("{}: problem {} has no body mesh to write (field output is for problems built "
-                                       "from bars or plane bodies)",
-                                       option, problem.name()));
+          throw InputError(fmt::format("{}: problem {} describes no bodies to write (Problem::field_mesh())", option,
+                                       problem.name()));
+        check_mesh(*mesh, problem, option);
         return std::move(*mesh);
       }()),
       dir_(dir, option) {
@@ -40,48 +120,31 @@ FieldWriter::FieldWriter(const Problem& problem, const std::filesystem::path& di
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir_.path(), ec)) {
     const std::string name = e.path().filename().string();
-    if (name == "fields.pvd" || (name.starts_with("fields_") && name.ends_with(".vtu"))) fs::remove(e.path(), ec);
+    if (name == "fields.pvd" || ((name.starts_with("fields_") || name.starts_with("bodies_")) && name.ends_with(".vtu")))
+      fs::remove(e.path(), ec);
   }
-  const Index np = mesh_.npoints(), nc = mesh_.ncells();
-  auto out = std::back_inserter(head_);
-  fmt::format_to(out,
-                 "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
-                 "<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n<Points>\n",
-                 np, nc);
-  open_array(head_, "Float64", "reference_position", 3);
-  for (Index a = 0; a < np; ++a) fmt::format_to(out, "{} {} 0\n", mesh_.points(a, 0), mesh_.points(a, 1));
-  head_ += "</DataArray>\n</Points>\n<Cells>\n";
-  open_array(head_, "Int64", "connectivity", 1);
-  for (Index c = 0; c < nc; ++c) {
-    for (Index k = 0; k < mesh_.cells.cols(); ++k) fmt::format_to(out, "{} ", mesh_.cells(c, k));
-    head_.back() = '\n';
-  }
-  head_ += "</DataArray>\n";
-  open_array(head_, "Int64", "offsets", 1);
-  for (Index c = 0; c < nc; ++c) fmt::format_to(out, "{}\n", (c + 1) * mesh_.cells.cols());
-  head_ += "</DataArray>\n";
-  open_array(head_, "UInt8", "types", 1);
-  const int type = mesh_.cells.cols() == 2 ? kVtkLine : kVtkQuad;
-  for (Index c = 0; c < nc; ++c) fmt::format_to(out, "{}\n", type);
-  head_ += "</DataArray>\n</Cells>\n";
-  open_array(tail_, "Int32", "body", 1);
-  for (const int b : mesh_.cell_body) fmt::format_to(std::back_inserter(tail_), "{}\n", b);
-  tail_ += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-
-  stress_.resize(nc, static_cast<Index>(mesh_.stress_components.size()));
+  if (mesh_.nelements() > 0) parts_.push_back(make_part(true));
+  if (mesh_.nbodies() > 0) parts_.push_back(make_part(false));
+  stress_.resize(mesh_.nelements(), static_cast<Index>(mesh_.stress_components.size()));
+  body_.resize(mesh_.nbodies(), mesh_.body_columns());
   impulse_.resize(problem.ndof());
   // At most 25 characters a number (shortest round-trip form, and a separator): 9 per point
-  // (three vectors), one per cell and component. No write grows the buffer again.
-  buffer_.reserve(head_.size() + tail_.size() + static_cast<std::size_t>(25 * (9 * np + stress_.size()) + 4096));
-  prefix_ = (dir_.path() / "fields_").string();
+  // (three vectors) and the body arrays, one per cell and component. No write grows the
+  // buffer again.
+  std::size_t largest = 0;
+  for (const Part& part : parts_)
+    largest = std::max(largest, part.head.size() + part.tail.size() +
+                                    25 * (9 * part.points.size() + static_cast<std::size_t>(stress_.size() + body_.size())));
+  buffer_.reserve(largest + 4096);
+  prefix_ = dir_.path().string() + "/";
   path_.reserve(prefix_.size() + 32);
   times_.reserve(static_cast<std::size_t>(std::clamp(expected_writes, 1L, 1L << 16)));  // grows past that
 }
 
-void FieldWriter::append_point_vector(const char* name, const Vec& dof_values) {
+void FieldWriter::append_point_vector(const char* name, const Part& part, const Vec& dof_values) {
   open_array(buffer_, "Float64", name, 3);
   auto out = std::back_inserter(buffer_);
-  for (Index a = 0; a < mesh_.npoints(); ++a) {
+  for (const Index a : part.points) {
     double x[3] = {0.0, 0.0, 0.0};
     for (int k = 0; k < mesh_.dimension; ++k)
       if (const int d = mesh_.point_dofs(a, k); d >= 0) x[k] = dof_values[d];
@@ -95,25 +158,47 @@ void FieldWriter::state(const State& s, const Vec& normal_impulses, const Vec& t
   impulse_.noalias() = c.normal.transpose() * normal_impulses;
   if (c.tangent.rows() > 0 && tangential_impulses.size() == c.tangent.rows())
     impulse_.noalias() += c.tangent.transpose() * tangential_impulses;
-  problem_.cell_stress(s.u, stress_);
+  if (stress_.rows() > 0) problem_.cell_stress(s.u, stress_);
+  if (body_.size() > 0) problem_.body_data(s, body_);
 
-  buffer_.assign(head_);
-  buffer_ += "<PointData Vectors=\"displacement\">\n";
-  append_point_vector("displacement", s.u);
-  append_point_vector("velocity", s.v);
-  append_point_vector("contact_impulse", impulse_);
-  buffer_ += "</PointData>\n";
-  fmt::format_to(std::back_inserter(buffer_), "<CellData Scalars=\"{}\">\n", mesh_.stress_components[0]);
-  for (Index k = 0; k < stress_.cols(); ++k) {
-    open_array(buffer_, "Float64", mesh_.stress_components[static_cast<std::size_t>(k)], 1);
-    for (Index e = 0; e < stress_.rows(); ++e) fmt::format_to(std::back_inserter(buffer_), "{}\n", stress_(e, k));
-    buffer_ += "</DataArray>\n";
+  for (const Part& part : parts_) {
+    const bool elements = part.elements;
+    auto out = std::back_inserter(buffer_);
+    buffer_.assign(part.head);
+    buffer_ += "<PointData Vectors=\"displacement\">\n";
+    append_point_vector("displacement", part, s.u);
+    append_point_vector("velocity", part, s.v);
+    append_point_vector("contact_impulse", part, impulse_);
+    if (!elements) {
+      // One point per body cell, in their order: the rows of body_.
+      Index column = 0;
+      for (const FieldArray& a : mesh_.body_arrays) {
+        open_array(buffer_, "Float64", a.name, a.components);
+        for (Index b = 0; b < body_.rows(); ++b) {
+          for (Index k = 0; k < a.components; ++k) fmt::format_to(out, "{} ", body_(b, column + k));
+          buffer_.back() = '\n';
+        }
+        buffer_ += "</DataArray>\n";
+        column += a.components;
+      }
+    }
+    buffer_ += "</PointData>\n";
+    if (elements && !mesh_.stress_components.empty()) {
+      fmt::format_to(out, "<CellData Scalars=\"{}\">\n", mesh_.stress_components[0]);
+      for (Index k = 0; k < stress_.cols(); ++k) {
+        open_array(buffer_, "Float64", mesh_.stress_components[static_cast<std::size_t>(k)], 1);
+        for (Index e = 0; e < stress_.rows(); ++e) fmt::format_to(out, "{}\n", stress_(e, k));
+        buffer_ += "</DataArray>\n";
+      }
+    } else {
+      buffer_ += "<CellData>\n";
+    }
+    buffer_ += part.tail;
+
+    path_.assign(prefix_);  // within its reserved capacity: no new string per file
+    fmt::format_to(std::back_inserter(path_), "{}{:06d}.vtu", part.name, times_.size());
+    flush(path_);
   }
-  buffer_ += tail_;
-
-  path_.assign(prefix_);  // within its reserved capacity: no new string per file
-  fmt::format_to(std::back_inserter(path_), "{:06d}.vtu", times_.size());
-  flush(path_);
   times_.push_back(s.t);
 }
 
@@ -136,8 +221,9 @@ void FieldWriter::flush(const std::string& path) {
 void FieldWriter::commit() {
   buffer_ = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n";
   for (std::size_t i = 0; i < times_.size(); ++i)
-    fmt::format_to(std::back_inserter(buffer_), "<DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"fields_{:06d}.vtu\"/>\n",
-                   times_[i], i);
+    for (std::size_t j = 0; j < parts_.size(); ++j)
+      fmt::format_to(std::back_inserter(buffer_), "<DataSet timestep=\"{}\" group=\"\" part=\"{}\" file=\"{}{:06d}.vtu\"/>\n",
+                     times_[i], j, parts_[j].name, i);
   buffer_ += "</Collection>\n</VTKFile>\n";
   flush((dir_.path() / "fields.pvd").string());
   dir_.commit();

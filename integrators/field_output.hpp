@@ -1,13 +1,18 @@
 #pragma once
-// Field output for ParaView (`nsbench run --fields DIR`): a time series of a problem's body
-// mesh (problems/problem.hpp, FieldMesh) as VTK XML files,
+// Field output for ParaView (`nsbench run --fields DIR`): a time series of a problem's bodies
+// (problems/problem.hpp, FieldMesh) as VTK XML files,
 //
-//     DIR/fields.pvd           a Collection: one DataSet per written state, timestep = t
-//     DIR/fields_NNNNNN.vtu    UnstructuredGrid, ASCII, numbers in shortest round-trip form
-//                              (a reader gets the run's doubles exactly)
+//     DIR/fields.pvd           a Collection: for each written state (timestep = t) one
+//                              DataSet per part: part 0 the element cells (fields_), then
+//                              the vertex cells (bodies_); a problem with one kind has one
+//     DIR/fields_NNNNNN.vtu    the element cells (bar and plane elements, springs) and the
+//                              points they use, in the mesh's order
+//     DIR/bodies_NNNNNN.vtu    the vertex cells (point masses, rigid bodies' centres), one
+//                              point each, in their order
 //
-// Each .vtu holds the mesh in its reference configuration (Points, 3 components, z = 0;
-// Cells VTK_LINE = 3 for bars, VTK_QUAD = 9 for plane bodies) and
+// UnstructuredGrid, ASCII, numbers in shortest round-trip form (a reader gets the run's
+// doubles exactly). Each .vtu holds its cells in the reference configuration (Points, 3
+// components, z = 0; Cells VTK_VERTEX = 1, VTK_LINE = 3, VTK_QUAD = 9) and
 //     PointData  displacement, velocity   3 components, from point_dofs (0 where a
 //                                         component has no dof: a clamp, y and z of bars)
 //                contact_impulse          3 components: the impulses the contacts applied
@@ -15,17 +20,25 @@
 //                                         T^T Lambda_T, on the points whose dofs carry the
 //                                         contact rows (a node-to-segment row splits its
 //                                         impulse over the segment's nodes by its weights;
-//                                         0 in the first file). Impulses on dofs that are
-//                                         no point (mass-on-bar's striker) are not shown.
-//     CellData   one Float64 array per stress component (FieldMesh::stress_components, each
-//                problem's cell_stress() says which stress), body (Int32, FieldMesh::cell_body)
-// In ParaView: open fields.pvd, apply Warp By Vector (displacement) to see the deformed
-// bodies, colour by a stress component.
+//                                         0 in the first file). The part of an impulse on a
+//                                         dof that is no point component (a rotation) is not
+//                                         shown.
+//                bodies_ only: the body arrays (FieldMesh::body_arrays, Problem::body_data)
+//     CellData   fields_ only: one Float64 array per stress component
+//                (FieldMesh::stress_components; each problem's cell_stress() says which
+//                stress, or a spring's force)
+//                both: body (Int32, FieldMesh::cell_body)
+// Two datasets, not one: a VTK array has a value on every cell or point of its dataset, and a
+// stress on a point mass, or an angle on a bar node, would be a made-up number (0 reads as a
+// physical zero); ParaView shows a part without the array coloured with its NaN colour.
+// In ParaView: open fields.pvd (a multiblock of the parts), apply Warp By Vector
+// (displacement) to see the bodies move, colour by a stress component; Glyph the bodies_
+// points (e.g. a sphere scaled by radius, an arrow along orientation).
 //
 // The directory is written whole (core/output.hpp, ReportDirectory): into a staging sibling,
 // swapped in by commit() when the run ends; a killed run leaves the old one. Earlier
-// fields_*.vtu files of the directory are not kept. state() allocates nothing (the buffers
-// are sized once, the files written with POSIX calls).
+// fields_*.vtu and bodies_*.vtu files of the directory are not kept. state() allocates
+// nothing (the buffers are sized once, the files written with POSIX calls).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -38,8 +51,8 @@ namespace nsb {
 
 class FieldWriter final : public StateSink {
  public:
-  // Throws InputError naming `option` when the problem has no field mesh or DIR cannot be
-  // staged. `expected_writes`: how many states will be written (a size hint).
+  // Throws InputError naming `option` when the problem has no field mesh, its mesh is
+  // malformed (sizes, cell types, point and dof ranges) or DIR cannot be staged. `expected_writes`: how many states will be written (a size hint).
   FieldWriter(const Problem& problem, const std::filesystem::path& dir, const std::string& option, long expected_writes);
   FieldWriter(const FieldWriter&) = delete;
   FieldWriter& operator=(const FieldWriter&) = delete;
@@ -52,15 +65,23 @@ class FieldWriter final : public StateSink {
   long files() const { return static_cast<long>(times_.size()); }
 
  private:
-  void append_point_vector(const char* name, const Vec& dof_values);
+  // One .vtu of each written state: the element cells (fields_) or the vertex cells (bodies_).
+  struct Part {
+    std::string name;  // file name prefix
+    bool elements = true;
+    std::vector<Index> points, cells;  // of the mesh, in the order written
+    std::string head, tail;            // the parts of every .vtu that do not change (mesh, body ids)
+  };
+  Part make_part(bool elements) const;
+  void append_point_vector(const char* name, const Part& part, const Vec& dof_values);
   void flush(const std::string& path);
 
   const Problem& problem_;
   FieldMesh mesh_;
   ReportDirectory dir_;
-  std::string head_, tail_;  // the parts of every .vtu that do not change (mesh, body ids)
+  std::vector<Part> parts_;
   std::string buffer_, prefix_, path_;
-  Eigen::MatrixXd stress_;
+  Eigen::MatrixXd stress_, body_;  // cell_stress() and body_data() of the state written
   Vec impulse_;  // L^T Lambda_N + T^T Lambda_T, per dof
   std::vector<double> times_;
 };

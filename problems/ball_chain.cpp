@@ -145,6 +145,13 @@ void BallChain::observe(const State& s, std::span<double> out) const {
   }
 }
 
+std::optional<FieldMesh> BallChain::field_mesh() const {
+  FieldMesh mesh;
+  mesh.dimension = 1;
+  for (Index i = 0; i < n_; ++i) mesh.add_vertex(static_cast<double>(i) * gap_, 0.0, {static_cast<int>(i)}, static_cast<int>(i));
+  return mesh;
+}
+
 NSBENCH_PROBLEM({"ball-chain", "Newton's cradle: n equal balls, contacts between bodies (sequential and simultaneous impacts)",
                  &BallChain::parameters_spec, &make_from_params<Problem, BallChain>});
 

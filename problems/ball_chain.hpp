@@ -43,6 +43,10 @@
 // outcome once it ends), for gap = 0 Moreau's outcome for t > 0 (the law, not a unique
 // answer: exact_state() is then empty).
 //
+// Field output (`--fields`): along x, ball i a vertex at its reference position (i - 1) gap,
+// dof i - 1, body i - 1. The balls are points (the model has no radii): with gap = 0 they
+// start at one point and the displacements separate them.
+//
 // References: J. J. Moreau, "Unilateral contact and dry friction in finite freedom
 // dynamics", CISM Courses and Lectures 302, 1988; V. Acary and B. Brogliato, "Numerical
 // Methods for Nonsmooth Dynamical Systems", Springer 2008 (multiple impacts, Newton's
@@ -74,6 +78,7 @@ class BallChain final : public Problem {
   void observe(const State& s, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;
+  std::optional<FieldMesh> field_mesh() const override;
 
   // Final velocities of the binary-collision march (see above); any gap.
   const Vec& sequential_outcome() const { return sequential_; }

@@ -104,6 +104,13 @@ void BouncingMass::observe(const State& s, std::span<double> out) const {
   out[3] = ex.v[0];
 }
 
+std::optional<FieldMesh> BouncingMass::field_mesh() const {
+  FieldMesh mesh;
+  mesh.dimension = 2;
+  mesh.add_vertex(0.0, 0.0, {-1, 0}, 0);
+  return mesh;
+}
+
 NSBENCH_PROBLEM({"bouncing-mass", "point mass bouncing on a rigid floor under gravity (exact solution)", &BouncingMass::parameters_spec, &make_from_params<Problem, BouncingMass>});
 
 }  // namespace nsb

@@ -15,6 +15,9 @@
 // rests on the floor. Energy (from the floor) after impact i: E0 e^{2i}, E0 = m w1^2 / 2.
 //
 // Unknown: U = q (height), so L = [1], g0 = 0.
+//
+// Field output (`--fields`): the mass is a vertex in the vertical plane, the floor y = 0:
+// reference point (0, 0), displacement (0, q), the height as y.
 #include "problems/rigid_problem.hpp"
 
 namespace nsb {
@@ -31,6 +34,7 @@ class BouncingMass final : public RigidProblem {
   void observe(const State& s, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;  // up to 1000, before the Zeno time
+  std::optional<FieldMesh> field_mesh() const override;
 
   // Exact impact sequence.
   double initial_energy() const { return 0.5 * m_ * w1_ * w1_; }

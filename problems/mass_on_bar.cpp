@@ -147,6 +147,7 @@ double MassOnBar::strain_energy(ConstVecRef u) const {
 std::optional<FieldMesh> MassOnBar::field_mesh() const {
   FieldMesh mesh;
   add_bar_field_mesh(mesh, 0.0, len_ / static_cast<double>(n_), n_, 0, true, 0);
+  mesh.add_vertex(0.0, 0.0, {static_cast<int>(n_)}, 1);
   return mesh;
 }
 

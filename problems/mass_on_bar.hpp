@@ -82,10 +82,11 @@ class MassOnBar final : public Problem {
   void observe(const State& s, std::span<double> out) const override;
   void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   std::vector<double> impact_times(double t_end) const override;
-  // Field output: the bar only, nodes x_i = i h on dof i, the clamped node N on none (its
+  // Field output: the bar (body 0), nodes x_i = i h on dof i, the clamped node N on none (its
   // displacement is 0); sigma = E (u_{i+1} - u_i) / h on each element, constant over it. The
-  // rigid striker (dof N, a point with no extent) is not part of the mesh: its displacement
-  // and velocity are the series' columns, and the contact impulse sits on node 0.
+  // rigid striker (body 1, dof N, a point with no extent) is a vertex at x = 0, where it
+  // touches the free end in the reference; it has no stress. The contact impulse shows on
+  // node 0 (+) and on the striker (-).
   std::optional<FieldMesh> field_mesh() const override;
   void cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const override;
 

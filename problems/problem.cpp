@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace nsb {
 
@@ -19,16 +21,50 @@ std::optional<Vec> diagonal_mass(const SpMat& M) {
   return d;
 }
 
+int FieldMesh::cell_size(Index c) const {
+  int k = 0;
+  while (k < cells.cols() && cells(c, k) >= 0) ++k;
+  return k;
+}
+
+Index FieldMesh::nelements() const {
+  Index n = 0;
+  for (Index c = 0; c < ncells(); ++c) n += cell_size(c) >= 2;
+  return n;
+}
+
+int FieldMesh::body_columns() const {
+  int n = 0;
+  for (const FieldArray& a : body_arrays) n += a.components;
+  return n;
+}
+
 void FieldMesh::append(const FieldMesh& part, Index dof_offset, int body) {
-  const Index p0 = npoints(), c0 = ncells();
+  const Index p0 = npoints(), c0 = ncells(), width = std::max(cells.cols(), part.cells.cols());
   points.conservativeResize(p0 + part.npoints(), 2);
   points.bottomRows(part.npoints()) = part.points;
   point_dofs.conservativeResize(p0 + part.npoints(), dimension);
   point_dofs.bottomRows(part.npoints()) =
       (part.point_dofs.array() < 0).select(-1, part.point_dofs.array() + static_cast<int>(dof_offset));
-  cells.conservativeResize(c0 + part.ncells(), part.cells.cols());
-  cells.bottomRows(part.ncells()) = part.cells.array() + static_cast<int>(p0);
+  // Widening pads the earlier cells with -1 (conservativeResize leaves new entries unset).
+  const Index old_width = cells.cols();
+  cells.conservativeResize(c0 + part.ncells(), width);
+  cells.topRightCorner(c0, width - old_width).setConstant(-1);
+  cells.bottomRows(part.ncells()).setConstant(-1);
+  cells.bottomLeftCorner(part.ncells(), part.cells.cols()) =
+      (part.cells.array() < 0).select(-1, part.cells.array() + static_cast<int>(p0));
   cell_body.resize(static_cast<std::size_t>(c0 + part.ncells()), body);
+}
+
+void FieldMesh::add_vertex(double x, double y, std::initializer_list<int> dofs, int body) {
+  if (static_cast<int>(dofs.size()) != dimension)
+    throw std::logic_error(fmt::format("FieldMesh::add_vertex: {} dofs for a mesh of dimension {}", dofs.size(), dimension));
+  FieldMesh vertex;
+  vertex.dimension = dimension;
+  vertex.points = Eigen::RowVector2d(x, y);
+  vertex.point_dofs = Eigen::Map<const Eigen::RowVectorXi>(dofs.begin(), static_cast<Index>(dofs.size()));
+  vertex.cells = Eigen::MatrixXi::Zero(1, 1);
+  append(vertex, 0, body);
 }
 
 void Contacts::set_friction(SpMat tangent_rows, double mu_all, double w_all) {

@@ -21,12 +21,14 @@
 // (Contacts below; check_contacts() holds its shapes and ranges) and keeps g0 + L U0 >= 0;
 // stable_step() the explicit central-difference limit 2 / omega_max; exact_state() and
 // impact_times() only where the solution is known exactly (derived and tested on its own).
-// A problem with a body mesh (bars, blocks) describes it once in field_mesh() (FieldMesh
-// below) and writes each cell's stress in cell_stress(u, out) (no allocation: `nsbench run
-// --fields` calls it at every written step); a problem without one (point masses, rigid
-// bodies) keeps the defaults, and has no field output.
+// field_mesh() describes the bodies once as a mesh (FieldMesh below: bar and plane elements,
+// springs, point masses and rigid bodies as vertices); cell_stress(u, out) writes each
+// element's stress and body_data(s, out) each vertex body's arrays (no allocation: `nsbench
+// run --fields` calls them at every written step). Every built-in problem has a mesh; a
+// plugin's problem that keeps the default (none) has no field output.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <initializer_list>
 #include <optional>
 #include <span>
 #include <string>
@@ -78,31 +80,61 @@ struct Contacts {
   void set_friction(SpMat tangent_rows, double mu_all, double w_all);
 };
 
-// A body's mesh, for field output (ParaView) and pictures of the fields. Displacement and
-// velocity are point values taken from the dofs; stress is one value per cell and component.
+// A problem's bodies as a mesh, for field output (ParaView) and pictures of the fields.
+// Displacement and velocity are point values taken from the dofs; element cells carry one
+// value per cell and stress component, vertex cells the body arrays.
 //
-//     point a          reference position points.row(a) (y = 0 for bars)
+//     point a          reference position points.row(a) (z = 0; y = 0 for bars)
 //     its component k  displacement u[point_dofs(a, k)], 0 where point_dofs(a, k) = -1 (a
-//                      clamped node)
-//     cell c           points cells.row(c): a line (2 points, along +x) or a bilinear quad
-//                      (4 points, counter-clockwise), of body cell_body[c]
+//                      clamped node, a direction the body does not move in)
+//     cell c           points cells(c, 0 ..), padded with -1 past its last point (cells has
+//                      as many columns as the widest cell); its number of points is its type:
+//                      1  a vertex: a point mass or the centre of a rigid body ("body cell")
+//                      2  a line along +x of the reference: a bar element or a spring
+//                      4  a bilinear quad, counter-clockwise: a plane element
+//                      cell_body[c] is its body id (0 when there is one body)
+//     element cells    the cells of 2 or 4 points, in their order in `cells`: cell_stress()
+//                      writes one row each, a column per stress_components entry
+//     body cells       the vertex cells, in their order: body_data() writes one row each,
+//                      the components of the body_arrays in order (e.g. a rigid body's angle)
 //
 // What the stress is (which measure, where in the cell) is stated by each problem's
-// cell_stress(); a point mass or rigid body attached to a mesh (mass-on-bar's striker) is
-// not part of it.
+// cell_stress(); what a body array is, by its body_data(). Vertex cells have no stress and
+// element cells no body arrays: a field is written only where it means something
+// (integrators/field_output.hpp writes the two kinds as two datasets of one series).
+// A degree of freedom that is no translation of a point (a rigid body's rotation) reaches
+// the picture through a body array, not through point_dofs (which maps components linearly
+// to dofs).
+struct FieldArray {
+  std::string name;
+  int components = 1;  // 1 (scalar) or 3 (a vector, x y z)
+};
+
 struct FieldMesh {
-  int dimension = 1;                           // 1: bars along x; 2: plane bodies in (x, y)
+  int dimension = 1;                           // 1: along x (bars, chains); 2: in (x, y)
   Eigen::MatrixXd points;                      // npoints x 2, reference coordinates
   Eigen::MatrixXi point_dofs;                  // npoints x dimension, dof of each component or -1
-  Eigen::MatrixXi cells;                       // ncells x (2: line | 4: quad), point indices
-  std::vector<int> cell_body;                  // ncells, body id (0 when there is one body)
+  Eigen::MatrixXi cells;                       // ncells x (widest cell), point indices, -1 padded
+  std::vector<int> cell_body;                  // ncells, body id
   std::vector<std::string> stress_components;  // the columns of cell_stress()
+  std::vector<FieldArray> body_arrays;         // the column groups of body_data()
 
   Index npoints() const { return points.rows(); }
   Index ncells() const { return cells.rows(); }
-  // Appends `part` (a mesh of the same dimension and stress components) with its dofs
-  // shifted by dof_offset and its cells given body id `body`.
+  // Number of points of cell c (1 vertex, 2 line, 4 quad).
+  int cell_size(Index c) const;
+  // Number of element cells (cells of 2 or more points): the rows of cell_stress().
+  Index nelements() const;
+  // Number of vertex cells: the rows of body_data().
+  Index nbodies() const { return ncells() - nelements(); }
+  // Total components of the body arrays: the columns of body_data().
+  int body_columns() const;
+  // Appends `part` (a mesh of the same dimension, stress components and body arrays) with
+  // its dofs shifted by dof_offset and its cells given body id `body`.
   void append(const FieldMesh& part, Index dof_offset, int body);
+  // Appends a vertex cell (a point mass, a rigid body's centre) at reference position (x, y),
+  // its components on `dofs` (dimension entries, -1 where fixed), of body `body`.
+  void add_vertex(double x, double y, std::initializer_list<int> dofs, int body);
 };
 
 // Throws InputError naming `problem` when the operators' shapes disagree (rows of T, sizes of
@@ -170,11 +202,14 @@ class Problem {
     observe(s, out);
   }
 
-  // The body's mesh (FieldMesh), for problems that have one; nullopt otherwise.
+  // The bodies' mesh (FieldMesh), for problems that describe one; nullopt otherwise.
   virtual std::optional<FieldMesh> field_mesh() const { return std::nullopt; }
-  // The stress of each cell of field_mesh() at u, written into out (ncells x
+  // The stress of each element cell of field_mesh() at u, written into out (nelements() x
   // stress_components.size()) without allocating. Only called when field_mesh() has a value.
   virtual void cell_stress(ConstVecRef /*u*/, Eigen::Ref<Eigen::MatrixXd> /*out*/) const {}
+  // The body arrays of each vertex cell of field_mesh() in state s, written into out
+  // (nbodies() x body_columns()) without allocating. Only called when body_arrays is not empty.
+  virtual void body_data(const State& /*s*/, Eigen::Ref<Eigen::MatrixXd> /*out*/) const {}
 
   // Exact solution where one is known.
   virtual std::optional<State> exact_state(double /*t*/) const { return std::nullopt; }

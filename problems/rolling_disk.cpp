@@ -200,6 +200,19 @@ void RollingDisk::observe(const State& s, std::span<double> out) const {
   out[7] = ex.v[0] + R_ * ex.v[2];
 }
 
+std::optional<FieldMesh> RollingDisk::field_mesh() const {
+  FieldMesh mesh;
+  mesh.dimension = 2;
+  mesh.add_vertex(0.0, R_, {0, 1}, 0);
+  mesh.body_arrays = {{"radius", 1}, {"angle", 1}, {"angular_velocity", 1}, {"orientation", 3}};
+  return mesh;
+}
+
+void RollingDisk::body_data(const State& s, Eigen::Ref<Eigen::MatrixXd> out) const {
+  const double theta = s.u[2];
+  out.row(0) << R_, theta, s.v[2], std::cos(theta), std::sin(theta), 0.0;
+}
+
 NSBENCH_PROBLEM({"rolling-disk", "rigid disk sliding, rolling and bouncing on a floor with Coulomb friction (exact solution)", &RollingDisk::parameters_spec, &make_from_params<Problem, RollingDisk>});
 
 }  // namespace nsb

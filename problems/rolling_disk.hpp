@@ -36,6 +36,14 @@
 // one contact: normal row [0, 1, 0], g0 = 0, e; tangent row [1, 0, R], w = 0, friction only
 // when mu > 0. Normal and tangent are decoupled (W_NT = 0).
 //
+// Field output (`--fields`): the disk is a vertex at its centre, in the vertical plane with
+// the floor y = 0: reference point (0, R), displacement (x, y). Its rotation, which no point
+// component carries, is in body arrays: radius R, angle theta and angular_velocity theta'
+// (counter-clockwise, rad and rad/s) and orientation (cos theta, sin theta, 0), the unit
+// vector of the body-fixed radius along +x at theta = 0 (exact, whatever the angle: a
+// ParaView Glyph arrow along it, scaled by radius, turns with the disk). No rim points: a
+// rim point moves nonlinearly with theta, which point_dofs cannot express.
+//
 // References: G. Capobianco, J. Harsch, S. R. Eugster, R. I. Leine, "A nonsmooth generalized-
 // alpha method for mechanical systems with frictional contact", International Journal for
 // Numerical Methods in Engineering 122 (2021), the rotating bouncing ball (m = 1, R = 0.1,
@@ -70,6 +78,8 @@ class RollingDisk final : public RigidProblem {
   void observe(const State& s, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;  // the marched impacts
+  std::optional<FieldMesh> field_mesh() const override;
+  void body_data(const State& s, Eigen::Ref<Eigen::MatrixXd> out) const override;
 
   // The marched impacts in order (empty for h0 = 0).
   const std::vector<Impact>& impacts() const { return impacts_; }

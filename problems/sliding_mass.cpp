@@ -98,6 +98,13 @@ void SlidingMass::observe(const State& s, std::span<double> out) const {
   out[3] = ex.v[0];
 }
 
+std::optional<FieldMesh> SlidingMass::field_mesh() const {
+  FieldMesh mesh;
+  mesh.dimension = 2;
+  mesh.add_vertex(0.0, 0.0, {0, 1}, 0);
+  return mesh;
+}
+
 NSBENCH_PROBLEM({"sliding-mass", "point mass sliding on an inclined plane with Coulomb friction (exact solution)", &SlidingMass::parameters_spec, &make_from_params<Problem, SlidingMass>});
 
 }  // namespace nsb

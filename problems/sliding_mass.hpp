@@ -26,6 +26,10 @@
 // Unknowns U = (x, y), M = diag(m, m); one contact: normal row [0, 1], g0 = 0, e = 0,
 // tangent row [1, 0] (slip u_T = x'), w = 0, friction only when mu > 0.
 //
+// Field output (`--fields`): the mass is a vertex in the frame of the plane (x down the
+// slope, y its normal, the plane y = 0; not rotated by alpha): reference point (0, 0),
+// displacement (x, y).
+//
 // Reference for the contact law: J. J. Moreau, "Unilateral contact and dry friction in finite
 // freedom analysis", Nonsmooth Mechanics and Applications, CISM 302, Springer, 1988.
 #include "problems/rigid_problem.hpp"
@@ -43,6 +47,7 @@ class SlidingMass final : public RigidProblem {
   std::vector<std::string> observable_names() const override;
   void observe(const State& s, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
+  std::optional<FieldMesh> field_mesh() const override;
 
   // Acceleration along the slope while sliding down (a_down above); 0 at mu = tan(alpha).
   double sliding_acceleration() const { return a_down_; }

@@ -85,6 +85,25 @@ State SpringChain::initial_state() const {
 
 void SpringChain::observe(const State& s, std::span<double> out) const { out[0] = momentum(s.v); }
 
+std::optional<FieldMesh> SpringChain::field_mesh() const {
+  // Mass i is point i; the springs (element cells) first, then a vertex cell on each mass.
+  FieldMesh mesh;
+  mesh.dimension = 1;
+  mesh.points = Eigen::MatrixXd::Zero(n_, 2);
+  mesh.points.col(0) = Vec::LinSpaced(n_, 0.0, static_cast<double>(n_ - 1));
+  mesh.point_dofs = Eigen::VectorXi::LinSpaced(n_, 0, static_cast<int>(n_ - 1));
+  mesh.cells = Eigen::MatrixXi::Constant(2 * n_ - 1, 2, -1);
+  for (Index i = 0; i + 1 < n_; ++i) mesh.cells.row(i) << static_cast<int>(i), static_cast<int>(i + 1);
+  mesh.cells.col(0).tail(n_) = Eigen::VectorXi::LinSpaced(n_, 0, static_cast<int>(n_ - 1));
+  mesh.cell_body.assign(static_cast<std::size_t>(2 * n_ - 1), 0);
+  mesh.stress_components = {"spring_force"};
+  return mesh;
+}
+
+void SpringChain::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const {
+  for (Index i = 0; i + 1 < n_; ++i) out(i, 0) = k_ * (u[i + 1] - u[i]);
+}
+
 NSBENCH_PROBLEM({"spring-chain", "masses joined by linear springs, no external force, optional rigid wall (momentum and energy test bed)", &SpringChain::parameters_spec, &make_from_params<Problem, SpringChain>});
 
 }  // namespace nsb

@@ -15,6 +15,7 @@
 
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
+#include "problems/rigid_problem.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 namespace fs = std::filesystem;
@@ -53,15 +54,35 @@ std::vector<double> data_array(const std::string& vtu, const std::string& name) 
   return values;
 }
 
-std::vector<double> pvd_times(const std::string& pvd, std::vector<std::string>& files) {
+// The times and files of the .pvd's DataSets of part `part`.
+std::vector<double> pvd_times(const std::string& pvd, std::vector<std::string>& files, int part = 0) {
   std::vector<double> times;
-  const std::regex entry(R"re(<DataSet timestep="([^"]+)" group="" part="0" file="([^"]+)"/>)re");
+  const std::regex entry(fmt::format(R"re(<DataSet timestep="([^"]+)" group="" part="{}" file="([^"]+)"/>)re", part));
   for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry); it != std::sregex_iterator(); ++it) {
     times.push_back(std::strtod((*it)[1].str().c_str(), nullptr));
     files.push_back((*it)[2].str());
   }
   return times;
 }
+
+// A plugin-like problem: one free mass, no contact, and the mesh it is given (none by default).
+class Meshless final : public nsb::RigidProblem {
+ public:
+  explicit Meshless(std::optional<nsb::FieldMesh> mesh = std::nullopt) : mesh_(std::move(mesh)) {
+    mass_ = nsb::Vec::Ones(1);
+    load_ = nsb::Vec::Zero(1);
+    contacts_.normal.resize(0, 1);
+    contacts_.gap_offset.resize(0);
+  }
+  std::string name() const override { return "meshless"; }
+  const nsb::Params& parameters() const override { return params_; }
+  nsb::State initial_state() const override { return {0.0, nsb::Vec::Zero(1), nsb::Vec::Zero(1)}; }
+  std::optional<nsb::FieldMesh> field_mesh() const override { return mesh_; }
+
+ private:
+  nsb::Params params_;
+  std::optional<nsb::FieldMesh> mesh_;
+};
 
 }  // namespace
 
@@ -166,7 +187,8 @@ TEST_CASE("fields: a run stopped early writes its last state; earlier runs' file
   fs::remove_all(dir);
 }
 
-TEST_CASE("fields: writing a state allocates nothing; a problem without a mesh is refused", "[integrators][fields]") {
+TEST_CASE("fields: writing a state allocates nothing; a problem that describes no bodies is refused",
+          "[integrators][fields]") {
   const auto problem = nsb::make_problem("two-blocks", {{"mu", "0.3"}});  // tangent rows too
   const fs::path dir = scratch("alloc");
   {
@@ -200,8 +222,88 @@ TEST_CASE("fields: writing a state allocates nothing; a problem without a mesh i
     CHECK(x == Approx(0.5 * floors).epsilon(1e-12));
   }
   fs::remove_all(dir);
-  const auto mass = nsb::make_problem("bouncing-mass");
-  CHECK_THROWS_WITH(nsb::FieldWriter(*mass, dir, "--fields", 1),
-                    Catch::Contains("--fields") && Catch::Contains("bouncing-mass") && Catch::Contains("no body mesh"));
+  const Meshless meshless;
+  CHECK_THROWS_WITH(nsb::FieldWriter(meshless, dir, "--fields", 1),
+                    Catch::Contains("--fields") && Catch::Contains("meshless") && Catch::Contains("describes no bodies"));
+  // A malformed mesh: one line naming what is wrong, and no directory.
+  nsb::FieldMesh good;
+  good.add_vertex(0.0, 0.0, {0}, 0);
+  CHECK_NOTHROW(nsb::FieldWriter(Meshless(good), dir, "--fields", 1));
+  fs::remove_all(dir);
+  nsb::FieldMesh bad = good;
+  bad.point_dofs(0, 0) = 1;  // ndof = 1
+  CHECK_THROWS_WITH(nsb::FieldWriter(Meshless(bad), dir, "--fields", 1),
+                    "--fields: problem meshless: field_mesh(): a point dof outside [-1, ndof = 1)");
+  bad = good;
+  bad.points = Eigen::MatrixXd::Zero(3, 2);
+  bad.point_dofs = Eigen::MatrixXi::Constant(3, 1, -1);
+  bad.cells = Eigen::MatrixXi(1, 3);
+  bad.cells << 0, 1, 2;
+  CHECK_THROWS_WITH(nsb::FieldWriter(Meshless(bad), dir, "--fields", 1),
+                    "--fields: problem meshless: field_mesh(): cell 0 has 3 points; valid: 1, 2 or 4");
+  bad.cells << 0, 1, -1;
+  CHECK_THROWS_WITH(nsb::FieldWriter(Meshless(bad), dir, "--fields", 1),
+                    "--fields: problem meshless: field_mesh(): element cells and no stress component");
   CHECK_FALSE(fs::exists(dir));
+}
+
+TEST_CASE("fields: a bar and a striker are two parts, elements with stress and the vertex without; a body's arrays",
+          "[integrators][fields]") {
+  const auto problem = nsb::make_problem("mass-on-bar", {{"N", "4"}});
+  const fs::path dir = scratch("parts");
+  nsb::State s = problem->initial_state();
+  s.u = nsb::Vec::LinSpaced(problem->ndof(), 0.1, 0.5);  // striker (dof 4) at 0.5
+  {
+    nsb::FieldWriter writer(*problem, dir, "--fields", 2);
+    const nsb::Vec lambda = nsb::Vec::Constant(1, 2.0);
+    writer.state(s, lambda, nsb::Vec());
+    s.t = 0.25;
+    writer.state(s, lambda, nsb::Vec());
+    writer.commit();
+  }
+  std::vector<std::string> elements, bodies;
+  const std::string pvd = slurp(dir / "fields.pvd");
+  CHECK(pvd_times(pvd, elements, 0) == std::vector<double>{0.0, 0.25});
+  CHECK(pvd_times(pvd, bodies, 1) == std::vector<double>{0.0, 0.25});
+  CHECK(elements == std::vector<std::string>{"fields_000000.vtu", "fields_000001.vtu"});
+  CHECK(bodies == std::vector<std::string>{"bodies_000000.vtu", "bodies_000001.vtu"});
+  // The bar: 5 nodes (node 4 clamped), 4 lines with sigma; no striker point.
+  const std::string bar = slurp(dir / elements[1]), striker = slurp(dir / bodies[1]);
+  CHECK(data_array(bar, "types") == std::vector<double>(4, 3.0));
+  CHECK(data_array(bar, "displacement").size() == 15);
+  CHECK(data_array(bar, "sigma").size() == 4);
+  CHECK(data_array(bar, "contact_impulse")[0] == 2.0);
+  // The striker: one vertex (VTK_VERTEX), at x = 0, its own displacement and the impulse's
+  // reaction; no stress array.
+  CHECK(data_array(striker, "types") == std::vector<double>{1.0});
+  CHECK(data_array(striker, "connectivity") == std::vector<double>{0.0});
+  CHECK(data_array(striker, "reference_position") == std::vector<double>{0.0, 0.0, 0.0});
+  CHECK(data_array(striker, "displacement") == std::vector<double>{0.5, 0.0, 0.0});
+  CHECK(data_array(striker, "contact_impulse") == std::vector<double>{-2.0, 0.0, 0.0});
+  CHECK(data_array(striker, "body") == std::vector<double>{1.0});
+  CHECK(striker.find("sigma") == std::string::npos);
+  fs::remove_all(dir);
+
+  // A rigid disk: one part (bodies_), the rotation in body arrays, exactly.
+  const auto disk = nsb::make_problem("rolling-disk", {{"R", "0.25"}});
+  nsb::State d = disk->initial_state();
+  d.u << 1.5, 0.125, 2.0;
+  d.v << -1.0, 0.5, 3.0;
+  {
+    nsb::FieldWriter writer(*disk, dir, "--fields", 1);
+    writer.state(d, nsb::Vec::Zero(1), nsb::Vec::Zero(1));
+    writer.commit();
+  }
+  std::vector<std::string> files;
+  CHECK(pvd_times(slurp(dir / "fields.pvd"), files, 0).size() == 1);
+  REQUIRE(files == std::vector<std::string>{"bodies_000000.vtu"});
+  const std::string vtu = slurp(dir / files[0]);
+  CHECK(data_array(vtu, "reference_position") == std::vector<double>{0.0, 0.25, 0.0});
+  CHECK(data_array(vtu, "displacement") == std::vector<double>{1.5, 0.125, 0.0});
+  CHECK(data_array(vtu, "velocity") == std::vector<double>{-1.0, 0.5, 0.0});
+  CHECK(data_array(vtu, "radius") == std::vector<double>{0.25});
+  CHECK(data_array(vtu, "angle") == std::vector<double>{2.0});
+  CHECK(data_array(vtu, "angular_velocity") == std::vector<double>{3.0});
+  CHECK(data_array(vtu, "orientation") == std::vector<double>{std::cos(2.0), std::sin(2.0), 0.0});
+  fs::remove_all(dir);
 }

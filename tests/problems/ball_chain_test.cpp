@@ -184,3 +184,21 @@ TEST_CASE("ball-chain: observables and bad input", "[problems][ball-chain]") {
   CHECK_THROWS_AS(nsb::make_problem("ball-chain", {{"e", "1.5"}}), nsb::InputError);
   CHECK_THROWS_AS(nsb::make_problem("ball-chain", {{"m", "0"}}), nsb::InputError);
 }
+
+TEST_CASE("ball chain: field mesh, a vertex per ball at (i - 1) gap, one body each", "[problems][field-mesh]") {
+  const auto p = chain({{"n", "3"}, {"gap", "0.25"}});
+  const auto mesh = p.field_mesh();
+  REQUIRE(mesh.has_value());
+  CHECK(mesh->dimension == 1);
+  REQUIRE(mesh->npoints() == 3);
+  REQUIRE(mesh->nbodies() == 3);
+  CHECK(mesh->nelements() == 0);
+  CHECK(mesh->cell_body == std::vector<int>{0, 1, 2});
+  for (nsb::Index i = 0; i < 3; ++i) {
+    CHECK(mesh->points(i, 0) == 0.25 * static_cast<double>(i));
+    CHECK(mesh->point_dofs(i, 0) == i);
+    CHECK(mesh->cells(i, 0) == i);
+  }
+  // The gaps of the reference are the distances between the points.
+  for (nsb::Index i = 0; i < 2; ++i) CHECK(p.gap_offset()[i] == mesh->points(i + 1, 0) - mesh->points(i, 0));
+}

@@ -67,3 +67,18 @@ TEST_CASE("bouncing mass exact: e = 1 is periodic", "[problems][exact]") {
     CHECK(a.v[0] == Approx(b.v[0]).margin(1e-9));
   }
 }
+
+TEST_CASE("bouncing mass: field mesh, a vertex at the floor whose y is the height", "[problems][field-mesh]") {
+  const BouncingMass p = make(0.9, 2.0);
+  const auto mesh = p.field_mesh();
+  REQUIRE(mesh.has_value());
+  CHECK(mesh->dimension == 2);
+  REQUIRE(mesh->npoints() == 1);
+  CHECK(mesh->points.row(0) == Eigen::RowVector2d(0.0, 0.0));
+  CHECK(mesh->point_dofs.row(0) == Eigen::RowVector2i(-1, 0));  // no horizontal dof; q on y
+  CHECK(mesh->nbodies() == 1);
+  CHECK(mesh->nelements() == 0);
+  // The contact row L = [1] pushes the mass up: along the point's +y.
+  CHECK(p.gap_operator().coeff(0, mesh->point_dofs(0, 1)) == 1.0);
+  CHECK(p.initial_state().u[mesh->point_dofs(0, 1)] == 2.0);
+}

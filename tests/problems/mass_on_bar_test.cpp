@@ -197,17 +197,25 @@ TEST_CASE("mass on bar: operators, contact row on both bodies, registry and bad 
   }
 }
 
-TEST_CASE("mass on bar: field mesh of the bar (clamped node without dof) and element stress",
+TEST_CASE("mass on bar: field mesh of the bar (clamped node without dof) and element stress; the striker a vertex",
           "[problems][mass-on-bar][field-mesh]") {
   for (const char* mass : {"lumped", "consistent", "singular"}) {
     INFO(mass);
     const MassOnBar p = MassOnBar(Params(MassOnBar::parameters_spec(), {{"N", "8"}, {"E", "3"}, {"mass", mass}}));
     const auto mesh = p.field_mesh();
     REQUIRE(mesh.has_value());
-    REQUIRE(mesh->npoints() == 9);
-    REQUIRE(mesh->ncells() == 8);
+    REQUIRE(mesh->npoints() == 10);
+    REQUIRE(mesh->ncells() == 9);
+    REQUIRE(mesh->nelements() == 8);
     for (nsb::Index i = 0; i < 8; ++i) CHECK(mesh->point_dofs(i, 0) == i);
-    CHECK(mesh->point_dofs(8, 0) == -1);  // the clamp; the striker (dof 8) is not a point
+    CHECK(mesh->point_dofs(8, 0) == -1);  // the clamp
+    // The striker: a vertex (body 1) at the free end x = 0, on its dof.
+    CHECK(mesh->cell_size(8) == 1);
+    CHECK(mesh->cells(8, 0) == 9);
+    CHECK(mesh->cells(8, 1) == -1);
+    CHECK(mesh->points.row(9) == Eigen::RowVector2d(0.0, 0.0));
+    CHECK(mesh->point_dofs(9, 0) == p.mass_dof());
+    CHECK(mesh->cell_body[8] == 1);
     // u = eps (x - L): uniform strain, u = 0 at the clamp; the striker's dof is not read.
     const double eps = -2e-3;
     nsb::Vec u(p.ndof());

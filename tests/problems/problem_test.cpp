@@ -1,40 +1,32 @@
-// The field mesh contract (problems/problem.hpp, FieldMesh) on every registered problem: a
-// problem with a body mesh describes points, dofs and cells consistently with ndof and
-// writes its stresses without allocating; one without (point masses, rigid bodies) has none.
+// The field mesh contract (problems/problem.hpp, FieldMesh) on every registered problem:
+// each describes its bodies (points, dofs and cells consistently with ndof, every point in a
+// cell) and writes its elements' stresses and its bodies' arrays without allocating.
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
 #include <set>
+#include <stdexcept>
 
 #include "problems/registry.hpp"
 #include "tests/support/allocation_counter.hpp"
 
-namespace {
-
-// The built-in problems built from a body mesh, and those without one (a point mass, rigid
-// bodies, a spring chain).
-const std::set<std::string> kMeshed = {"signorini-bar", "signorini-bar-steel", "bouncing-bar", "two-bars",
-                                       "mass-on-bar",   "block-2d",            "two-blocks"};
-const std::set<std::string> kUnmeshed = {"bouncing-mass", "ball-chain", "sliding-mass", "rolling-disk", "spring-chain"};
-
-}  // namespace
-
-TEST_CASE("field mesh: points, dofs and cells agree with ndof; stress written without allocating",
+TEST_CASE("field mesh: points, dofs and cells agree with ndof; stress and body arrays written without allocating",
           "[problems][field-mesh]") {
   for (const auto& entry : nsb::problem_registry()) {
     const auto p = nsb::make_problem(entry.name);
     const auto mesh = p->field_mesh();
     INFO(entry.name);
-    if (kUnmeshed.contains(entry.name)) CHECK_FALSE(mesh.has_value());
-    if (kMeshed.contains(entry.name)) REQUIRE(mesh.has_value());
-    if (!mesh) continue;
+    REQUIRE(mesh.has_value());  // every built-in problem can be watched
     const int dim = mesh->dimension;
     REQUIRE((dim == 1 || dim == 2));
     REQUIRE(mesh->points.cols() == 2);
     REQUIRE(mesh->point_dofs.rows() == mesh->npoints());
     REQUIRE(mesh->point_dofs.cols() == dim);
-    REQUIRE(mesh->cells.cols() == (dim == 1 ? 2 : 4));
     REQUIRE(mesh->cell_body.size() == static_cast<std::size_t>(mesh->ncells()));
-    REQUIRE(mesh->stress_components.size() == (dim == 1 ? 1u : 3u));
-    // Every dof at most once, within [0, ndof); bars lie on y = 0.
+    REQUIRE(mesh->ncells() > 0);
+    // Stress components exactly when there are elements (1: a bar's or spring's; 3: plane).
+    if (mesh->nelements() > 0) REQUIRE(mesh->stress_components.size() == (dim == 1 ? 1u : 3u));
+    // Every dof at most once, within [0, ndof); 1D meshes lie on y = 0.
     std::set<int> dofs;
     for (nsb::Index a = 0; a < mesh->npoints(); ++a)
       for (int k = 0; k < dim; ++k) {
@@ -44,31 +36,51 @@ TEST_CASE("field mesh: points, dofs and cells agree with ndof; stress written wi
         CHECK(dofs.insert(d).second);
       }
     if (dim == 1) CHECK(mesh->points.col(1).isZero(0.0));
-    // Cells: valid points; lines along +x, quads counter-clockwise (positive signed area).
+    // Cells: 1, 2 or 4 valid points then -1 padding; lines along +x, quads counter-clockwise
+    // (positive signed area); a quad only in 2D; every point in some cell (else invisible).
+    std::vector<bool> used(static_cast<std::size_t>(mesh->npoints()), false);
     for (nsb::Index c = 0; c < mesh->ncells(); ++c) {
-      for (int k = 0; k < mesh->cells.cols(); ++k) REQUIRE((mesh->cells(c, k) >= 0 && mesh->cells(c, k) < mesh->npoints()));
+      const int n = mesh->cell_size(c);
+      REQUIRE((n == 1 || n == 2 || (n == 4 && dim == 2)));
+      for (int k = 0; k < mesh->cells.cols(); ++k) {
+        const int a = mesh->cells(c, k);
+        if (k >= n) {
+          CHECK(a == -1);
+          continue;
+        }
+        REQUIRE((a >= 0 && a < mesh->npoints()));
+        used[static_cast<std::size_t>(a)] = true;
+      }
       double area = 0.0;
-      if (dim == 1) {
+      if (n == 2) {
         area = mesh->points(mesh->cells(c, 1), 0) - mesh->points(mesh->cells(c, 0), 0);
-      } else {
+      } else if (n == 4) {
         for (int k = 0; k < 4; ++k) {
           const auto a = mesh->points.row(mesh->cells(c, k)), b = mesh->points.row(mesh->cells(c, (k + 1) % 4));
           area += 0.5 * (a.x() * b.y() - b.x() * a.y());
         }
       }
-      CHECK(area > 0.0);
+      if (n > 1) CHECK(area > 0.0);
     }
-    // A state with every dof set: cell_stress fills every entry (NaN beforehand), allocating nothing.
-    const nsb::Vec u = 1e-3 * nsb::Vec::LinSpaced(p->ndof(), -1.0, 1.0);
-    Eigen::MatrixXd sigma = Eigen::MatrixXd::Constant(mesh->ncells(), dim == 1 ? 1 : 3, std::nan(""));
+    CHECK(std::count(used.begin(), used.end(), false) == 0);
+    // A state with every dof set: cell_stress and body_data fill every entry (NaN
+    // beforehand), allocating nothing.
+    nsb::State s;
+    s.u = 1e-3 * nsb::Vec::LinSpaced(p->ndof(), -1.0, 1.0);
+    s.v = nsb::Vec::LinSpaced(p->ndof(), 1.0, 2.0);
+    Eigen::MatrixXd sigma = Eigen::MatrixXd::Constant(mesh->nelements(), static_cast<nsb::Index>(mesh->stress_components.size()),
+                                                      std::nan(""));
+    Eigen::MatrixXd body = Eigen::MatrixXd::Constant(mesh->nbodies(), mesh->body_columns(), std::nan(""));
     long allocations = 0;
     {
       nsb::test::CountAllocations count;
-      p->cell_stress(u, sigma);
+      if (sigma.size() > 0) p->cell_stress(s.u, sigma);
+      if (body.size() > 0) p->body_data(s, body);
       allocations = count.count();
     }
     CHECK(allocations == 0);
     CHECK(sigma.allFinite());
+    CHECK(body.allFinite());
   }
 }
 
@@ -93,4 +105,37 @@ TEST_CASE("field mesh: append shifts points and dofs, keeps fixed components fix
   CHECK(a.cells(1, 0) == 2);
   CHECK(a.cells(1, 1) == 3);
   CHECK(a.cell_body == std::vector<int>{0, 3});
+}
+
+TEST_CASE("field mesh: cells of mixed sizes are padded with -1; a vertex appended to lines, lines to a vertex",
+          "[problems][field-mesh]") {
+  nsb::FieldMesh m;
+  m.dimension = 1;
+  m.add_vertex(-1.0, 0.0, {4}, 2);
+  CHECK(m.cells.cols() == 1);
+  nsb::FieldMesh bar;
+  bar.dimension = 1;
+  bar.points = Eigen::MatrixXd::Zero(2, 2);
+  bar.points(1, 0) = 1.0;
+  bar.point_dofs = Eigen::MatrixXi::Zero(2, 1);
+  bar.point_dofs(1, 0) = 1;
+  bar.cells = Eigen::MatrixXi(1, 2);
+  bar.cells << 0, 1;
+  m.append(bar, 0, 0);  // widens the vertex's row
+  m.add_vertex(3.0, 0.0, {-1}, 1);
+  REQUIRE(m.ncells() == 3);
+  REQUIRE(m.cells.cols() == 2);
+  CHECK(m.cells.row(0) == Eigen::RowVector2i(0, -1));
+  CHECK(m.cells.row(1) == Eigen::RowVector2i(1, 2));
+  CHECK(m.cells.row(2) == Eigen::RowVector2i(3, -1));
+  CHECK(m.cell_size(0) == 1);
+  CHECK(m.cell_size(1) == 2);
+  CHECK(m.nelements() == 1);
+  CHECK(m.nbodies() == 2);
+  CHECK(m.point_dofs(0, 0) == 4);
+  CHECK(m.point_dofs(3, 0) == -1);
+  CHECK(m.cell_body == std::vector<int>{2, 0, 1});
+  m.body_arrays = {{"a", 1}, {"b", 3}};
+  CHECK(m.body_columns() == 4);
+  CHECK_THROWS_AS(m.add_vertex(0.0, 0.0, {0, 1}, 0), std::logic_error);  // 2 dofs in a 1D mesh
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -389,4 +390,38 @@ TEST_CASE("rolling disk: bad parameters are rejected", "[problems][exact][fricti
     CAPTURE(b.begin()->first, b.begin()->second);
     CHECK_THROWS_AS(make(b), nsb::InputError);
   }
+}
+
+TEST_CASE("rolling disk: field mesh, the centre as a vertex; the rotation in body arrays, exactly",
+          "[problems][field-mesh][friction]") {
+  const RollingDisk p = make({{"R", "0.2"}});
+  const auto mesh = p.field_mesh();
+  REQUIRE(mesh.has_value());
+  CHECK(mesh->dimension == 2);
+  REQUIRE(mesh->npoints() == 1);
+  CHECK(mesh->points.row(0) == Eigen::RowVector2d(0.0, 0.2));  // the centre when the lowest point is at y = 0
+  CHECK(mesh->point_dofs.row(0) == Eigen::RowVector2i(0, 1));
+  REQUIRE(mesh->body_columns() == 6);
+  CHECK(mesh->body_arrays[3].name == "orientation");
+  // The centre's position is its reference plus (x, y); the marker turns with theta: a
+  // quarter turn counter-clockwise takes it from +x to +y.
+  nsb::State s = p.initial_state();
+  for (const double theta : {0.0, 0.5 * std::numbers::pi, -2.5}) {
+    s.u << 0.3, 0.05, theta;
+    s.v << 1.0, -2.0, 7.0;
+    Eigen::MatrixXd out(1, 6);
+    p.body_data(s, out);
+    CHECK(out(0, 0) == 0.2);
+    CHECK(out(0, 1) == theta);
+    CHECK(out(0, 2) == 7.0);
+    CHECK(out(0, 3) == Approx(std::cos(theta)).margin(1e-15));
+    CHECK(out(0, 4) == Approx(std::sin(theta)).margin(1e-15));
+    CHECK(out(0, 5) == 0.0);
+    CHECK(std::hypot(out(0, 3), out(0, 4)) == Approx(1.0).epsilon(1e-15));
+  }
+  s.u << 0.0, 0.0, 0.5 * std::numbers::pi;
+  Eigen::MatrixXd quarter(1, 6);
+  p.body_data(s, quarter);
+  CHECK(quarter(0, 3) == Approx(0.0).margin(1e-15));
+  CHECK(quarter(0, 4) == Approx(1.0).epsilon(1e-15));
 }

@@ -240,3 +240,17 @@ TEST_CASE("sliding mass: bad parameters are rejected", "[problems][exact][fricti
   }
   CHECK_NOTHROW(SlidingMass(Params(SlidingMass::parameters_spec(), {{"alpha", "89.9"}, {"mu", "0"}})));
 }
+
+TEST_CASE("sliding mass: field mesh, a vertex in the plane's frame (x down the slope, y normal)", "[problems][field-mesh]") {
+  const SlidingMass p = make(30.0, 0.2, 1.0);
+  const auto mesh = p.field_mesh();
+  REQUIRE(mesh.has_value());
+  CHECK(mesh->dimension == 2);
+  REQUIRE(mesh->npoints() == 1);
+  CHECK(mesh->points.row(0) == Eigen::RowVector2d(0.0, 0.0));
+  CHECK(mesh->point_dofs.row(0) == Eigen::RowVector2i(0, 1));
+  CHECK(mesh->nbodies() == 1);
+  // The normal row acts on y, the tangent row on x.
+  CHECK(p.gap_operator().coeff(0, mesh->point_dofs(0, 1)) == 1.0);
+  CHECK(p.contacts().tangent.coeff(0, mesh->point_dofs(0, 0)) == 1.0);
+}

@@ -38,3 +38,35 @@ TEST_CASE("spring chain: stable step 2/omega_max, two masses in closed form; wal
   REQUIRE(both.ncontacts() == 2);
   CHECK(both.gap_operator().coeff(1, 3) == -1.0);  // g = gap - U_3: closes when the last mass moves right
 }
+
+TEST_CASE("spring chain: field mesh, springs as lines with their force, masses as vertices", "[problems][field-mesh]") {
+  const auto p = chain({{"n", "4"}, {"k", "30"}});
+  const auto mesh = p.field_mesh();
+  REQUIRE(mesh.has_value());
+  CHECK(mesh->dimension == 1);
+  REQUIRE(mesh->npoints() == 4);
+  REQUIRE(mesh->nelements() == 3);
+  REQUIRE(mesh->nbodies() == 4);
+  for (nsb::Index i = 0; i < 4; ++i) {
+    CHECK(mesh->points(i, 0) == static_cast<double>(i));
+    CHECK(mesh->point_dofs(i, 0) == i);
+    CHECK(mesh->cell_size(3 + i) == 1);
+    CHECK(mesh->cells(3 + i, 0) == i);  // a vertex on each mass
+  }
+  for (nsb::Index i = 0; i < 3; ++i) {
+    CHECK(mesh->cell_size(i) == 2);
+    CHECK(mesh->cells.row(i) == Eigen::RowVector2i(static_cast<int>(i), static_cast<int>(i + 1)));
+  }
+  // The spring forces are the internal forces' pieces: F_int,0 = -N_0, F_int,3 = N_2, and
+  // N_i - N_{i-1} = -F_int,i in between (positive N: tension).
+  nsb::Vec u(4), f(4);
+  u << 0.1, -0.3, 0.25, 0.7;
+  Eigen::MatrixXd force(3, 1);
+  p.cell_stress(u, force);
+  p.internal_force(u, f);
+  CHECK(force(0, 0) == Approx(30.0 * (-0.4)));
+  CHECK(f[0] == Approx(-force(0, 0)));
+  CHECK(f[1] == Approx(force(0, 0) - force(1, 0)));
+  CHECK(f[2] == Approx(force(1, 0) - force(2, 0)));
+  CHECK(f[3] == Approx(force(2, 0)));
+}
