@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "core/build_info.hpp"
@@ -123,8 +124,10 @@ std::string markdown_escape(const std::string& s) {
   return out;
 }
 
-// A number column (right-aligned in LaTeX) holds more numbers than texts (n/a, diverged).
+// A column of numbers, a siunitx S column in LaTeX: one with a number format, or one without
+// (integers, shortest round-trip numbers, texts) holding more numbers than texts (n/a, diverged).
 bool numeric_column(const Table& t, std::size_t i) {
+  if (!t.columns[i].format.empty()) return true;
   long numbers = 0, texts = 0;
   for (const auto& row : t.rows) {
     if (std::holds_alternative<double>(row[i]) || std::holds_alternative<long>(row[i])) ++numbers;
@@ -133,16 +136,51 @@ bool numeric_column(const Table& t, std::size_t i) {
   return numbers > 0 && numbers >= texts;
 }
 
-// A number in LaTeX: the mantissa-exponent form of the column's format as m x 10^e (math mode,
-// the minus a true minus); the rest as text.
-std::string latex_cell(const Cell& c, const std::string& format) {
+// A finite number as siunitx reads it (S column, \num): its text in the column's format with
+// the exponent as a plain integer ("5.22e-02" -> "5.22e-2", "1e+20" -> "1e20"); nullopt for
+// a text, an empty cell, NaN or an infinity.
+std::optional<std::string> siunitx_number(const Cell& c, const std::string& format) {
+  if (!std::holds_alternative<long>(c) && !(std::holds_alternative<double>(c) && std::isfinite(std::get<double>(c))))
+    return std::nullopt;
   const std::string text = cell_text(c, format);
-  if (!std::holds_alternative<double>(c) && !std::holds_alternative<long>(c)) return latex_text(text);
-  if (text == "n/a" || text == "inf" || text == "-inf") return text == "n/a" ? text : (text[0] == '-' ? "$-\\infty$" : "$\\infty$");
   const std::size_t e = text.find_first_of("eE");
-  if (e == std::string::npos) return "$" + text + "$";
-  const int exponent = std::stoi(text.substr(e + 1));
-  return fmt::format("${}\\times 10^{{{}}}$", text.substr(0, e), exponent);
+  if (e == std::string::npos) return text;
+  return fmt::format("{}e{}", text.substr(0, e), std::stoi(text.substr(e + 1)));
+}
+
+// What is not a number, in LaTeX: infinities as symbols, the rest as escaped text.
+std::string latex_word(const Cell& c, const std::string& format) {
+  const std::string text = cell_text(c, format);
+  if (std::holds_alternative<double>(c) && std::isinf(std::get<double>(c)))
+    return text[0] == '-' ? "$-\\infty$" : "$\\infty$";
+  return latex_text(text);
+}
+
+// The S column of numbers written by siunitx_number: table-format reserves the widest sign,
+// integer part, decimals and exponent among them ("-1.2e-2"), so they align on the decimal
+// marker and the exponent. A column whose numbers all carry an exponent (an e format) prints
+// x 10^0 too, like its other rows (siunitx leaves it out otherwise).
+std::string s_column(const std::vector<std::string>& numbers) {
+  if (numbers.empty()) return "S";
+  bool minus = false, exponent_minus = false, all_exponents = true;
+  std::size_t integer = 0, decimals = 0, exponent = 0;
+  for (const auto& n : numbers) {
+    const std::size_t sign = n[0] == '-' ? 1 : 0;
+    const std::size_t e = std::min(n.find('e'), n.size());
+    const std::size_t point = std::min(n.find('.'), e);
+    minus = minus || sign;
+    integer = std::max(integer, point - sign);
+    decimals = std::max(decimals, point < e ? e - point - 1 : 0);
+    all_exponents = all_exponents && e < n.size();
+    if (e == n.size()) continue;
+    const std::size_t exponent_sign = n[e + 1] == '-' ? 1 : 0;
+    exponent_minus = exponent_minus || exponent_sign;
+    exponent = std::max(exponent, n.size() - e - 1 - exponent_sign);
+  }
+  std::string format = fmt::format("{}{}", minus ? "-" : "", integer);
+  if (decimals > 0) format += fmt::format(".{}", decimals);
+  if (exponent > 0) format += fmt::format("e{}{}", exponent_minus ? "-" : "", exponent);
+  return fmt::format("S[table-format={}{}]", format, all_exponents && exponent > 0 ? ",print-zero-exponent" : "");
 }
 
 }  // namespace
@@ -187,18 +225,35 @@ std::string to_markdown(const Table& t) {
   return out;
 }
 
-// A longtable (packages booktabs, longtable): it breaks across pages, its header repeated on
-// each. The title is the \caption (and the list of tables' entry); the caption's text, the
-// column descriptions and the revision follow the table as its notes.
+// A longtable (packages booktabs, longtable, siunitx): it breaks across pages, its header
+// repeated on each. The title is the \caption (and the list of tables' entry); the caption's
+// text, the column descriptions and the revision follow the table as its notes. Number columns
+// are siunitx S columns; their texts (n/a, diverged) and headers are braced so siunitx sets them
+// as text. The \sisetup inside the table's group keeps numbers as written whatever a paper sets.
 std::string to_latex(const Table& t) {
   std::string out;
   for (const auto& [k, v] : stamp(t)) out += fmt::format("% {}: {}\n", k, v);
+  std::vector<bool> numeric;
   std::string spec;
-  for (std::size_t i = 0; i < t.columns.size(); ++i) spec += numeric_column(t, i) ? 'r' : 'l';
+  for (std::size_t i = 0; i < t.columns.size(); ++i) {
+    numeric.push_back(numeric_column(t, i));
+    if (!numeric[i]) {
+      spec += 'l';
+      continue;
+    }
+    std::vector<std::string> numbers;
+    for (const auto& row : t.rows)
+      if (const auto n = siunitx_number(row[i], t.columns[i].format)) numbers.push_back(*n);
+    spec += s_column(numbers);
+  }
   std::vector<std::string> head;
-  for (const auto& c : t.columns) head.push_back(latex_text(header_text(c)));
+  for (std::size_t i = 0; i < t.columns.size(); ++i) {
+    const std::string text = latex_text(header_text(t.columns[i]));
+    head.push_back(numeric[i] ? "{" + text + "}" : text);
+  }
   const std::string header = fmt::format("\\toprule\n{} \\\\\n\\midrule\n", fmt::join(head, " & "));
-  out += "% needs \\usepackage{booktabs,longtable}\n{\\small\n\\setlength{\\LTcapwidth}{\\linewidth}\n";
+  out += "% needs \\usepackage{booktabs,longtable,siunitx}\n{\\small\n\\setlength{\\LTcapwidth}{\\linewidth}\n";
+  out += "\\sisetup{round-mode=none,exponent-mode=input,group-digits=none,retain-negative-zero}\n";
   out += fmt::format("\\begin{{longtable}}{{@{{}}{}@{{}}}}\n\\caption{{{}}}\\label{{tab:{}}} \\\\\n", spec,
                      latex_text(t.title), t.id);
   out += header + "\\endfirsthead\n";
@@ -209,9 +264,17 @@ std::string to_latex(const Table& t) {
                      "\\endfoot\n\\bottomrule\n\\endlastfoot\n", t.columns.size());
   for (const auto& row : t.rows) {
     std::vector<std::string> cells;
-    for (std::size_t i = 0; i < row.size(); ++i) cells.push_back(latex_cell(row[i], t.columns[i].format));
-    // "{}" first: a row opening with '[' would be read as the optional argument of the \\ before it.
-    out += fmt::format("{{}}{} \\\\\n", fmt::join(cells, " & "));
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      if (const auto number = siunitx_number(row[i], t.columns[i].format)) {
+        cells.push_back(numeric[i] ? *number : "\\num{" + *number + "}");
+      } else {
+        const std::string word = latex_word(row[i], t.columns[i].format);
+        cells.push_back(numeric[i] ? "{" + word + "}" : word);
+      }
+    }
+    // "{}" first in a text column: a row opening with '[' would be read as the optional argument
+    // of the \\ before it (an S column's cells open with a digit, a sign or a brace).
+    out += fmt::format("{}{} \\\\\n", numeric[0] ? "" : "{}", fmt::join(cells, " & "));
   }
   out += "\\end{longtable}\n}\n\\begingroup\\footnotesize\\noindent ";
   out += latex_text(t.caption);

@@ -1,8 +1,8 @@
 #pragma once
 // A study's result: a table with typed columns (name, unit, number format), rows, and the
 // metadata needed to cite and regenerate it. Writers give CSV (raw numbers, full
-// precision), Markdown and LaTeX (booktabs), each stamped with the parameters, build type,
-// compiler and git revision.
+// precision), Markdown and LaTeX (booktabs, siunitx), each stamped with the parameters, build
+// type, compiler and git revision.
 #include <filesystem>
 #include <string>
 #include <utility>
