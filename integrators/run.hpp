@@ -81,10 +81,11 @@ struct RunResult {
   double t_final = 0.0;
   double cpu_seconds = 0.0;      // CPU time of the stepping loop (sampling included): the
                                  // thread's, or the process's when run_threads() > 1
-  // The same less the time spent in the observer and in sampling (the series, the energy
-  // check, the finiteness check): the integrator's cost. The clock is read only around a
-  // step that is observed or sampled; each such step's stepping time carries about one clock
-  // read (a fraction of a microsecond).
+  // The same less the share spent in the observer and in sampling (the series, the energy
+  // check, the finiteness check): the integrator's cost. That share is the wall time around
+  // the observed or sampled steps over the loop's wall time (the wall clock costs tens of ns a
+  // read, a thread CPU clock a system call); each such step's stepping time carries about
+  // one clock read.
   double step_cpu_seconds = 0.0;
   double wall_seconds = 0.0;     // elapsed time of the same loop
   double initial_energy = 0.0;

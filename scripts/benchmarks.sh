@@ -23,7 +23,7 @@ run bar "$cores"
 run block 1
 [ "$cores" -eq 1 ] || run block "$cores"
 run implicit "$cores"
-# The memory bound: one run per length is enough (the peak RSS does not vary), 40 s at 2e6 steps.
+# The memory bound: one run per length is enough (the peak RSS does not vary), 20 s at 1e6 steps.
 echo "benchmarks: nsbench-bench-memory" >&2
 "$build/studies/nsbench-bench-memory" --benchmark_out_format=json --benchmark_out="$out/benchmarks/memory-1.json" > /dev/null
 files=()

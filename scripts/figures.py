@@ -17,6 +17,7 @@ import argparse
 import csv
 import json
 import math
+import multiprocessing
 import os
 import sys
 
@@ -511,9 +512,27 @@ def save(fig, spec, meta, reports, paper, legend=None):
     for ext in ("png", "pdf"):
         final = os.path.join(out_dir, f"{spec['id']}.{ext}")
         tmp = os.path.join(out_dir, f".{spec['id']}.tmp.{ext}")
-        fig.savefig(tmp, dpi=300 if paper else 150, bbox_inches="tight")  # legend and stamp below the panels included
+        # No creation date in the PDF: the same report draws the same bytes.
+        fig.savefig(tmp, dpi=300 if paper else 150, bbox_inches="tight",  # legend and stamp below the panels included
+                    metadata={"CreationDate": None} if ext == "pdf" else None)
         os.replace(tmp, final)  # whole or not at all
     plt.close(fig)
+
+
+def draw_one(task):
+    spec, reports, paper = task
+    DRAWERS.get(spec.get("kind"), draw)(spec, reports, paper)
+
+
+def study_jobs():
+    """NSBENCH_JOBS as the studies read it (a whole number >= 1), else the number of cores."""
+    text = os.environ.get("NSBENCH_JOBS", "")
+    if not text:
+        return os.cpu_count() or 1
+    if not text.isdigit() or not 1 <= int(text) <= 4096:
+        sys.exit(f"figures.py: NSBENCH_JOBS='{text}': expected a whole number of parallel figures; valid: 1 to 4096 "
+                 "(unset: the number of cores)")
+    return int(text)
 
 
 def main():
@@ -537,8 +556,16 @@ def main():
         if unknown:
             sys.exit(f"figures.py: --only {sorted(unknown)[0]}: no such figure in {args.reports}/figures.json")
         specs = [s for s in specs if s["id"] in args.only]
-    for spec in specs:
-        DRAWERS.get(spec.get("kind"), draw)(spec, args.reports, paper)
+    # The figures are independent: drawn by NSBENCH_JOBS processes (default: the cores), each
+    # figure by one, so a figure's bytes do not depend on the number of processes.
+    jobs = max(1, min(len(specs), study_jobs()))
+    tasks = [(spec, args.reports, paper) for spec in specs]
+    if jobs == 1:
+        for task in tasks:
+            draw_one(task)
+    else:
+        with multiprocessing.get_context("fork").Pool(jobs) as pool:
+            pool.map(draw_one, tasks, chunksize=1)
     out = os.path.join(args.reports, "figures", "paper") if paper else os.path.join(args.reports, "figures")
     print(f"figures: {len(specs)} written to {out}", file=sys.stderr)
 

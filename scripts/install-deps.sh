@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs nsbench's build dependencies from Debian packages (Debian 12 "bookworm").
+#   scripts/install-deps.sh          what the build and the studies need
+#   scripts/install-deps.sh tests    also what only the tests use (a VTK reader, LaTeX)
 set -euo pipefail
 packages=(
   build-essential cmake git pkg-config
@@ -7,7 +9,6 @@ packages=(
   catch2 libbenchmark-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libtomlplusplus-dev  # study files (nsbench-study run FILE.toml)
   python3 python3-matplotlib
-  python3-meshio  # tests only: tests/scripts/fields_test.py reads nsbench run --fields back (VTK files)
   # Siconos kernel: the optional peers (siconos-* integrators, CMake option NSBENCH_SICONOS).
   libsiconos-kernel-dev
   # BLAS: nsbench's own numerics call none (moreau_jean.hpp says why); the Siconos peers do.
@@ -17,6 +18,16 @@ packages=(
   # each built where its package is found).
   libmujoco-dev libbullet-dev libode-dev
 )
+case "${1:-}" in
+  "") ;;
+  tests) packages+=(
+           python3-meshio  # tests/scripts/fields_test.py reads nsbench run --fields back (VTK files)
+           # tests/scripts/latex_test.py compiles the tables: pdflatex, booktabs, longtable, siunitx
+           # (135 MB; without them the compile test is skipped, the text test still runs).
+           texlive-latex-base texlive-latex-recommended texlive-science
+         ) ;;
+  *) echo "usage: scripts/install-deps.sh [tests]" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
   [ "$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null)" = "install ok installed" ] || missing+=("$p")

@@ -27,7 +27,8 @@ jobs="${JOBS:-$(nproc)}"
 # Single-threaded BLAS for the cost tables (Siconos' dense algebra calls OpenBLAS).
 export OPENBLAS_NUM_THREADS=1
 
-bash scripts/install-deps.sh
+# The studies need no test-only packages (a VTK reader, LaTeX).
+if [ "$what" = studies ]; then bash scripts/install-deps.sh; else bash scripts/install-deps.sh tests; fi
 cmake -S . -B "$build" "${config[@]}"
 cmake --build "$build" -j "$jobs" "${targets[@]}"
 

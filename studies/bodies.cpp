@@ -443,7 +443,7 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
   });
   Table rank = ranking_table("bodies_ranking", "Cheapest integrator at each target error: contacts between bodies",
                              {"force err", "", "", "the relative time-L1 contact force error of bodies_bars"},
-                             "median thread CPU time of 3 unobserved runs after a warm-up", ranking);
+                             median_cpu_text(), ranking);
   rank.metadata = metadata;
 
   const BallChain chain(Params(BallChain::parameters_spec(), find_case(kTrajectoryCase).params));

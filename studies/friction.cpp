@@ -498,7 +498,7 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
   });
   Table rank = ranking_table("friction_ranking", "Cheapest integrator at each target error: Coulomb friction",
                              {"t err", "s", "", "t_stop err of friction_sliding (mu = 0.8) and t_roll err of friction_disk"},
-                             "median thread CPU time of 3 unobserved runs after a warm-up", ranking);
+                             median_cpu_text(), ranking);
   rank.metadata = metadata;
 
   Table trajectory;

@@ -148,29 +148,48 @@ int main(int argc, char** argv) {
     std::string headline;  // the headline tables, shown first
     std::string lead;      // the lead tables (the claims), shown before the headline
     std::vector<nsb::Table> all_tables;
-    for (const auto* s : selected) {
-      const auto start = std::chrono::steady_clock::now();
-      const std::vector<Json> cases = nsb::study_cases(*s, options);
-      std::vector<Json> results;
-      if (merge) {
-        results = nsb::merge_shards(s->name, cases, out, full);
-      } else {
-        std::vector<std::size_t> mine;
-        for (std::size_t k = 0; k < cases.size(); ++k)
-          if (!shard.count || static_cast<long>(k % static_cast<std::size_t>(shard.count)) == shard.index - 1) mine.push_back(k);
-        const auto computed = nsb::parallel_map<Json>(mine.size(), [&](std::size_t j) {
-          return nsb::run_study_case(*s, cases[mine[j]], options);
-        }, s->name);
-        if (shard.count) {
-          nsb::ensure_directory(fs::path(out) / "shards");
-          nsb::write_file_atomic(nsb::shard_path(out, s->name, shard.index, shard.count),
-                                 nsb::shard_text(s->name, full, shard, cases, mine, computed));
-          fmt::print(stderr, "study {}: shard {}/{} ({} of {} cases) written\n", s->name, shard.index, shard.count,
-                     mine.size(), cases.size());
-          continue;
+    // The cases of every selected study (this shard's), run in one pool: a study's longest
+    // case no longer leaves the other cores idle at its end (each case is independent, so the
+    // results do not depend on the order).
+    std::vector<std::vector<Json>> all_cases(selected.size()), all_results(selected.size());
+    std::vector<std::vector<std::size_t>> mine(selected.size());
+    std::vector<std::pair<std::size_t, std::size_t>> pending;  // (study, case)
+    std::vector<std::string> pooled;
+    for (std::size_t i = 0; i < selected.size(); ++i) {
+      all_cases[i] = nsb::study_cases(*selected[i], options);
+      if (merge) continue;
+      all_results[i].resize(all_cases[i].size());
+      for (std::size_t k = 0; k < all_cases[i].size(); ++k)
+        if (!shard.count || static_cast<long>(k % static_cast<std::size_t>(shard.count)) == shard.index - 1) {
+          mine[i].push_back(k);
+          pending.emplace_back(i, k);
         }
-        results = computed;
+      pooled.push_back(selected[i]->name);
+    }
+    const auto pool_start = std::chrono::steady_clock::now();
+    const auto computed = nsb::parallel_map<Json>(pending.size(), [&](std::size_t j) {
+      const auto [i, k] = pending[j];
+      return nsb::run_study_case(*selected[i], all_cases[i][k], options);
+    }, fmt::format("{}", fmt::join(pooled, "+")));
+    for (std::size_t j = 0; j < pending.size(); ++j)
+      all_results[pending[j].first][pending[j].second] = computed[j];
+    if (!pending.empty())
+      fmt::print(stderr, "{} cases of {} in {:.1f} s\n", pending.size(), fmt::join(pooled, ", "),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - pool_start).count());
+    for (std::size_t i = 0; i < selected.size(); ++i) {
+      const auto* s = selected[i];
+      const std::vector<Json>& cases = all_cases[i];
+      if (shard.count) {
+        std::vector<Json> shard_results;
+        for (std::size_t k : mine[i]) shard_results.push_back(all_results[i][k]);
+        nsb::ensure_directory(fs::path(out) / "shards");
+        nsb::write_file_atomic(nsb::shard_path(out, s->name, shard.index, shard.count),
+                               nsb::shard_text(s->name, full, shard, cases, mine[i], shard_results));
+        fmt::print(stderr, "study {}: shard {}/{} ({} of {} cases) written\n", s->name, shard.index, shard.count,
+                   mine[i].size(), cases.size());
+        continue;
       }
+      const std::vector<Json> results = merge ? nsb::merge_shards(s->name, cases, out, full) : std::move(all_results[i]);
       const auto tables = nsb::study_tables(*s, cases, results, options);
       if (verify) {
         for (const auto& t : tables) {
@@ -198,8 +217,7 @@ int main(int argc, char** argv) {
         all_tables.push_back(t);
       }
       studies += "\n";
-      const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      fmt::print(stderr, "study {}: {} cases, {} tables in {:.1f} s\n", s->name, cases.size(), tables.size(), secs);
+      fmt::print(stderr, "study {}: {} cases, {} tables\n", s->name, cases.size(), tables.size());
     }
     if (verify) {
       for (const auto& d : verified.differences) fmt::print("{}\n", d);

@@ -176,8 +176,8 @@ std::vector<Table> peers_tables(const std::vector<Json>& cases, const std::vecto
   t.caption =
       "Both integrators step in lockstep, same problem, theta, e and dt. du, dv: max over steps of the max-norm "
       "difference of displacements and velocities, over the largest |u|, |v| of ours; dE: max |E_ours - E_peer| / |E0|; "
-      "dLambda: max difference of the step impulses (normal and tangential) over our largest impulse. Cost: CPU per step of each alone (median of "
-      "3 unobserved runs), BLAS single-threaded. A pair runs when both integrators are registered (peers: see the metadata).";
+      "dLambda: max difference of the step impulses (normal and tangential) over our largest impulse. Cost: CPU per step of each alone ("
+      + median_cpu_text() + "), BLAS single-threaded. A pair runs when both integrators are registered (peers: see the metadata).";
   t.columns = {{"ours", "", "", ""}, {"peer", "", "", ""}, {"parameters", "", "", ""}, {"problem", "", "", ""},
                {"dt", "", "{:.1e}", "step"}, {"steps", "", "", ""}, {"status", "", "", ""},
                {"du", "", "{:.2e}", "max |u_ours - u_peer| / max |u_ours|"},

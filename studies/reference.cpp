@@ -106,8 +106,7 @@ std::vector<Table> reference_tables(const std::vector<Json>& cases, const std::v
   tol.id = "reference_tolerance";
   tol.title = "SUNDIALS references on the bouncing mass (e = 0.9, [0, 3] s): tolerance sweep";
   tol.caption = "err u = max |u - u_exact| over samples every 1e-3 s; err t = max impact-time error (event-driven); "
-                "est. = max |u(rtol) - u(rtol/10)|, the reference's own error estimate; atol = rtol/100; CPU: median "
-                "of 3 runs after a warm-up; steps, RHS, Jacobians, factorisations (KLU), root evaluations: CVODE's "
+                "est. = max |u(rtol) - u(rtol/10)|, the reference's own error estimate; atol = rtol/100; CPU: " + median_cpu_text() + "; steps, RHS, Jacobians, factorisations (KLU), root evaluations: CVODE's "
                 "counts; events: impacts and restarts (event-driven) or penalty on/off switches.";
   tol.columns = {{"integrator", "", "", ""},      {"rtol", "", "{:.0e}", ""},          {"err u", "m", "{:.2e}", ""},
                  {"err t", "s", "{:.2e}", ""},    {"est.", "m", "{:.2e}", ""},          {"CPU", "s", "{:.2e}", "", true},

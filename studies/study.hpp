@@ -82,7 +82,13 @@ void add_ranking_curves(std::vector<RankingProblem>& rankings, const std::vector
 
 // CPU time of a run, as the work-precision tables report it: the median thread CPU time of
 // `repeats` runs of a fresh `integrator` (with `params`) on `problem`, after a warm-up run,
-// none of them observed or sampled (options.sample_every is set past the end).
+// none of them observed or sampled (options.sample_every is set past the end). A run whose
+// warm-up takes over kLongRunSeconds is timed once after it: the median is there for the
+// scheduler's and the caches' noise, milliseconds, under 1 % of such a run, and each repeat
+// would cost the whole run again (Siconos at the finest steps of `precision`: 5 s a run).
+inline constexpr double kLongRunSeconds = 1.0;
+// What the cost captions say median_cpu_seconds measures.
+std::string median_cpu_text(int repeats = 3);
 double median_cpu_seconds(const Problem& problem, const std::string& integrator,
                           const std::map<std::string, std::string>& params, RunOptions options, int repeats = 3);
 

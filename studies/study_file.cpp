@@ -308,7 +308,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                               : spec.reference.exact ? "the exact solution"
                                                      : fmt::format("{} (dt = {}, cached)", spec.reference.integrator, spec.reference.dt);
   const std::string cpu = spec.cpu_repeats > 0
-                              ? fmt::format("median thread CPU time of {} unobserved runs after a warm-up", spec.cpu_repeats)
+                              ? median_cpu_text(spec.cpu_repeats)
                               : "thread CPU time of the stepping of the observed run (observer excluded)";
   Table t;
   t.id = spec.name + "_work_precision";
