@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/threads.hpp"
+#include "integrators/field_output.hpp"
 #include "integrators/run.hpp"
 #include "problems/block_2d.hpp"
 #include "problems/bouncing_mass.hpp"
@@ -340,6 +341,31 @@ void friction(const IntegratorEntry& entry, std::vector<Verdict>& out) {
                                     "{:.3g} J (<= 0)", worst_cone, worst_gain)));
 }
 
+// What `nsbench run --fields` needs: a mesh the writer accepts, and finite stresses and body
+// arrays at the initial state.
+void field_mesh(const Problem& p, const State& s0, std::vector<Verdict>& out) {
+  const auto mesh = p.field_mesh();
+  if (!mesh) {
+    out.push_back({"field mesh", Outcome::NotMeasured, "none: nsbench run --fields refuses this problem"});
+    return;
+  }
+  try {
+    check_field_mesh(*mesh, p, "field mesh");
+  } catch (const InputError& err) {
+    out.push_back({"field mesh", Outcome::Fail, err.what()});
+    return;
+  }
+  Eigen::MatrixXd stress(mesh->nelements(), static_cast<Index>(mesh->stress_components.size()));
+  Eigen::MatrixXd bodies(mesh->nbodies(), mesh->body_columns());
+  stress.setConstant(std::numeric_limits<double>::quiet_NaN());  // a row left unwritten shows
+  bodies.setConstant(std::numeric_limits<double>::quiet_NaN());
+  if (mesh->nelements() > 0) p.cell_stress(s0.u, stress);
+  if (!mesh->body_arrays.empty()) p.body_data(s0, bodies);
+  out.push_back(verdict("field mesh", stress.allFinite() && bodies.allFinite(),
+                        fmt::format("{} points, {} elements, {} bodies; stresses and body arrays finite at the "
+                                    "initial state", mesh->npoints(), mesh->nelements(), mesh->nbodies())));
+}
+
 }  // namespace
 
 std::vector<Verdict> check_integrator(const IntegratorEntry& entry) {
@@ -397,6 +423,7 @@ std::vector<Verdict> check_problem(const ProblemEntry& entry) {
                         fmt::format("d V_int / du . d = {:.6g}, F_int . d = {:.6g}, relative difference {:.3g} (<= 1e-5)", dv, fd, rel)));
   const double dt = p->stable_step();
   out.push_back(verdict("stable step", dt > 0.0, fmt::format("{:.4g} (> 0; inf: no stiffness, 2 / omega_max)", dt)));
+  field_mesh(*p, s0, out);
   out.push_back(refuses_bad_parameters(entry.parameters(), [&](const Params& q) { entry.make(q); }));
   return out;
 }

@@ -23,11 +23,11 @@ void open_array(std::string& out, const char* type, const std::string& name, int
 
 int vtk_type(int points) { return points == 1 ? kVtkVertex : points == 2 ? kVtkLine : kVtkQuad; }
 
-// A plugin's mesh is not otherwise checked: one clear line rather than a crash or a file
-// ParaView cannot read.
-void check_mesh(const FieldMesh& m, const Problem& p, const std::string& option) {
+}  // namespace
+
+void check_field_mesh(const FieldMesh& m, const Problem& p, const std::string& context) {
   const auto fail = [&](const std::string& why) {
-    throw InputError(fmt::format("{}: problem {}: field_mesh(): {}", option, p.name(), why));
+    throw InputError(fmt::format("{}: problem {}: field_mesh(): {}", context, p.name(), why));
   };
   if (m.dimension != 1 && m.dimension != 2) fail(fmt::format("dimension {}; valid: 1 or 2", m.dimension));
   if (m.points.cols() != 2 || m.point_dofs.rows() != m.npoints() || m.point_dofs.cols() != m.dimension)
@@ -47,8 +47,6 @@ void check_mesh(const FieldMesh& m, const Problem& p, const std::string& option)
     if (a.components != 1 && a.components != 3)
       fail(fmt::format("body array {}: {} components; valid: 1 or 3", a.name, a.components));
 }
-
-}  // namespace
 
 FieldWriter::Part FieldWriter::make_part(bool elements) const {
   Part part;
@@ -111,7 +109,7 @@ FieldWriter::FieldWriter(const Problem& problem, const std::filesystem::path& di
         if (!mesh)
           throw InputError(fmt::format("{}: problem {} describes no bodies to write (Problem::field_mesh())", option,
                                        problem.name()));
-        check_mesh(*mesh, problem, option);
+        check_field_mesh(*mesh, problem, option);
         return std::move(*mesh);
       }()),
       dir_(dir, option) {

@@ -49,6 +49,12 @@
 
 namespace nsb {
 
+// Throws InputError, "CONTEXT: problem NAME: field_mesh(): what is wrong", when `mesh` is not
+// one the writer can write for `problem` (shapes, dofs within ndof, cells of 1, 2 or 4 points
+// padded with -1, stress components for element cells, body arrays of 1 or 3 components): a
+// plugin's mesh gets one clear line, not a crash or a file ParaView cannot read.
+void check_field_mesh(const FieldMesh& mesh, const Problem& problem, const std::string& context);
+
 class FieldWriter final : public StateSink {
  public:
   // Throws InputError naming `option` when the problem has no field mesh, its mesh is

@@ -3,6 +3,7 @@
 // through the command; the broken test plugin (tests/plugins/broken.cpp) fails it, the
 // properties it breaks named.
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <string>
 
 #include "integrators/conformance.hpp"
@@ -74,6 +75,21 @@ TEST_CASE("check: the broken plugin fails, naming the impulse sign and the step 
   CHECK_THAT(line_of(r.output, "impulse sign"), Catch::Contains("FAIL"));
   CHECK_THAT(line_of(r.output, "step counters"), Catch::Contains("FAIL"));
   CHECK_THAT(line_of(r.output, "momentum"), Catch::Contains(" pass "));  // its motion is CD-Lagrange's
+}
+
+TEST_CASE("check: the broken plugin's problem fails on its field mesh, naming the dof", "[app][check][plugin]") {
+  const auto r = run_command(nsbench("--plugin " + test_plugin("broken") + " check --problem broken-mesh"));
+  INFO(r.output);
+  CHECK(r.code == 1);
+  CHECK_THAT(line_of(r.output, "field mesh"), Catch::Contains("FAIL") && Catch::Contains("a point dof outside [-1, ndof = 1)"));
+  CHECK_THAT(line_of(r.output, "mass"), Catch::Contains(" pass "));  // the rest of it is sound
+  const auto fields = run_command(nsbench("--plugin " + test_plugin("broken") +
+                                          " run --problem broken-mesh --integrator cd-lagrange --dt 0.1 --t-end 0.2"
+                                          " --out /tmp/nsbench_check_test_broken_mesh --fields /tmp/nsbench_check_test_broken_mesh_fields"));
+  CHECK(fields.code == 2);  // and --fields refuses it with the same line
+  CHECK_THAT(fields.output, Catch::Contains("a point dof outside [-1, ndof = 1)"));
+  std::filesystem::remove_all("/tmp/nsbench_check_test_broken_mesh");
+  std::filesystem::remove_all("/tmp/nsbench_check_test_broken_mesh_fields");
 }
 
 TEST_CASE("check: an unknown integrator names the nearest, exit 2", "[app][check][bad-input]") {

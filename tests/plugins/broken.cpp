@@ -1,8 +1,11 @@
 // A deliberately broken integrator for `nsbench check` (tests/app/check_test.cpp): CD-Lagrange
 // underneath, so its motion is right, but it reports its impulses with the sign convention
 // inverted (a push apart as Lambda < 0) and never counts its steps (work().steps stays 0, so
-// budgets and tables would read nothing).
+// budgets and tables would read nothing). And a problem whose field mesh names a dof it does
+// not have (`nsbench run --fields` would refuse it): one free mass, otherwise sound.
 #include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+#include "problems/rigid_problem.hpp"
 
 namespace {
 
@@ -31,7 +34,31 @@ class Broken final : public nsb::Integrator {
   std::unique_ptr<nsb::Integrator> inner_;
 };
 
+class BrokenMesh final : public nsb::RigidProblem {
+ public:
+  explicit BrokenMesh(const nsb::Params& params) : params_(params) {
+    mass_ = nsb::Vec::Ones(1);
+    load_ = nsb::Vec::Zero(1);
+    contacts_.normal.resize(0, 1);
+    contacts_.gap_offset.resize(0);
+  }
+  static nsb::ParamSpecs parameters_spec() { return {}; }
+  std::string name() const override { return "broken-mesh"; }
+  const nsb::Params& parameters() const override { return params_; }
+  nsb::State initial_state() const override { return {0.0, nsb::Vec::Zero(1), nsb::Vec::Zero(1)}; }
+  std::optional<nsb::FieldMesh> field_mesh() const override {
+    nsb::FieldMesh mesh;
+    mesh.add_vertex(0.0, 0.0, {1}, 0);  // dof 1 of a problem with one dof
+    return mesh;
+  }
+
+ private:
+  nsb::Params params_;
+};
+
 }  // namespace
 
+NSBENCH_PROBLEM({"broken-mesh", "test plugin: a field mesh naming a dof the problem does not have",
+                 &BrokenMesh::parameters_spec, &nsb::make_from_params<nsb::Problem, BrokenMesh>});
 NSBENCH_INTEGRATOR({"broken", "test plugin: inverted impulse sign, no step count", &Broken::parameters_spec,
                     &nsb::make_from_params<nsb::Integrator, Broken>, false});
