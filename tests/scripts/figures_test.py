@@ -146,6 +146,18 @@ def test_figures():
             check(b"/Type3" not in pdf and b"/FontFile2" in pdf, f"{style}: fonts not embedded as TrueType")
         bad = subprocess.run(["/usr/bin/python3", script, root, "--only", "nope"], capture_output=True, text=True)
         check(bad.returncode != 0 and "--only nope" in bad.stderr, "an unknown --only id is not one clear error")
+        # One process or several: the same bytes (PNG and PDF, which carries no creation date).
+        drawn = {}
+        for jobs in ("1", "3"):
+            subprocess.run(["/usr/bin/python3", script, root], check=True, capture_output=True,
+                           env=dict(os.environ, NSBENCH_JOBS=jobs))
+            drawn[jobs] = {name: open(os.path.join(root, "figures", name), "rb").read()
+                           for name in sorted(os.listdir(os.path.join(root, "figures"))) if name.endswith((".png", ".pdf"))}
+        check(len(drawn["1"]) == 12 and drawn["1"] == drawn["3"], "figures differ between 1 and 3 processes")
+        for jobs in ("0", "two"):
+            bad = subprocess.run(["/usr/bin/python3", script, root], capture_output=True, text=True,
+                                 env=dict(os.environ, NSBENCH_JOBS=jobs))
+            check(bad.returncode != 0 and f"NSBENCH_JOBS='{jobs}'" in bad.stderr, f"NSBENCH_JOBS={jobs} is not one clear error")
     # Log ticks: an axis of F_int evaluations over less than two decades shows several labels.
     fig, ax = plt.subplots()
     ax.set_xscale("log")
