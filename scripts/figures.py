@@ -467,7 +467,9 @@ def draw_deformed(spec, reports, paper=False):
                 arrows.setdefault(tuple(row[c] for c in spec["panels"]), []).append((x, y, ax_, ay))
     cmap, vmin, vmax, extend = colour_scale([v for cs in cells.values() for _, v in cs])
     points = [p for cs in cells.values() for quad, _ in cs for p in quad]
-    span = max(max(p[0] for p in points) - min(p[0] for p in points), max(p[1] for p in points) - min(p[1] for p in points))
+    x_min, x_max = min(p[0] for p in points), max(p[0] for p in points)
+    y_min, y_max = min(p[1] for p in points), max(p[1] for p in points)
+    span = max(x_max - x_min, y_max - y_min)
     largest = max((math.hypot(a[2], a[3]) for arr in arrows.values() for a in arr), default=0.0)
     fig, axes, where = grid_figure(keys, paper, (1.7, 1.5) if paper else (3.0, 2.6), ("x [m]", "y [m]"))
     coll = None
@@ -490,8 +492,8 @@ def draw_deformed(spec, reports, paper=False):
         ax.set_title(", ".join(k for k in key if k), fontsize=7 if paper else 9)
         ax.axhline(0.0, color="0.4", linewidth=0.8, zorder=0)  # the floor
     for ax in axes.flat:
-        ax.set_xlim(min(p[0] for p in points) - 0.05 * span, max(p[0] for p in points) + 0.05 * span)
-        ax.set_ylim(min(min(p[1] for p in points), 0.0) - 0.3 * span, max(p[1] for p in points) + 0.05 * span)
+        ax.set_xlim(x_min - 0.05 * span, x_max + 0.05 * span)
+        ax.set_ylim(min(y_min, 0.0) - 0.3 * span, y_max + 0.05 * span)
     finish_coloured(fig, axes, coll, extend, spec, meta, reports, paper)
 
 
