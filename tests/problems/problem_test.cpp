@@ -84,18 +84,27 @@ TEST_CASE("field mesh: points, dofs and cells agree with ndof; stress and body a
   }
 }
 
+namespace {
+
+// One bar element from x = 0 (dof 0) to x = 1 (dof 1), body 0.
+nsb::FieldMesh one_element_bar() {
+  nsb::FieldMesh bar;
+  bar.dimension = 1;
+  bar.points = Eigen::MatrixXd::Zero(2, 2);
+  bar.points(1, 0) = 1.0;
+  bar.point_dofs = Eigen::MatrixXi::Zero(2, 1);
+  bar.point_dofs(1, 0) = 1;
+  bar.cells = Eigen::MatrixXi(1, 2);
+  bar.cells << 0, 1;
+  bar.cell_body = {0};
+  return bar;
+}
+
+}  // namespace
+
 TEST_CASE("field mesh: append shifts points and dofs, keeps fixed components fixed, sets the body",
           "[problems][field-mesh]") {
-  nsb::FieldMesh a, b;
-  a.dimension = b.dimension = 1;
-  a.points = Eigen::MatrixXd::Zero(2, 2);
-  a.points(1, 0) = 1.0;
-  a.point_dofs = Eigen::MatrixXi::Zero(2, 1);
-  a.point_dofs(1, 0) = 1;
-  a.cells = Eigen::MatrixXi(1, 2);
-  a.cells << 0, 1;
-  a.cell_body = {0};
-  b = a;
+  nsb::FieldMesh a = one_element_bar(), b = a;
   b.point_dofs(1, 0) = -1;
   a.append(b, 5, 3);
   CHECK(a.npoints() == 4);
@@ -113,15 +122,7 @@ TEST_CASE("field mesh: cells of mixed sizes are padded with -1; a vertex appende
   m.dimension = 1;
   m.add_vertex(-1.0, 0.0, {4}, 2);
   CHECK(m.cells.cols() == 1);
-  nsb::FieldMesh bar;
-  bar.dimension = 1;
-  bar.points = Eigen::MatrixXd::Zero(2, 2);
-  bar.points(1, 0) = 1.0;
-  bar.point_dofs = Eigen::MatrixXi::Zero(2, 1);
-  bar.point_dofs(1, 0) = 1;
-  bar.cells = Eigen::MatrixXi(1, 2);
-  bar.cells << 0, 1;
-  m.append(bar, 0, 0);  // widens the vertex's row
+  m.append(one_element_bar(), 0, 0);  // widens the vertex's row
   m.add_vertex(3.0, 0.0, {-1}, 1);
   REQUIRE(m.ncells() == 3);
   REQUIRE(m.cells.cols() == 2);
