@@ -58,7 +58,8 @@ void check_field_mesh(const FieldMesh& mesh, const Problem& problem, const std::
 class FieldWriter final : public StateSink {
  public:
   // Throws InputError naming `option` when the problem has no field mesh, its mesh is
-  // malformed (sizes, cell types, point and dof ranges) or DIR cannot be staged. `expected_writes`: how many states will be written (a size hint).
+  // malformed (check_field_mesh) or DIR cannot be staged. `expected_writes`: how many states
+  // will be written (a size hint).
   FieldWriter(const Problem& problem, const std::filesystem::path& dir, const std::string& option, long expected_writes);
   FieldWriter(const FieldWriter&) = delete;
   FieldWriter& operator=(const FieldWriter&) = delete;

@@ -14,10 +14,10 @@
 // of the variable-step integrators (momentum under any step sequence, energy balance);
 // it is not a discretised bar (no element masses, no exact solution).
 //
-// Field output (`--fields`): along x, mass i a point with a vertex cell at x = i (1 m apart: the model has no
-// rest length, only the springs' elongations), dof i; spring i a line from mass i to mass
-// i + 1 with cell array spring_force = k (U_{i+1} - U_i) [N], positive in tension. One body
-// (id 0). The walls (x = -gap, and n - 1 + gap) are not drawn.
+// Field output (`--fields`): along x, mass i a point with a vertex cell at x = i (1 m apart:
+// the model has no rest length, only the springs' elongations), dof i; spring i a line from
+// mass i to mass i + 1 with cell array spring_force = k (U_{i+1} - U_i) [N], positive in
+// tension. One body (id 0). The walls (x = -gap, and n - 1 + gap) are not drawn.
 //
 // Stable step of the central difference scheme: 2 / omega_max, omega_max^2 the largest
 // eigenvalue of M^{-1} K (computed once, dense, hence n <= 200).
