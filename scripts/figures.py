@@ -61,11 +61,13 @@ def label(row, columns):
 
 # One style per scheme, defined here once and used by every figure of every report: colour
 # (Okabe & Ito's colour-blind-safe palette, black kept for the references), marker and dash
-# pattern. The registered schemes have fixed entries; any other name (a plugin) gets one of the
-# remaining combinations from a hash of its name, so its style too is the same in every figure
-# and report. References are black or grey with crosses; a peer (siconos-*) takes the colour and
-# marker of the scheme it reimplements, hollow and dotted, so the two curves are told apart
-# where they lie on each other.
+# pattern. The registered schemes have fixed entries; any other name (a plugin, a study file's
+# label) gets one of the remaining combinations from a hash of its name, so its style too is
+# the same in every figure and report, unless it would share colour and marker with another
+# series of the same figure: then it takes the first pair no series there has (line_styles).
+# References are black or grey with crosses; a peer (siconos-*) takes the colour and marker of
+# the scheme it reimplements, hollow and dotted, so the two curves are told apart where they
+# lie on each other.
 PALETTE = ["#D55E00", "#0072B2", "#009E73", "#E69F00", "#CC79A7", "#56B4E9"]
 MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">"]
 DASHES = ["-", "--", "-.", (0, (5, 1.5, 1, 1.5, 1, 1.5))]
@@ -80,14 +82,28 @@ PEER_PREFIX = "siconos-"
 # dotted like the Siconos peers, on colours and markers of their own.
 ENGINES = ["mujoco", "bullet", "ode"]
 
+# Every (colour, marker) pair, 6 x 9 = 54: first the 18 that colours and markers cycling
+# together give (the registered schemes' and engines' styles), then the others, the colour
+# changing at each.
+_CYCLED = [(i % len(PALETTE), i % len(MARKERS)) for i in range(math.lcm(len(PALETTE), len(MARKERS)))]
+PAIRS = _CYCLED + [(c, (c + d) % len(MARKERS)) for d in range(len(MARKERS)) for c in range(len(PALETTE))
+                   if (c, (c + d) % len(MARKERS)) not in _CYCLED]
+FIXED = len(SCHEMES) + len(ENGINES)  # the pairs the registered names hold
+
 
 def combination(i):
-    """The i-th (colour, marker, dashes): colours and markers cycle together (6 x 9 coprime
-    lengths: 18 distinct pairs), the dashes change every 6 so no two of 72 are alike."""
-    return PALETTE[i % len(PALETTE)], MARKERS[i % len(MARKERS)], DASHES[(i // len(PALETTE)) % len(DASHES)]
+    """The i-th (colour, marker, dashes): the i-th pair of PAIRS (no two of the first 54 share
+    colour and marker), the dashes changing every 6."""
+    c, m = PAIRS[i % len(PAIRS)]
+    return PALETTE[c], MARKERS[m], DASHES[(i // len(PALETTE)) % len(DASHES)]
 
 
-COMBINATIONS = math.lcm(len(PALETTE), len(MARKERS)) * len(DASHES)  # 72 distinct, see combination()
+def name_hash(name):
+    """A stable hash (not Python's salted hash())."""
+    h = 0
+    for ch in name.encode():
+        h = (h * 131 + ch) % 1000003
+    return h
 
 
 def scheme_style(name):
@@ -102,20 +118,46 @@ def scheme_style(name):
         color, marker, _ = combination(len(SCHEMES) + ENGINES.index(name))
         return {"color": color, "marker": marker, "linestyle": ":", "markerfacecolor": "none", "kind": "peer"}
     if name in SCHEMES:
-        i = SCHEMES.index(name)
-    else:  # a plugin: a stable hash (not Python's salted hash()) onto the unused combinations
-        h = 0
-        for ch in name.encode():
-            h = (h * 131 + ch) % 1000003
-        i = len(SCHEMES) + h % (COMBINATIONS - len(SCHEMES))
-    color, marker, dashes = combination(i)
+        color, marker, dashes = combination(SCHEMES.index(name))
+    else:  # a plugin: the hash picks a pair the registered names do not hold, and dashes
+        h = name_hash(name)
+        free = len(PAIRS) - FIXED
+        color, marker, _ = combination(FIXED + h % free)
+        dashes = DASHES[(h // free) % len(DASHES)]
     return {"color": color, "marker": marker, "linestyle": dashes, "markerfacecolor": color, "kind": "scheme"}
+
+
+def registered(name):
+    """True for a name whose style is fixed (a built-in scheme, peer, engine or reference)."""
+    base = name[len(PEER_PREFIX):] if name.startswith(PEER_PREFIX) else name
+    return base in REFERENCES or base in SCHEMES or base in ENGINES
+
+
+def distinct(styles):
+    """The schemes' styles of one figure ({name: style}), none sharing colour, marker and fill
+    with another: the registered names keep theirs, every other name that would share them with
+    a name before it (registered names first, then the others in order) takes the first pair
+    of PAIRS no name of the figure has (past 54 names in one figure, pairs repeat)."""
+    def key(style):
+        return style["color"], style["marker"], style["markerfacecolor"]
+    order = [n for n in styles if registered(n)] + [n for n in styles if not registered(n)]
+    taken, out = set(), {}
+    for name in order:
+        style = styles[name]
+        if key(style) in taken and not registered(name):
+            free = [(c, m) for c, m, _ in map(combination, range(len(PAIRS))) if (c, m, c) not in taken]
+            if free:
+                style = {**style, "color": free[0][0], "marker": free[0][1], "markerfacecolor": free[0][0]}
+        taken.add(key(style))
+        out[name] = style
+    return {name: out[name] for name in styles}
 
 
 def line_styles(spec, rows):
     """The style of each line label of a figure. With an 'integrator' series column a line has
-    its scheme's style; the other series columns (mass, variant) change its dashes, in the
-    table's order. Without one (lines by mass, say), lines are styled by their order in the table."""
+    its scheme's style (distinct() among the figure's schemes); the other series columns (mass,
+    variant) change its dashes, in the table's order. Without one (lines by mass, say), lines
+    are styled by their order in the table."""
     series = spec["series"]
     labels = list(dict.fromkeys(label(row, series) for row in rows))
     if "integrator" not in series:
@@ -124,10 +166,11 @@ def line_styles(spec, rows):
                 for i, name in enumerate(labels)}
     k = series.index("integrator")
     others = list(dict.fromkeys(tuple(v for j, v in enumerate(row_values(row, series)) if j != k) for row in rows))
+    schemes = distinct({name: scheme_style(name) for name in dict.fromkeys(row_values(row, series)[k] for row in rows)})
     styles = {}
     for row in rows:
         values = row_values(row, series)
-        style = scheme_style(values[k])
+        style = schemes[values[k]]
         if len(others) > 1:  # a reference's mass models too: lumped, consistent, singular told apart
             style = {**style, "linestyle": DASHES[others.index(tuple(v for j, v in enumerate(values) if j != k)) % len(DASHES)]}
         styles[label(row, series)] = style

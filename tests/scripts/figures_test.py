@@ -72,6 +72,30 @@ def test_style_map(nsbench):
     check(len({style_key(figures.scheme_style(f"p{i}")) for i in range(40)}) > 30, "plugin styles collide")
 
 
+def test_distinct_series(nsbench):
+    """20 schemes in one figure (every registered one that fits, then plugins and a study file's
+    labels, whose hashed styles collide with one another): no two share colour, marker and
+    fill; the registered ones keep their own styles."""
+    names = [name for name, _ in registered(nsbench)][:8]
+    names += ["symplectic-euler", "my-plugin", "Moreau-Jean, theta = 1/2", "Moreau-Jean, theta = 1"]
+    names += [f"plugin-{i}" for i in range(20 - len(names))]
+    check(len(names) == 20, f"{len(names)} series")
+    spec = {"series": ["integrator"]}
+    rows = [{"integrator": name} for name in names]
+    styles = figures.line_styles(spec, rows)
+    keys = {}
+    for name in names:
+        keys.setdefault((styles[name]["color"], styles[name]["marker"], styles[name]["markerfacecolor"]), []).append(name)
+    for key, same in keys.items():
+        check(len(same) == 1, f"series {same} share colour and marker {key}")
+    for name in names:
+        if figures.registered(name):
+            check(styles[name] == figures.scheme_style(name), f"registered {name} restyled")
+    # Without the figure's resolution the hashed styles do collide: the test above can fail.
+    hashed = {(figures.scheme_style(n)["color"], figures.scheme_style(n)["marker"]) for n in names}
+    check(len(hashed) < len(names), "no collision among the hashed styles: the test proves nothing")
+
+
 def write_report(root):
     """A small report: a convergence table (orders 1 and 2 exact) and an energy history."""
     with open(os.path.join(root, "conv.csv"), "w") as f:
@@ -192,6 +216,7 @@ def test_figures():
 
 if __name__ == "__main__":
     test_style_map(sys.argv[1])
+    test_distinct_series(sys.argv[1])
     test_figures()
     for f in failures:
         print("FAILED:", f)
