@@ -1,5 +1,6 @@
 // Smooth-window order of every registered (non-reference) integrator: the wall-free spring
-// chain (no contact, linear) against modal-exact, its exact semi-discrete solution. The
+// chain (no contact, linear) started with velocity and acceleration, against modal-exact, its
+// exact semi-discrete solution. The
 // error is the largest displacement error at the final time (displacements only: the
 // schemes report different velocities, e.g. CD-Lagrange the half-step one); the order is
 // log2 of the error ratio between steps dt and dt/2 at the two finest steps.
@@ -24,8 +25,9 @@ const std::map<std::string, double> kExpectedOrder = {
     {"siconos-schatzman-paoli", 1.0},
     {"siconos-d1-minus-linear", 2.0},
     // The out-of-tree example plugin (examples/plugin/), which the tests load: velocity-first
-    // symplectic Euler gives the leapfrog's positions (its velocity is the half-step one).
-    {"symplectic-euler", 2.0},
+    // symplectic Euler, first order (1.10 measured; from a start at rest in the springs, with
+    // no initial acceleration, it measured 2.003).
+    {"symplectic-euler", 1.0},
 };
 
 }  // namespace
