@@ -116,6 +116,7 @@ int run_case(const RunArgs& a) {
   if (integrator->conditionally_stable() && options.dt > problem->stable_step())
     fmt::print(stderr, "nsbench: warning: --dt {} is above the stable step {:.4g} of {} for {} (ratio {:.3g}): expect a blow-up\n",
                options.dt, problem->stable_step(), problem->name(), integrator->name(), options.dt / problem->stable_step());
+  if (const std::string slow = nsb::unoptimized_plugins_warning(); !slow.empty()) fmt::print(stderr, "nsbench: {}\n", slow);
   options.progress_every = 3.0;
   options.interrupt = &interrupt_signal;
   std::signal(SIGINT, on_interrupt);

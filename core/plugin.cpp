@@ -79,7 +79,23 @@ void load_plugin(const std::string& path) {
     fail(fmt::format("built for plugin ABI {}, this nsbench has ABI {}: rebuild it against this nsbench", *abi,
                      NSBENCH_PLUGIN_ABI));
   if (!l.errors.empty()) fail(l.errors.front());
-  l.loaded.push_back({canonical.string(), canonical.filename().string(), hash});
+  PluginInfo info{canonical.string(), canonical.filename().string(), hash};
+  const auto* optimized = static_cast<const int*>(dlsym(handle, "nsbench_plugin_optimized"));
+  const auto* build_type = static_cast<const char*>(dlsym(handle, "nsbench_plugin_build_type"));
+  const auto* flags = static_cast<const char*>(dlsym(handle, "nsbench_plugin_compile_flags"));
+  if (optimized && build_type && flags) {
+    info.build_known = true;
+    info.optimized = *optimized != 0;
+    info.build_type = build_type;
+    info.compile_flags = flags;
+  }
+  l.loaded.push_back(std::move(info));
+}
+
+std::string PluginInfo::build_text() const {
+  if (!build_known) return "build unknown (built before nsbench recorded it)";
+  return fmt::format("{}, {}, flags {}", build_type.empty() ? "build type unknown" : build_type,
+                     optimized ? "optimised" : "UNOPTIMISED (-O0)", compile_flags.empty() ? "unknown" : compile_flags);
 }
 
 void load_plugins(const std::vector<std::string>& paths) {
@@ -99,8 +115,18 @@ const std::vector<PluginInfo>& loaded_plugins() { return loader().loaded; }
 
 std::string plugins_stamp() {
   std::vector<std::string> parts;
-  for (const auto& p : loaded_plugins()) parts.push_back(fmt::format("{} ({})", p.file, p.hash));
+  for (const auto& p : loaded_plugins()) parts.push_back(fmt::format("{} ({}; {})", p.file, p.hash, p.build_text()));
   return fmt::format("{}", fmt::join(parts, ", "));
+}
+
+std::string unoptimized_plugins_warning() {
+  std::vector<std::string> slow;
+  for (const auto& p : loaded_plugins())
+    if (p.build_known && !p.optimized) slow.push_back(fmt::format("{} ({})", p.file, p.build_text()));
+  if (slow.empty()) return "";
+  return fmt::format("warning: plugin {} compiled without optimisation: its CPU times are those of unoptimised code "
+                     "(rebuild it with -DCMAKE_BUILD_TYPE=Release, nsbench_add_plugin's default)",
+                     fmt::join(slow, ", "));
 }
 
 }  // namespace nsb

@@ -21,6 +21,24 @@
 // linked against nsbench is not taken for a plugin; nsbench_add_plugin sets NSBENCH_PLUGIN.
 #if defined(NSBENCH_PLUGIN) || !defined(NSBENCH_BUILTIN)
 extern "C" __attribute__((weak, visibility("default"))) const int nsbench_plugin_abi_version = NSBENCH_PLUGIN_ABI;
+// How the plugin was compiled, stamped at its compile time so that the reports show the
+// code that was measured. Optimised or not comes from the compiler itself (__OPTIMIZE__:
+// GCC and Clang define it at -O1 and above), whatever built the plugin; the build type and
+// the flags from nsbench_add_plugin (cmake/nsbenchPlugin.cmake), empty when it is not used.
+#ifndef NSBENCH_PLUGIN_BUILD_TYPE
+#define NSBENCH_PLUGIN_BUILD_TYPE ""
+#endif
+#ifndef NSBENCH_PLUGIN_COMPILE_FLAGS
+#define NSBENCH_PLUGIN_COMPILE_FLAGS ""
+#endif
+#ifdef __OPTIMIZE__
+extern "C" __attribute__((weak, visibility("default"))) const int nsbench_plugin_optimized = 1;
+#else
+extern "C" __attribute__((weak, visibility("default"))) const int nsbench_plugin_optimized = 0;
+#endif
+extern "C" __attribute__((weak, visibility("default"))) const char nsbench_plugin_build_type[] = NSBENCH_PLUGIN_BUILD_TYPE;
+extern "C" __attribute__((weak, visibility("default"))) const char nsbench_plugin_compile_flags[] =
+    NSBENCH_PLUGIN_COMPILE_FLAGS;
 #endif
 
 namespace nsb {
@@ -29,6 +47,14 @@ struct PluginInfo {
   std::string path;  // canonical path of the file loaded
   std::string file;  // its file name, as the reports print it
   std::string hash;  // "fnv1a64:<16 hex digits>" of the file's bytes
+  // How it was compiled (the symbols above); `build_known` false for a plugin built before
+  // nsbench recorded it.
+  bool build_known = false;
+  bool optimized = false;
+  std::string build_type;     // empty: not built by nsbench_add_plugin
+  std::string compile_flags;  // idem
+  // "Release, optimised, flags -O3 -DNDEBUG" or "Debug, UNOPTIMISED (-O0), flags -g".
+  std::string build_text() const;
 };
 
 // Loads one plugin. Throws InputError "plugin FILE: reason" when the file is missing, is
@@ -38,8 +64,11 @@ void load_plugin(const std::string& path);
 // The plugins named in NSBENCH_PLUGINS (colon-separated), then `paths` (the --plugin flags).
 void load_plugins(const std::vector<std::string>& paths);
 const std::vector<PluginInfo>& loaded_plugins();
-// "file (hash), ..." of the loaded plugins, for the reports' stamps; empty when none.
+// "file (hash; build), ..." of the loaded plugins, for the reports' stamps; empty when none.
 std::string plugins_stamp();
+// One line naming the loaded plugins compiled without optimisation (their CPU times are
+// not those of the code a user would run); empty when there is none.
+std::string unoptimized_plugins_warning();
 
 namespace detail {
 // The plugin whose registrations are running (nullptr: a built-in one).

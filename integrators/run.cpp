@@ -342,7 +342,12 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
   };
   if (!loaded_plugins().empty()) {
     json plugins = json::array();
-    for (const auto& p : loaded_plugins()) plugins.push_back({{"file", p.file}, {"hash", p.hash}});
+    for (const auto& p : loaded_plugins()) {
+      json plugin = {{"file", p.file}, {"hash", p.hash}, {"build_known", p.build_known}};
+      if (p.build_known)
+        plugin.update({{"optimized", p.optimized}, {"build_type", p.build_type}, {"compile_flags", p.compile_flags}});
+      plugins.push_back(plugin);
+    }
     j["build"]["plugins"] = plugins;
   }
   return j.dump(2) + "\n";

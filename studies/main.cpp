@@ -104,6 +104,7 @@ int main(int argc, char** argv) {
       write_performance({names.begin() + 1, names.end()}, out);
       return 0;
     }
+    if (const std::string slow = nsb::unoptimized_plugins_warning(); !slow.empty()) fmt::print(stderr, "nsbench-study: {}\n", slow);
     const nsb::Shard shard = shard_text.empty() ? nsb::Shard{} : nsb::parse_shard(shard_text);
     nsb::study_jobs();  // a bad NSBENCH_JOBS is reported before any work
     if (shard.count && merge) throw InputError("--shard and --merge: give one of them");

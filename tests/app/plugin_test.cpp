@@ -54,6 +54,53 @@ TEST_CASE("plugin: the example's integrator is listed, runs, and summary.json na
   CHECK(run_command("NSBENCH_PLUGINS=" + kPlugin + " " + nsbench("--plugin " + kPlugin + " list")).code == 0);
 }
 
+TEST_CASE("plugin: each plugin's own build is stamped in summary.json and the tables; an unoptimised one is warned about",
+          "[app][plugin]") {
+  const fs::path out = fs::temp_directory_path() / "nsbench_plugin_test_build";
+  const std::string run = " run --problem bouncing-mass --integrator symplectic-euler --dt 1e-3 --t-end 0.1 --out " + out.string();
+  const auto plugin_build = [&] {
+    std::ifstream in(out / "summary.json");
+    const auto summary = nlohmann::json::parse(in);
+    REQUIRE(summary["build"]["plugins"].size() == 1);
+    return summary["build"]["plugins"][0];
+  };
+  // Built as nsbench_add_plugin builds it (here nsbench's Release): optimised, no warning.
+  fs::remove_all(out);
+  const auto optimised = run_command(nsbench("--plugin " + kPlugin + run));
+  REQUIRE(optimised.code == 0);
+  CHECK_THAT(optimised.output, !Catch::Contains("warning"));
+  const auto release = plugin_build();
+  CHECK(release["build_known"] == true);
+  CHECK(release["optimized"] == true);
+  CHECK(release["build_type"] == "Release");
+  CHECK_THAT(release["compile_flags"].get<std::string>(), Catch::Contains("-O3"));
+
+  // The same source at -O0 (tests/CMakeLists.txt): stamped so, one warning line naming it.
+  const std::string slow = test_plugin("symplectic_euler_O0");
+  fs::remove_all(out);
+  const auto unoptimised = run_command(nsbench("--plugin " + slow + run));
+  REQUIRE(unoptimised.code == 0);
+  CHECK_THAT(unoptimised.output, Catch::Contains("warning: plugin symplectic_euler_O0.so (Release, UNOPTIMISED (-O0), flags "));
+  CHECK(lines(unoptimised.output) - lines(optimised.output) == 1);
+  const auto debug = plugin_build();
+  CHECK(debug["optimized"] == false);
+  CHECK_THAT(debug["compile_flags"].get<std::string>(), Catch::EndsWith("-O0"));
+
+  // A study's tables carry the stamp, and the study warns too.
+  const fs::path reports = fs::temp_directory_path() / "nsbench_plugin_test_build_reports";
+  fs::remove_all(reports);
+  const std::string study_file = (fs::temp_directory_path() / "nsbench_plugin_test_build.toml").string();
+  std::ofstream(study_file) << "[study]\ntitle = \"t\"\nt_end = 0.1\ncpu_repeats = 0\n[[problem]]\nname = \"bouncing-mass\"\n"
+                               "[[integrator]]\nname = \"symplectic-euler\"\nsteps = [1e-2]\n[[measure]]\nkind = \"penetration\"\n";
+  const auto studied = run_command(std::string(NSBENCH_STUDY_CLI) + " --plugin " + slow + " run " + study_file + " --out " + reports.string());
+  REQUIRE(studied.code == 0);
+  CHECK_THAT(studied.output, Catch::Contains("nsbench-study: warning: plugin symplectic_euler_O0.so"));
+  std::ifstream csv(reports / "nsbench_plugin_test_build_work_precision.csv");
+  const std::string table((std::istreambuf_iterator<char>(csv)), std::istreambuf_iterator<char>());
+  CHECK_THAT(table, Catch::Contains("# plugins: symplectic_euler_O0.so (fnv1a64:") &&
+                        Catch::Contains("; Release, UNOPTIMISED (-O0), flags "));
+}
+
 TEST_CASE("plugin: a bad plugin gives one line naming the file and the reason, exit 2", "[app][plugin][bad-input]") {
   const std::string not_elf = (fs::temp_directory_path() / "nsbench_plugin_test_not_elf.so").string();
   std::ofstream(not_elf) << "not a shared library\n";
