@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <tuple>
 
@@ -13,6 +14,23 @@ namespace nsb {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 bool usable(double x) { return x > 0.0 && std::isfinite(x); }
+// "none", and which rule removed which runs: "none (removed: energy blow-up: A dt = 1e-2, A dt =
+// 5e-3; diverged: B dt = 1e-1)".
+std::string none_text(const RankingProblem& p, const std::function<std::string(const WorkCurve&)>& name) {
+  std::vector<std::pair<std::string, std::vector<std::string>>> rules;  // in order of first appearance
+  for (const auto& c : p.curves)
+    for (const auto& point : c.points) {
+      if (point.removed.empty()) continue;
+      auto rule = std::find_if(rules.begin(), rules.end(), [&](const auto& r) { return r.first == point.removed; });
+      if (rule == rules.end()) rule = rules.insert(rules.end(), {point.removed, {}});
+      rule->second.push_back(name(c) + " " + point.run);
+    }
+  if (rules.empty()) return "none";
+  std::vector<std::string> parts;
+  for (const auto& [rule, runs] : rules) parts.push_back(fmt::format("{}: {}", rule, fmt::join(runs, ", ")));
+  return fmt::format("none (removed: {})", fmt::join(parts, "; "));
+}
+
 }  // namespace
 
 TargetCost cost_at_target(const WorkCurve& curve, double target, double floor) {
@@ -23,7 +41,7 @@ TargetCost cost_at_target(const WorkCurve& curve, double target, double floor) {
   std::vector<Run> runs;
   for (std::size_t i = 0; i < curve.points.size(); ++i) {
     const WorkPoint& p = curve.points[i];
-    if (usable(p.cost) && usable(p.error)) runs.push_back({p.cost, std::max(p.error, floor), i});
+    if (p.removed.empty() && usable(p.cost) && usable(p.error)) runs.push_back({p.cost, std::max(p.error, floor), i});
   }
   std::sort(runs.begin(), runs.end(), [](const Run& a, const Run& b) {
     return std::tie(a.cost, a.error, a.index) < std::tie(b.cost, b.error, b.index);
@@ -74,7 +92,7 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
                {"ratio", "", "{:.2f}", "runner-up CPU / winner CPU", true},
                {"not reached", "", "", "integrators whose runs never reach the target"}};
   t.headline = true;
-  const auto name = [](const WorkCurve& c) {
+  const std::function<std::string(const WorkCurve&)> name = [](const WorkCurve& c) {
     return c.reference ? c.integrator + " (reference)" : c.peer ? c.integrator + " (peer)" : c.integrator;
   };
   for (const auto& p : problems)
@@ -88,9 +106,10 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
       std::vector<std::string> missed;
       for (const auto& s : standings)  // a curve without runs: the integrator declined the problem
         if (!s.cost.reached && !p.curves[s.curve].points.empty()) missed.push_back(name(p.curves[s.curve]));
-      // Name, cost and runs of the k-th placed integrator; "none" when there is none.
+      // Name, cost and runs of the k-th placed integrator; "none" (and the runs rules removed)
+      // when there is none.
       const auto placed = [&](std::size_t k) -> std::array<Cell, 3> {
-        if (k >= standings.size() || !standings[k].cost.reached) return {std::string("none"), {}, {}};
+        if (k >= standings.size() || !standings[k].cost.reached) return {none_text(p, name), {}, {}};
         const Standing& s = standings[k];
         return {name(p.curves[s.curve]), s.cost.cost, s.cost.runs};
       };

@@ -23,6 +23,9 @@ struct WorkPoint {
   std::string run;  // which run of the sweep, e.g. "dt = 1.0e-03"
   double cost;      // CPU seconds; NaN when the run has none
   double error;     // NaN when the run has none (diverged, over budget, n/a)
+  // The rule that removed the run from the ranking (e.g. "energy blow-up", "diverged"), which
+  // an empty winner or runner-up cell then names; empty: the run is ranked.
+  std::string removed = {};
 };
 
 struct WorkCurve {
@@ -60,6 +63,8 @@ struct RankingProblem {
 // One row per problem and target: the winner, its cost and the runs it is read between, the
 // runner-up, its cost and runs, their cost ratio, and the integrators not reaching the target
 // (a curve without points is an integrator that declined the problem, n/a: not listed).
+// Where no integrator (or no second one) reaches the target, the winner (runner-up) cell says
+// "none" and, when rules removed runs (WorkPoint::removed), which rule removed which runs.
 // References are ranked with the others (they are peers in cost against error) and marked
 // "(reference)", peers (other codes' implementations) "(peer)". A target below the problem's floor is not ranked (its row says so).
 // `error` names the error column (name, unit, format, description); `cost` says what the

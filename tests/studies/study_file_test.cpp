@@ -70,6 +70,11 @@ struct TempCache {
   }
 };
 
+// A [study] table of one CPU run and one target error, 1e-2.
+std::string quick_study(const std::string& t_end, const std::string& more = "") {
+  return "[study]\ntitle = \"t\"\nt_end = " + t_end + "\ncpu_repeats = 0\ntargets = [1e-2]\n" + more;
+}
+
 // Runs every case of a study in this thread and builds its tables.
 std::vector<nsb::Table> run_all(const nsb::StudySpec& spec, std::vector<nsb::Json>* results_out = nullptr) {
   const nsb::StudyEntry entry = nsb::file_study(spec);
@@ -212,14 +217,16 @@ TEST_CASE("study file: per-problem overrides replace the sweep and merge the par
   CHECK(s.integrators[0].sweep_for("other").steps.size() == 2);
 }
 
-TEST_CASE("study file: a per-problem override shows in the rows; an energy blow-up is no 'ok' and is not ranked",
-          "[studies][study_file]") {
+TEST_CASE("study file: a per-problem override shows in the rows; an energy blow-up is no 'ok', is not ranked, and "
+          "the empty ranking cell names it", "[studies][study_file]") {
   TempCache cache;
   // moreau-jean at theta = 1 on the spring chain only; cd-lagrange at dt = 0.2 on the chain,
   // above its stable step 0.14: its energy grows ten times a step (1.6e6 E0 after 5 steps).
+  // No run reaches the second target.
   const std::string text = R"([study]
 title = "t"
 t_end = 1.0
+targets = [1e-2, 1e-14]
 
 [[problem]]
 name = "spring-chain"
@@ -251,9 +258,62 @@ kind = "energy"
   REQUIRE(wp.rows.size() == 4);
   CHECK(std::get<std::string>(wp.rows[0][1]) == "moreau-jean [theta=1]");
   CHECK(std::get<std::string>(wp.rows[0][status]) == "ok");
-  CHECK_THAT(std::get<std::string>(wp.rows[2][status]), Catch::StartsWith("energy blow-up: max |E - E0| / |E0| = "));
+  CHECK_THAT(std::get<std::string>(wp.rows[2][status]), Catch::StartsWith("energy blow-up: max (E - E0 - W) / E scale = "));
   CHECK(std::get<std::string>(wp.rows[3][status]) == "ok");
-  CHECK_THAT(nsb::to_csv(table(tables, "_ranking")), !Catch::Contains("dt = 2.00e-01"));
+  const nsb::Table& rank = table(tables, "_ranking");
+  REQUIRE(rank.rows.size() == 2);
+  for (const auto& row : rank.rows)  // the runs a cost is read between
+    for (std::size_t col : {4, 7})
+      if (const auto* runs = std::get_if<std::string>(&row[col])) CHECK_THAT(*runs, !Catch::Contains("dt = 2.00e-01"));
+  CHECK(std::get<std::string>(rank.rows[1][2]) == "none (removed: energy blow-up: cd-lagrange dt = 2.00e-01)");
+  CHECK(std::get<std::string>(rank.rows[1][5]) == "none (removed: energy blow-up: cd-lagrange dt = 2.00e-01)");
+}
+
+TEST_CASE("study file: energy lost to friction is no blow-up; a real blow-up is, and the empty ranking cell names it",
+          "[studies][study_file]") {
+  // The mass slides down the 30 deg slope against mu = 0.3 for 2 s: E (gravity's potential
+  // included) falls from 2 J to about -20 J. cd-lagrange at dt = 0.2 on the spring chain is
+  // above its stable step 0.14 (its energy grows ten times a step).
+  const std::string text = quick_study("2.0") + R"(
+[[problem]]
+name = "sliding-mass"
+label = "slide"
+parameters = { alpha = 30, mu = 0.3, v0 = 2 }
+
+[[problem]]
+name = "spring-chain"
+label = "chain"
+
+[[integrator]]
+name = "moreau-jean"
+steps = [1e-2, 1e-3]
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2, 1e-3]
+[integrator.per_problem.chain]
+steps = [0.2, 0.3]
+
+[[measure]]
+kind = "energy"
+norm = "final"
+)";
+  const auto tables = run_all(nsb::parse_study_text(text, "e.toml", false));
+  const nsb::Table& wp = table(tables, "_work_precision");
+  const std::size_t status = column(wp, "status");
+  REQUIRE(wp.rows.size() == 8);
+  for (std::size_t i = 0; i < 8; ++i) {
+    const std::string problem = std::get<std::string>(wp.rows[i][0]), integrator = std::get<std::string>(wp.rows[i][1]);
+    INFO(problem << ", " << integrator << ": " << std::get<std::string>(wp.rows[i][status]));
+    if (problem == "slide") {
+      CHECK(std::get<std::string>(wp.rows[i][status]) == "ok");
+      CHECK(std::get<double>(wp.rows[i][4]) < -2.0);  // (E - E0) / |E0| at the end: energy lost, not gained
+    } else if (integrator == "cd-lagrange") {
+      CHECK_THAT(std::get<std::string>(wp.rows[i][status]), Catch::StartsWith("energy blow-up: max (E - E0 - W) / E scale = "));
+    } else {
+      CHECK(std::get<std::string>(wp.rows[i][status]) == "ok");
+    }
+  }
 }
 
 TEST_CASE("study file examples: the quick bouncing-mass comparison runs (reduced)", "[studies][study_file]") {
