@@ -84,7 +84,7 @@ TEST_CASE("plugin: each plugin's own build is stamped in summary.json and the ta
   CHECK(lines(unoptimised.output) - lines(optimised.output) == 1);
   const auto debug = plugin_build();
   CHECK(debug["optimized"] == false);
-  CHECK_THAT(debug["compile_flags"].get<std::string>(), Catch::EndsWith("-O0"));
+  CHECK_THAT(debug["compile_flags"].get<std::string>(), Catch::Contains(" -O0"));
 
   // A study's tables carry the stamp, and the study warns too.
   const fs::path reports = fs::temp_directory_path() / "nsbench_plugin_test_build_reports";
