@@ -56,6 +56,10 @@ void list() {
   for (const auto& e : nsb::problem_registry()) {
     fmt::print("  {:<22} {}\n", e.name, e.description);
     print_params(e.parameters());
+    // What a study file's measures can name (at the default parameters; every problem also
+    // has kinetic, potential, total_energy, and min_gap when it has contacts).
+    const auto names = e.make(nsb::Params(e.parameters()))->observable_names();
+    fmt::print("      observables (at the defaults): {}\n", names.empty() ? std::string("none of its own") : fmt::format("{}", fmt::join(names, ", ")));
   }
   fmt::print("integrators (friction: treats Coulomb friction, mu > 0; the others decline it):\n");
   for (const auto& e : nsb::integrator_registry()) {

@@ -119,6 +119,13 @@ std::string plugins_stamp() {
   return fmt::format("{}", fmt::join(parts, ", "));
 }
 
+std::string missing_plugin_hint(const std::string& kind) {
+  std::vector<std::string> files;
+  for (const auto& p : loaded_plugins()) files.push_back(p.file);
+  return fmt::format("a plugin's {}? load its file with --plugin FILE or NSBENCH_PLUGINS (plugins loaded: {})", kind,
+                     files.empty() ? std::string("none") : fmt::format("{}", fmt::join(files, ", ")));
+}
+
 std::string unoptimized_plugins_warning() {
   std::vector<std::string> slow;
   for (const auto& p : loaded_plugins())

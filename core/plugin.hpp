@@ -66,6 +66,9 @@ void load_plugins(const std::vector<std::string>& paths);
 const std::vector<PluginInfo>& loaded_plugins();
 // "file (hash; build), ..." of the loaded plugins, for the reports' stamps; empty when none.
 std::string plugins_stamp();
+// For an unknown integrator or problem name ("integrator", "problem"): that a plugin may be
+// missing, and which plugins are loaded.
+std::string missing_plugin_hint(const std::string& kind);
 // One line naming the loaded plugins compiled without optimisation (their CPU times are
 // not those of the code a user would run); empty when there is none.
 std::string unoptimized_plugins_warning();

@@ -25,7 +25,8 @@ std::unique_ptr<Base> make_from_params(const Params& p) {
   return std::make_unique<T>(p);
 }
 
-// Throws InputError naming the option, the nearest name and the valid names when `name` is unknown.
+// Throws InputError naming the option, the nearest name and the valid names when `name` is
+// unknown, and that a plugin may be missing.
 template <class Entry>
 const Entry& find_entry(const std::vector<Entry>& entries, const std::string& name, const std::string& option,
                         const std::string& kind) {
@@ -34,8 +35,8 @@ const Entry& find_entry(const std::vector<Entry>& entries, const std::string& na
     if (e.name == name) return e;
     names.push_back(e.name);
   }
-  throw InputError(fmt::format("{} '{}': unknown {} (nearest: {}; valid: {})", option, name, kind,
-                               nearest_name(name, names), fmt::join(names, ", ")));
+  throw InputError(fmt::format("{} '{}': unknown {} (nearest: {}; valid: {}); {}", option, name, kind,
+                               nearest_name(name, names), fmt::join(names, ", "), missing_plugin_hint(kind)));
 }
 
 template <class Entry>

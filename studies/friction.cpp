@@ -15,10 +15,11 @@
 //
 // Measures, all from one observed run per case (the problem's observables looked up by name:
 // x, v, v_exact, px; the slip u_T = T v - w of the contacts' rows):
-// - stop time: the first step at which |u_T| <= kSlipTol after which it stays so (rest, or
-//   rolling for the disk); where the exact solution does not stay at rest (the reversal),
-//   the first step at which u_T has lost its initial sign (|u_T| <= kSlipTol or reversed).
-//   Against SlidingMass::stop_time() (-v0 / a1) and RollingDisk::rolling_onset_time().
+// - stop time (studies/slip_stop.hpp, as the study files' stop-time and onset-time measures):
+//   the first step at which |u_T| <= kSlipTol after which it stays so (rest, or rolling for
+//   the disk); where the exact solution does not stay at rest (the reversal), the first step
+//   at which u_T has lost its initial sign (|u_T| <= kSlipTol or reversed). Against
+//   SlidingMass::stop_time() (-v0 / a1) and RollingDisk::rolling_onset_time().
 // - stop distance: the contact point's tangential path sum |T (U_{k+1} - U_k)| up to the stop
 //   time, against SlidingMass::stop_distance() (v0^2 / (2 |a1|)).
 // - max |v - v_exact| over the steps; the final speed error |v - v_exact| at t_end (for the
@@ -60,6 +61,7 @@
 #include "problems/rolling_disk.hpp"
 #include "problems/sliding_mass.hpp"
 #include "studies/ranking.hpp"
+#include "studies/slip_stop.hpp"
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -67,7 +69,6 @@ namespace nsb {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kSlipTol = 1e-9;  // [m/s]: at rest or rolling (every case moves at ~1 m/s)
 constexpr long kStepBudget = 20;   // F_int evaluations allowed per step of the requested size
 constexpr double kHardStep = 1e-3;
 const std::vector<double> kRankingTargets = {1e-2, 1e-3, 1e-4};  // [s]
@@ -124,28 +125,10 @@ const FrictionCase& find_case(const std::string& id) {
   throw InputError(fmt::format("friction study: no case {}", id));
 }
 
-// What the problem's exact solution says (NaN: it says nothing, or never: a mass that slides on).
-struct Exact {
-  double stop_time = kNaN, stop_distance = kNaN, first_impact_v = kNaN;
-  bool stays = true;  // once stopped (or rolling) it stays so
-  bool never_stops = false;
-};
-
-double finite_or_nan(double x) { return std::isfinite(x) ? x : kNaN; }
-
-Exact exact_of(const Problem& p) {
-  if (const auto* s = dynamic_cast<const SlidingMass*>(&p))
-    return {finite_or_nan(s->stop_time()), finite_or_nan(s->stop_distance()), kNaN, s->sticks(),
-            std::isinf(s->stop_time())};
-  if (const auto* d = dynamic_cast<const RollingDisk*>(&p)) {
-    // Rolling onset as the slip sees it: from the rest time on (the disk lies on the floor) or
-    // later. When it equals a rest time > 0 the slip may have ended in a bounce before it,
-    // which the problem does not time: n/a.
-    const double onset = d->rolling_onset_time(), rest = d->rest_time();
-    return {onset > rest || rest == 0.0 ? finite_or_nan(onset) : kNaN, kNaN,
-            d->impacts().empty() ? kNaN : d->impacts().front().v, true, std::isinf(onset)};
-  }
-  return {};
+// The speed just after the disk's first impact (NaN: no disk, or no impact).
+double first_impact_speed(const Problem& p) {
+  const auto* d = dynamic_cast<const RollingDisk*>(&p);
+  return d && !d->impacts().empty() ? d->impacts().front().v : kNaN;
 }
 
 // The problem's observables after a step, by name; NaN for a name it does not have.
@@ -168,9 +151,8 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
   auto problem = make_problem(fc.problem, fc.params);
   auto integrator = make_integrator(integrator_name);
   if (const auto declined = init_or_decline(*integrator, *problem)) return {{"status", "n/a"}, {"message", *declined}};
-  const Exact exact = exact_of(*problem);
+  const ExactStop exact = exact_stop(*problem);
   const Contacts& contacts = problem->contacts();
-  const Vec w = contacts.tangent_velocity.size() ? contacts.tangent_velocity : Vec::Zero(contacts.size());
   const Vec& mu = contacts.mu;
   const State s0 = problem->initial_state();
   const Vec m = diagonal_mass(problem->mass_matrix()).value();
@@ -185,18 +167,12 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
   const double x0 = obs[ix];
   double px_prev = obs[ipx], px0 = px_prev;
 
-  Vec slip = contacts.tangent * s0.v - w, u_prev = s0.u;
+  SlipStop stop(*problem, s0);
+  const Vec& slip = stop.slip();
   if (trajectory) {
     trajectory_t.push_back(s0.t);
     trajectory_slip.push_back(slip[0]);
   }
-  const double sign0 = slip.size() ? (slip[0] > 0.0) - (slip[0] < 0.0) : 0.0;
-  // Rest: the slip is small from t_rest on (NaN while it is not); first stop: the slip of the
-  // first contact has lost its initial sign. Each with the tangential path travelled by then.
-  double path = 0.0;
-  const bool at_rest0 = slip.size() && slip.cwiseAbs().maxCoeff() <= kSlipTol;
-  double t_rest = at_rest0 ? 0.0 : kNaN, path_rest = at_rest0 ? 0.0 : kNaN;
-  double t_first_stop = at_rest0 ? 0.0 : kNaN, path_first_stop = t_first_stop;
   double v_err = kNaN, v_after_impact = kNaN, x_half = kNaN, t_half = kNaN;
   double energy_gain = 0.0, energy_gain_t = kNaN;
   double sum_tangential = 0.0, px_residual = 0.0, slide_residual = 0.0;
@@ -216,23 +192,10 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
     const Vec& normal = it.impulses();
     const Vec& tangential = it.tangential_impulses();
     obs.update(s, normal, info.dt);
-    slip.noalias() = contacts.tangent * s.v;
-    slip -= w;
+    stop.add(s);
     if (trajectory) {
       trajectory_t.push_back(s.t);
       trajectory_slip.push_back(slip[0]);
-    }
-    if (slip.size()) path += std::abs(contacts.tangent.row(0).dot(s.u - u_prev));
-    u_prev = s.u;
-    if (slip.size() && slip.cwiseAbs().maxCoeff() > kSlipTol) {
-      t_rest = path_rest = kNaN;
-    } else if (std::isnan(t_rest)) {
-      t_rest = s.t;
-      path_rest = path;
-    }
-    if (std::isnan(t_first_stop) && slip.size() && sign0 * slip[0] <= kSlipTol) {
-      t_first_stop = s.t;
-      path_first_stop = path;
     }
     v_err = std::fmax(v_err, std::abs(obs[iv] - obs[iv_exact]));  // NaN while neither is a number
     if (std::isnan(v_after_impact) && normal.size() && normal.maxCoeff() > 0.0) v_after_impact = obs[iv];
@@ -268,8 +231,8 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
 
   Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps}, {"cpu", r.step_cpu_seconds}};
   if (r.status != RunStatus::Ok) return out;
-  const double t_stop = exact.stays ? t_rest : t_first_stop;
-  const double d_stop = exact.stays ? path_rest : path_first_stop;
+  const double t_stop = stop.time(exact.stays);
+  const double d_stop = stop.path(exact.stays);
   const bool at_rest_throughout = exact.stop_time == 0.0 && exact.stays;
   out.update({{"t_stop", real(t_stop)},
               {"never_stops", exact.never_stops},
@@ -277,7 +240,7 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
               {"d_stop_err", real(std::abs(d_stop - exact.stop_distance))},
               {"v_err", real(v_err)},
               {"v_final_err", real(std::abs(obs[iv] - obs[iv_exact]))},
-              {"v_impact_err", real(std::abs(v_after_impact - exact.first_impact_v))},
+              {"v_impact_err", real(std::abs(v_after_impact - first_impact_speed(*problem)))},
               {"creep", real(at_rest_throughout ? std::abs(obs[ix] - x0) / r.t_final : kNaN)},
               {"late_creep", real(at_rest_throughout ? std::abs(obs[ix] - x_half) / (r.t_final - t_half) : kNaN)},
               {"energy_gain", energy_gain},

@@ -19,6 +19,11 @@
 //                samples), in scaled coordinates (t / time_scale, o / value_scale), by default
 //                time_scale = t_end and value_scale = the reference's largest |o|
 //                (studies/hausdorff.hpp).
+//   stop-time    |t_stop - t_stop exact| of a sliding mass, onset-time the same for a rolling
+//   onset-time   disk's rolling onset: the slip's stop as the friction study measures it
+//                (studies/slip_stop.hpp, one code for both) [s].
+// A measure naming `problems` is measured on those only (n/a on the others). The ranking and
+// the work-precision figures use the measure study.rank_by names (default: the first error).
 // Status: ok, diverged, over budget, n/a (declined), or energy blow-up: at some step the
 // scheme's energy rose above E0 by more than kEnergyBlowUp E scale (|E0|, or the problem's
 // energy_scale() when E0 = 0) plus the work W the surroundings can have done on the system by
@@ -38,6 +43,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/output.hpp"
 #include "integrators/registry.hpp"
@@ -45,6 +51,7 @@
 #include "reference/cache.hpp"
 #include "studies/hausdorff_study.hpp"
 #include "studies/ranking.hpp"
+#include "studies/slip_stop.hpp"
 
 namespace nsb {
 
@@ -211,12 +218,19 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const std::size_t nobs = problem->observable_names().size();
   std::vector<double> obs(nobs), obs_ref(nobs);
   std::vector<Accumulator> acc(spec.measures.size());
+  std::vector<bool> on(spec.measures.size());  // measured on this problem
+  bool stops = false;                          // a stop-time or onset-time measure is
+  for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+    const FileMeasure& fm = spec.measures[m];
+    on[m] = fm.applies_to(fp.label);
+    stops = stops || (on[m] && (fm.kind == MeasureKind::StopTime || fm.kind == MeasureKind::OnsetTime));
+  }
   const Vec ones = Vec::Ones(problem->ndof());
   const Vec mass_row = M.transpose() * ones, gap_row = problem->gap_operator() * ones;
   Vec f_ext(problem->ndof());
   const double p0 = mass_row.dot(integrator->state().v);
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
-    if (spec.measures[m].kind == MeasureKind::Hausdorff) {
+    if (on[m] && spec.measures[m].kind == MeasureKind::Hausdorff) {
       const Energy energy = integrator->energy();
       const State& s = integrator->state();
       acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0, spec.measures[m].observable, obs, &energy));
@@ -224,6 +238,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const double e0 = integrator->energy().total(), e_scale = energy_error_scale(*problem, e0);
   double impulse_sum = 0.0, t_prev = 0.0;
   EnergyGrowth growth(*problem, integrator->state(), e0);
+  std::optional<SlipStop> stop;
+  if (stops) stop.emplace(*problem, integrator->state());
   IntervalMax history(spec.t_end, kHistoryIntervals, 1);
   const auto history_measure = std::find_if(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) {
     return m.kind == MeasureKind::Energy && m.history;
@@ -233,6 +249,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const auto sample = [&](const Integrator& it) {
     const State& s = it.state();
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+      if (!on[m]) continue;
       const FileMeasure& fm = spec.measures[m];
       Accumulator& a = acc[m];
       double e = kNaN;
@@ -273,11 +290,12 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     impulse_sum += ones.dot(f_ext) * info.dt + gap_row.dot(it.impulses());
     const bool contact = it.impulses().sum() > 0.0;
     for (std::size_t m = 0; m < spec.measures.size(); ++m)
-      if (spec.measures[m].kind == MeasureKind::ImpactTime) {
+      if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) {
         if (contact && !acc[m].in_contact) acc[m].impacts.push_back(s.t);
         acc[m].in_contact = contact;
       }
     growth.add(it, info.dt);
+    if (stop) stop->add(s);
     if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(it.energy().total() - e0) / e_scale});
     if (++step % spec.sample_every == 0) sample(it);
     t_prev = s.t;
@@ -297,6 +315,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     const Accumulator& a = acc[m];
     const double scale = a.scale > 0.0 ? a.scale : 1.0;
     double v = kNaN;
+    if (!on[m]) {
+      values.push_back(real(v));
+      continue;
+    }
     switch (fm.kind) {
       case MeasureKind::Error:
         v = (fm.norm == "final" ? a.last : fm.norm == "max" ? a.largest : std::sqrt(a.square / spec.t_end)) / scale;
@@ -315,6 +337,12 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       }
       case MeasureKind::Momentum: v = a.largest / scale; break;
       case MeasureKind::Penetration: v = r.max_penetration; break;
+      case MeasureKind::StopTime:
+      case MeasureKind::OnsetTime: {
+        const ExactStop exact = exact_stop(*problem);
+        v = std::abs(stop->time(exact.stays) - exact.stop_time);
+        break;
+      }
       case MeasureKind::Hausdorff: {
         const Polyline ref = reference.graph(fm.observable, spec.t_end, obs_ref);
         double largest = 0.0;
@@ -335,6 +363,13 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
 }
 
 double number(const Json& r, const char* key) { return r.contains(key) ? real(r[key]) : kNaN; }
+
+// A time measured against the problem's exact event times [s].
+bool is_event_time(MeasureKind kind) {
+  return kind == MeasureKind::ImpactTime || kind == MeasureKind::StopTime || kind == MeasureKind::OnsetTime;
+}
+// An error that converges with dt: a convergence figure and fitted orders.
+bool converges(MeasureKind kind) { return kind == MeasureKind::Error || kind == MeasureKind::Hausdorff || is_event_time(kind); }
 
 std::string run_label(const Json& c) {
   return c["tol"].is_null() ? fmt::format("dt = {:.2e}", c["dt"].get<double>()) : fmt::format("tol = {:.1e}", c["tol"].get<double>());
@@ -362,10 +397,13 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                                "in scaled coordinates (t / {}, value / {}).", m.label, m.observable,
                                m.time_scale > 0.0 ? fmt::format("{:g} s", m.time_scale) : "t_end",
                                m.value_scale > 0.0 ? fmt::format("{:g}", m.value_scale) : "the reference's largest |value|");
+  for (const auto& m : spec.measures)
+    if (!m.problems.empty())
+      t.caption += fmt::format(" {}: measured on {} only (n/a on the other problems).", m.label, fmt::join(m.problems, ", "));
   t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
                {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
   for (const auto& m : spec.measures)
-    t.columns.push_back({m.label, m.kind == MeasureKind::ImpactTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" ? "1/s" : "",
+    t.columns.push_back({m.label, is_event_time(m.kind) ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" ? "1/s" : "",
                          "{:.3e}", ""});
   t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", "", true}, {"steps", "", "", ""},
                                      {"F_int evals", "", "", "internal force evaluations"},
@@ -393,19 +431,22 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   history.metadata = meta;
   history.figures = {{spec.name + "_energy_history", spec.title + ": energy error", "t", "energy err", {"integrator", "run"}, {"problem"}, false, true}};
 
-  const auto primary = std::find_if(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Error; });
+  const auto primary = spec.measures.begin() + static_cast<long>(std::min(spec.ranked, spec.measures.size()));
   if (primary != spec.measures.end()) {
     t.figures = {{spec.name + "_work_precision", spec.title + ": " + primary->label + " against CPU time", "CPU", primary->label, {"integrator"}, {"problem"}, true, true},
                  {spec.name + "_work_precision_evals", spec.title + ": " + primary->label + " against F_int evaluations", "F_int evals", primary->label, {"integrator"}, {"problem"}, true, true}};
   }
   for (const auto& m : spec.measures)
-    if (m.kind == MeasureKind::Error || m.kind == MeasureKind::ImpactTime || m.kind == MeasureKind::Hausdorff)
+    if (converges(m.kind))
       t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
                            "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
 
+  // Event times are against the problem's exact solution whatever the reference.
+  const bool exact_times = primary != spec.measures.end() && is_event_time(primary->kind);
   std::vector<RankingProblem> ranking;
   for (const auto& p : spec.problems)
-    ranking.push_back({p.label, against, spec.reference.floor, spec.targets, {}});
+    ranking.push_back({p.label, exact_times ? "the exact solution" : against, exact_times ? 0.0 : spec.reference.floor,
+                       spec.targets, {}});
   std::size_t k = 0;
   while (k < cases.size()) {
     const std::size_t begin = k;
@@ -440,10 +481,10 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     ranking[pi].curves.push_back(curve);
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       const MeasureKind kind = spec.measures[m].kind;
-      if (kind != MeasureKind::Error && kind != MeasureKind::ImpactTime && kind != MeasureKind::Hausdorff) continue;
+      if (!converges(kind) || !spec.measures[m].applies_to(plabel)) continue;
       std::vector<double> e = ys[m];
       for (double& x : e)
-        if (kind != MeasureKind::ImpactTime) x = above_round_off(x);
+        if (!is_event_time(kind)) x = above_round_off(x);
       const OrderFit fit = fit_order(xs, e);
       orders.add_row({plabel, ilabel, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
                       number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});
@@ -452,8 +493,10 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   std::vector<Table> tables{t};
   if (!orders.rows.empty()) tables.push_back(orders);
   if (primary != spec.measures.end()) {
+    std::erase_if(ranking, [&](const RankingProblem& p) { return !primary->applies_to(p.label); });
     Table rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error",
-                               {primary->label, "", "{:.1e}", primary->label + " of " + t.id}, cpu, ranking);
+                               {primary->label, is_event_time(primary->kind) ? "s" : "", "{:.1e}", primary->label + " of " + t.id},
+                               cpu, ranking);
     rank.metadata = meta;
     tables.push_back(rank);
   }

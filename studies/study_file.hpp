@@ -51,7 +51,7 @@ struct FileReference {
   double floor = 0.0;      // the reference's own error in the measures' norm (ranking)
 };
 
-enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff };
+enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime };
 
 struct FileMeasure {
   MeasureKind kind = MeasureKind::Error;
@@ -62,6 +62,10 @@ struct FileMeasure {
   bool history = false;          // Energy: also a history table and figure
   double time_scale = 0.0;       // Hausdorff: T (0: t_end)
   double value_scale = 0.0;      // Hausdorff: V (0: the reference's largest |value|)
+  std::vector<std::string> problems;  // the labels of the problems it is measured on (empty: all)
+  bool applies_to(const std::string& problem_label) const;
+  // Smaller is better and never negative: a measure the ranking may rank by.
+  bool rankable() const;
 };
 
 struct StudySpec {
@@ -80,6 +84,9 @@ struct StudySpec {
   FileReference reference;
   bool has_reference = false;
   std::vector<FileMeasure> measures;
+  // The measure the ranking and the work-precision figures use (study.rank_by, a measure's
+  // label; default: the first error measure); measures.size(): none.
+  std::size_t ranked = 0;
 };
 
 // Reads and checks a study file (.json: JSON, anything else: TOML).

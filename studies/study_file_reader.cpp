@@ -13,6 +13,7 @@
 #include "core/output.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
+#include "studies/slip_stop.hpp"
 #include "studies/study_file.hpp"
 
 namespace nsb {
@@ -151,6 +152,15 @@ class Checker {
       fail(path, fmt::format("'{}' is not valid (nearest: {})", s, nearest_name(s, valid)), fmt::format("{}", fmt::join(valid, ", ")));
     return s;
   }
+  // The name of a registered integrator or problem (`kind`); an unknown one may be a plugin's.
+  std::string registered(const Json& j, const std::string& path, const std::vector<std::string>& valid,
+                         const std::string& kind) const {
+    const std::string s = string(j, path);
+    if (std::find(valid.begin(), valid.end(), s) == valid.end())
+      fail(path, fmt::format("'{}' is not valid (nearest: {})", s, nearest_name(s, valid)),
+           fmt::format("{}; {}", fmt::join(valid, ", "), missing_plugin_hint(kind)));
+    return s;
+  }
   // A problem's or integrator's parameters, each checked against its declaration.
   Overrides parameters(const Json& j, const std::string& path, const ParamSpecs& specs) const {
     expect(j, path, j.is_object(), "a table of parameters");
@@ -266,6 +276,27 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
   return s;
 }
 
+// study.rank_by: the label of a measure the ranking can rank by; by default the first error.
+std::size_t ranked_measure(const Checker& c, const Json& study, const std::vector<FileMeasure>& measures) {
+  std::vector<std::string> valid;
+  for (const auto& m : measures)
+    if (m.rankable()) valid.push_back(m.label);
+  const Json* v = c.find(study, "rank_by");
+  if (!v) {
+    const auto first = std::find_if(measures.begin(), measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Error; });
+    return static_cast<std::size_t>(first - measures.begin());
+  }
+  const std::string label = c.string(*v, "study.rank_by");
+  const auto named = std::find_if(measures.begin(), measures.end(), [&](const FileMeasure& m) { return m.label == label; });
+  if (named == measures.end())
+    c.fail("study.rank_by", fmt::format("'{}' names no measure (nearest: {})", label, nearest_name(label, valid)),
+           fmt::format("the label of a measure: {}", fmt::join(valid, ", ")));
+  if (!named->rankable())
+    c.fail("study.rank_by", fmt::format("measure '{}' is signed (an energy error's final value or drift): not an error to rank by", label),
+           fmt::format("{}", fmt::join(valid, ", ")));
+  return static_cast<std::size_t>(named - measures.begin());
+}
+
 std::string stem_name(const std::string& file) {
   std::string name;
   for (char ch : std::filesystem::path(file).stem().string())
@@ -274,6 +305,12 @@ std::string stem_name(const std::string& file) {
 }
 
 }  // namespace
+
+bool FileMeasure::applies_to(const std::string& problem_label) const {
+  return problems.empty() || std::find(problems.begin(), problems.end(), problem_label) != problems.end();
+}
+
+bool FileMeasure::rankable() const { return kind != MeasureKind::Energy || norm == "max"; }
 
 const FileSweep& FileIntegrator::sweep_for(const std::string& problem_label) const {
   const auto it = per_problem.find(problem_label);
@@ -310,7 +347,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 
   const Json& study = c.require(root, "", "study");
   c.expect(study, "study", study.is_object(), "a table");
-  c.keys(study, "study", {"title", "t_end", "sample_every", "cpu_repeats", "max_force_evaluations", "targets"});
+  c.keys(study, "study", {"title", "t_end", "sample_every", "cpu_repeats", "max_force_evaluations", "targets", "rank_by"});
   spec.title = c.string(c.require(study, "study", "title"), "study.title");
   spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
   if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
@@ -332,7 +369,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     const std::string path = element("problem", i);
     c.keys(j, path, {"name", "label", "parameters"});
     FileProblem p;
-    p.name = c.choice(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()));
+    p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
     p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
     const auto& entry = find_problem(p.name);
     if (const Json* v = c.find(j, "parameters")) p.parameters = c.parameters(*v, child(path, "parameters"), entry.parameters());
@@ -355,7 +392,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     keys.insert(keys.end(), {"name", "label", "per_problem"});
     c.keys(j, path, keys);
     FileIntegrator it;
-    it.name = c.choice(c.require(j, path, "name"), child(path, "name"), names_of(integrator_registry()));
+    it.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(integrator_registry()), "integrator");
     it.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : it.name;
     for (const auto& q : spec.integrators)
       if (q.label == it.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", it.label), "distinct labels");
@@ -393,7 +430,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
                  "integrator = a reference integrator");
     } else {
       ref.exact = false;
-      ref.integrator = c.choice((*r)["integrator"], "reference.integrator", names_of(integrator_registry()));
+      ref.integrator = c.registered((*r)["integrator"], "reference.integrator", names_of(integrator_registry()), "integrator");
       if (const Json* v = c.find(*r, "parameters"))
         ref.parameters = c.parameters(*v, "reference.parameters", find_integrator(ref.integrator).parameters());
       ref.dt = c.positive(c.require(*r, "reference", "dt"), "reference.dt");
@@ -408,28 +445,44 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   }
 
   const Json& measures = list("measure");
-  const std::vector<std::string> kinds{"error", "impact-time", "energy", "momentum", "penetration", "hausdorff"};
+  const std::vector<std::string> kinds{"error", "impact-time", "energy", "momentum", "penetration", "hausdorff", "stop-time", "onset-time"};
+  std::vector<std::string> problem_labels;
+  for (const auto& p : spec.problems) problem_labels.push_back(p.label);
   for (std::size_t i = 0; i < measures.size(); ++i) {
     const Json& j = measures[i];
     const std::string path = element("measure", i);
     FileMeasure m;
     const std::string kind = c.choice(c.require(j, path, "kind"), child(path, "kind"), kinds);
     m.kind = static_cast<MeasureKind>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
+    if (const Json* v = c.find(j, "problems")) {
+      const std::string at = child(path, "problems");
+      c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more problem labels");
+      for (std::size_t k = 0; k < v->size(); ++k) m.problems.push_back(c.choice((*v)[k], element(at, k), problem_labels));
+    }
+    // The keys every kind takes, and its own.
+    const auto keys = [&](std::vector<std::string> own) {
+      own.insert(own.end(), {"kind", "label", "problems"});
+      c.keys(j, path, own);
+    };
+    // The problems it is measured on: their index in spec.problems.
+    std::vector<std::size_t> on;
+    for (std::size_t p = 0; p < instances.size(); ++p)
+      if (m.applies_to(spec.problems[p].label)) on.push_back(p);
     if (m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff) {
       const bool hausdorff = m.kind == MeasureKind::Hausdorff;
       if (hausdorff) {
-        c.keys(j, path, {"kind", "label", "observable", "time_scale", "value_scale"});
+        keys({"observable", "time_scale", "value_scale"});
         m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
         if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
         if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
       } else {
-        c.keys(j, path, {"kind", "label", "observable", "norm"});
+        keys({"observable", "norm"});
       }
       if (!spec.has_reference) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
                                       "[reference] solution = \"exact\" or integrator = NAME");
       if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2"});
       if (const Json* v = c.find(j, "observable")) m.observable = c.string(*v, child(path, "observable"));
-      for (std::size_t p = 0; p < instances.size(); ++p) {
+      for (const std::size_t p : on) {
         std::vector<std::string> valid = instances[p]->observable_names();
         valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
         if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
@@ -437,24 +490,36 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
           c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'{}", m.observable, spec.problems[p].label,
                                                         spec.reference.exact ? "" : " recorded by its reference run"),
-                 fmt::format("{}", fmt::join(valid, ", ")));
+                 fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
       }
       m.label = hausdorff ? fmt::format("hausdorff {}", m.observable) : fmt::format("err {} {}", m.observable, m.norm);
     } else if (m.kind == MeasureKind::ImpactTime) {
-      c.keys(j, path, {"kind", "label", "count"});
+      keys({"count"});
       if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));
-      for (std::size_t p = 0; p < instances.size(); ++p)
+      for (const std::size_t p : on)
         if (instances[p]->impact_times(spec.t_end).empty())
           c.fail(child(path, "kind"), fmt::format("problem '{}' knows no impact times before t_end", spec.problems[p].label),
-                 "problems with known impacts (bouncing-mass)");
+                 "problems with known impacts (bouncing-mass, rolling-disk dropped from h0 > 0), or problems = [...]");
       m.label = "impact time err";
+    } else if (m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime) {
+      keys({});
+      const bool onset = m.kind == MeasureKind::OnsetTime;
+      for (const std::size_t p : on) {
+        const ExactStop exact = exact_stop(*instances[p]);
+        if (exact.rolling != onset || !(exact.stop_time <= spec.t_end))
+          c.fail(child(path, "kind"), fmt::format("problem '{}' has no exact {} by t_end", spec.problems[p].label,
+                                                  onset ? "rolling onset" : "stop time"),
+                 onset ? "rolling-disk problems that roll by t_end, or problems = [...]"
+                       : "sliding-mass problems that stop by t_end (mu > tan alpha, or v0 < 0), or problems = [...]");
+      }
+      m.label = onset ? "onset time err" : "stop time err";
     } else if (m.kind == MeasureKind::Energy) {
-      c.keys(j, path, {"kind", "label", "norm", "history"});
+      keys({"norm", "history"});
       if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "final", "drift"});
       if (const Json* v = c.find(j, "history")) m.history = c.boolean(*v, child(path, "history"));
       m.label = fmt::format("energy err {}", m.norm);
     } else {
-      c.keys(j, path, {"kind", "label"});
+      keys({});
       m.label = kind == "momentum" ? "momentum residual" : "penetration";
     }
     if (const Json* v = c.find(j, "label")) m.label = c.string(*v, child(path, "label"));
@@ -462,6 +527,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       if (q.label == m.label) c.fail(path, fmt::format("a second measure labelled '{}'", m.label), "distinct labels (label = ...)");
     spec.measures.push_back(m);
   }
+  spec.ranked = ranked_measure(c, study, spec.measures);
   if (std::any_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; }))
     for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
       const auto held = [&](const FileSweep& sweep, const std::string& path) {

@@ -41,6 +41,23 @@ TEST_CASE("cli: list shows every problem and integrator with parameters", "[app]
                            Catch::Contains("moreau-jean") && Catch::Contains("theta"));
   // An optional parameter (moreau-jean's gamma) is listed as unset.
   CHECK_THAT(r.output, Catch::Contains("gamma          default unset      [0, 1]"));
+  // Each problem's observables, what a study file's measures name.
+  CHECK_THAT(r.output, Catch::Contains("observables (at the defaults): x, v, omega, x_exact, v_exact, omega_exact, slip, slip_exact"));
+  CHECK_THAT(r.output, Catch::Contains("observables (at the defaults): x, v, x_exact, v_exact"));
+}
+
+TEST_CASE("cli: an unknown integrator or problem hints that a plugin may be missing", "[app][bad-input]") {
+  const std::string out = " --out " + tmpdir("plugin-hint");
+  for (const auto& [args, kind] : std::vector<std::pair<std::string, std::string>>{
+           {"run --problem bouncing-mass --integrator my-scheme --t-end 1 --dt 1e-3" + out, "integrator"},
+           {"run --problem my-problem --integrator cd-lagrange --t-end 1 --dt 1e-3" + out, "problem"}}) {
+    CAPTURE(args);
+    const auto r = nsbench(args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::Contains("a plugin's " + kind + "? load its file with --plugin FILE or NSBENCH_PLUGINS "
+                                         "(plugins loaded: none)"));
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+  }
 }
 
 TEST_CASE("cli: bad input exits 2 with a message naming the parameter and its range", "[app][bad-input]") {

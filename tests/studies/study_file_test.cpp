@@ -316,6 +316,107 @@ norm = "final"
   }
 }
 
+TEST_CASE("study file: measures name their problems; stop and onset times are the friction study's; rank_by picks the ranking",
+          "[studies][study_file]") {
+  // The friction study's sliding mass that stops (t_s = 0.6 s) and its disk (rolling from 0.113 s).
+  const std::string text = quick_study("2.0", "rank_by = \"stop time err\"\n") + R"(
+[[problem]]
+name = "sliding-mass"
+label = "slide"
+parameters = { alpha = 30, mu = 0.8, v0 = 2 }
+
+[[problem]]
+name = "rolling-disk"
+label = "disk"
+parameters = { h0 = 0, v0 = 1, omega0 = 0, mu = 0.3, kappa = 0.5 }
+
+[[integrator]]
+name = "moreau-jean"
+steps = [1e-2, 1e-3]
+
+[reference]
+solution = "exact"
+
+[[measure]]
+kind = "error"
+observable = "omega"
+problems = ["disk"]
+
+[[measure]]
+kind = "stop-time"
+problems = ["slide"]
+
+[[measure]]
+kind = "onset-time"
+problems = ["disk"]
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "m.toml", false);
+  REQUIRE(spec.ranked == 1);
+  const auto tables = run_all(spec);
+  const nsb::Table& wp = table(tables, "_work_precision");
+  REQUIRE(wp.rows.size() == 4);
+  const std::size_t omega = column(wp, "err omega max"), stop = column(wp, "stop time err"), onset = column(wp, "onset time err");
+  CHECK(wp.columns[stop].unit == "s");
+  const auto value = [&](std::size_t row, std::size_t col) { return std::get<double>(wp.rows[row][col]); };
+  for (std::size_t i = 0; i < 2; ++i) {  // slide: only the stop time
+    CHECK(std::isnan(value(i, omega)));
+    CHECK(std::isnan(value(i, onset)));
+    CHECK(value(i, stop) < 1e-2);
+  }
+  for (std::size_t i = 2; i < 4; ++i) {  // disk: the other two
+    CHECK(value(i, omega) < 1.0);
+    CHECK(value(i, onset) < 1e-2);
+    CHECK(std::isnan(value(i, stop)));
+  }
+  CHECK_THAT(wp.caption, Catch::Contains("err omega max: measured on disk only (n/a on the other problems)."));
+  // One code with the friction study: the same stop-time error at dt = 1e-3, to the bit.
+  const auto& friction = *std::find_if(nsb::study_registry().begin(), nsb::study_registry().end(),
+                                       [](const nsb::StudyEntry& e) { return e.name == "friction"; });
+  const nsb::Json built_in = nsb::run_study_case(friction, {{"case", "slide-stop"}, {"integrator", "moreau-jean"}, {"dt", 1e-3}}, {});
+  CHECK(value(1, stop) == built_in["t_stop_err"].get<double>());
+  // The ranking is by the stop time, on the problem it is measured on only.
+  const nsb::Table& rank = table(tables, "_ranking");
+  REQUIRE(rank.rows.size() == 1);
+  CHECK(std::get<std::string>(rank.rows[0][0]) == "slide");
+  CHECK(rank.columns[1].name == "target stop time err");
+  CHECK(rank.columns[1].unit == "s");
+}
+
+TEST_CASE("study file: a measure's problems, rank_by and the new kinds are checked; an unknown name hints at a plugin",
+          "[studies][study_file][bad-input]") {
+  using Catch::Contains;
+  const std::string two = replaced(kMinimal, "[[integrator]]", "[[problem]]\nname = \"spring-chain\"\n\n[[integrator]]");
+  // Without `problems`, an observable of one problem alone is refused naming the other.
+  CHECK_THAT(error_of(replaced(replaced(two, "solution = \"exact\"", "integrator = \"modal-exact\"\ndt = 1e-3"),
+                               "kind = \"error\"", "kind = \"error\"\nobservable = \"q\"")),
+             Contains("'q' is not an observable of problem 'spring-chain' recorded by its reference run") &&
+                 Contains("or name the problems it is measured on: problems = [...]"));
+  CHECK_THAT(error_of(kMinimal + "problems = [\"nope\"]\n"),
+             Contains("measure[0].problems[0]: 'nope' is not valid (nearest: bouncing-mass); valid: bouncing-mass"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nrank_by = \"err u mx\"")),
+             Contains("study.rank_by: 'err u mx' names no measure (nearest: err u max); valid: the label of a measure: err u max"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nrank_by = \"energy err drift\"") +
+                      "[[measure]]\nkind = \"energy\"\nnorm = \"drift\"\n"),
+             Contains("study.rank_by: measure 'energy err drift' is signed"));
+  CHECK_THAT(error_of(kMinimal + "[[measure]]\nkind = \"stop-time\"\n"),
+             Contains("measure[1].kind: problem 'bouncing-mass' has no exact stop time by t_end"));
+  CHECK_THAT(error_of(replaced(replaced(kMinimal, "name = \"bouncing-mass\"", "name = \"sliding-mass\""), "parameters = { e = 0.5 }",
+                               "parameters = { mu = 0.3 }") + "[[measure]]\nkind = \"stop-time\"\n"),
+             Contains("problem 'sliding-mass' has no exact stop time by t_end"));
+  CHECK_THAT(error_of(replaced(kMinimal, "name = \"cd-lagrange\"", "name = \"my-scheme\"")),
+             Contains("integrator[0].name: 'my-scheme' is not valid") &&
+                 Contains("a plugin's integrator? load its file with --plugin FILE or NSBENCH_PLUGINS"));
+}
+
+TEST_CASE("study file: the example in README.md is a valid study file", "[studies][study_file]") {
+  const std::string readme = read(fs::path(NSBENCH_SOURCE_DIR) / "README.md");
+  const auto begin = readme.find("```toml\n"), end = readme.find("```\n", begin + 8);
+  REQUIRE(begin != std::string::npos);
+  const nsb::StudySpec spec = nsb::parse_study_text(readme.substr(begin + 8, end - begin - 8), "README.md", false);
+  CHECK(spec.measures[spec.ranked].label == "err u max");
+  CHECK(spec.measures[1].problems == std::vector<std::string>{"bouncing mass"});
+}
+
 TEST_CASE("study file examples: the quick bouncing-mass comparison runs (reduced)", "[studies][study_file]") {
   const nsb::StudySpec spec = nsb::reduced_study(nsb::read_study_file(kExamples / "bouncing_quick.toml"), 0.5, 3, 200000);
   std::vector<nsb::Json> results;
