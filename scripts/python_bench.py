@@ -30,8 +30,8 @@ sys.path.insert(0, str(ROOT / "examples" / "python"))
 import symplectic_euler  # noqa: E402
 
 CASES = [  # problem, integrator, dt, t_end, parameters
-    ("bouncing-bar", "cd-lagrange", 2e-6, 0.05, {"N": 1000}),
-    ("block-2d", "cd-lagrange", 5e-6, 0.005, {"nx": 64, "ny": 64}),
+    ("bouncing-bar", "cd-lagrange", 1e-4, 10.0, {"N": 1000}),
+    ("block-2d", "cd-lagrange", 1e-4, 0.5, {"nx": 64, "ny": 64}),
 ]
 
 
