@@ -34,6 +34,7 @@
 #include "integrators/field_output.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/run.hpp"
+#include "integrators/run_case.hpp"
 #include "problems/registry.hpp"
 
 namespace {
@@ -87,22 +88,10 @@ struct RunArgs {
 };
 
 int run_case(const RunArgs& a) {
-  const auto& pe = nsb::find_problem(a.problem);
-  const auto& ie = nsb::find_integrator(a.integrator);
-  const auto routed = nsb::route_overrides(a.sets, pe.parameters(), ie.parameters());
-  auto problem = pe.make(nsb::Params(pe.parameters(), routed.problem));
-  auto integrator = ie.make(nsb::Params(ie.parameters(), routed.integrator));
-
-  nsb::RunOptions options;
-  options.dt = nsb::parse_real(a.dt, "--dt");
-  options.t_end = nsb::parse_real(a.t_end, "--t-end");
-  const double every = nsb::parse_real(a.sample_every, "--sample-every");
-  if (every < 1 || every != static_cast<long>(every))
-    throw nsb::InputError(fmt::format("--sample-every {}: must be an integer >= 1", a.sample_every));
-  options.sample_every = static_cast<long>(every);
+  auto [problem, integrator] = nsb::make_run_case(a.problem, a.integrator, a.sets);
+  nsb::RunOptions options = nsb::parse_run_options(a.dt, a.t_end, a.sample_every, nsb::OptionStyle::CommandLine);
   if (!a.fields_every.empty() && a.fields.empty())
     throw nsb::InputError(fmt::format("--fields-every {}: given without --fields DIR", a.fields_every));
-  options.state_every = options.sample_every;
   if (!a.fields_every.empty()) {
     const double k = nsb::parse_real(a.fields_every, "--fields-every");
     if (k < 1 || k != static_cast<long>(k) || k > 1e15)
@@ -111,10 +100,6 @@ int run_case(const RunArgs& a) {
     options.state_every = static_cast<long>(k);
   }
   if (!a.fields.empty()) check_fields_dir(a.fields, a.out);
-  if (!(options.dt > 0.0)) throw nsb::InputError(fmt::format("--dt {}: must be > 0", a.dt));
-  if (!(options.t_end > 0.0)) throw nsb::InputError(fmt::format("--t-end {}: must be > 0", a.t_end));
-  if (options.dt > options.t_end)  // refused, not clipped: the run would end at t = dt
-    throw nsb::InputError(fmt::format("--dt {} is larger than --t-end {}; valid: dt <= t_end", a.dt, a.t_end));
   nsb::ensure_directory(a.out);
   nsb::remove_stale_temporaries(a.out);  // a killed run's half-written files
   if (integrator->conditionally_stable() && options.dt > problem->stable_step())

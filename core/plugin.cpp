@@ -113,6 +113,20 @@ void load_plugins(const std::vector<std::string>& paths) {
 
 const std::vector<PluginInfo>& loaded_plugins() { return loader().loaded; }
 
+void register_as_plugin(const std::string& source, const std::function<void()>& registrations) {
+  Loader& l = loader();
+  l.loading = &source;
+  l.errors.clear();
+  try {
+    registrations();
+  } catch (...) {
+    l.loading = nullptr;
+    throw;
+  }
+  l.loading = nullptr;
+  if (!l.errors.empty()) throw InputError(fmt::format("{}: {}", source, l.errors.front()));
+}
+
 std::string plugins_stamp() {
   std::vector<std::string> parts;
   for (const auto& p : loaded_plugins()) parts.push_back(fmt::format("{} ({}; {})", p.file, p.hash, p.build_text()));

@@ -4,6 +4,7 @@
 // integrators/registry.hpp, NSBENCH_PROBLEM in problems/registry.hpp). Their registrations
 // run while the loader holds the plugin's file name, so a clash or a wrong ABI is reported
 // against that file; the loader then checks the marker every plugin exports.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,11 @@ void load_plugin(const std::string& path);
 // The plugins named in NSBENCH_PLUGINS (colon-separated), then `paths` (the --plugin flags).
 void load_plugins(const std::vector<std::string>& paths);
 const std::vector<PluginInfo>& loaded_plugins();
+// Runs `registrations` (register_integrator, register_problem calls made at run time, e.g. by
+// the Python module for a class written in Python) as a plugin's run while it loads, under the
+// name `source`: a name already taken or a wrong ABI is an InputError "source: reason", and the
+// registry records `source` as the entry's origin. Not a file: loaded_plugins() does not list it.
+void register_as_plugin(const std::string& source, const std::function<void()>& registrations);
 // "file (hash; build), ..." of the loaded plugins, for the reports' stamps; empty when none.
 std::string plugins_stamp();
 // For an unknown integrator or problem name ("integrator", "problem"): that a plugin may be

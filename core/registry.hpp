@@ -73,6 +73,13 @@ class Registry {
     return true;
   }
   const std::vector<Entry>& entries() const { return entries_; }
+  // Where the entry named `name` came from: "" (built in, or no such entry), else the source
+  // it was registered under (a plugin's file, register_as_plugin's source).
+  std::string origin(const std::string& name) const {
+    for (std::size_t i = 0; i < entries_.size(); ++i)
+      if (entries_[i].name == name) return origins_[i];
+    return {};
+  }
 
  private:
   std::vector<Entry> entries_;

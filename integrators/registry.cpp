@@ -23,6 +23,12 @@ bool register_integrator(const IntegratorEntry& entry, int abi) { return integra
 
 const std::vector<IntegratorEntry>& integrator_registry() { return integrators().entries(); }
 
+std::string integrator_origin(const std::string& name) { return integrators().origin(name); }
+
+std::string integrator_mark(const std::string& name) {
+  return integrator_origin(name).starts_with("python:") ? " (python)" : "";
+}
+
 const IntegratorEntry& find_integrator(const std::string& name) {
   return find_entry(integrator_registry(), name, "--integrator", "integrator");
 }

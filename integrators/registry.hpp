@@ -34,6 +34,11 @@ bool register_integrator(const IntegratorEntry& entry, int abi);
 const std::vector<IntegratorEntry>& integrator_registry();
 // The peers built in and their versions, e.g. "Siconos kernel 4.4.0+dfsg-2"; "none".
 std::string peer_versions();
+// Where an integrator comes from: "" (built in), a plugin's file, or "python:MODULE.CLASS" for a
+// class written in Python and registered by the Python module (python/).
+std::string integrator_origin(const std::string& name);
+// How the tables mark the rows of an integrator written in Python: " (python)"; "" for others.
+std::string integrator_mark(const std::string& name);
 // Throws InputError listing the valid names when `name` is unknown.
 const IntegratorEntry& find_integrator(const std::string& name);
 std::unique_ptr<Integrator> make_integrator(const std::string& name,

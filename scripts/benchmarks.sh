@@ -2,7 +2,8 @@
 # The benchmarks behind the `performance` report: every nsbench-bench-* binary of BUILD_DIR
 # (default build, already built) with JSON output into OUT/benchmarks (default
 # reports/benchmarks), the block also on one thread for the speed-up, then
-# `nsbench-study performance` writes OUT/performance.{csv,md,tex}. Run on a quiet machine:
+# `nsbench-study performance` writes OUT/performance.{csv,md,tex}, and scripts/python_bench.py
+# OUT/python_overhead.md where the Python module is built. Run on a quiet machine:
 # the table reads the least of the repetitions (3 of at least 0.1 s each). About 3 minutes on
 # 2 cores (estimated).
 set -euo pipefail
@@ -26,6 +27,13 @@ run implicit "$cores"
 # The memory bound: one run per length is enough (the peak RSS does not vary), 20 s at 1e6 steps.
 echo "benchmarks: nsbench-bench-memory" >&2
 "$build/studies/nsbench-bench-memory" --benchmark_out_format=json --benchmark_out="$out/benchmarks/memory-1.json" > /dev/null
+# The Python module's overhead (scripts/python_bench.py), where the module is built.
+if [ -d "$build/python/nsbench" ]; then
+  echo "benchmarks: scripts/python_bench.py" >&2
+  { echo "# Python module overhead"; echo; echo "scripts/python_bench.py: nsbench.run against the command line, and the per-step"
+    echo "cost of an integrator written in Python (least of 3 runs each)."; echo
+    PYTHONPATH="$build/python" /usr/bin/python3 scripts/python_bench.py --build "$build"; } > "$out/python_overhead.md"
+fi
 files=()
 for f in "$out"/benchmarks/*.json; do files+=("$f"); done
 "$build/studies/nsbench-study" performance "${files[@]}" --out "$out"

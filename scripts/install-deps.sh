@@ -9,6 +9,9 @@ packages=(
   catch2 libbenchmark-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libtomlplusplus-dev  # study files (nsbench-study run FILE.toml)
   python3 python3-matplotlib
+  # The Python module (python/; CMake option NSBENCH_PYTHON): pybind11 to build it, numpy and
+  # scipy (its matrices are scipy.sparse) to use it.
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-scipy
   # Siconos kernel: the optional peers (siconos-* integrators, CMake option NSBENCH_SICONOS).
   libsiconos-kernel-dev
   # BLAS: nsbench's own numerics call none (moreau_jean.hpp says why); the Siconos peers do.
@@ -22,6 +25,7 @@ case "${1:-}" in
   "") ;;
   tests) packages+=(
            python3-meshio  # tests/scripts/fields_test.py reads nsbench run --fields back (VTK files)
+           python3-pytest  # tests/python: the Python module
            # tests/scripts/latex_test.py compiles the tables: pdflatex, booktabs, longtable, siunitx
            # (135 MB; without them the compile test is skipped, the text test still runs).
            texlive-latex-base texlive-latex-recommended texlive-science

@@ -32,6 +32,7 @@
 #include "core/plugin.hpp"
 #include "studies/parallel.hpp"
 #include "studies/performance.hpp"
+#include "studies/report_index.hpp"
 #include "studies/shard.hpp"
 #include "studies/study.hpp"
 #include "studies/verify.hpp"
@@ -140,14 +141,7 @@ int main(int argc, char** argv) {
     std::optional<nsb::ReportDirectory> report;
     if (!verify && !shard.count) report.emplace(out);
     const nsb::StudyOptions options{full};
-    const auto& b = nsb::build_info();
-    const std::string plugged = nsb::plugins_stamp();
-    std::string index = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}{}.\n\n", b.git_revision,
-                                    b.build_type, b.compiler, full ? ", full sweeps" : "",
-                                    plugged.empty() ? "" : ", plugins " + plugged);
-    std::string studies;   // a section per study, after the headline
-    std::string headline;  // the headline tables, shown first
-    std::string lead;      // the lead tables (the claims), shown before the headline
+    nsb::ReportIndex index(full);
     std::vector<nsb::Table> all_tables;
     // The cases of every selected study (this shard's), run in one pool: a study's longest
     // case no longer leaves the other cores idle at its end (each case is independent, so the
@@ -200,24 +194,8 @@ int main(int argc, char** argv) {
         }
         continue;
       }
-      studies += fmt::format("## {}\n\n{}\n\n", s->name, s->description);
-      for (const auto& t : tables) {
-        nsb::write_table(t, report->path());
-        if (t.csv_only)
-          studies += fmt::format("- {} ([csv]({}.csv))\n", t.title, t.id);
-        else
-          studies += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", t.title, t.id, t.id, t.id);
-        for (const auto& f : t.figures)
-          studies += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf)){}\n", f.title, f.id, f.id,
-                                 f.caption.empty() ? "" : "\n\n  " + f.caption);
-        if (t.lead)
-          lead += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", t.title, t.id, s->name, t.caption, nsb::markdown_grid(t));
-        if (t.headline)
-          headline += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", t.title, t.id, s->name, t.caption,
-                                  nsb::markdown_grid(t));
-        all_tables.push_back(t);
-      }
-      studies += "\n";
+      index.add_study(*s, tables, report->path());
+      all_tables.insert(all_tables.end(), tables.begin(), tables.end());
       fmt::print(stderr, "study {}: {} cases, {} tables\n", s->name, cases.size(), tables.size());
     }
     if (verify) {
@@ -228,16 +206,9 @@ int main(int argc, char** argv) {
       return verified.differences.empty() ? 0 : 1;
     }
     if (!shard.count) {
-      const auto& env = nsb::environment();
-      studies += fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, revision {}. Rerun: `{}`</sub>\n", env.cpu,
-                             env.cores, env.libraries, b.build_type, b.compiler, b.git_revision, nsb::command_line());
       if (spec) nsb::write_study_copy(*spec, report->path());
       nsb::write_file_atomic(report->path() / "figures.json", nsb::figures_to_json(all_tables));
-      if (!lead.empty()) index += "## Claims\n\nThe verdicts are computed from measured figures (the rules are in the caption).\n\n" + lead + "\n";
-      if (!headline.empty())
-        index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
-                 "caption).\n\n" + headline + "\n";
-      nsb::write_file_atomic(report->path() / "index.md", index + studies);
+      nsb::write_file_atomic(report->path() / "index.md", index.text());
       report->commit();
     }
   } catch (const InputError& e) {

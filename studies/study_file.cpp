@@ -50,7 +50,9 @@
 #include "problems/registry.hpp"
 #include "reference/cache.hpp"
 #include "studies/hausdorff_study.hpp"
+#include "studies/parallel.hpp"
 #include "studies/ranking.hpp"
+#include "studies/report_index.hpp"
 #include "studies/slip_stop.hpp"
 
 namespace nsb {
@@ -61,13 +63,15 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kHistoryIntervals = 200;
 constexpr double kEnergyBlowUp = 2.0;  // max (E - E0 - W) / E scale beyond which a run is not valid
 
-// The integrator's label, with the parameters a problem's override changed.
+// The integrator's label, marked " (python)" for a class written in Python, with the parameters
+// a problem's override changed.
 std::string shown_label(const FileIntegrator& fi, const std::string& problem_label) {
   std::vector<std::string> changed;
   for (const auto& [key, value] : fi.sweep_for(problem_label).parameters)
     if (const auto it = fi.sweep.parameters.find(key); it == fi.sweep.parameters.end() || it->second != value)
       changed.push_back(key + "=" + value);
-  return changed.empty() ? fi.label : fmt::format("{} [{}]", fi.label, fmt::join(changed, ", "));
+  const std::string label = fi.label + integrator_mark(fi.name);
+  return changed.empty() ? label : fmt::format("{} [{}]", label, fmt::join(changed, ", "));
 }
 
 ReferenceRequest reference_request(const StudySpec& spec, const FileProblem& p) {
@@ -523,6 +527,26 @@ void write_study_copy(const StudySpec& spec, const std::filesystem::path& out) {
   const std::string ext = std::filesystem::path(spec.file).extension() == ".json" ? "json" : "toml";
   write_file_atomic(out / fmt::format("{}.study.{}", spec.name, ext), spec.text);
   write_file_atomic(out / fmt::format("{}.study.hash", spec.name), fmt::format("FNV-1a 64 {}  {}\n", spec.hash, spec.file));
+}
+
+std::vector<std::string> run_study_file(const StudySpec& spec, const std::filesystem::path& out) {
+  const StudyEntry study = file_study(spec);
+  const StudyOptions options{false};
+  const std::vector<Json> cases = study_cases(study, options);
+  const auto results = parallel_map<Json>(cases.size(), [&](std::size_t k) { return run_study_case(study, cases[k], options); },
+                                          study.name);
+  const auto tables = study_tables(study, cases, results, options);
+  ensure_directory(out);
+  ReportDirectory report(out, "out");
+  ReportIndex index(false);
+  index.add_study(study, tables, report.path());
+  write_study_copy(spec, report.path());
+  write_file_atomic(report.path() / "figures.json", figures_to_json(tables));
+  write_file_atomic(report.path() / "index.md", index.text());
+  report.commit();
+  std::vector<std::string> ids;
+  for (const auto& t : tables) ids.push_back(t.id);
+  return ids;
 }
 
 }  // namespace nsb

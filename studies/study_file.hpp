@@ -104,4 +104,9 @@ StudyEntry file_study(const StudySpec& spec);
 // Writes <out>/<name>.study.<ext> (the file as read) and <out>/<name>.study.hash.
 void write_study_copy(const StudySpec& spec, const std::filesystem::path& out);
 
+// Runs the study as `nsbench-study run FILE --out DIR` does (its cases in parallel) and writes
+// its report into `out`, staged and swapped in whole: the tables, figures.json, index.md and
+// the file's copy. Returns the tables' ids. (nsbench.run_study from Python.)
+std::vector<std::string> run_study_file(const StudySpec& spec, const std::filesystem::path& out);
+
 }  // namespace nsb

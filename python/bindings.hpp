@@ -1,0 +1,45 @@
+#pragma once
+// The Python module nsbench._nsbench, re-exported by the package nsbench (nsbench/__init__.py).
+// One file per part of the module; each adds its functions and classes to `m`. Conventions
+// shared by all: names as on the command line (problems, integrators, parameters), vectors and
+// matrices as NumPy arrays and scipy.sparse matrices, nsb::InputError as ValueError (module.cpp),
+// the GIL released while C++ computes (runs, checks, studies).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/parameters.hpp"
+#include "problems/problem.hpp"
+
+namespace nsb::python {
+
+namespace py = pybind11;
+
+void bind_registry(py::module_& m);    // problems(), integrators(), load_plugin(), Parameter
+void bind_problem(py::module_& m);     // Problem, State, Contacts
+void bind_run(py::module_& m);         // _run(), check()
+void bind_integrator(py::module_& m);  // _IntegratorCore, StepInfo, register_integrator()
+void bind_study(py::module_& m);       // run_study()
+
+// A parameter's value as Python sees it: float (real), int (integer), str (choice), None (an
+// unset optional real).
+py::object typed_value(const ParamSpec& spec, const std::string& text);
+// Every parameter of `params` (declared by `specs`) by name, typed.
+py::dict typed_params(const ParamSpecs& specs, const Params& params);
+// A keyword argument's value as the text `--set key=value` would give: str() of a number
+// (Python's shortest round trip, so the double is the one the command line reads) or a string.
+// Throws InputError naming `key` for another type (bool, None, a sequence ...).
+std::string value_text(const std::string& key, const py::handle& value);
+// "key=value" items from keyword arguments, in their order.
+std::vector<std::string> assignments(const py::dict& kwargs);
+
+// A NumPy view of v (no copy), kept alive by `owner`, the Python object that holds v.
+py::array_t<double> vector_view(Vec& v, const py::handle& owner);
+
+// Eigen's compressed column storage as scipy.sparse.csc_matrix (a copy).
+py::object to_scipy(const SpMat& matrix);
+
+}  // namespace nsb::python

@@ -1,0 +1,27 @@
+"""Shared set-up of the Python module's tests (CTest runs them: tests/CMakeLists.txt).
+
+The module comes from the build tree (PYTHONPATH=build/python, set by CTest); NSBENCH_EXE is the
+command line they compare with; examples/python/ is importable (the example integrator).
+"""
+import os
+import pathlib
+import sys
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "examples" / "python"))
+
+import nsbench  # noqa: E402
+import symplectic_euler  # noqa: E402
+
+if "py-symplectic-euler" not in {e["name"] for e in nsbench.integrators()}:
+    symplectic_euler.register()
+
+
+@pytest.fixture
+def nsbench_exe():
+    exe = os.environ.get("NSBENCH_EXE")
+    if not exe:
+        pytest.skip("NSBENCH_EXE (the nsbench command line) is not set")
+    return exe
