@@ -28,6 +28,7 @@
 #include <optional>
 
 #include "app/cli_options.hpp"
+#include "core/build_info.hpp"
 #include "core/output.hpp"
 #include "core/plugin.hpp"
 #include "integrators/conformance.hpp"
@@ -184,6 +185,7 @@ int check(const std::string& integrator, const std::string& problem) {
 
 int main(int argc, char** argv) {
   CLI::App app{"nsbench: benchmark and verification of time integrators for non-smooth dynamics"};
+  app.set_version_flag("--version", nsb::version_text("nsbench"));
   app.require_subcommand(1);
   app.fallthrough();  // --plugin before or after the subcommand
   std::vector<std::string> plugins;

@@ -338,7 +338,7 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
       {"energy_error_scale_is", result.energy_scale_text},
       {"max_penetration", result.max_penetration},
       {"work", work},
-      {"build", {{"git_revision", b.git_revision}, {"build_type", b.build_type}, {"compiler", b.compiler}}},
+      {"build", {{"version", b.version}, {"git_revision", b.git_revision}, {"build_type", b.build_type}, {"compiler", b.compiler}}},
   };
   if (!loaded_plugins().empty()) {
     json plugins = json::array();

@@ -66,6 +66,7 @@ void write_performance(const std::vector<std::string>& files, const fs::path& ou
 int main(int argc, char** argv) {
   nsb::set_command_line(argc, argv);
   CLI::App app{"nsbench-study: run studies and write citable reports"};
+  app.set_version_flag("--version", nsb::version_text("nsbench-study"));
   std::vector<std::string> names;
   std::string out = "reports", shard_text, verify_dir;
   bool full = false, merge = false;
@@ -141,7 +142,7 @@ int main(int argc, char** argv) {
     const nsb::StudyOptions options{full};
     const auto& b = nsb::build_info();
     const std::string plugged = nsb::plugins_stamp();
-    std::string index = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}{}.\n\n", b.git_revision,
+    std::string index = fmt::format("# nsbench reports\n\nnsbench {}, revision `{}`, {} build, {}{}{}.\n\n", b.version, b.git_revision,
                                     b.build_type, b.compiler, full ? ", full sweeps" : "",
                                     plugged.empty() ? "" : ", plugins " + plugged);
     std::string studies;   // a section per study, after the headline
@@ -228,8 +229,9 @@ int main(int argc, char** argv) {
     }
     if (!shard.count) {
       const auto& env = nsb::environment();
-      studies += fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, revision {}. Rerun: `{}`</sub>\n", env.cpu,
-                             env.cores, env.libraries, b.build_type, b.compiler, b.git_revision, nsb::command_line());
+      studies += fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, nsbench {} revision {}. Rerun: `{}`</sub>\n",
+                             env.cpu, env.cores, env.libraries, b.build_type, b.compiler, b.version, b.git_revision,
+                             nsb::command_line());
       if (spec) nsb::write_study_copy(*spec, report->path());
       nsb::write_file_atomic(report->path() / "figures.json", nsb::figures_to_json(all_tables));
       if (!lead.empty()) index += "## Claims\n\nThe verdicts are computed from measured figures (the rules are in the caption).\n\n" + lead + "\n";
