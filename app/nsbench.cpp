@@ -31,6 +31,7 @@
 #include "core/build_info.hpp"
 #include "core/output.hpp"
 #include "core/plugin.hpp"
+#include "core/wait_policy.hpp"
 #include "integrators/conformance.hpp"
 #include "integrators/field_output.hpp"
 #include "integrators/registry.hpp"
@@ -217,6 +218,8 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "nsbench: error: {}\n", e.what());
     return 2;
   }
+  // run and check start threads (core/threads.hpp): they wait as wait_policy.hpp says.
+  if (!list_cmd->parsed()) nsb::choose_openmp_wait_policy(argv);
   try {
     nsb::load_plugins(plugins);
     if (list_cmd->parsed()) {
