@@ -28,8 +28,10 @@
 #include <optional>
 
 #include "app/cli_options.hpp"
+#include "core/build_info.hpp"
 #include "core/output.hpp"
 #include "core/plugin.hpp"
+#include "core/wait_policy.hpp"
 #include "integrators/conformance.hpp"
 #include "integrators/field_output.hpp"
 #include "integrators/registry.hpp"
@@ -174,6 +176,7 @@ int check(const std::string& integrator, const std::string& problem) {
 
 int main(int argc, char** argv) {
   CLI::App app{"nsbench: benchmark and verification of time integrators for non-smooth dynamics"};
+  app.set_version_flag("--version", nsb::version_text("nsbench"));
   app.require_subcommand(1);
   app.fallthrough();  // --plugin before or after the subcommand
   std::vector<std::string> plugins;
@@ -205,6 +208,8 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "nsbench: error: {}\n", e.what());
     return 2;
   }
+  // run and check start threads (core/threads.hpp): they wait as wait_policy.hpp says.
+  if (!list_cmd->parsed()) nsb::choose_openmp_wait_policy(argv);
   try {
     nsb::load_plugins(plugins);
     if (list_cmd->parsed()) {

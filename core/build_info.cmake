@@ -17,7 +17,7 @@ endif()
 set(CONTENT "#include \"core/build_info.hpp\"
 namespace nsb {
 const BuildInfo& build_info() {
-  static const BuildInfo info{\"${REV}\", \"${BUILD_TYPE}\", \"${COMPILER}\"};
+  static const BuildInfo info{\"${VERSION}\", \"${REV}\", \"${BUILD_TYPE}\", \"${COMPILER}\"};
   return info;
 }
 }  // namespace nsb

@@ -12,6 +12,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "core/team_size.hpp"
 #include "core/threads.hpp"
 
 namespace nsb {
@@ -138,6 +139,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   double observe_seconds = 0.0;  // wall time in the observer and sampling
   const auto wall_now = [] { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); };
   StepInfo info;
+  TeamSize team(run_threads());  // one thread or all, whichever steps faster now (core/team_size.hpp)
   const auto wall_start = std::chrono::steady_clock::now();
   double next_progress = options.progress_every;  // wall seconds
   const double t_start = integrator.state().t;
@@ -159,7 +161,13 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
           next_progress += options.progress_every;
         }
       }
-      info = integrator.step(options.dt);
+      const bool timed = team.timing();
+      const double step_start = timed ? wall_now() : 0.0;
+      {
+        const ThreadScope scope(team.threads());
+        info = integrator.step(options.dt);
+      }
+      team.step_done(timed ? wall_now() - step_start : 0.0);
       ++result.steps;
       result.max_penetration = std::max(result.max_penetration, -min_gap());
       const bool last = integrator.state().t >= options.t_end * (1.0 - 1e-12);
@@ -338,7 +346,7 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
       {"energy_error_scale_is", result.energy_scale_text},
       {"max_penetration", result.max_penetration},
       {"work", work},
-      {"build", {{"git_revision", b.git_revision}, {"build_type", b.build_type}, {"compiler", b.compiler}}},
+      {"build", {{"version", b.version}, {"git_revision", b.git_revision}, {"build_type", b.build_type}, {"compiler", b.compiler}}},
   };
   if (!loaded_plugins().empty()) {
     json plugins = json::array();

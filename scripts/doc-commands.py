@@ -2,6 +2,7 @@
 """Prints the command lines a Markdown file shows, so that tests run them as written.
 
     python3 scripts/doc-commands.py FILE.md [--smoke]
+    python3 scripts/doc-commands.py FILE.md --block NAME
 
 A command block is an indented (4 spaces) block after a blank line, or a fenced block marked
 sh, bash, shell or console; a line ending in a backslash continues on the next. Blocks of
@@ -17,23 +18,31 @@ on the line before such a block. A command that takes minutes is marked with
 before its block: its commands are printed with --smoke and run only at --help level (the
 program named, given --help; a bash script checked with bash -n). Every other block runs
 verbatim. Output: one command per line, continuation lines joined with a space.
+
+A block may also carry a name, for a test that runs it whole elsewhere (README's Slurm job
+script, run by tests/scripts/slurm_test.sh on a real Slurm):
+
+    <!-- docs-test: smoke block=slurm-job -->
+
+--block NAME prints that block's lines as they are (comments and #SBATCH lines kept), exit
+status 1 when the file has no block of that name.
 """
 import re
 import shlex
 import sys
 
-MARKER = re.compile(r"<!--\s*docs-test:\s*([a-z-]+)\s*-->")
+MARKER = re.compile(r"<!--\s*docs-test:\s*([a-z-]+)(?:\s+block=([a-z0-9-]+))?\s*-->")
 
 
 def blocks(text):
-    """(marker, [lines]) for every command block of a Markdown text."""
+    """(marker, name, [lines]) for every command block of a Markdown text."""
     lines = text.split("\n")
-    out, marker, i = [], None, 0
+    out, marker, name, i = [], None, None, 0
     while i < len(lines):
         line = lines[i]
         m = MARKER.search(line)
         if m:
-            marker = m.group(1)
+            marker, name = m.group(1), m.group(2)
             i += 1
             continue
         fence = re.match(r"^```\s*(\w*)", line)
@@ -42,19 +51,20 @@ def blocks(text):
             while j < len(lines) and not lines[j].startswith("```"):
                 j += 1
             if fence.group(1) in ("sh", "bash", "shell", "console"):
-                out.append((marker, [l for l in lines[i + 1:j]]))
-            marker, i = None, j + 1
+                out.append((marker, name, [l for l in lines[i + 1:j]]))
+            marker, name, i = None, None, j + 1
             continue
         if line.startswith("    ") and (i == 0 or lines[i - 1].strip() == "" or MARKER.search(lines[i - 1])):
             j = i
             while j < len(lines) and (lines[j].startswith("    ") or lines[j].strip() == ""):
                 j += 1
             block = [l[4:] for l in lines[i:j] if l.strip()]
-            out.append((marker, block))
-            marker, i = None, j
+            out.append((marker, name, block))
+            marker, name, i = None, None, j
             continue
         if line.strip():
-            marker = None if not line.lstrip().startswith("<!--") else marker
+            if not line.lstrip().startswith("<!--"):
+                marker, name = None, None
         i += 1
     return out
 
@@ -93,11 +103,17 @@ def smoke(command):
 
 def main():
     if len(sys.argv) < 2:
-        sys.exit("usage: doc-commands.py FILE.md [--smoke]")
+        sys.exit("usage: doc-commands.py FILE.md [--smoke | --block NAME]")
     with open(sys.argv[1], encoding="utf-8") as f:
         text = f.read()
+    if sys.argv[2:3] == ["--block"] and len(sys.argv) == 4:
+        named = [block for _, name, block in blocks(text) if name == sys.argv[3]]
+        if not named:
+            sys.exit(f"{sys.argv[1]}: no block named {sys.argv[3]} (<!-- docs-test: ... block={sys.argv[3]} -->)")
+        print("\n".join(line for block in named for line in block))
+        return
     want_smoke = "--smoke" in sys.argv[2:]
-    for marker, block in blocks(text):
+    for marker, _, block in blocks(text):
         if marker == "not-commands":
             continue
         for c in commands(block):

@@ -549,8 +549,8 @@ def save(fig, spec, meta, reports, paper, legend=None):
     if not paper:  # the stamp goes below everything else
         fig.canvas.draw()
         below = min(0.0, legend.get_window_extent().transformed(fig.transFigure.inverted()).y0) if legend else 0.0
-        stamp = "nsbench rev {} ({}, {})".format(meta.get("git_revision", "?"), meta.get("build_type", "?"),
-                                                 meta.get("compiler", "?"))
+        stamp = "nsbench {} rev {} ({}, {})".format(meta.get("nsbench_version", "?"), meta.get("git_revision", "?"),
+                                                    meta.get("build_type", "?"), meta.get("compiler", "?"))
         fig.text(0.99, below - 0.01, stamp, ha="right", va="top", fontsize=7, color="0.4")
     out_dir = os.path.join(reports, "figures", "paper") if paper else os.path.join(reports, "figures")
     os.makedirs(out_dir, exist_ok=True)

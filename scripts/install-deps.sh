@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs nsbench's build dependencies from Debian packages (Debian 12 "bookworm").
 #   scripts/install-deps.sh          what the build and the studies need
-#   scripts/install-deps.sh tests    also what only the tests use (a VTK reader, LaTeX)
+#   scripts/install-deps.sh tests    also what only the tests use (a VTK reader, LaTeX, Slurm)
 set -euo pipefail
 packages=(
   build-essential cmake git pkg-config
@@ -29,6 +29,9 @@ case "${1:-}" in
            # tests/scripts/latex_test.py compiles the tables: pdflatex, booktabs, longtable, siunitx
            # (135 MB; without them the compile test is skipped, the text test still runs).
            texlive-latex-base texlive-latex-recommended texlive-science
+           # tests/scripts/slurm_test.sh runs README's job array on a single-node Slurm it starts
+           # (own configuration and key in a scratch directory; the packages' services unused).
+           slurmctld slurmd slurm-client munge
          ) ;;
   *) echo "usage: scripts/install-deps.sh [tests]" >&2; exit 2 ;;
 esac

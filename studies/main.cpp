@@ -67,6 +67,7 @@ void write_performance(const std::vector<std::string>& files, const fs::path& ou
 int main(int argc, char** argv) {
   nsb::set_command_line(argc, argv);
   CLI::App app{"nsbench-study: run studies and write citable reports"};
+  app.set_version_flag("--version", nsb::version_text("nsbench-study"));
   std::vector<std::string> names;
   std::string out = "reports", shard_text, verify_dir;
   bool full = false, merge = false;

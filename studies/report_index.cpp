@@ -11,7 +11,7 @@ namespace nsb {
 ReportIndex::ReportIndex(bool full) {
   const auto& b = build_info();
   const std::string plugged = plugins_stamp();
-  header_ = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}{}.\n\n", b.git_revision, b.build_type, b.compiler,
+  header_ = fmt::format("# nsbench reports\n\nnsbench {}, revision `{}`, {} build, {}{}{}.\n\n", b.version, b.git_revision, b.build_type, b.compiler,
                         full ? ", full sweeps" : "", plugged.empty() ? "" : ", plugins " + plugged);
 }
 
@@ -42,8 +42,8 @@ std::string ReportIndex::text() const {
     index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
              "caption).\n\n" + headline_ + "\n";
   return index + studies_ +
-         fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, revision {}. Rerun: `{}`</sub>\n", env.cpu, env.cores,
-                     env.libraries, b.build_type, b.compiler, b.git_revision, command_line());
+         fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, nsbench {} revision {}. Rerun: `{}`</sub>\n", env.cpu,
+                     env.cores, env.libraries, b.build_type, b.compiler, b.version, b.git_revision, command_line());
 }
 
 }  // namespace nsb

@@ -31,6 +31,7 @@ namespace {
 std::vector<std::pair<std::string, std::string>> stamp(const Table& t) {
   const BuildInfo& b = build_info();
   auto s = t.metadata;
+  s.emplace_back("nsbench_version", b.version);
   s.emplace_back("git_revision", b.git_revision);
   s.emplace_back("build_type", b.build_type);
   s.emplace_back("compiler", b.compiler);
@@ -281,7 +282,8 @@ std::string to_latex(const Table& t) {
   for (const auto& c : t.columns)
     if (!c.description.empty()) out += fmt::format(" {}: {}.", latex_text(c.name), latex_text(c.description));
   const std::string plugins = plugins_stamp();
-  out += fmt::format(" Revision {}, {} build, {}{}.\\par\\endgroup\n", latex_escape(build_info().git_revision),
+  out += fmt::format(" nsbench {}, revision {}, {} build, {}{}.\\par\\endgroup\n", latex_escape(build_info().version),
+                     latex_escape(build_info().git_revision),
                      latex_escape(build_info().build_type), latex_escape(build_info().compiler),
                      plugins.empty() ? "" : ", plugins " + latex_escape(plugins));
   return out;

@@ -128,7 +128,7 @@ TEST_CASE("cli: a run writes series.csv and summary.json", "[app]") {
   const std::string summary((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   CHECK_THAT(summary, Catch::Contains("\"e\": 0.8") && Catch::Contains("\"steps\": 500") &&
                           Catch::Contains("\"cpu_seconds\"") && Catch::Contains("\"max_penetration\"") &&
-                          Catch::Contains("\"git_revision\""));
+                          Catch::Contains("\"version\": \"" NSBENCH_VERSION "\"") && Catch::Contains("\"git_revision\""));
 }
 
 TEST_CASE("cli: an integrator that locates events writes events.csv, at the exact impact times", "[app][events]") {

@@ -27,14 +27,16 @@ nsb::Table sample_table() {
 TEST_CASE("tables: CSV keeps full precision, quotes, stamps; Markdown and LaTeX format and escape", "[studies]") {
   const auto t = sample_table();
   const std::string csv = nsb::to_csv(t);
-  CHECK_THAT(csv, Catch::Contains("# study: test\n") && Catch::Contains("# git_revision: ") &&
+  // The release beside the revision, as CMake's project VERSION names it.
+  CHECK_THAT(csv, Catch::Contains("# study: test\n") &&
+                      Catch::Contains("# nsbench_version: " NSBENCH_VERSION "\n# git_revision: ") &&
                       Catch::Contains("name,err [m],n\n") && Catch::Contains("\"a,b\",0.0015,7\n") &&
                       Catch::Contains("diverged,n/a,n/a\n"));
   const std::string md = nsb::to_markdown(t);
   CHECK_THAT(md, Catch::Contains("| a,b | 1.50e-03 | 7 |") && Catch::Contains("| diverged | n/a | n/a |"));
   const std::string tex = nsb::to_latex(t);
   CHECK_THAT(tex, Catch::Contains("A\\_title with 50\\% \\& more") && Catch::Contains("\\toprule") &&
-                      Catch::Contains("\\label{tab:sample}"));
+                      Catch::Contains("\\label{tab:sample}") && Catch::Contains("nsbench " NSBENCH_VERSION ", revision "));
   nsb::Table bad = t;
   CHECK_THROWS_AS(bad.add_row({1.0}), std::logic_error);
 }
