@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
                                      fmt::join(valid, ", ")));
       }
     }
-    if (!verify) nsb::ensure_directory(out);
+    if (!verify) nsb::claim_output_directory(out, "--out");  // a directory the suite did not write is refused
     // The report (tables, figures, index, a study file's copy) is staged and swapped in whole.
     std::optional<nsb::ReportDirectory> report;
     if (!verify && !shard.count) report.emplace(out);

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/output.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
 #include "studies/verify.hpp"
@@ -266,4 +268,33 @@ TEST_CASE("cli: --fields writes ParaView files and changes nothing else; bad fie
     CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
   }
   for (const auto& d : {plain, out, fields}) std::filesystem::remove_all(d);
+}
+
+// Issue 30, finding 1: an --out or --fields directory the suite did not write came back
+// re-permissioned, its FIFOs and symlinks deleted, exit 0. Refused, untouched.
+TEST_CASE("cli: an --out or --fields directory the suite did not write is refused, untouched", "[app][bad-input][reliability]") {
+  namespace fs = std::filesystem;
+  const std::string d = tmpdir("foreign");
+  fs::remove_all(d);
+  fs::create_directories(d + "/private");
+  fs::permissions(d, fs::perms(01777));
+  fs::permissions(d + "/private", fs::perms(0700));
+  REQUIRE(::mkfifo((d + "/fifo").c_str(), 0600) == 0);
+  fs::create_symlink("nowhere", d + "/dg");
+  const auto study = nsb::test::run_command(fmt::format("'{}' run {}/studies/examples/bouncing_quick.toml --out {}",
+                                                         NSBENCH_STUDY_CLI, NSBENCH_SOURCE_DIR, d));
+  CHECK(study.code == 2);
+  CHECK(study.output == "nsbench-study: error: --out '" + d + "': not empty and not an nsbench output directory (no " +
+                            nsb::kOutputMarker + " file); the suite replaces its output directory whole and writes only "
+                            "into a new or empty directory or one it wrote; valid: a new directory\n");
+  const auto fields = nsbench("run --problem block-2d --integrator cd-lagrange --dt 1e-4 --t-end 2e-3 --set nx=2 --set ny=2 "
+                              "--out " + tmpdir("foreign_out") + " --fields " + d);
+  CHECK(fields.code == 2);
+  CHECK_THAT(fields.output, Catch::StartsWith("nsbench: error: --fields '" + d + "': not empty and not an nsbench output"));
+  CHECK(fs::status(d).permissions() == fs::perms(01777));
+  CHECK(fs::status(d + "/private").permissions() == fs::perms(0700));
+  CHECK(fs::is_fifo(fs::symlink_status(d + "/fifo")));
+  CHECK(fs::is_symlink(fs::symlink_status(d + "/dg")));
+  fs::remove_all(d);
+  fs::remove_all(tmpdir("foreign_out"));
 }
