@@ -9,6 +9,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/json.hpp"
 #include "core/output.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
@@ -40,6 +41,29 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
     if (!out) throw std::runtime_error(fmt::format("reference cache: cannot write {}", tmp.string()));
   }
   std::filesystem::rename(tmp, path);
+}
+
+// Why a stored entry cannot be used as the summary of a run; empty when it can. The
+// metadata is compared by the caller.
+std::string damage(const nlohmann::json& stored) {
+  if (stored.is_discarded()) return "not JSON, or nested too deep";
+  if (!stored.is_object()) return "not a JSON object";
+  for (const char* key : {"metadata", "summary", "series_fnv1a64"})
+    if (!stored.contains(key)) return fmt::format("no key '{}'", key);
+  if (!stored["series_fnv1a64"].is_string()) return "series_fnv1a64 is not a string";
+  const auto& s = stored["summary"];
+  if (!s.is_object()) return "summary is not an object";
+  if (!s.contains("status") || (s["status"] != "ok" && s["status"] != "diverged")) return "summary.status is not \"ok\" or \"diverged\"";
+  if (!s.contains("message") || !s["message"].is_string()) return "summary.message is not a string";
+  if (!s.contains("steps") || !s["steps"].is_number_integer() || s["steps"].get<long>() < 0) return "summary.steps is not a count";
+  if (!s.contains("cpu_seconds") || !s["cpu_seconds"].is_number()) return "summary.cpu_seconds is not a number";
+  if (!s.contains("work") || !s["work"].is_object()) return "summary.work is not an object";
+  for (const char* key : {"steps", "force_evaluations", "tangent_evaluations", "factorizations", "linear_solves"})
+    if (!s["work"].contains(key) || !s["work"][key].is_number_integer() || s["work"][key].get<long>() < 0)
+      return fmt::format("summary.work.{} is not a count", key);
+  for (const auto& [key, value] : s["work"].items())
+    if (!value.is_number()) return fmt::format("summary.work.{} is not a number", key);
+  return {};
 }
 
 // Inverse of series_to_csv; nullopt when the text is not a well-formed series.
@@ -94,10 +118,14 @@ CachedReference cached_reference(const std::filesystem::path& dir, const Referen
   const std::string key = reference_key(ref.metadata);
   const auto json_path = dir / (key + ".json"), csv_path = dir / (key + ".csv");
 
-  const auto stored = nlohmann::json::parse(read_text(json_path), nullptr, /*allow_exceptions=*/false);
-  if (!stored.is_discarded() && stored.value("metadata", nlohmann::json()) == ref.metadata) {
+  const std::string text = read_text(json_path);
+  const auto stored = parse_json_bounded(text);
+  const std::string damaged = text.empty() ? "" : damage(stored);
+  if (!damaged.empty())
+    fmt::print(stderr, "nsbench: warning: reference cache {}: damaged ({}), rebuilt\n", json_path.string(), damaged);
+  if (!text.empty() && damaged.empty() && stored["metadata"] == ref.metadata) {
     const std::string csv = read_text(csv_path);
-    const auto series = stored.value("series_fnv1a64", nlohmann::json()) == fnv1a64(csv) ? parse_series(csv) : std::nullopt;
+    const auto series = stored["series_fnv1a64"] == fnv1a64(csv) ? parse_series(csv) : std::nullopt;
     if (series) {
       ref.summary = stored["summary"];
       ref.series = std::move(*series);

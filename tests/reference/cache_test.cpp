@@ -101,3 +101,31 @@ TEST_CASE("reference cache: an edited or truncated series is regenerated, not us
   CHECK(read() == text);
   CHECK(nsb::cached_reference(dir.path, request()).from_cache);
 }
+
+// Issue 30, finding 2: "summary" renamed segfaulted, "ok" -> "nk" failed later, "[]" was
+// called an unreadable shard file. Every damaged entry is rebuilt (with a warning line).
+TEST_CASE("reference cache: a damaged entry is rebuilt, never used or fatal", "[reference][cache]") {
+  TempDir dir;
+  const auto first = nsb::cached_reference(dir.path, request());
+  const fs::path json = dir.path / (nsb::reference_key(first.metadata) + ".json");
+  std::ifstream in(json, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    const auto at = t.find(from);
+    REQUIRE(at != std::string::npos);
+    return t.replace(at, from.size(), to);
+  };
+  const std::string damaged = GENERATE_COPY(
+      replaced("\"summary\"", "\"rummary\""), replaced("\"ok\"", "\"nk\""), replaced("\"steps\": ", "\"steps\": 0.5+"),
+      replaced("\"work\": {", "\"work\": {\"x\": null, "), replaced("\"series_fnv1a64\"", "\"series\""),
+      std::string("[]"), std::string("null"), std::string("{}"), std::string(100000, '['));
+  CAPTURE(damaged.substr(0, 60));
+  std::ofstream(json, std::ios::binary | std::ios::trunc) << damaged;
+  const auto rebuilt = nsb::cached_reference(dir.path, request());
+  CHECK_FALSE(rebuilt.from_cache);
+  CHECK(rebuilt.summary["status"] == "ok");
+  CHECK(rebuilt.summary["steps"] == first.summary["steps"]);
+  CHECK(rebuilt.series.values == first.series.values);
+  CHECK(nsb::cached_reference(dir.path, request()).from_cache);
+}
