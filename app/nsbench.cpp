@@ -228,3 +228,6 @@ int main(int argc, char** argv) {
     return 2;
   }
 }
+  } catch (const std::exception& e) {  // one line, and the staging directories removed (no std::terminate)
+    fmt::print(stderr, "nsbench: error: {}\n", e.what());
+    return 2;

@@ -248,3 +248,6 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+  } catch (const std::exception& e) {  // one line, and the staging directory removed (no std::terminate)
+    fmt::print(stderr, "nsbench-study: error: {}\n", e.what());
+    return 2;

@@ -298,3 +298,40 @@ TEST_CASE("cli: an --out or --fields directory the suite did not write is refuse
   fs::remove_all(d);
   fs::remove_all(tmpdir("foreign_out"));
 }
+
+namespace {
+
+// A study file of a second or less: the bouncing mass against a cached event-driven reference.
+std::string quick_study(const std::string& dir, const std::string& name) {
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + name + ".toml";
+  std::ofstream(path) << "[study]\ntitle = \"" << name << "\"\nt_end = 0.6\ncpu_repeats = 0\n\n"
+                      << "[[problem]]\nname = \"bouncing-mass\"\n\n"
+                      << "[[integrator]]\nname = \"cd-lagrange\"\nsteps = [1e-2, 5e-3]\n\n"
+                      << "[reference]\nintegrator = \"event-driven\"\ndt = 1e-3\n\n[[measure]]\nkind = \"error\"\n";
+  return path;
+}
+
+Outcome study(const std::string& args) { return nsb::test::run_command(fmt::format("'{}' {}", NSBENCH_STUDY_CLI, args)); }
+
+}  // namespace
+
+// Issue 30, finding 3: NSBENCH_REFERENCE_CACHE=/proc/x (or a regular file) threw out of the
+// study (SIGABRT) and left .OUT.staging.PID. The cache only saves time: warned, computed.
+TEST_CASE("cli: an unusable reference cache is a warning, the study runs and leaves no staging", "[app][reliability]") {
+  namespace fs = std::filesystem;
+  const std::string dir = tmpdir("cache"), out = dir + "/out";
+  fs::remove_all(dir);
+  const std::string file = quick_study(dir, "quick");
+  std::ofstream(dir + "/plain_file") << "x";
+  for (const std::string cache : {std::string("/proc/x"), dir + "/plain_file"}) {
+    const auto r = nsb::test::run_command(fmt::format("NSBENCH_REFERENCE_CACHE={} '{}' run {} --out {}", cache,
+                                                      NSBENCH_STUDY_CLI, file, out));
+    INFO(r.output);
+    CHECK(r.code == 0);
+    CHECK_THAT(r.output, Catch::Contains("nsbench: warning: reference cache " + cache + ": cannot create the directory"));
+    CHECK(fs::exists(out + "/quick.csv"));
+    for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().filename().string().find("staging") == std::string::npos);
+  }
+  fs::remove_all(dir);
+}

@@ -129,3 +129,22 @@ TEST_CASE("reference cache: a damaged entry is rebuilt, never used or fatal", "[
   CHECK(rebuilt.series.values == first.series.values);
   CHECK(nsb::cached_reference(dir.path, request()).from_cache);
 }
+
+// Issue 30, finding 3: an unusable cache location threw out of the study (SIGABRT). The
+// cache only saves time, so the run is computed and not stored, with a warning.
+TEST_CASE("reference cache: an unusable location computes the run without storing it", "[reference][cache]") {
+  TempDir dir;
+  fs::create_directories(dir.path);
+  const auto expected = nsb::cached_reference(dir.path / "ok", request());
+  const std::string key = nsb::reference_key(expected.metadata);
+  std::ofstream(dir.path / "file") << "a regular file";
+  fs::create_directories(dir.path / "csv_dir" / (key + ".csv"));
+  for (const fs::path& cache : {fs::path("/proc/x"), dir.path / "file", dir.path / "file" / "sub", dir.path / "csv_dir"}) {
+    CAPTURE(cache);
+    nsb::CachedReference ref;
+    REQUIRE_NOTHROW(ref = nsb::cached_reference(cache, request()));
+    CHECK_FALSE(ref.from_cache);
+    CHECK(ref.series.values == expected.series.values);
+  }
+  CHECK(fs::is_directory(dir.path / "csv_dir" / (key + ".csv")));  // not ours to remove
+}
