@@ -65,16 +65,19 @@ void list() {
   }
 }
 
-// --fields DIR before any work: DIR is not --out nor holds it (DIR is replaced whole when
-// the run ends). A problem that describes no bodies (a plugin's) is refused by FieldWriter.
+// --fields DIR before any work: DIR is not --out, does not hold it and is not in it (each
+// is replaced whole when the run ends, a nested one would be undone by the other's swap). A
+// problem that describes no bodies (a plugin's) is refused by FieldWriter.
 void check_fields_dir(const std::string& fields, const std::string& out) {
   namespace fs = std::filesystem;
   const fs::path f = fs::weakly_canonical(fields), o = fs::weakly_canonical(out);
-  const auto [end, rest] = std::mismatch(f.begin(), f.end(), o.begin(), o.end());
-  if (end == f.end())
-    throw nsb::InputError(fmt::format("--fields '{}': is or contains --out '{}', and is replaced whole when the run ends; "
-                                      "valid: another directory (e.g. {}/fields)",
-                                      fields, out, out));
+  const auto within = [](const fs::path& inner, const fs::path& outer) {
+    return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first == outer.end();
+  };
+  if (within(o, f) || within(f, o))
+    throw nsb::InputError(fmt::format("--fields '{}': is, contains or is in --out '{}', and both are replaced whole when "
+                                      "the run ends; valid: a directory beside it (e.g. {}-fields)",
+                                      fields, out, o.string()));
 }
 
 struct RunArgs {
@@ -111,8 +114,10 @@ int run_case(const RunArgs& a) {
   if (!(options.t_end > 0.0)) throw nsb::InputError(fmt::format("--t-end {}: must be > 0", a.t_end));
   if (options.dt > options.t_end)  // refused, not clipped: the run would end at t = dt
     throw nsb::InputError(fmt::format("--dt {} is larger than --t-end {}; valid: dt <= t_end", a.dt, a.t_end));
-  nsb::ensure_directory(a.out);
-  nsb::remove_stale_temporaries(a.out);  // a killed run's half-written files
+  // series.csv, summary.json and events.csv are written into a staging directory and swapped
+  // in together (core/output.hpp): a reader never sees one run's series beside another's summary.
+  nsb::ReportDirectory out(a.out, "--out");
+  nsb::remove_stale_temporaries(out.path());  // half-written files of a version that wrote in place
   if (integrator->conditionally_stable() && options.dt > problem->stable_step())
     fmt::print(stderr, "nsbench: warning: --dt {} is above the stable step {:.4g} of {} for {} (ratio {:.3g}): expect a blow-up\n",
                options.dt, problem->stable_step(), problem->name(), integrator->name(), options.dt / problem->stable_step());
@@ -127,12 +132,11 @@ int run_case(const RunArgs& a) {
     fields.emplace(*problem, a.fields, "--fields", static_cast<long>(options.t_end / options.dt) / options.state_every + 2);
     options.state_sink = &*fields;
   }
-  const std::filesystem::path dir(a.out);
+  const std::filesystem::path& dir = out.path();
   nsb::CsvSeriesFile series(dir / "series.csv");  // streamed: memory bounded whatever the length
   options.series_sink = &series;
   const nsb::RunResult result = nsb::run(*problem, *integrator, options);
   series.commit();
-  if (fields) fields->commit();
   nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));
   if (!integrator->events().empty())  // the references' located events
     nsb::write_file_atomic(dir / "events.csv", nsb::events_to_csv(integrator->events()));
@@ -160,6 +164,8 @@ int print_verdicts(const std::string& what, const std::vector<nsb::Verdict>& ver
   int failed = 0;
   for (const auto& v : verdicts) {
     fmt::print("  {:<16} {:<13} {}\n", v.property, nsb::outcome_name(v.outcome), v.figure);
+  if (fields) fields->commit();
+  out.commit();
     failed += v.outcome == nsb::Verdict::Outcome::Fail;
   }
   fmt::print("{}: {}\n", what, failed ? fmt::format("{} properties failed", failed) : "every measured property holds");

@@ -30,10 +30,10 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& con
       throw InputError(fmt::format("cannot write '{}'", path.string()));
     }
   }
-  std::error_code ec;
+  std::error_code ec, ignored;
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
-    std::filesystem::remove(tmp, ec);
+    std::filesystem::remove(tmp, ignored);  // not into ec: the message says why the rename failed
     throw InputError(fmt::format("cannot write '{}': {}", path.string(), ec.message()));
   }
 }

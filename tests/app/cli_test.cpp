@@ -171,6 +171,7 @@ TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupt
   // An earlier run's leftovers (issue 20): a killed run's temporary (its pid above any
   // pid_max: no such process) and an events.csv this run does not make. Both go.
   std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/" + nsb::kOutputMarker) << "nsbench output\n";
   const std::string stale = dir + "/.series.csv.tmp.4194305";
   std::ofstream(stale) << "t,dt\n";
   std::ofstream(dir + "/events.csv") << "t\n";
@@ -184,8 +185,9 @@ TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupt
           "--t-end", "2000", "--sample-every", "1000000", "--out", dir.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  // The stale temporary goes just before the handlers are installed and the run starts.
-  for (int k = 0; k < 1000 && std::filesystem::exists(stale); ++k) usleep(10'000);
+  // The staging directory is made just before the handlers are installed and the run starts.
+  const auto staging = std::filesystem::temp_directory_path() / (".nsbench_cli_test_sigterm.staging." + std::to_string(child));
+  for (int k = 0; k < 1000 && !std::filesystem::exists(staging); ++k) usleep(10'000);
   usleep(300'000);
   kill(child, SIGTERM);
   int status = 0;
@@ -201,7 +203,8 @@ TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupt
   std::vector<std::string> files;
   for (const auto& f : std::filesystem::directory_iterator(dir)) files.push_back(f.path().filename().string());
   std::sort(files.begin(), files.end());
-  CHECK(files == std::vector<std::string>{"series.csv", "summary.json"});
+  CHECK(files == std::vector<std::string>{nsb::kOutputMarker, "series.csv", "summary.json"});
+  CHECK_FALSE(std::filesystem::exists(staging));
   std::ifstream json(dir + "/summary.json");
   const std::string summary((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   CHECK_THAT(summary, Catch::Contains("\"status\": \"interrupted\"") && Catch::EndsWith("}\n"));
@@ -258,7 +261,8 @@ TEST_CASE("cli: --fields writes ParaView files and changes nothing else; bad fie
   const std::vector<std::pair<std::string, std::string>> bad = {
       {run + "--out " + out + " --fields " + fields + " --fields-every 0", "--fields-every 0: must be an integer >= 1"},
       {run + "--out " + out + " --fields-every 5", "--fields-every 5: given without --fields DIR"},
-      {run + "--out " + out + " --fields " + out, "--fields '" + out + "': is or contains --out"},
+      {run + "--out " + out + " --fields " + out, "--fields '" + out + "': is, contains or is in --out"},
+      {run + "--out " + out + " --fields " + out + "/fields", "--fields '" + out + "/fields': is, contains or is in --out"},
   };
   for (const auto& [args, message] : bad) {
     const auto r = nsbench(args);
@@ -297,6 +301,32 @@ TEST_CASE("cli: an --out or --fields directory the suite did not write is refuse
   CHECK(fs::is_symlink(fs::symlink_status(d + "/dg")));
   fs::remove_all(d);
   fs::remove_all(tmpdir("foreign_out"));
+}
+
+// Issue 30, finding 4: series.csv was renamed into place before summary.json was written, so
+// a kill or a failed write between them left a new series beside the old summary. Here the
+// summary cannot be written (a directory stands in its place): nothing of the run is.
+TEST_CASE("cli: a run's files are swapped in together or not at all", "[app][reliability]") {
+  namespace fs = std::filesystem;
+  const std::string dir = tmpdir("whole");
+  fs::remove_all(dir);
+  REQUIRE(nsbench(kRun + "--dt 1e-3 --set e=0.8 --out " + dir).code == 0);
+  const auto read = [](const std::string& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string series = read(dir + "/series.csv");
+  fs::remove(dir + "/summary.json");
+  fs::create_directories(dir + "/summary.json");
+  std::ofstream(dir + "/summary.json/kept") << "x";
+  const auto r = nsbench(kRun + "--dt 1e-3 --set e=0.5 --out " + dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Contains("cannot write") && Catch::Contains("summary.json"));
+  CHECK(read(dir + "/series.csv") == series);
+  CHECK(fs::exists(dir + "/summary.json/kept"));
+  for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
+    CHECK(e.path().filename().string().rfind(".nsbench_cli_test_whole.staging.", 0) == std::string::npos);
+  fs::remove_all(dir);
 }
 
 namespace {
