@@ -61,6 +61,14 @@ void write_performance(const std::vector<std::string>& files, const fs::path& ou
   nsb::write_file_atomic(index, text);
 }
 
+// A study's own schema of its results, for --merge: the file study's; the registered ones are
+// checked for the keys every study shares (studies/shard.hpp).
+std::function<std::string(const Json&, const Json&)> result_check(const nsb::StudyEntry* s,
+                                                                  const std::optional<nsb::StudySpec>& spec) {
+  if (!spec || s->name != spec->name) return {};
+  return [&spec](const Json&, const Json& result) { return nsb::file_result_damage(*spec, result); };
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -189,7 +197,8 @@ int main(int argc, char** argv) {
                    mine[i].size(), cases.size());
         continue;
       }
-      const std::vector<Json> results = merge ? nsb::merge_shards(s->name, cases, out, full) : std::move(all_results[i]);
+      const std::vector<Json> results =
+          merge ? nsb::merge_shards(s->name, cases, out, full, result_check(s, spec)) : std::move(all_results[i]);
       const auto tables = nsb::study_tables(*s, cases, results, options);
       if (verify) {
         for (const auto& t : tables) {
