@@ -146,6 +146,15 @@ class Checker {
     return v;
   }
   std::string choice(const Json& j, const std::string& path, const std::vector<std::string>& valid) const {
+  // A sweep: positive, each value once (a repeated step is no new point of a convergence fit).
+  std::vector<double> distinct_list(const Json& j, const std::string& path) const {
+    const std::vector<double> v = positive_list(j, path);
+    const std::string key = path.substr(path.rfind('.') + 1);
+    for (std::size_t i = 1; i < v.size(); ++i)
+      for (std::size_t k = 0; k < i; ++k)
+        if (v[i] == v[k]) fail(element(path, i), fmt::format("{} repeats {}[{}]", v[i], key, k), "distinct values");
+    return v;
+  }
     const std::string s = string(j, path);
     if (std::find(valid.begin(), valid.end(), s) == valid.end())
       fail(path, fmt::format("'{}' is not valid (nearest: {})", s, nearest_name(s, valid)), fmt::format("{}", fmt::join(valid, ", ")));
@@ -234,11 +243,11 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
   if (const Json* p = c.find(j, "parameters"))
     for (const auto& [k, v] : c.parameters(*p, child(path, "parameters"), entry.parameters())) s.parameters[k] = v;
   if (const Json* v = c.find(j, "steps")) {
-    s.steps = c.positive_list(*v, child(path, "steps"));
+    s.steps = c.distinct_list(*v, child(path, "steps"));
     s.tolerances.clear();
   }
   if (const Json* v = c.find(j, "tolerances")) {
-    s.tolerances = c.positive_list(*v, child(path, "tolerances"));
+    s.tolerances = c.distinct_list(*v, child(path, "tolerances"));
     if (!c.find(j, "steps")) s.steps.clear();
   }
   if (const Json* v = c.find(j, "tolerance_parameter")) {

@@ -118,6 +118,25 @@ TEST_CASE("fit_order: slope and 95% interval by hand on three points and t quant
   CHECK(nsb::student_t975(1000) == Approx(1.9623391).epsilon(1e-6));
 }
 
+// Issue 30, finding 8: steps = [1e-2, 1e-2, 1e-3] gave order 1.2505 with an interval 3e-15
+// wide, status ok: a repeated step is not a new point of the fit.
+TEST_CASE("fit_order: a repeated abscissa counts once; a study file refuses repeated steps", "[studies][study_file]") {
+  const nsb::OrderFit fit = nsb::fit_order({1e-2, 1e-2, 1e-3}, {1e-2, 1e-2, 1e-4});
+  CHECK(fit.points == 2);
+  CHECK(fit.order == Approx(2.0).epsilon(1e-12));
+  CHECK(std::isnan(fit.low));  // two distinct points: no interval
+  CHECK(std::isnan(fit.high));
+  const nsb::OrderFit same = nsb::fit_order({1e-3, 2e-3, 2e-3, 4e-3}, {1e-6, 4e-6, 4e-6, 16e-6});
+  CHECK(same.points == 3);
+  CHECK(same.order == Approx(2.0).epsilon(1e-12));
+  CHECK(nsb::fit_order({1e-2, 1e-2}, {1e-2, 2e-2}).points == 1);
+  CHECK(std::isnan(nsb::fit_order({1e-2, 1e-2}, {1e-2, 2e-2}).order));
+  CHECK(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 1e-2, 1e-3]")) ==
+        "f.toml:11: integrator[0].steps[1]: 0.01 repeats steps[0]; valid: distinct values");
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "tolerances = [1e-4, 1e-6, 1e-4]\ndt = 1e-2")),
+             Catch::EndsWith("integrator[0].tolerances[2]: 0.0001 repeats tolerances[0]; valid: distinct values"));
+}
+
 TEST_CASE("fit_order: the 95% interval covers a known slope in about 95% of noisy samples", "[studies][study_file]") {
   std::mt19937_64 rng(12345);
   std::normal_distribution<double> noise(0.0, 0.2);
