@@ -13,6 +13,7 @@
 #include "core/output.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
+#include "studies/report_text.hpp"
 #include "studies/study_file.hpp"
 
 namespace nsb {
@@ -491,6 +492,13 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 StudySpec read_study_file(const std::filesystem::path& path) {
   return parse_study_text(read_file_bounded(path, kMaxStudyFileBytes, "study file"), path.string(),
                           path.extension() == ".json");
+  // The name goes into the reports' metadata lines and headings, one line each.
+  const std::string name = path.string();
+  const auto control = std::find_if(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+  if (control != name.end())
+    throw InputError(fmt::format("study file '{}': its name holds the control character 0x{:02x}; valid: a name without "
+                                 "control characters (newlines, tabs, escapes)",
+                                 one_line(name), static_cast<unsigned char>(*control)));
 }
 
 StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, long budget) {

@@ -476,3 +476,20 @@ TEST_CASE("study file: a hausdorff measure converges where the max-norm velocity
   CHECK_THAT(error_of(replaced(text, "kind = \"hausdorff\"\nobservable = \"v\"\n", "kind = \"hausdorff\"\nobservable = \"u\"\n")),
              Catch::Contains("not an observable"));
 }
+
+// Issue 30, finding 9: a newline in a study file's name broke the reports' metadata lines.
+TEST_CASE("study file: a name with a control character is refused in one line", "[studies][study_file]") {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("nsbench_study_name_{}", ::getpid());
+  fs::create_directories(dir);
+  const fs::path file = dir / "two\nlines.toml";
+  std::ofstream(file) << kMinimal;
+  try {
+    nsb::read_study_file(file);
+    FAIL("accepted");
+  } catch (const nsb::InputError& e) {
+    const std::string what = e.what();
+    CHECK(what == "study file '" + (dir / "two lines.toml").string() + "': its name holds the control character 0x0a; "
+                  "valid: a name without control characters (newlines, tabs, escapes)");
+  }
+  fs::remove_all(dir);
+}
