@@ -80,6 +80,24 @@ void check_fields_dir(const std::string& fields, const std::string& out) {
                                       fields, out, o.string()));
 }
 
+// What overflowed, for the divergence line: the first non-finite displacement and velocity
+// components and the energy ("u[3] = inf, v[3] = -inf, energy inf"); empty when all are finite.
+std::string non_finite(const nsb::Integrator& integrator) {
+  const nsb::State& s = integrator.state();
+  std::vector<std::string> parts;
+  for (const auto& [name, x] : {std::pair<const char*, const nsb::Vec*>{"u", &s.u}, {"v", &s.v}})
+    for (Eigen::Index i = 0; i < x->size(); ++i)
+      if (!std::isfinite((*x)[i])) {
+        parts.push_back(fmt::format("{}[{}] = {}", name, i, (*x)[i]));
+        break;
+      }
+  if (const double e = integrator.energy().total(); !std::isfinite(e)) parts.push_back(fmt::format("energy {}", e));
+  return fmt::format("{}", fmt::join(parts, ", "));
+}
+
+// An energy error as printed: n/a when there is no scale (E0 = 0 and the problem has none).
+std::string energy_error_text(double e) { return std::isnan(e) ? "n/a" : fmt::format("{:.3e}", e); }
+
 struct RunArgs {
   std::string problem, integrator, dt, t_end, out, sample_every = "1", fields, fields_every;
   std::vector<std::string> sets;
@@ -127,6 +145,10 @@ int run_case(const RunArgs& a) {
   std::signal(SIGTERM, on_interrupt);
 
   integrator->init(*problem, problem->initial_state());
+  if (const std::string overflow = non_finite(*integrator); !overflow.empty())  // before any step: the parameters
+    throw nsb::InputError(fmt::format("problem {}: its initial state is not finite ({}): a parameter overflows; "
+                                      "parameters given: {}", problem->name(), overflow,
+                                      a.sets.empty() ? "none (the defaults)" : "--set " + fmt::format("{}", fmt::join(a.sets, " --set "))));
   std::optional<nsb::FieldWriter> fields;
   if (!a.fields.empty()) {
     fields.emplace(*problem, a.fields, "--fields", static_cast<long>(options.t_end / options.dt) / options.state_every + 2);
@@ -142,19 +164,24 @@ int run_case(const RunArgs& a) {
     nsb::write_file_atomic(dir / "events.csv", nsb::events_to_csv(integrator->events()));
   else
     std::filesystem::remove(dir / "events.csv");  // an earlier run's, not this one's
+  if (fields) fields->commit();
+  out.commit();
   if (interrupt_signal != 0) {  // during the run, or while its files were written
     fmt::print(stderr, "nsbench: interrupted by signal {}{} (files written to {})\n", static_cast<int>(interrupt_signal),
                result.status == nsb::RunStatus::Interrupted ? ", " + result.message : std::string(), a.out);
     return 128 + interrupt_signal;
   }
   if (result.status != nsb::RunStatus::Ok) {
-    fmt::print(stderr, "nsbench: run diverged: {} (files written to {})\n", result.message, a.out);
+    const std::string overflow = non_finite(*integrator);
+    fmt::print(stderr, "nsbench: run diverged: {}{} (files written to {})\n", result.message,
+               overflow.empty() ? "" : " (" + overflow + ")", a.out);
     return 3;
   }
-  fmt::print("{} on {}: {} steps, t = {:.6g}, cpu {:.3g} s (stepping {:.3g} s), energy error {:.3e} (max {:.3e}), "
+  fmt::print("{} on {}: {} steps, t = {:.6g}, cpu {:.3g} s (stepping {:.3g} s), energy error {} (max {}{}), "
              "max penetration {:.3e}\n",
              integrator->name(), problem->name(), result.steps, result.t_final, result.cpu_seconds, result.step_cpu_seconds,
-             result.final_energy_error(), result.max_energy_error,
+             energy_error_text(result.final_energy_error()), energy_error_text(result.max_energy_error),
+             std::isnan(result.energy_scale) ? fmt::format("; E0 = 0 and {} has no energy scale", problem->name()) : "",
              result.max_penetration);
   return 0;
 }
@@ -164,8 +191,6 @@ int print_verdicts(const std::string& what, const std::vector<nsb::Verdict>& ver
   int failed = 0;
   for (const auto& v : verdicts) {
     fmt::print("  {:<16} {:<13} {}\n", v.property, nsb::outcome_name(v.outcome), v.figure);
-  if (fields) fields->commit();
-  out.commit();
     failed += v.outcome == nsb::Verdict::Outcome::Fail;
   }
   fmt::print("{}: {}\n", what, failed ? fmt::format("{} properties failed", failed) : "every measured property holds");
@@ -214,6 +239,7 @@ int main(int argc, char** argv) {
   try {
     nsb::cli::check_option_names(app, argc, argv);
     app.parse(argc, argv);
+    nsb::cli::refuse_empty_values(app);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
@@ -232,8 +258,8 @@ int main(int argc, char** argv) {
   } catch (const nsb::InputError& e) {
     fmt::print(stderr, "nsbench: error: {}\n", e.what());
     return 2;
-  }
-}
   } catch (const std::exception& e) {  // one line, and the staging directories removed (no std::terminate)
     fmt::print(stderr, "nsbench: error: {}\n", e.what());
     return 2;
+  }
+}

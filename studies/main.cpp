@@ -15,11 +15,15 @@
 //
 // Reports: DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
 // scripts/figures.py) and DIR/index.md linking them, opening with the lead tables (the claims)
-// and the headline tables (the rankings) in full. Shards: DIR/shards/<study>-I-of-N.json.
+// and the headline tables (the rankings) in full, listing every study of DIR: each study's
+// entries are kept in DIR/.index/<study>.json, so a run of one study keeps the others listed.
+// Shards: DIR/shards/<study>-I-of-N.json. DIR is the suite's own (core/output.hpp,
+// kOutputMarker): a directory it did not write is refused.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -27,11 +31,13 @@
 #include "app/cli_options.hpp"
 #include "core/build_info.hpp"
 #include "core/environment.hpp"
+#include "core/json.hpp"
 #include "core/output.hpp"
 #include "core/parameters.hpp"
 #include "core/plugin.hpp"
 #include "studies/parallel.hpp"
 #include "studies/performance.hpp"
+#include "studies/report_text.hpp"
 #include "studies/shard.hpp"
 #include "studies/study.hpp"
 #include "studies/verify.hpp"
@@ -59,6 +65,65 @@ void write_performance(const std::vector<std::string>& files, const fs::path& ou
   const auto footer = text.rfind("---\n");  // the environment footer stays last
   text.insert(footer == std::string::npos ? text.size() : footer, section);
   nsb::write_file_atomic(index, text);
+}
+
+// A study's entries in index.md: its section (the tables and figures), and its lead (claims)
+// and headline (rankings) tables shown in full at the top. Kept in the report as
+// .index/STUDY.json, so that a later run of other studies into the same --out lists it too.
+struct IndexPart {
+  std::string section, lead, headline;
+};
+
+IndexPart index_part(const nsb::StudyEntry& s, const std::vector<nsb::Table>& tables) {
+  using nsb::one_line;  // a label's newline must not split the index's lines
+  IndexPart part;
+  part.section = fmt::format("## {}\n\n{}\n\n", one_line(s.name), one_line(s.description));
+  for (const auto& t : tables) {
+    if (t.csv_only)
+      part.section += fmt::format("- {} ([csv]({}.csv))\n", one_line(t.title), t.id);
+    else
+      part.section += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", one_line(t.title), t.id, t.id, t.id);
+    for (const auto& f : t.figures)
+      part.section += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf)){}\n", one_line(f.title), f.id, f.id,
+                                  f.caption.empty() ? "" : "\n\n  " + one_line(f.caption));
+    const std::string full = fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", one_line(t.title), t.id, one_line(s.name),
+                                         one_line(t.caption), nsb::markdown_grid(t));
+    if (t.lead) part.lead += full;
+    if (t.headline) part.headline += full;
+  }
+  part.section += "\n";
+  return part;
+}
+
+void save_index_part(const fs::path& report, const std::string& study, const IndexPart& part) {
+  nsb::ensure_directory(report / ".index");
+  nsb::write_file_atomic(report / ".index" / (study + ".json"),
+                         Json{{"section", part.section}, {"lead", part.lead}, {"headline", part.headline}}.dump() + "\n");
+}
+
+// The parts of every study in the report: the registered studies in their order, then the
+// others (study files) by name. A damaged part is left out, with a warning.
+std::vector<IndexPart> index_parts(const fs::path& report) {
+  std::map<std::string, IndexPart> found;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(report / ".index", ec)) {
+    if (e.path().extension() != ".json") continue;
+    const Json j = nsb::parse_json_bounded(nsb::read_file_bounded(e.path(), std::size_t{1} << 28, "index part"));
+    const auto text = [&](const char* key) { return j.is_object() && j.contains(key) && j[key].is_string(); };
+    if (!text("section") || !text("lead") || !text("headline")) {
+      fmt::print(stderr, "nsbench-study: warning: {}: damaged, its study is left out of index.md\n", e.path().string());
+      continue;
+    }
+    found[e.path().stem().string()] = {j["section"], j["lead"], j["headline"]};
+  }
+  std::vector<IndexPart> parts;
+  for (const auto& s : nsb::study_registry())
+    if (const auto it = found.find(s.name); it != found.end()) {
+      parts.push_back(it->second);
+      found.erase(it);
+    }
+  for (const auto& [name, part] : found) parts.push_back(part);
+  return parts;
 }
 
 // A study's own schema of its results, for --merge: the file study's; the registered ones are
@@ -93,6 +158,10 @@ int main(int argc, char** argv) {
   try {
     nsb::cli::check_option_names(app, argc, argv);
     app.parse(argc, argv);
+    nsb::cli::refuse_empty_values(app);
+    for (const auto& [option, value] : {std::pair{"--rtol", tolerance.rtol}, {"--atol", tolerance.atol}})
+      if (!std::isfinite(value))  // CLI11's NonNegativeNumber lets nan and inf through
+        throw InputError(fmt::format("{} {}: must be a finite number >= 0", option, value));
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
@@ -152,9 +221,6 @@ int main(int argc, char** argv) {
     std::string index = fmt::format("# nsbench reports\n\nRevision `{}`, {} build, {}{}{}.\n\n", b.git_revision,
                                     b.build_type, b.compiler, full ? ", full sweeps" : "",
                                     plugged.empty() ? "" : ", plugins " + plugged);
-    std::string studies;   // a section per study, after the headline
-    std::string headline;  // the headline tables, shown first
-    std::string lead;      // the lead tables (the claims), shown before the headline
     std::vector<nsb::Table> all_tables;
     // The cases of every selected study (this shard's), run in one pool: a study's longest
     // case no longer leaves the other cores idle at its end (each case is independent, so the
@@ -208,24 +274,11 @@ int main(int argc, char** argv) {
         }
         continue;
       }
-      studies += fmt::format("## {}\n\n{}\n\n", s->name, s->description);
       for (const auto& t : tables) {
         nsb::write_table(t, report->path());
-        if (t.csv_only)
-          studies += fmt::format("- {} ([csv]({}.csv))\n", t.title, t.id);
-        else
-          studies += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", t.title, t.id, t.id, t.id);
-        for (const auto& f : t.figures)
-          studies += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf)){}\n", f.title, f.id, f.id,
-                                 f.caption.empty() ? "" : "\n\n  " + f.caption);
-        if (t.lead)
-          lead += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", t.title, t.id, s->name, t.caption, nsb::markdown_grid(t));
-        if (t.headline)
-          headline += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", t.title, t.id, s->name, t.caption,
-                                  nsb::markdown_grid(t));
         all_tables.push_back(t);
       }
-      studies += "\n";
+      save_index_part(report->path(), s->name, index_part(*s, tables));
       fmt::print(stderr, "study {}: {} cases, {} tables\n", s->name, cases.size(), tables.size());
     }
     if (verify) {
@@ -236,6 +289,13 @@ int main(int argc, char** argv) {
       return verified.differences.empty() ? 0 : 1;
     }
     if (!shard.count) {
+      // Every study of the report, those of earlier runs into it too (their .index parts).
+      std::string studies, lead, headline;
+      for (const auto& part : index_parts(report->path())) {
+        studies += part.section;
+        lead += part.lead;
+        headline += part.headline;
+      }
       const auto& env = nsb::environment();
       studies += fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, revision {}. Rerun: `{}`</sub>\n", env.cpu,
                              env.cores, env.libraries, b.build_type, b.compiler, b.git_revision, nsb::command_line());
@@ -254,9 +314,9 @@ int main(int argc, char** argv) {
   } catch (const Json::exception& e) {
     fmt::print(stderr, "nsbench-study: error: unreadable shard file: {}\n", e.what());
     return 2;
-  }
-  return 0;
-}
   } catch (const std::exception& e) {  // one line, and the staging directory removed (no std::terminate)
     fmt::print(stderr, "nsbench-study: error: {}\n", e.what());
     return 2;
+  }
+  return 0;
+}

@@ -365,3 +365,60 @@ TEST_CASE("cli: an unusable reference cache is a warning, the study runs and lea
   }
   fs::remove_all(dir);
 }
+
+// Issue 30, finding 10: a second study into the same --out rewrote index.md to list only itself.
+TEST_CASE("cli: index.md lists every study of the --out, not only the last run's", "[app][reliability]") {
+  namespace fs = std::filesystem;
+  const std::string dir = tmpdir("index"), out = dir + "/out";
+  fs::remove_all(dir);
+  REQUIRE(study("run " + quick_study(dir, "first") + " --out " + out).code == 0);
+  REQUIRE(study("run " + quick_study(dir, "second") + " --out " + out).code == 0);
+  std::ifstream in(out + "/index.md");
+  const std::string index((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK_THAT(index, Catch::Contains("\n## first\n") && Catch::Contains("\n## second\n") && Catch::Contains("(first.md)") &&
+                        Catch::Contains("(second.md)"));
+  REQUIRE(study("run " + quick_study(dir, "first") + " --out " + out).code == 0);  // rerun: listed once
+  std::ifstream again(out + "/index.md");
+  const std::string rerun((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
+  CHECK(rerun.find("\n## first\n") == rerun.rfind("\n## first\n"));
+  CHECK_THAT(rerun, Catch::Contains("\n## second\n"));
+  fs::remove_all(dir);
+}
+
+// Issue 30, finding 10: a repeated --set key took the last value, an empty --fields or
+// --shard was ignored, --rtol nan was accepted, h0 = 0 printed "energy error nan", and an
+// overflow exited 3 without naming the parameter.
+TEST_CASE("cli: repeated --set keys, empty values, non-finite tolerances and overflows are named", "[app][bad-input][reliability]") {
+  const std::string out = tmpdir("smaller");
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {kRun + "--dt 1e-3 --set e=0.9 --set e=0.5 --out " + out,
+       "nsbench: error: --set e=0.5: parameter 'e' is already set by --set e=0.9; valid: each parameter once"},
+      {kRun + "--dt 1e-3 --set e=0.9 --set problem.e=0.5 --out " + out,
+       "nsbench: error: --set problem.e=0.5: parameter 'e' is already set by --set e=0.9"},
+      {kRun + "--dt 1e-3 --out " + out + " --fields ''", "nsbench: error: --fields '': an empty value"},
+      {kRun + "--dt 1e-3 --set v0=1e308 --out " + out,
+       "nsbench: error: problem bouncing-mass: its initial state is not finite (energy inf): a parameter overflows; "
+       "parameters given: --set v0=1e308"},
+  };
+  for (const auto& [args, message] : refused) {
+    const auto r = nsbench(args);
+    INFO(args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::StartsWith(message));
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+  }
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"bouncing --shard '' --out " + out, "nsbench-study: error: --shard '': an empty value"},
+           {"bouncing --verify reports --rtol nan", "nsbench-study: error: --rtol nan: must be a finite number >= 0"},
+           {"bouncing --verify reports --atol inf", "nsbench-study: error: --atol inf: must be a finite number >= 0"}}) {
+    const auto r = study(args);
+    INFO(args);
+    CHECK(r.code == 2);
+    CHECK(r.output == message + "\n");
+  }
+  const auto rest = nsbench(kRun + "--dt 1e-3 --set h0=0 --out " + out);
+  CHECK(rest.code == 0);
+  CHECK_THAT(rest.output, Catch::Contains("energy error n/a (max n/a; E0 = 0 and bouncing-mass has no energy scale)") &&
+                              !Catch::Contains("nan"));
+  std::filesystem::remove_all(out);
+}

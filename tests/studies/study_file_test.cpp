@@ -493,3 +493,13 @@ TEST_CASE("study file: a name with a control character is refused in one line", 
   }
   fs::remove_all(dir);
 }
+
+// Issue 30, finding 10: floor = inf was accepted, and max_force_evaluations = 0 (no budget)
+// let each case run up to 2e8 steps.
+TEST_CASE("study file: an infinite floor and a zero budget are refused", "[studies][study_file]") {
+  CHECK_THAT(error_of(replaced(kMinimal, "solution = \"exact\"", "solution = \"exact\"\nfloor = inf")),
+             Catch::EndsWith("reference.floor: inf is not a finite number >= 0; valid: [0, inf)"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 0")),
+             Catch::EndsWith("study.max_force_evaluations: 0 is out of range; valid: [1, 1125899906842624]"));
+  CHECK(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 1")) == "(no error)");
+}
