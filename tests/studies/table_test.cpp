@@ -103,7 +103,7 @@ TEST_CASE("tables: control bytes and newlines in labels never split a row, a hea
   t.caption = "caption\n\n| a | fake row |";
   t.columns = {{"label\nsplit", "", "", "a\ndescription"}, {"err", "", "{:.2e}", ""}};
   t.add_row({std::string("cr\rin"), 1.0});
-  t.add_row({std::string("nul\0esc\x1b[31mred", 16), 2.0});
+  t.add_row({std::string("nul\0esc\x1b[31mred", 15), 2.0});
   t.add_row({std::string("new\nline"), 3.0});
   t.metadata = {{"study_file", "a\nb.toml"}};
   const auto lines = [](const std::string& text) {
