@@ -72,17 +72,38 @@ void list() {
   }
 }
 
-// --fields DIR before any work: DIR is not --out nor holds it (DIR is replaced whole when
-// the run ends). A problem that describes no bodies (a plugin's) is refused by FieldWriter.
+// --fields DIR before any work: DIR is not --out, does not hold it and is not in it (each
+// is replaced whole when the run ends, a nested one would be undone by the other's swap). A
+// problem that describes no bodies (a plugin's) is refused by FieldWriter.
 void check_fields_dir(const std::string& fields, const std::string& out) {
   namespace fs = std::filesystem;
   const fs::path f = fs::weakly_canonical(fields), o = fs::weakly_canonical(out);
-  const auto [end, rest] = std::mismatch(f.begin(), f.end(), o.begin(), o.end());
-  if (end == f.end())
-    throw nsb::InputError(fmt::format("--fields '{}': is or contains --out '{}', and is replaced whole when the run ends; "
-                                      "valid: another directory (e.g. {}/fields)",
-                                      fields, out, out));
+  const auto within = [](const fs::path& inner, const fs::path& outer) {
+    return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first == outer.end();
+  };
+  if (within(o, f) || within(f, o))
+    throw nsb::InputError(fmt::format("--fields '{}': is, contains or is in --out '{}', and both are replaced whole when "
+                                      "the run ends; valid: a directory beside it (e.g. {}-fields)",
+                                      fields, out, o.string()));
 }
+
+// What overflowed, for the divergence line: the first non-finite displacement and velocity
+// components and the energy ("u[3] = inf, v[3] = -inf, energy inf"); empty when all are finite.
+std::string non_finite(const nsb::Integrator& integrator) {
+  const nsb::State& s = integrator.state();
+  std::vector<std::string> parts;
+  for (const auto& [name, x] : {std::pair<const char*, const nsb::Vec*>{"u", &s.u}, {"v", &s.v}})
+    for (Eigen::Index i = 0; i < x->size(); ++i)
+      if (!std::isfinite((*x)[i])) {
+        parts.push_back(fmt::format("{}[{}] = {}", name, i, (*x)[i]));
+        break;
+      }
+  if (const double e = integrator.energy().total(); !std::isfinite(e)) parts.push_back(fmt::format("energy {}", e));
+  return fmt::format("{}", fmt::join(parts, ", "));
+}
+
+// An energy error as printed: n/a when there is no scale (E0 = 0 and the problem has none).
+std::string energy_error_text(double e) { return std::isnan(e) ? "n/a" : fmt::format("{:.3e}", e); }
 
 struct RunArgs {
   std::string problem, integrator, dt, t_end, out, sample_every = "1", fields, fields_every;
@@ -102,8 +123,10 @@ int run_case(const RunArgs& a) {
     options.state_every = static_cast<long>(k);
   }
   if (!a.fields.empty()) check_fields_dir(a.fields, a.out);
-  nsb::ensure_directory(a.out);
-  nsb::remove_stale_temporaries(a.out);  // a killed run's half-written files
+  // series.csv, summary.json and events.csv are written into a staging directory and swapped
+  // in together (core/output.hpp): a reader never sees one run's series beside another's summary.
+  nsb::ReportDirectory out(a.out, "--out");
+  nsb::remove_stale_temporaries(out.path());  // half-written files of a version that wrote in place
   if (integrator->conditionally_stable() && options.dt > problem->stable_step())
     fmt::print(stderr, "nsbench: warning: --dt {} is above the stable step {:.4g} of {} for {} (ratio {:.3g}): expect a blow-up\n",
                options.dt, problem->stable_step(), problem->name(), integrator->name(), options.dt / problem->stable_step());
@@ -114,35 +137,43 @@ int run_case(const RunArgs& a) {
   std::signal(SIGTERM, on_interrupt);
 
   integrator->init(*problem, problem->initial_state());
+  if (const std::string overflow = non_finite(*integrator); !overflow.empty())  // before any step: the parameters
+    throw nsb::InputError(fmt::format("problem {}: its initial state is not finite ({}): a parameter overflows; "
+                                      "parameters given: {}", problem->name(), overflow,
+                                      a.sets.empty() ? "none (the defaults)" : "--set " + fmt::format("{}", fmt::join(a.sets, " --set "))));
   std::optional<nsb::FieldWriter> fields;
   if (!a.fields.empty()) {
     fields.emplace(*problem, a.fields, "--fields", static_cast<long>(options.t_end / options.dt) / options.state_every + 2);
     options.state_sink = &*fields;
   }
-  const std::filesystem::path dir(a.out);
+  const std::filesystem::path& dir = out.path();
   nsb::CsvSeriesFile series(dir / "series.csv");  // streamed: memory bounded whatever the length
   options.series_sink = &series;
   const nsb::RunResult result = nsb::run(*problem, *integrator, options);
   series.commit();
-  if (fields) fields->commit();
   nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));
   if (!integrator->events().empty())  // the references' located events
     nsb::write_file_atomic(dir / "events.csv", nsb::events_to_csv(integrator->events()));
   else
     std::filesystem::remove(dir / "events.csv");  // an earlier run's, not this one's
+  if (fields) fields->commit();
+  out.commit();
   if (interrupt_signal != 0) {  // during the run, or while its files were written
     fmt::print(stderr, "nsbench: interrupted by signal {}{} (files written to {})\n", static_cast<int>(interrupt_signal),
                result.status == nsb::RunStatus::Interrupted ? ", " + result.message : std::string(), a.out);
     return 128 + interrupt_signal;
   }
   if (result.status != nsb::RunStatus::Ok) {
-    fmt::print(stderr, "nsbench: run diverged: {} (files written to {})\n", result.message, a.out);
+    const std::string overflow = non_finite(*integrator);
+    fmt::print(stderr, "nsbench: run diverged: {}{} (files written to {})\n", result.message,
+               overflow.empty() ? "" : " (" + overflow + ")", a.out);
     return 3;
   }
-  fmt::print("{} on {}: {} steps, t = {:.6g}, cpu {:.3g} s (stepping {:.3g} s), energy error {:.3e} (max {:.3e}), "
+  fmt::print("{} on {}: {} steps, t = {:.6g}, cpu {:.3g} s (stepping {:.3g} s), energy error {} (max {}{}), "
              "max penetration {:.3e}\n",
              integrator->name(), problem->name(), result.steps, result.t_final, result.cpu_seconds, result.step_cpu_seconds,
-             result.final_energy_error(), result.max_energy_error,
+             energy_error_text(result.final_energy_error()), energy_error_text(result.max_energy_error),
+             std::isnan(result.energy_scale) ? fmt::format("; E0 = 0 and {} has no energy scale", problem->name()) : "",
              result.max_penetration);
   return 0;
 }
@@ -201,6 +232,7 @@ int main(int argc, char** argv) {
   try {
     nsb::cli::check_option_names(app, argc, argv);
     app.parse(argc, argv);
+    nsb::cli::refuse_empty_values(app);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
@@ -219,6 +251,9 @@ int main(int argc, char** argv) {
     if (check_cmd->parsed()) return check(checked_integrator, checked_problem);
     return run_case(a);
   } catch (const nsb::InputError& e) {
+    fmt::print(stderr, "nsbench: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {  // one line, and the staging directories removed (no std::terminate)
     fmt::print(stderr, "nsbench: error: {}\n", e.what());
     return 2;
   }

@@ -3,6 +3,7 @@
 #include <SuiteSparse_config.h>
 #include <fmt/format.h>
 #include <link.h>
+#include <sys/resource.h>
 #include <unistd.h>
 #include <sundials/sundials_config.h>
 
@@ -101,18 +102,28 @@ double memory_available(std::string& source) {
     source = "NSBENCH_MEMORY_LIMIT";
     return static_cast<double>(n) * scale;
   }
+  double available = static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  source = "free physical memory; NSBENCH_MEMORY_LIMIT overrides it";
   std::ifstream meminfo("/proc/meminfo");
   std::string key;
   double kib = 0.0;
   while (meminfo >> key) {
     if (key == "MemAvailable:" && meminfo >> kib) {
+      available = kib * 1024.0;
       source = "MemAvailable in /proc/meminfo; NSBENCH_MEMORY_LIMIT overrides it";
-      return kib * 1024.0;
+      break;
     }
     meminfo.ignore(1 << 12, '\n');
   }
-  source = "free physical memory; NSBENCH_MEMORY_LIMIT overrides it";
-  return static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  // A process limit below it (ulimit -v, -d: a batch job's) is what a run may really take.
+  for (const auto& [resource, name] : {std::pair{RLIMIT_AS, "RLIMIT_AS, ulimit -v"}, {RLIMIT_DATA, "RLIMIT_DATA, ulimit -d"}}) {
+    rlimit limit{};
+    if (::getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && static_cast<double>(limit.rlim_cur) < available) {
+      available = static_cast<double>(limit.rlim_cur);
+      source = fmt::format("{}; NSBENCH_MEMORY_LIMIT overrides it", name);
+    }
+  }
+  return available;
 }
 
 }  // namespace nsb

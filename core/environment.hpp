@@ -16,7 +16,8 @@ struct Environment {
 const Environment& environment();
 
 // The memory a run may take, in bytes: NSBENCH_MEMORY_LIMIT if set (bytes, or with a K, M or
-// G suffix: powers of 1024; InputError if malformed), else MemAvailable (/proc/meminfo).
+// G suffix: powers of 1024; InputError if malformed), else MemAvailable (/proc/meminfo), or
+// the process limit RLIMIT_AS or RLIMIT_DATA (ulimit -v, -d) when lower.
 // `source` gets where the figure comes from. Used to refuse, before allocating, a problem or
 // factorisation that would not fit.
 double memory_available(std::string& source);

@@ -30,10 +30,10 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& con
       throw InputError(fmt::format("cannot write '{}'", path.string()));
     }
   }
-  std::error_code ec;
+  std::error_code ec, ignored;
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
-    std::filesystem::remove(tmp, ec);
+    std::filesystem::remove(tmp, ignored);  // not into ec: the message says why the rename failed
     throw InputError(fmt::format("cannot write '{}': {}", path.string(), ec.message()));
   }
 }
@@ -79,6 +79,60 @@ void ensure_directory(const std::filesystem::path& dir, const std::string& optio
 
 namespace {
 
+// What a directory entry is, for the refusal: "a FIFO", ...; empty for a regular file or a
+// directory (what the suite writes).
+std::string foreign_kind(std::filesystem::file_type type) {
+  using std::filesystem::file_type;
+  switch (type) {
+    case file_type::regular:
+    case file_type::directory: return "";
+    case file_type::symlink: return "a symbolic link";
+    case file_type::fifo: return "a FIFO";
+    case file_type::socket: return "a socket";
+    case file_type::block:
+    case file_type::character: return "a device file";
+    default: return "a special file";
+  }
+}
+
+// Throws unless `dir` (an existing directory) is empty, or the suite's own output holding
+// only regular files and directories.
+void check_own_output(const std::filesystem::path& dir, const std::string& option) {
+  namespace fs = std::filesystem;
+  try {
+    if (fs::is_empty(dir)) return;
+    if (!fs::is_regular_file(fs::symlink_status(dir / kOutputMarker)))
+      throw InputError(fmt::format("{} '{}': not empty and not an nsbench output directory (no {} file); the suite "
+                                   "replaces its output directory whole and writes only into a new or empty directory "
+                                   "or one it wrote; valid: a new directory",
+                                   option, dir.string(), kOutputMarker));
+    for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) {
+      const std::string kind = foreign_kind(it->symlink_status().type());
+      if (!kind.empty())
+        throw InputError(fmt::format("{} '{}': holds '{}', {} the suite never writes; its output directory is replaced "
+                                     "whole, so it would be deleted; move it away or choose another directory",
+                                     option, dir.string(), it->path().string(), kind));
+    }
+  } catch (const fs::filesystem_error& e) {
+    throw InputError(fmt::format("{} '{}': cannot be read: {}", option, dir.string(), e.code().message()));
+  }
+}
+
+void mark_output(const std::filesystem::path& dir) {
+  write_file_atomic(dir / kOutputMarker, "nsbench output: replaced whole by the suite's next run into it\n");
+}
+
+}  // namespace
+
+void claim_output_directory(const std::filesystem::path& dir, const std::string& option) {
+  ensure_directory(dir, option);  // leaves an existing directory as it was
+  check_own_output(dir, option);
+  if (!std::filesystem::exists(dir / kOutputMarker))
+    mark_output(dir);
+}
+
+namespace {
+
 // The pid of a ".NAME.tmp.PID" or ".NAME.staging.PID" entry; 0 for anything else.
 long temporary_owner(const std::string& name, const char* kind) {
   const auto at = name.rfind(kind);
@@ -103,19 +157,24 @@ void remove_stale_temporaries(const std::filesystem::path& dir) {
 namespace {
 
 // Hard links to every file under `from`, in the same tree under `to` (copies where a link
-// cannot be made).
-void link_tree(const std::filesystem::path& from, const std::filesystem::path& to) {
+// cannot be made); returns the directories' modes, by their path under `to`. `from` holds
+// only regular files and directories (check_own_output): nothing is followed out of it.
+std::vector<std::pair<std::filesystem::path, std::filesystem::perms>> link_tree(const std::filesystem::path& from,
+                                                                                 const std::filesystem::path& to) {
   namespace fs = std::filesystem;
+  std::vector<std::pair<fs::path, fs::perms>> modes{{to, fs::status(from).permissions()}};
   for (auto it = fs::recursive_directory_iterator(from); it != fs::recursive_directory_iterator(); ++it) {
-    const fs::path rel = fs::relative(it->path(), from), dest = to / rel;
+    const fs::path dest = to / it->path().lexically_relative(from);
     if (it->is_directory()) {
       fs::create_directories(dest);
+      modes.emplace_back(dest, it->symlink_status().permissions());
     } else if (it->is_regular_file()) {
       std::error_code ec;
       fs::create_hard_link(it->path(), dest, ec);
       if (ec) fs::copy_file(it->path(), dest);
     }
   }
+  return modes;
 }
 
 }  // namespace
@@ -123,11 +182,12 @@ void link_tree(const std::filesystem::path& from, const std::filesystem::path& t
 ReportDirectory::ReportDirectory(const std::filesystem::path& target, const std::string& option) : option_(option) {
   namespace fs = std::filesystem;
   ensure_directory(target, option);
+  check_own_output(target, option);
+  std::error_code ec;
   target_ = fs::canonical(target);  // "out/", ".": a name and a parent to stage beside
   const fs::path parent = target_.parent_path();
   const std::string name = target_.filename().string();
   if (name.empty()) throw InputError(fmt::format("{} '{}': the root directory cannot be a report", option, target.string()));
-  std::error_code ec;
   for (const auto& e : fs::directory_iterator(parent, ec)) {  // earlier runs' leftovers
     const std::string entry = e.path().filename().string();
     const long pid = entry.rfind("." + name + ".staging.", 0) == 0 ? temporary_owner(entry, ".staging.") : 0;
@@ -137,11 +197,15 @@ ReportDirectory::ReportDirectory(const std::filesystem::path& target, const std:
   fs::remove_all(staging_, ec);
   try {
     fs::create_directory(staging_);
-    link_tree(target_, staging_);
+    modes_ = link_tree(target_, staging_);
     ensure_directory(staging_, option);
+    mark_output(staging_);
   } catch (const fs::filesystem_error& e) {
     fs::remove_all(staging_, ec);
     throw InputError(fmt::format("{} '{}': cannot stage the report beside it: {}", option, target_.string(), e.what()));
+  } catch (const InputError&) {  // no destructor runs for a constructor that throws
+    fs::remove_all(staging_, ec);
+    throw;
   }
 }
 
@@ -152,6 +216,7 @@ ReportDirectory::~ReportDirectory() {
 
 void ReportDirectory::commit() {
   if (committed_) return;
+  for (const auto& [dir, mode] : modes_) std::filesystem::permissions(dir, mode);  // set last: a 0500 one still took files
   if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) != 0) {
     // A file system without the exchange (EINVAL): two renames, the report absent between them.
     const std::filesystem::path old = staging_.string() + ".old";

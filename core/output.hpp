@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace nsb {
 
@@ -22,17 +24,29 @@ std::string read_file_bounded(const std::filesystem::path& path, std::size_t max
 // computation).
 void ensure_directory(const std::filesystem::path& dir, const std::string& option = "--out");
 
+// How the suite recognises its own output: every output directory it writes (ReportDirectory,
+// claim_output_directory) holds this file. The suite writes into a directory that is new,
+// empty, or holds the marker and nothing but regular files and directories; anything else
+// (a user's directory, a FIFO, a socket, a symbolic link) is refused before any work, since
+// replacing a directory whole would delete or re-permission what the suite did not write.
+inline constexpr const char* kOutputMarker = ".nsbench-output";
+
+// Checks that `dir` is the suite's to write (kOutputMarker), creates it, checks that it takes
+// files (ensure_directory) and marks it; throws InputError naming `option` otherwise.
+void claim_output_directory(const std::filesystem::path& dir, const std::string& option);
+
 // Removes what write_file_atomic leaves behind when its process is killed: hidden
 // ".NAME.tmp.PID" files in `dir` whose process is gone.
 void remove_stale_temporaries(const std::filesystem::path& dir);
 
-// A report directory replaced whole: its files are written into a staging sibling
+// A report directory replaced whole (a directory the suite may write: kOutputMarker): its files are written into a staging sibling
 // (".NAME.staging.PID", holding hard links to the directory's current files, so that a
 // report of some studies keeps the others' files), then commit() swaps the two directories
 // in one rename (renameat2 RENAME_EXCHANGE) and removes the old one. A reader sees the old
 // report or the new one, never a mix; a process killed before commit() leaves the old
 // report as it was (and a staging directory, removed by the next ReportDirectory of that
 // target once its process is gone). Destroyed without commit(): the staging is removed.
+// The directories keep their modes (a 1777 --out stays 1777); the staging holds the marker.
 class ReportDirectory {
  public:
   // Errors name `option`, the command-line option that gave `target`.
@@ -46,6 +60,7 @@ class ReportDirectory {
  private:
   std::filesystem::path target_, staging_;
   std::string option_;
+  std::vector<std::pair<std::filesystem::path, std::filesystem::perms>> modes_;  // of target_'s directories
   bool committed_ = false;
 };
 

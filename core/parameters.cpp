@@ -211,14 +211,23 @@ static std::string listed(const std::vector<std::string>& names) {
 RoutedOverrides route_overrides(const std::vector<std::string>& items, const ParamSpecs& problem,
                                 const ParamSpecs& integrator) {
   RoutedOverrides routed;
+  std::map<std::pair<const void*, std::string>, std::string> given;  // (destination, key) -> the --set that gave it
+  // A repeated key is refused, as a repeated --dt is: the last one silently winning hides a typo.
+  const auto assign = [&](std::map<std::string, std::string>& to, const std::string& key, const std::string& value, const std::string& item) {
+    const auto [at, fresh] = given.emplace(std::pair<const void*, std::string>{&to, key}, item);
+    if (!fresh)
+      throw InputError(fmt::format("--set {}: parameter '{}' is already set by --set {}; valid: each parameter once", item,
+                                   key, at->second));
+    to[key] = value;
+  };
   for (const auto& item : items) {
     auto [key, value] = split_assignment(item);
     if (key.rfind("problem.", 0) == 0) {
-      routed.problem[key.substr(8)] = value;  // validated when the problem is built
+      assign(routed.problem, key.substr(8), value, item);  // validated when the problem is built
       continue;
     }
     if (key.rfind("integrator.", 0) == 0) {
-      routed.integrator[key.substr(11)] = value;
+      assign(routed.integrator, key.substr(11), value, item);
       continue;
     }
     const bool p = declares(problem, key), i = declares(integrator, key);
@@ -232,7 +241,7 @@ RoutedOverrides route_overrides(const std::vector<std::string>& items, const Par
                                    item, key, both.empty() ? "none" : nearest_name(key, both), listed(names_of(problem)),
                                    listed(ints)));
     }
-    (p ? routed.problem : routed.integrator)[key] = value;
+    assign(p ? routed.problem : routed.integrator, key, value, item);
   }
   return routed;
 }

@@ -87,7 +87,8 @@ namespace nsb {
 
 // "--set key=value" items split between a problem's and an integrator's parameters. A key
 // goes to whichever declares it; "problem.key" or "integrator.key" picks one explicitly
-// (needed only when both declare the key). Throws InputError on unknown or ambiguous keys.
+// (needed only when both declare the key). Throws InputError on unknown or ambiguous keys
+// and on a key given twice (also as e and problem.e).
 struct RoutedOverrides {
   std::map<std::string, std::string> problem;
   std::map<std::string, std::string> integrator;

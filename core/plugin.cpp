@@ -1,13 +1,15 @@
 #include "core/plugin.hpp"
 
 #include <dlfcn.h>
+#include <elf.h>
 #include <fmt/format.h>
 
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 
+#include "core/output.hpp"
 #include "core/parameters.hpp"
 
 namespace nsb {
@@ -27,20 +29,41 @@ Loader& loader() {
   return l;
 }
 
-// FNV-1a, 64 bit: identifies the file a table came from (not a security hash).
-std::string file_hash(const fs::path& path, const std::string& name) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("plugin {}: cannot be read", name));
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    for (std::streamsize i = 0; i < in.gcount(); ++i) {
-      h ^= static_cast<unsigned char>(buf[i]);
-      h *= 0x100000001b3ull;
-    }
+// Why `bytes` is no ELF shared object this process can map; empty when it is. dlopen maps the
+// file's segments and reads its headers without checking them against the file's size: a
+// truncated file faults (SIGBUS) instead of failing, so every table and segment is checked
+// to lie within the file first.
+std::string elf_damage(const std::string& bytes) {
+  const auto within = [&](std::uint64_t offset, std::uint64_t size) {
+    return offset <= bytes.size() && size <= bytes.size() - offset;
+  };
+  Elf64_Ehdr header;
+  if (bytes.size() < sizeof header || bytes.compare(0, SELFMAG, ELFMAG) != 0) return "not an ELF file";
+  std::memcpy(&header, bytes.data(), sizeof header);
+  if (header.e_ident[EI_CLASS] != ELFCLASS64) return "not a 64-bit ELF file";
+  if (header.e_type != ET_DYN) return "not an ELF shared object";
+  if (header.e_phentsize != sizeof(Elf64_Phdr) || !within(header.e_phoff, std::uint64_t{header.e_phnum} * sizeof(Elf64_Phdr)))
+    return fmt::format("its program header table lies beyond its {} bytes (truncated?)", bytes.size());
+  if (header.e_shnum != 0 &&
+      (header.e_shentsize != sizeof(Elf64_Shdr) || !within(header.e_shoff, std::uint64_t{header.e_shnum} * sizeof(Elf64_Shdr))))
+    return fmt::format("its section header table lies beyond its {} bytes (truncated?)", bytes.size());
+  for (std::size_t i = 0; i < header.e_phnum; ++i) {
+    Elf64_Phdr segment;
+    std::memcpy(&segment, bytes.data() + header.e_phoff + i * sizeof segment, sizeof segment);
+    if (!within(segment.p_offset, segment.p_filesz))
+      return fmt::format("segment {} lies beyond its {} bytes (truncated?)", i, bytes.size());
   }
-  return fmt::format("fnv1a64:{:016x}", h);
+  for (std::size_t i = 0; i < header.e_shnum; ++i) {
+    Elf64_Shdr section;
+    std::memcpy(&section, bytes.data() + header.e_shoff + i * sizeof section, sizeof section);
+    if (section.sh_type != SHT_NOBITS && !within(section.sh_offset, section.sh_size))
+      return fmt::format("section {} lies beyond its {} bytes (truncated?)", i, bytes.size());
+  }
+  return {};
 }
+
+// Far above any plugin (the example is tens of kB).
+constexpr std::size_t kMaxPluginBytes = std::size_t{1} << 30;
 
 }  // namespace
 
@@ -59,7 +82,10 @@ void load_plugin(const std::string& path) {
   Loader& l = loader();
   for (const auto& p : l.loaded)
     if (p.path == canonical.string()) return;  // named twice (flag and environment)
-  const std::string hash = file_hash(canonical, path);
+  const std::string bytes = read_file_bounded(canonical, kMaxPluginBytes, "plugin");
+  const std::string hash = "fnv1a64:" + fnv1a64(bytes);  // identifies the file a table came from
+  const std::string damage = elf_damage(bytes);
+  if (!damage.empty()) fail(fmt::format("not a loadable shared library ({})", damage));
 
   // The plugin's registrations run inside dlopen (static initialisation).
   l.loading = &path;

@@ -59,7 +59,8 @@ struct PluginInfo {
 };
 
 // Loads one plugin. Throws InputError "plugin FILE: reason" when the file is missing, is
-// not a shared library, is not an nsbench plugin, was built for another ABI, or registers
+// not a shared library (checked before dlopen: an ELF shared object whose headers, sections
+// and segments lie within the file, so that a truncated one is refused, not mapped), is not an nsbench plugin, was built for another ABI, or registers
 // a name already taken (by a built-in or another plugin). A file already loaded is skipped.
 void load_plugin(const std::string& path);
 // The plugins named in NSBENCH_PLUGINS (colon-separated), then `paths` (the --plugin flags).

@@ -143,6 +143,12 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   const auto wall_start = std::chrono::steady_clock::now();
   double next_progress = options.progress_every;  // wall seconds
   const double t_start = integrator.state().t;
+  // A scheme that evaluates no F_int (modal-exact) publishes its work in F_int-evaluation
+  // equivalents (work().extra "force_equivalents", set up by init: the node stays put), and
+  // the budget counts them as evaluations, so that it stops that scheme too.
+  const auto& counters = integrator.work().extra;
+  const auto equivalents_slot = counters.find("force_equivalents");
+  const double* equivalents = equivalents_slot == counters.end() ? nullptr : &equivalents_slot->second;
   try {
     while (integrator.state().t < options.t_end * (1.0 - 1e-12)) {
       if (options.interrupt && *options.interrupt) {
@@ -193,10 +199,12 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
         result.message = fmt::format("step limit {} reached at t = {}", options.max_steps, integrator.state().t);
         break;
       }
-      if (options.max_force_evaluations > 0 && integrator.work().force_evaluations > options.max_force_evaluations) {
+      const long spent = integrator.work().force_evaluations + (equivalents ? static_cast<long>(*equivalents) : 0);
+      if (options.max_force_evaluations > 0 && spent > options.max_force_evaluations) {
         result.status = RunStatus::OverBudget;
-        result.message = fmt::format("budget of {} F_int evaluations exceeded at t = {} after {} steps",
-                                     options.max_force_evaluations, integrator.state().t, result.steps);
+        result.message = fmt::format("budget of {} F_int evaluations{} exceeded at t = {} after {} steps",
+                                     options.max_force_evaluations, equivalents ? " (or their equivalents)" : "",
+                                     integrator.state().t, result.steps);
         break;
       }
     }

@@ -47,7 +47,9 @@ struct RunOptions {
   long state_every = 1;               // every k-th step's state (and the first and last)
   long max_steps = 200'000'000;
   // Work budget: the run stops with status OverBudget once the integrator's F_int
-  // evaluations (WorkCounters::force_evaluations) exceed it; 0: no budget. A count, not a
+  // evaluations (WorkCounters::force_evaluations), plus the F_int-evaluation equivalents a
+  // scheme that evaluates no F_int publishes as work().extra "force_equivalents"
+  // (modal-exact), exceed it; 0: no budget. A count, not a
   // clock, so the same run stops at the same step on any machine. Checked after each step:
   // a run may overshoot by one step's work (an event-driven step can take many).
   long max_force_evaluations = 0;

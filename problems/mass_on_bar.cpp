@@ -1,4 +1,6 @@
 #include "problems/mass_on_bar.hpp"
+
+#include "problems/bar_memory.hpp"
 #include "problems/registry.hpp"
 
 #include <algorithm>
@@ -103,6 +105,7 @@ MassOnBar::MassOnBar(const Params& params)
       area_(params.real("A")),
       n_(params.integer("N")),
       model_(parse_bar_mass_model(params.choice("mass"))) {
+  require_bar_memory(static_cast<double>(n_), fmt::format("mass-on-bar: N = {}", n_), "N");  // before allocating
   c_ = std::sqrt(young_ / rho_);
   theta_ = mass_ / impedance();
   // The exact solution's sweep is checked and fast (< 0.2 s) over this range; a heavier mass

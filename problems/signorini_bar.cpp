@@ -9,14 +9,12 @@
 
 #include <fmt/format.h>
 
-#include "core/environment.hpp"
 #include "core/threads.hpp"
+#include "problems/bar_memory.hpp"
 
 namespace nsb {
 
 namespace {
-
-constexpr double kBytesPerElement = 200.0;
 
 struct Defaults {
   double L, E, rho, A, v0, g0, g = 0.0;
@@ -69,16 +67,8 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
       n_(params.integer("N")),
       model_(parse_bar_mass_model(params.choice("mass"))),
       stiff_ratio_(params.real("stiff_ratio")) {
-  // Refused before anything of size N is allocated (N = 1e8 would end in bad_alloc): the
-  // construction's triplet lists, K, M and ke, and a run's state vectors, together about
-  // kBytesPerElement per element (a run of N = 1e7 peaks at 2.0 GB).
-  std::string source;
-  const double needed = kBytesPerElement * static_cast<double>(n_), available = memory_available(source);
-  if (needed > available)
-    throw InputError(fmt::format("{}: N = {} needs about {:.3g} GiB, more than the {:.3g} GiB available ({}); valid: "
-                                 "N <= {}",
-                                 name_, n_, needed / 1073741824.0, available / 1073741824.0, source,
-                                 static_cast<long>(available / kBytesPerElement)));
+  // Refused before anything of size N is allocated (problems/bar_memory.hpp).
+  require_bar_memory(static_cast<double>(n_), fmt::format("{}: N = {}", name_, n_), "N");
   c_ = std::sqrt(young_ / rho_);
   check_representable();
   t0_ = v0_ > 0.0 ? gap0_ / v0_ : (gap0_ > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);  // at rest: never / now

@@ -1,4 +1,6 @@
 #include "problems/two_bars.hpp"
+
+#include "problems/bar_memory.hpp"
 #include "problems/registry.hpp"
 
 #include <algorithm>
@@ -38,6 +40,9 @@ TwoBars::TwoBars(const Params& params)
   if (len2_ < len1_)
     throw InputError(fmt::format("problem two-bars: L2 = {} must be >= L1 = {} (the exact solution needs bar 2's "
                                  "reflected pulse to come back after the contact ends)", len2_, len1_));
+  // Refused before anything of size N1 + N2 is allocated (problems/bar_memory.hpp).
+  require_bar_memory(static_cast<double>(n1_) + static_cast<double>(n2_), fmt::format("two-bars: N1 + N2 = {} + {}", n1_, n2_),
+                     "N1 + N2");
   c_ = std::sqrt(young_ / rho_);
   tc_ = gap0_ / v0_;
   ke1_.assign(static_cast<std::size_t>(n1_), young_ * area_ / element_size(1));

@@ -4,11 +4,14 @@
 #include <sundials/sundials_config.h>
 
 #include <cstdint>
+#include <mutex>
+#include <set>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
+#include "core/json.hpp"
 #include "core/output.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
@@ -29,17 +32,53 @@ std::string read_text(const std::filesystem::path& path) {
   }
 }
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  // Written beside and renamed: a reader never sees half a file, and concurrent writers of
-  // the same run (parallel study cases) each rename a whole file of the same content.
+// Written beside and renamed: a reader never sees half a file, and concurrent writers of
+// the same run (parallel study cases) each rename a whole file of the same content. The
+// error, empty when written.
+std::string write_text(const std::filesystem::path& path, const std::string& text) {
   const auto tmp = std::filesystem::path(
       fmt::format("{}.{}.tmp", path.string(), std::hash<std::thread::id>()(std::this_thread::get_id())));
   {
     std::ofstream out(tmp, std::ios::binary);
     out << text;
-    if (!out) throw std::runtime_error(fmt::format("reference cache: cannot write {}", tmp.string()));
+    if (!out) return fmt::format("cannot write {}", tmp.string());
   }
-  std::filesystem::rename(tmp, path);
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (!ec) return {};
+  std::filesystem::remove(tmp, ec);
+  return fmt::format("cannot write {}", path.string());
+}
+
+// Why a stored entry cannot be used as the summary of a run; empty when it can. The
+// metadata is compared by the caller.
+std::string damage(const nlohmann::json& stored) {
+  if (stored.is_discarded()) return "not JSON, or nested too deep";
+  if (!stored.is_object()) return "not a JSON object";
+  for (const char* key : {"metadata", "summary", "series_fnv1a64"})
+    if (!stored.contains(key)) return fmt::format("no key '{}'", key);
+  if (!stored["series_fnv1a64"].is_string()) return "series_fnv1a64 is not a string";
+  const auto& s = stored["summary"];
+  if (!s.is_object()) return "summary is not an object";
+  if (!s.contains("status") || (s["status"] != "ok" && s["status"] != "diverged")) return "summary.status is not \"ok\" or \"diverged\"";
+  if (!s.contains("message") || !s["message"].is_string()) return "summary.message is not a string";
+  if (!s.contains("steps") || !s["steps"].is_number_integer() || s["steps"].get<long>() < 0) return "summary.steps is not a count";
+  if (!s.contains("cpu_seconds") || !s["cpu_seconds"].is_number()) return "summary.cpu_seconds is not a number";
+  if (!s.contains("work") || !s["work"].is_object()) return "summary.work is not an object";
+  for (const char* key : {"steps", "force_evaluations", "tangent_evaluations", "factorizations", "linear_solves"})
+    if (!s["work"].contains(key) || !s["work"][key].is_number_integer() || s["work"][key].get<long>() < 0)
+      return fmt::format("summary.work.{} is not a count", key);
+  for (const auto& [key, value] : s["work"].items())
+    if (!value.is_number()) return fmt::format("summary.work.{} is not a number", key);
+  return {};
+}
+
+// One warning line per cache location and kind of trouble, not one per run of a study.
+void warn_once(const std::string& line) {
+  static std::mutex mutex;
+  static std::set<std::string> said;
+  const std::lock_guard lock(mutex);
+  if (said.insert(line).second) fmt::print(stderr, "nsbench: warning: {}\n", line);
 }
 
 // Inverse of series_to_csv; nullopt when the text is not a well-formed series.
@@ -61,6 +100,30 @@ std::optional<Series> parse_series(const std::string& text) {
     if (count != s.columns.size()) return std::nullopt;
   }
   return s;
+}
+
+// Stores a computed run; a location that takes no files (NSBENCH_REFERENCE_CACHE=/proc/x,
+// a regular file, a read-only directory, a <key>.csv that is a directory) leaves the run
+// unstored, with a warning: the cache only saves time, a study's results are the same
+// without it, so it is no reason to stop one.
+void store(const std::filesystem::path& dir, const CachedReference& ref) {
+  const std::string key = reference_key(ref.metadata);
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) {
+    warn_once(fmt::format("reference cache {}: cannot create the directory{}; the reference runs are computed and "
+                          "not stored (NSBENCH_REFERENCE_CACHE sets the location)",
+                          dir.string(), ec ? ": " + ec.message() : ""));
+    return;
+  }
+  const std::string csv = series_to_csv(ref.series);
+  std::string error = write_text(dir / (key + ".csv"), csv);
+  if (error.empty())
+    error = write_text(dir / (key + ".json"),
+                       nlohmann::json{{"metadata", ref.metadata}, {"summary", ref.summary}, {"series_fnv1a64", fnv1a64(csv)}}.dump(2) + "\n");
+  if (!error.empty())
+    warn_once(fmt::format("reference cache {}: {}; the reference runs are computed and not stored "
+                          "(NSBENCH_REFERENCE_CACHE sets the location)", dir.string(), error));
 }
 
 }  // namespace
@@ -94,10 +157,14 @@ CachedReference cached_reference(const std::filesystem::path& dir, const Referen
   const std::string key = reference_key(ref.metadata);
   const auto json_path = dir / (key + ".json"), csv_path = dir / (key + ".csv");
 
-  const auto stored = nlohmann::json::parse(read_text(json_path), nullptr, /*allow_exceptions=*/false);
-  if (!stored.is_discarded() && stored.value("metadata", nlohmann::json()) == ref.metadata) {
+  const std::string text = read_text(json_path);
+  const auto stored = parse_json_bounded(text);
+  const std::string damaged = text.empty() ? "" : damage(stored);
+  if (!damaged.empty())
+    fmt::print(stderr, "nsbench: warning: reference cache {}: damaged ({}), rebuilt\n", json_path.string(), damaged);
+  if (!text.empty() && damaged.empty() && stored["metadata"] == ref.metadata) {
     const std::string csv = read_text(csv_path);
-    const auto series = stored.value("series_fnv1a64", nlohmann::json()) == fnv1a64(csv) ? parse_series(csv) : std::nullopt;
+    const auto series = stored["series_fnv1a64"] == fnv1a64(csv) ? parse_series(csv) : std::nullopt;
     if (series) {
       ref.summary = stored["summary"];
       ref.series = std::move(*series);
@@ -126,10 +193,7 @@ CachedReference cached_reference(const std::filesystem::path& dir, const Referen
                  {"cpu_seconds", r.cpu_seconds},
                  {"work", work}};
   ref.series = r.series;
-  std::filesystem::create_directories(dir);
-  const std::string csv = series_to_csv(ref.series);
-  write_text(csv_path, csv);
-  write_text(json_path, nlohmann::json{{"metadata", ref.metadata}, {"summary", ref.summary}, {"series_fnv1a64", fnv1a64(csv)}}.dump(2) + "\n");
+  store(dir, ref);
   return ref;
 }
 

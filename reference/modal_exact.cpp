@@ -107,7 +107,7 @@ void ModalExact::init(const Problem& problem, const State& initial) {
   }
 
   e_ = problem.restitution();
-  events_ = impacts_ = arrivals_ = releases_ = zeno_stops_ = root_evaluations_ = forced_events_ = 0;
+  events_ = impacts_ = arrivals_ = releases_ = zeno_stops_ = root_evaluations_ = forced_events_ = force_equivalents_ = 0;
   event_log_.clear();
   modes_.clear();
   for (Vec* v : {&q_, &qd_, &qt_, &qdt_, &qint_, &work_a_, &work_b_}) *v = Vec::Zero(n);
@@ -120,7 +120,7 @@ void ModalExact::init(const Problem& problem, const State& initial) {
   for (const auto& [key, counter] : {std::pair<const char*, const long*>{"events", &events_}, {"impacts", &impacts_},
                                      {"arrivals", &arrivals_}, {"releases", &releases_}, {"eigen_decompositions", &decompositions_},
                                      {"root_evaluations", &root_evaluations_}, {"zeno_stops", &zeno_stops_},
-                                     {"forced_events", &forced_events_}})
+                                     {"forced_events", &forced_events_}, {"force_equivalents", &force_equivalents_}})
     published_.emplace_back(&work_.extra[key], counter);
 
   // The all-open mode first: K >= 0 iff K_ZZ > 0 and its K~ >= 0, which build_mode checks.
@@ -611,6 +611,7 @@ StepInfo ModalExact::step(double dt) {
   info.iterations = advance_through_events(target);
   reconstruct();
   ++work_.steps;
+  force_equivalents_ += 1 + info.iterations;  // a reconstruction per event and per step
   info.dt = dt;
   publish_work();
   return info;

@@ -66,10 +66,14 @@
 // (conserved exactly except at massive impacts, which lose (1 - e^2) (g'-)^2 / (2 H_ii)).
 // An impact at the initial time happens in init(): its impulse belongs to no step (as in
 // event-driven); the momentum balance holds from state() after init().
-// Work: force_evaluations stays 0 (no F_int is evaluated); factorizations counts the eigen-
+// Work: force_evaluations stays 0 (no F_int is evaluated); extra force_equivalents counts a
+// reconstruction of the state from the modes (O(n m), the cost of an F_int evaluation or
+// more) as one, one per step and one per event inside it: a run's work budget
+// (RunOptions::max_force_evaluations) counts them, so that it stops the reference as it stops
+// the schemes; factorizations counts the eigen-
 // decompositions and the Cholesky factorisations of M_SS and K_ZZ; extra: events (instants
 // handled by step()), impacts, arrivals, releases, eigen_decompositions, root_evaluations
-// (signal evaluations), zeno_stops, forced_events.
+// (signal evaluations), zeno_stops, forced_events, force_equivalents.
 // Cost: O(n^3) per mode (dense), O(n m) per step (state reconstruction: two dense
 // matrix-vector products), O(m) per signal evaluation. step() allocates nothing once its
 // modes are cached, but for the event log's amortised growth and a multi-contact impact LCP
@@ -197,7 +201,7 @@ class ModalExact final : public Integrator {
   std::vector<std::pair<double*, const long*>> published_;
   std::vector<Event> event_log_;
   long events_ = 0, impacts_ = 0, arrivals_ = 0, releases_ = 0, zeno_stops_ = 0, decompositions_ = 0, cholesky_ = 0;
-  long root_evaluations_ = 0, forced_events_ = 0;
+  long root_evaluations_ = 0, forced_events_ = 0, force_equivalents_ = 0;
 };
 
 }  // namespace nsb

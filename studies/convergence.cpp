@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -32,11 +33,18 @@ double student_t975(int dof) {
 }
 
 OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& e) {
-  std::vector<double> x, y;
+  std::vector<double> x, y, repeats;  // one point per distinct h: the mean of log e over its repeats
   for (std::size_t i = 0; i < h.size() && i < e.size(); ++i)
     if (usable(e[i]) && h[i] > 0.0 && std::isfinite(h[i])) {
-      x.push_back(std::log(h[i]));
-      y.push_back(std::log(e[i]));
+      const double lh = std::log(h[i]);
+      const auto at = std::find(x.begin(), x.end(), lh) - x.begin();
+      if (at == static_cast<std::ptrdiff_t>(x.size())) {
+        x.push_back(lh);
+        y.push_back(0.0);
+        repeats.push_back(0.0);
+      }
+      repeats[at] += 1.0;
+      y[at] += (std::log(e[i]) - y[at]) / repeats[at];
     }
   OrderFit fit;
   fit.points = static_cast<int>(x.size());

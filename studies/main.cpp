@@ -15,11 +15,15 @@
 //
 // Reports: DIR/<table>.csv, .md, .tex for every table, DIR/figures.json (the figures for
 // scripts/figures.py) and DIR/index.md linking them, opening with the lead tables (the claims)
-// and the headline tables (the rankings) in full. Shards: DIR/shards/<study>-I-of-N.json.
+// and the headline tables (the rankings) in full, listing every study of DIR: each study's
+// entries are kept in DIR/.index/<study>.json, so a run of one study keeps the others listed.
+// Shards: DIR/shards/<study>-I-of-N.json. DIR is the suite's own (core/output.hpp,
+// kOutputMarker): a directory it did not write is refused.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -27,6 +31,7 @@
 #include "app/cli_options.hpp"
 #include "core/build_info.hpp"
 #include "core/environment.hpp"
+#include "core/json.hpp"
 #include "core/output.hpp"
 #include "core/parameters.hpp"
 #include "core/plugin.hpp"
@@ -62,6 +67,14 @@ void write_performance(const std::vector<std::string>& files, const fs::path& ou
   nsb::write_file_atomic(index, text);
 }
 
+// A study's own schema of its results, for --merge: the file study's; the registered ones are
+// checked for the keys every study shares (studies/shard.hpp).
+std::function<std::string(const Json&, const Json&)> result_check(const nsb::StudyEntry* s,
+                                                                  const std::optional<nsb::StudySpec>& spec) {
+  if (!spec || s->name != spec->name) return {};
+  return [&spec](const Json&, const Json& result) { return nsb::file_result_damage(*spec, result); };
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -87,6 +100,10 @@ int main(int argc, char** argv) {
   try {
     nsb::cli::check_option_names(app, argc, argv);
     app.parse(argc, argv);
+    nsb::cli::refuse_empty_values(app);
+    for (const auto& [option, value] : {std::pair{"--rtol", tolerance.rtol}, {"--atol", tolerance.atol}})
+      if (!std::isfinite(value))  // CLI11's NonNegativeNumber lets nan and inf through
+        throw InputError(fmt::format("{} {}: must be a finite number >= 0", option, value));
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
@@ -101,12 +118,12 @@ int main(int argc, char** argv) {
       for (const auto& s : registry) fmt::print("{:<12} {}\n", s.name, s.description);
       return 0;
     }
+    if (const std::string slow = nsb::unoptimized_plugins_warning(); !slow.empty()) fmt::print(stderr, "nsbench-study: {}\n", slow);
     if (names[0] == "performance") {
       if (names.size() < 2) throw InputError("performance: give the benchmarks' JSON files (nsbench-study performance BENCH.json...)");
       write_performance({names.begin() + 1, names.end()}, out);
       return 0;
     }
-    if (const std::string slow = nsb::unoptimized_plugins_warning(); !slow.empty()) fmt::print(stderr, "nsbench-study: {}\n", slow);
     const nsb::Shard shard = shard_text.empty() ? nsb::Shard{} : nsb::parse_shard(shard_text);
     nsb::study_jobs();  // a bad NSBENCH_JOBS is reported before any work
     if (shard.count && merge) throw InputError("--shard and --merge: give one of them");
@@ -137,12 +154,13 @@ int main(int argc, char** argv) {
                                      fmt::join(valid, ", ")));
       }
     }
-    if (!verify) nsb::ensure_directory(out);
+    if (!verify) nsb::claim_output_directory(out, "--out");  // a directory the suite did not write is refused
     // The report (tables, figures, index, a study file's copy) is staged and swapped in whole.
     std::optional<nsb::ReportDirectory> report;
     if (!verify && !shard.count) report.emplace(out);
     const nsb::StudyOptions options{full};
-    nsb::ReportIndex index(full);
+    std::optional<nsb::ReportIndex> index;
+    if (report) index.emplace(full, report->path());
     std::vector<nsb::Table> all_tables;
     // The cases of every selected study (this shard's), run in one pool: a study's longest
     // case no longer leaves the other cores idle at its end (each case is independent, so the
@@ -185,7 +203,8 @@ int main(int argc, char** argv) {
                    mine[i].size(), cases.size());
         continue;
       }
-      const std::vector<Json> results = merge ? nsb::merge_shards(s->name, cases, out, full) : std::move(all_results[i]);
+      const std::vector<Json> results =
+          merge ? nsb::merge_shards(s->name, cases, out, full, result_check(s, spec)) : std::move(all_results[i]);
       const auto tables = nsb::study_tables(*s, cases, results, options);
       if (verify) {
         for (const auto& t : tables) {
@@ -195,7 +214,7 @@ int main(int argc, char** argv) {
         }
         continue;
       }
-      index.add_study(*s, tables, report->path());
+      index->add_study(*s, tables);
       all_tables.insert(all_tables.end(), tables.begin(), tables.end());
       fmt::print(stderr, "study {}: {} cases, {} tables\n", s->name, cases.size(), tables.size());
     }
@@ -209,7 +228,7 @@ int main(int argc, char** argv) {
     if (!shard.count) {
       if (spec) nsb::write_study_copy(*spec, report->path());
       nsb::write_file_atomic(report->path() / "figures.json", nsb::figures_to_json(all_tables));
-      nsb::write_file_atomic(report->path() / "index.md", index.text());
+      nsb::write_file_atomic(report->path() / "index.md", index->text());
       report->commit();
     }
   } catch (const InputError& e) {
@@ -217,6 +236,9 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const Json::exception& e) {
     fmt::print(stderr, "nsbench-study: error: unreadable shard file: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {  // one line, and the staging directory removed (no std::terminate)
+    fmt::print(stderr, "nsbench-study: error: {}\n", e.what());
     return 2;
   }
   return 0;

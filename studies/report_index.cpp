@@ -2,46 +2,103 @@
 
 #include <fmt/format.h>
 
+#include <map>
+#include <system_error>
+
 #include "core/build_info.hpp"
 #include "core/environment.hpp"
+#include "core/json.hpp"
+#include "core/output.hpp"
 #include "core/plugin.hpp"
+#include "studies/report_text.hpp"
 
 namespace nsb {
 
-ReportIndex::ReportIndex(bool full) {
-  const auto& b = build_info();
-  const std::string plugged = plugins_stamp();
-  header_ = fmt::format("# nsbench reports\n\nnsbench {}, revision `{}`, {} build, {}{}{}.\n\n", b.version, b.git_revision, b.build_type, b.compiler,
-                        full ? ", full sweeps" : "", plugged.empty() ? "" : ", plugins " + plugged);
+namespace {
+
+namespace fs = std::filesystem;
+
+// A study's entries: its section (the tables and figures), and its lead (claims) and headline
+// (rankings) tables shown in full at the top.
+struct IndexPart {
+  std::string section, lead, headline;
+};
+
+IndexPart index_part(const StudyEntry& s, const std::vector<Table>& tables) {
+  IndexPart part;  // one_line: a label's newline must not split the index's lines
+  part.section = fmt::format("## {}\n\n{}\n\n", one_line(s.name), one_line(s.description));
+  for (const auto& t : tables) {
+    if (t.csv_only)
+      part.section += fmt::format("- {} ([csv]({}.csv))\n", one_line(t.title), t.id);
+    else
+      part.section += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", one_line(t.title), t.id, t.id, t.id);
+    for (const auto& f : t.figures)
+      part.section += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf)){}\n", one_line(f.title), f.id, f.id,
+                                  f.caption.empty() ? "" : "\n\n  " + one_line(f.caption));
+    const std::string full = fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", one_line(t.title), t.id, one_line(s.name),
+                                         one_line(t.caption), markdown_grid(t));
+    if (t.lead) part.lead += full;
+    if (t.headline) part.headline += full;
+  }
+  part.section += "\n";
+  return part;
 }
 
-void ReportIndex::add_study(const StudyEntry& s, const std::vector<Table>& tables, const std::filesystem::path& dir) {
-  studies_ += fmt::format("## {}\n\n{}\n\n", s.name, s.description);
-  for (const auto& t : tables) {
-    write_table(t, dir);
-    if (t.csv_only)
-      studies_ += fmt::format("- {} ([csv]({}.csv))\n", t.title, t.id);
-    else
-      studies_ += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", t.title, t.id, t.id, t.id);
-    for (const auto& f : t.figures)
-      studies_ += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf)){}\n", f.title, f.id, f.id,
-                              f.caption.empty() ? "" : "\n\n  " + f.caption);
-    if (t.lead) lead_ += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", t.title, t.id, s.name, t.caption, markdown_grid(t));
-    if (t.headline)
-      headline_ += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", t.title, t.id, s.name, t.caption, markdown_grid(t));
+std::vector<IndexPart> index_parts(const fs::path& report) {
+  std::map<std::string, IndexPart> found;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(report / ".index", ec)) {
+    if (e.path().extension() != ".json") continue;
+    const Json j = parse_json_bounded(read_file_bounded(e.path(), std::size_t{1} << 28, "index part"));
+    const auto text = [&](const char* key) { return j.is_object() && j.contains(key) && j[key].is_string(); };
+    if (!text("section") || !text("lead") || !text("headline")) {
+      fmt::print(stderr, "nsbench-study: warning: {}: damaged, its study is left out of index.md\n", e.path().string());
+      continue;
+    }
+    found[e.path().stem().string()] = {j["section"], j["lead"], j["headline"]};
   }
-  studies_ += "\n";
+  std::vector<IndexPart> parts;
+  for (const auto& s : study_registry())
+    if (const auto it = found.find(s.name); it != found.end()) {
+      parts.push_back(it->second);
+      found.erase(it);
+    }
+  for (const auto& [name, part] : found) parts.push_back(part);
+  return parts;
+}
+
+}  // namespace
+
+ReportIndex::ReportIndex(bool full, std::filesystem::path report) : report_(std::move(report)) {
+  const auto& b = build_info();
+  const std::string plugged = plugins_stamp();
+  header_ = fmt::format("# nsbench reports\n\nnsbench {}, revision `{}`, {} build, {}{}{}.\n\n", b.version, b.git_revision,
+                        b.build_type, b.compiler, full ? ", full sweeps" : "", plugged.empty() ? "" : ", plugins " + plugged);
+}
+
+void ReportIndex::add_study(const StudyEntry& s, const std::vector<Table>& tables) const {
+  for (const auto& t : tables) write_table(t, report_);
+  const IndexPart part = index_part(s, tables);
+  ensure_directory(report_ / ".index");
+  write_file_atomic(report_ / ".index" / (s.name + ".json"),
+                    Json{{"section", part.section}, {"lead", part.lead}, {"headline", part.headline}}.dump() + "\n");
 }
 
 std::string ReportIndex::text() const {
+  std::string studies, lead, headline;
+  for (const auto& part : index_parts(report_)) {
+    studies += part.section;
+    lead += part.lead;
+    headline += part.headline;
+  }
+  std::string index = header_;
+  if (!lead.empty()) index += "## Claims\n\nThe verdicts are computed from measured figures (the rules are in the caption).\n\n" + lead + "\n";
+  if (!headline.empty())
+    index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
+             "caption).\n\n" + headline + "\n";
   const auto& env = environment();
   const auto& b = build_info();
-  std::string index = header_;
-  if (!lead_.empty()) index += "## Claims\n\nThe verdicts are computed from measured figures (the rules are in the caption).\n\n" + lead_ + "\n";
-  if (!headline_.empty())
-    index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
-             "caption).\n\n" + headline_ + "\n";
-  return index + studies_ +
+  return index + studies +
          fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, nsbench {} revision {}. Rerun: `{}`</sub>\n", env.cpu,
                      env.cores, env.libraries, b.build_type, b.compiler, b.version, b.git_revision, command_line());
 }

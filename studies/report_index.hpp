@@ -2,6 +2,8 @@
 // The index.md of a report (nsbench-study, nsbench.run_study from Python): a header with the
 // build stamp, the lead tables (the claims) and the headline tables (the rankings) in full,
 // then a section per study listing its tables and figures, and the environment footer.
+// Each study's entries are kept in the report as .index/STUDY.json, so that a later run of
+// other studies into the same report lists them all, not only its own.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -13,17 +15,18 @@ namespace nsb {
 
 class ReportIndex {
  public:
-  explicit ReportIndex(bool full);
-  // Writes the study's tables into `dir` and lists them.
-  void add_study(const StudyEntry& study, const std::vector<Table>& tables, const std::filesystem::path& dir);
-  // The whole index, the footer (machine, libraries, build, the command that ran) included.
+  // `report`: the directory being written (a ReportDirectory's staging path).
+  ReportIndex(bool full, std::filesystem::path report);
+  // Writes the study's tables into the report and keeps its entries (.index/STUDY.json).
+  void add_study(const StudyEntry& study, const std::vector<Table>& tables) const;
+  // The whole index: every study whose entries the report holds (the registered studies in
+  // their order, then the others by name), and the footer (machine, libraries, build, the
+  // command that ran). A damaged entry is left out, with a warning.
   std::string text() const;
 
  private:
   std::string header_;
-  std::string studies_;   // a section per study, after the headline
-  std::string headline_;  // the headline tables, shown first
-  std::string lead_;      // the lead tables (the claims), shown before the headline
+  std::filesystem::path report_;
 };
 
 }  // namespace nsb

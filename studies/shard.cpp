@@ -5,6 +5,7 @@
 #include <charconv>
 #include <regex>
 
+#include "core/json.hpp"
 #include "core/output.hpp"
 
 namespace nsb {
@@ -22,6 +23,25 @@ std::optional<long> decimal(const std::string& text, long lo, long hi) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (text.empty() || ec != std::errc() || end != text.data() + text.size() || v < lo || v > hi) return std::nullopt;
   return v;
+}
+
+// The keys the studies' results share, where present: "status" one of the run statuses
+// (status_name) or "n/a" / "energy blow-up", "message" a string, "steps" and
+// "force_evaluations" whole numbers >= 0. Empty when they hold, else why not.
+std::string result_damage(const Json& r) {
+  if (!r.is_object()) return "not an object";
+  if (r.contains("status")) {
+    const Json& status = r["status"];
+    bool known = status == "n/a" || status == "energy blow-up";
+    for (const RunStatus s : {RunStatus::Ok, RunStatus::Diverged, RunStatus::OverBudget, RunStatus::Interrupted})
+      known = known || status == status_name(s);
+    if (!known) return fmt::format("status {} is not a run status", status.dump());
+  }
+  if (r.contains("message") && !r["message"].is_string()) return "message is not a string";
+  for (const char* key : {"steps", "force_evaluations"})
+    if (r.contains(key) && !(r[key].is_number_integer() && r[key].get<long>() >= 0))
+      return fmt::format("{} {} is not a whole number >= 0", key, r[key].dump());
+  return {};
 }
 
 std::string content_hash(Json file) {
@@ -54,7 +74,8 @@ std::string shard_text(const std::string& study, bool full, const Shard& shard, 
   return file.dump() + "\n";
 }
 
-std::vector<Json> merge_shards(const std::string& study, const std::vector<Json>& cases, const fs::path& out, bool full) {
+std::vector<Json> merge_shards(const std::string& study, const std::vector<Json>& cases, const fs::path& out, bool full,
+                               const std::function<std::string(const Json&, const Json&)>& check) {
   const std::regex name(study + R"(-(\d+)-of-(\d+)\.json)");
   long count = 0;
   if (fs::is_directory(out / "shards"))
@@ -74,8 +95,9 @@ std::vector<Json> merge_shards(const std::string& study, const std::vector<Json>
     const auto refuse = [&](const std::string& why) {
       return InputError(fmt::format("--merge: {}: {}; rerun this shard (--shard {}/{})", path.string(), why, i, count));
     };
-    const Json shard = Json::parse(read_file_bounded(path, kMaxShardBytes, "--merge: shard"), nullptr, false);
-    if (shard.is_discarded() || !shard.is_object()) throw refuse("not a JSON object (damaged or cut short)");
+    const Json shard = parse_json_bounded(read_file_bounded(path, kMaxShardBytes, "--merge: shard"));
+    if (shard.is_discarded() || !shard.is_object())
+      throw refuse(fmt::format("not a JSON object (damaged, cut short or nested deeper than {})", kMaxJsonDepth));
     for (const char* key : {"study", "full", "shard", "of", "cases", "results", "content_fnv1a64"})
       if (!shard.contains(key)) throw refuse(fmt::format("no key '{}'", key));
     if (!shard["content_fnv1a64"].is_string() || shard["content_fnv1a64"] != content_hash(shard))
@@ -91,6 +113,9 @@ std::vector<Json> merge_shards(const std::string& study, const std::vector<Json>
         throw refuse(fmt::format("results key '{}' is not a case of this shard (cases 0 to {}, k % {} = {})", k,
                                  cases.size() - 1, count, i - 1));
       if (!r.is_object()) throw refuse(fmt::format("result {} is not an object", k));
+      std::string damage = result_damage(r);
+      if (damage.empty() && check) damage = check(cases[static_cast<std::size_t>(*index)], r);
+      if (!damage.empty()) throw refuse(fmt::format("result {}: {}", k, damage));
       results[static_cast<std::size_t>(*index)] = r;
     }
   }

@@ -8,6 +8,7 @@
 // shard (and only those) to an object. A file edited by hand, cut
 // short or from another study definition is refused with an InputError naming it.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,8 +30,14 @@ std::filesystem::path shard_path(const std::filesystem::path& out, const std::st
 std::string shard_text(const std::string& study, bool full, const Shard& shard, const std::vector<Json>& cases,
                        const std::vector<std::size_t>& mine, const std::vector<Json>& results);
 
-// Results of every case of a study, read back from its shard files in out/shards.
+// Results of every case of a study, read back from its shard files in out/shards. Each file
+// is parsed only when nested at most kMaxJsonDepth deep (core/json.hpp), and each result
+// must pass the checks of the keys every study's results share ("status" a run status,
+// "message" a string, "steps" and "force_evaluations" whole numbers >= 0, where present) and
+// `check` (when set: a study's own schema, e.g. file_result_damage of studies/study_file.hpp),
+// which returns why a result is not one the study's run_case returns, or "".
 std::vector<Json> merge_shards(const std::string& study, const std::vector<Json>& cases,
-                               const std::filesystem::path& out, bool full);
+                               const std::filesystem::path& out, bool full,
+                               const std::function<std::string(const Json&, const Json&)>& check = {});
 
 }  // namespace nsb

@@ -131,13 +131,16 @@ double above_round_off(double error);
 // Observed order between two refinements: log(e1/e2) / log(h1/h2); NaN when an error is
 // not positive and finite.
 double observed_order(double h1, double e1, double h2, double e2);
-// Least-squares slope of log e against log h over the points with positive finite error;
-// NaN with fewer than two such points.
+// Least-squares slope of log e against log h over the points with positive finite error
+// (repeated h counted once, as fit_order); NaN with fewer than two such points.
 double fitted_order(const std::vector<double>& h, const std::vector<double>& e);
 
 // The same fit with its 95% confidence interval: slope +- t_{0.975, n-2} * its standard error
 // (residual variance s^2 = SSR / (n - 2), SE = s / sqrt(Sxx)). The interval is NaN with fewer
-// than three points (no residual degree of freedom).
+// than three points (no residual degree of freedom). The points are the distinct h: repeats
+// of an h (a deterministic run repeated) are one point, at the mean of their log e, and
+// `points` counts distinct h; otherwise each repeat would add a residual degree of freedom
+// and narrow the interval without adding information.
 struct OrderFit {
   double order = std::numeric_limits<double>::quiet_NaN();
   double low = std::numeric_limits<double>::quiet_NaN();

@@ -366,6 +366,28 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   return out;
 }
 
+}  // namespace
+
+std::string file_result_damage(const StudySpec& spec, const Json& r) {
+  const auto reals_or_null = [](const Json& a) {
+    return a.is_array() && std::all_of(a.begin(), a.end(), [](const Json& x) { return x.is_number() || x.is_null(); });
+  };
+  for (const char* key : {"status", "message", "steps", "force_evaluations"})
+    if (!r.contains(key)) return fmt::format("no key '{}'", key);
+  if (r.contains("values") && !(reals_or_null(r["values"]) && r["values"].size() == spec.measures.size()))
+    return fmt::format("values is not an array of {} numbers (or null)", spec.measures.size());
+  if (r.contains("cpu") && !(r["cpu"].is_number() || r["cpu"].is_null())) return "cpu is not a number";
+  if (r.contains("history")) {
+    const Json& h = r["history"];
+    if (!h.is_object() || !h.contains("t") || !h.contains("e") || !reals_or_null(h["t"]) || !reals_or_null(h["e"]) ||
+        h["t"].size() != h["e"].size())
+      return "history is not two arrays t and e of numbers of the same length";
+  }
+  return {};
+}
+
+namespace {
+
 double number(const Json& r, const char* key) { return r.contains(key) ? real(r[key]) : kNaN; }
 
 // A time measured against the problem's exact event times [s].
@@ -536,10 +558,10 @@ std::vector<std::string> run_study_file(const StudySpec& spec, const std::filesy
   const auto results = parallel_map<Json>(cases.size(), [&](std::size_t k) { return run_study_case(study, cases[k], options); },
                                           study.name);
   const auto tables = study_tables(study, cases, results, options);
-  ensure_directory(out);
+  claim_output_directory(out, "out");  // a directory the suite did not write is refused
   ReportDirectory report(out, "out");
-  ReportIndex index(false);
-  index.add_study(study, tables, report.path());
+  const ReportIndex index(false, report.path());
+  index.add_study(study, tables);
   write_study_copy(spec, report.path());
   write_file_atomic(report.path() / "figures.json", figures_to_json(tables));
   write_file_atomic(report.path() / "index.md", index.text());

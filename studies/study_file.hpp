@@ -101,6 +101,12 @@ StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, lo
 // The study as the driver runs it.
 StudyEntry file_study(const StudySpec& spec);
 
+// Why `result`, read back from a shard (--merge), is not one the file study's run_case returns
+// for `spec`: a key missing (status, message, steps, force_evaluations), values not an array of
+// one number (or null) per measure, cpu not a number, history not two arrays t and e of
+// numbers of the same length; empty when it is.
+std::string file_result_damage(const StudySpec& spec, const Json& result);
+
 // Writes <out>/<name>.study.<ext> (the file as read) and <out>/<name>.study.hash.
 void write_study_copy(const StudySpec& spec, const std::filesystem::path& out);
 

@@ -13,6 +13,7 @@
 #include "core/output.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
+#include "studies/report_text.hpp"
 #include "studies/slip_stop.hpp"
 #include "studies/study_file.hpp"
 
@@ -146,6 +147,15 @@ class Checker {
     for (std::size_t i = 0; i < j.size(); ++i) v.push_back(positive(j[i], element(path, i)));
     return v;
   }
+  // A sweep: positive, each value once (a repeated step is no new point of a convergence fit).
+  std::vector<double> distinct_list(const Json& j, const std::string& path) const {
+    const std::vector<double> v = positive_list(j, path);
+    const std::string key = path.substr(path.rfind('.') + 1);
+    for (std::size_t i = 1; i < v.size(); ++i)
+      for (std::size_t k = 0; k < i; ++k)
+        if (v[i] == v[k]) fail(element(path, i), fmt::format("{} repeats {}[{}]", v[i], key, k), "distinct values");
+    return v;
+  }
   std::string choice(const Json& j, const std::string& path, const std::vector<std::string>& valid) const {
     const std::string s = string(j, path);
     if (std::find(valid.begin(), valid.end(), s) == valid.end())
@@ -244,11 +254,11 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
   if (const Json* p = c.find(j, "parameters"))
     for (const auto& [k, v] : c.parameters(*p, child(path, "parameters"), entry.parameters())) s.parameters[k] = v;
   if (const Json* v = c.find(j, "steps")) {
-    s.steps = c.positive_list(*v, child(path, "steps"));
+    s.steps = c.distinct_list(*v, child(path, "steps"));
     s.tolerances.clear();
   }
   if (const Json* v = c.find(j, "tolerances")) {
-    s.tolerances = c.positive_list(*v, child(path, "tolerances"));
+    s.tolerances = c.distinct_list(*v, child(path, "tolerances"));
     if (!c.find(j, "steps")) s.steps.clear();
   }
   if (const Json* v = c.find(j, "tolerance_parameter")) {
@@ -352,8 +362,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
   if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
   if (const Json* v = c.find(study, "cpu_repeats")) spec.cpu_repeats = static_cast<int>(c.integer(*v, "study.cpu_repeats", 0, 100));
-  if (const Json* v = c.find(study, "max_force_evaluations"))
-    spec.max_force_evaluations = c.integer(*v, "study.max_force_evaluations", 0, 1L << 50);
+  if (const Json* v = c.find(study, "max_force_evaluations"))  // >= 1: no budget (0) would let a case run 2e8 steps
+    spec.max_force_evaluations = c.integer(*v, "study.max_force_evaluations", 1, 1L << 50);
   if (const Json* v = c.find(study, "targets")) spec.targets = c.positive_list(*v, "study.targets");
 
   const auto list = [&](const char* key) -> const Json& {
@@ -439,8 +449,10 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       check_held_samples(c, ref.dt, ref.sample_every, spec.t_end, "reference.dt", "the reference run", "reference.sample_every");
     }
     if (const Json* v = c.find(*r, "floor")) {
-      c.expect(*v, "reference.floor", v->is_number() && v->get<double>() >= 0.0, "a number >= 0");
+      c.expect(*v, "reference.floor", v->is_number(), "a number");
       ref.floor = v->get<double>();
+      if (!(ref.floor >= 0.0) || !std::isfinite(ref.floor))
+        c.fail("reference.floor", fmt::format("{} is not a finite number >= 0", ref.floor), "[0, inf)");
     }
   }
 
@@ -546,6 +558,13 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 }
 
 StudySpec read_study_file(const std::filesystem::path& path) {
+  // The name goes into the reports' metadata lines and headings, one line each.
+  const std::string name = path.string();
+  const auto control = std::find_if(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+  if (control != name.end())
+    throw InputError(fmt::format("study file '{}': its name holds the control character 0x{:02x}; valid: a name without "
+                                 "control characters (newlines, tabs, escapes)",
+                                 one_line(name), static_cast<unsigned char>(*control)));
   return parse_study_text(read_file_bounded(path, kMaxStudyFileBytes, "study file"), path.string(),
                           path.extension() == ".json");
 }

@@ -13,6 +13,7 @@
 #include "core/output.hpp"
 #include "core/plugin.hpp"
 #include "integrators/registry.hpp"  // peer_versions()
+#include "studies/report_text.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -60,8 +61,9 @@ std::string cell_text(const Cell& c, const std::string& format) {
   return std::visit(Visitor{format}, c);
 }
 
-std::string csv_escape(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+std::string csv_escape(const std::string& raw) {
+  const std::string s = escape_controls(raw, "\t\n\r");
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string out = "\"";
   for (char ch : s) out += (ch == '"') ? std::string("\"\"") : std::string(1, ch);
   return out + "\"";
@@ -69,9 +71,9 @@ std::string csv_escape(const std::string& s) {
 
 // Every character TeX treats specially, the backslash included: a label such as
 // "x\input /etc/hostname \relax" is printed, not executed.
-std::string latex_escape(const std::string& s) {
+std::string latex_escape(const std::string& raw) {
   std::string out;
-  for (char ch : s) {
+  for (char ch : one_line(raw)) {
     switch (ch) {
       case '_': case '%': case '&': case '#': case '$': case '{': case '}':
         out += '\\';
@@ -115,10 +117,10 @@ std::string latex_text(const std::string& s) {
   return out;
 }
 
-// Markdown cell text: a '|' would end the cell.
+// Markdown cell text: a '|' would end the cell, a newline the row.
 std::string markdown_escape(const std::string& s) {
   std::string out;
-  for (char ch : s) {
+  for (char ch : one_line(s)) {
     if (ch == '|') out += '\\';
     out += ch;
   }
@@ -188,7 +190,7 @@ std::string s_column(const std::vector<std::string>& numbers) {
 
 std::string to_csv(const Table& t) {
   std::string out;
-  for (const auto& [k, v] : stamp(t)) out += fmt::format("# {}: {}\n", k, v);
+  for (const auto& [k, v] : stamp(t)) out += fmt::format("# {}: {}\n", one_line(k), one_line(v));
   std::vector<std::string> head;
   for (const auto& c : t.columns) head.push_back(csv_escape(header_text(c)));
   out += fmt::format("{}\n", fmt::join(head, ","));
@@ -216,12 +218,12 @@ std::string markdown_grid(const Table& t) {
 }
 
 std::string to_markdown(const Table& t) {
-  std::string out = fmt::format("## {}\n\n{}\n\n{}\n", t.title, t.caption, markdown_grid(t));
+  std::string out = fmt::format("## {}\n\n{}\n\n{}\n", one_line(t.title), one_line(t.caption), markdown_grid(t));
   for (const auto& c : t.columns)
-    if (!c.description.empty()) out += fmt::format("- `{}`: {}\n", c.name, c.description);
+    if (!c.description.empty()) out += fmt::format("- `{}`: {}\n", one_line(c.name), one_line(c.description));
   out += "\n";
   std::vector<std::string> meta;
-  for (const auto& [k, v] : stamp(t)) meta.push_back(fmt::format("{} = {}", k, v));
+  for (const auto& [k, v] : stamp(t)) meta.push_back(fmt::format("{} = {}", one_line(k), one_line(v)));
   out += fmt::format("<sub>{}</sub>\n", fmt::join(meta, "; "));
   return out;
 }
@@ -233,7 +235,7 @@ std::string to_markdown(const Table& t) {
 // as text. The \sisetup inside the table's group keeps numbers as written whatever a paper sets.
 std::string to_latex(const Table& t) {
   std::string out;
-  for (const auto& [k, v] : stamp(t)) out += fmt::format("% {}: {}\n", k, v);
+  for (const auto& [k, v] : stamp(t)) out += fmt::format("% {}: {}\n", one_line(k), one_line(v));
   std::vector<bool> numeric;
   std::string spec;
   for (std::size_t i = 0; i < t.columns.size(); ++i) {

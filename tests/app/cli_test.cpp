@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/output.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
 #include "studies/verify.hpp"
@@ -166,6 +168,7 @@ TEST_CASE("cli: an explicit scheme above its stable step gets one warning line a
   const auto bar = nsb::make_problem("signorini-bar");
   const double dt = 1.5 * bar->stable_step();
   const std::string dir = tmpdir("unstable");
+  std::filesystem::remove_all(dir);  // an older version's output there is not the suite's own (no marker)
   const auto r = nsbench(fmt::format("run --problem signorini-bar --integrator cd-lagrange --dt {} --t-end {} --out {}", dt,
                                      20 * dt, dir));
   CHECK((r.code == 0 || r.code == 3));  // it ran (an unstable run may be marked diverged)
@@ -186,6 +189,7 @@ TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupt
   // An earlier run's leftovers (issue 20): a killed run's temporary (its pid above any
   // pid_max: no such process) and an events.csv this run does not make. Both go.
   std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/" + nsb::kOutputMarker) << "nsbench output\n";
   const std::string stale = dir + "/.series.csv.tmp.4194305";
   std::ofstream(stale) << "t,dt\n";
   std::ofstream(dir + "/events.csv") << "t\n";
@@ -199,8 +203,9 @@ TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupt
           "--t-end", "2000", "--sample-every", "1000000", "--out", dir.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  // The stale temporary goes just before the handlers are installed and the run starts.
-  for (int k = 0; k < 1000 && std::filesystem::exists(stale); ++k) usleep(10'000);
+  // The staging directory is made just before the handlers are installed and the run starts.
+  const auto staging = std::filesystem::temp_directory_path() / (".nsbench_cli_test_sigterm.staging." + std::to_string(child));
+  for (int k = 0; k < 1000 && !std::filesystem::exists(staging); ++k) usleep(10'000);
   usleep(300'000);
   kill(child, SIGTERM);
   int status = 0;
@@ -216,7 +221,8 @@ TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupt
   std::vector<std::string> files;
   for (const auto& f : std::filesystem::directory_iterator(dir)) files.push_back(f.path().filename().string());
   std::sort(files.begin(), files.end());
-  CHECK(files == std::vector<std::string>{"series.csv", "summary.json"});
+  CHECK(files == std::vector<std::string>{nsb::kOutputMarker, "series.csv", "summary.json"});
+  CHECK_FALSE(std::filesystem::exists(staging));
   std::ifstream json(dir + "/summary.json");
   const std::string summary((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   CHECK_THAT(summary, Catch::Contains("\"status\": \"interrupted\"") && Catch::EndsWith("}\n"));
@@ -273,7 +279,8 @@ TEST_CASE("cli: --fields writes ParaView files and changes nothing else; bad fie
   const std::vector<std::pair<std::string, std::string>> bad = {
       {run + "--out " + out + " --fields " + fields + " --fields-every 0", "--fields-every 0: must be an integer >= 1"},
       {run + "--out " + out + " --fields-every 5", "--fields-every 5: given without --fields DIR"},
-      {run + "--out " + out + " --fields " + out, "--fields '" + out + "': is or contains --out"},
+      {run + "--out " + out + " --fields " + out, "--fields '" + out + "': is, contains or is in --out"},
+      {run + "--out " + out + " --fields " + out + "/fields", "--fields '" + out + "/fields': is, contains or is in --out"},
   };
   for (const auto& [args, message] : bad) {
     const auto r = nsbench(args);
@@ -283,4 +290,155 @@ TEST_CASE("cli: --fields writes ParaView files and changes nothing else; bad fie
     CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
   }
   for (const auto& d : {plain, out, fields}) std::filesystem::remove_all(d);
+}
+
+// Issue 30, finding 1: an --out or --fields directory the suite did not write came back
+// re-permissioned, its FIFOs and symlinks deleted, exit 0. Refused, untouched.
+TEST_CASE("cli: an --out or --fields directory the suite did not write is refused, untouched", "[app][bad-input][reliability]") {
+  namespace fs = std::filesystem;
+  const std::string d = tmpdir("foreign");
+  fs::remove_all(d);
+  fs::create_directories(d + "/private");
+  fs::permissions(d, fs::perms(01777));
+  fs::permissions(d + "/private", fs::perms(0700));
+  REQUIRE(::mkfifo((d + "/fifo").c_str(), 0600) == 0);
+  fs::create_symlink("nowhere", d + "/dg");
+  const auto study = nsb::test::run_command(fmt::format("'{}' run {}/studies/examples/bouncing_quick.toml --out {}",
+                                                         NSBENCH_STUDY_CLI, NSBENCH_SOURCE_DIR, d));
+  CHECK(study.code == 2);
+  CHECK(study.output == "nsbench-study: error: --out '" + d + "': not empty and not an nsbench output directory (no " +
+                            nsb::kOutputMarker + " file); the suite replaces its output directory whole and writes only "
+                            "into a new or empty directory or one it wrote; valid: a new directory\n");
+  const auto fields = nsbench("run --problem block-2d --integrator cd-lagrange --dt 1e-4 --t-end 2e-3 --set nx=2 --set ny=2 "
+                              "--out " + tmpdir("foreign_out") + " --fields " + d);
+  CHECK(fields.code == 2);
+  CHECK_THAT(fields.output, Catch::StartsWith("nsbench: error: --fields '" + d + "': not empty and not an nsbench output"));
+  CHECK(fs::status(d).permissions() == fs::perms(01777));
+  CHECK(fs::status(d + "/private").permissions() == fs::perms(0700));
+  CHECK(fs::is_fifo(fs::symlink_status(d + "/fifo")));
+  CHECK(fs::is_symlink(fs::symlink_status(d + "/dg")));
+  fs::remove_all(d);
+  fs::remove_all(tmpdir("foreign_out"));
+}
+
+// Issue 30, finding 4: series.csv was renamed into place before summary.json was written, so
+// a kill or a failed write between them left a new series beside the old summary. Here the
+// summary cannot be written (a directory stands in its place): nothing of the run is.
+TEST_CASE("cli: a run's files are swapped in together or not at all", "[app][reliability]") {
+  namespace fs = std::filesystem;
+  const std::string dir = tmpdir("whole");
+  fs::remove_all(dir);
+  REQUIRE(nsbench(kRun + "--dt 1e-3 --set e=0.8 --out " + dir).code == 0);
+  const auto read = [](const std::string& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string series = read(dir + "/series.csv");
+  fs::remove(dir + "/summary.json");
+  fs::create_directories(dir + "/summary.json");
+  std::ofstream(dir + "/summary.json/kept") << "x";
+  const auto r = nsbench(kRun + "--dt 1e-3 --set e=0.5 --out " + dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.output, Catch::Contains("cannot write") && Catch::Contains("summary.json"));
+  CHECK(read(dir + "/series.csv") == series);
+  CHECK(fs::exists(dir + "/summary.json/kept"));
+  for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
+    CHECK(e.path().filename().string().rfind(".nsbench_cli_test_whole.staging.", 0) == std::string::npos);
+  fs::remove_all(dir);
+}
+
+namespace {
+
+// A study file of a second or less: the bouncing mass against a cached event-driven reference.
+std::string quick_study(const std::string& dir, const std::string& name) {
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + name + ".toml";
+  std::ofstream(path) << "[study]\ntitle = \"" << name << "\"\nt_end = 0.6\ncpu_repeats = 0\n\n"
+                      << "[[problem]]\nname = \"bouncing-mass\"\n\n"
+                      << "[[integrator]]\nname = \"cd-lagrange\"\nsteps = [1e-2, 5e-3]\n\n"
+                      << "[reference]\nintegrator = \"event-driven\"\ndt = 1e-3\n\n[[measure]]\nkind = \"error\"\n"
+                      << "observable = \"q\"\n";
+  return path;
+}
+
+Outcome study(const std::string& args) { return nsb::test::run_command(fmt::format("'{}' {}", NSBENCH_STUDY_CLI, args)); }
+
+}  // namespace
+
+// Issue 30, finding 3: NSBENCH_REFERENCE_CACHE=/proc/x (or a regular file) threw out of the
+// study (SIGABRT) and left .OUT.staging.PID. The cache only saves time: warned, computed.
+TEST_CASE("cli: an unusable reference cache is a warning, the study runs and leaves no staging", "[app][reliability]") {
+  namespace fs = std::filesystem;
+  const std::string dir = tmpdir("cache"), out = dir + "/out";
+  fs::remove_all(dir);
+  const std::string file = quick_study(dir, "quick");
+  std::ofstream(dir + "/plain_file") << "x";
+  for (const std::string cache : {std::string("/proc/x"), dir + "/plain_file"}) {
+    const auto r = nsb::test::run_command(fmt::format("NSBENCH_REFERENCE_CACHE={} '{}' run {} --out {}", cache,
+                                                      NSBENCH_STUDY_CLI, file, out));
+    INFO(r.output);
+    CHECK(r.code == 0);
+    CHECK_THAT(r.output, Catch::Contains("nsbench: warning: reference cache " + cache + ": cannot create the directory"));
+    CHECK(fs::exists(out + "/quick_work_precision.csv"));
+    for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().filename().string().find("staging") == std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
+// Issue 30, finding 10: a second study into the same --out rewrote index.md to list only itself.
+TEST_CASE("cli: index.md lists every study of the --out, not only the last run's", "[app][reliability]") {
+  namespace fs = std::filesystem;
+  const std::string dir = tmpdir("index"), out = dir + "/out";
+  fs::remove_all(dir);
+  REQUIRE(study("run " + quick_study(dir, "first") + " --out " + out).code == 0);
+  REQUIRE(study("run " + quick_study(dir, "second") + " --out " + out).code == 0);
+  std::ifstream in(out + "/index.md");
+  const std::string index((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK_THAT(index, Catch::Contains("\n## first\n") && Catch::Contains("\n## second\n") &&
+                        Catch::Contains("(first_work_precision.md)") && Catch::Contains("(second_work_precision.md)"));
+  REQUIRE(study("run " + quick_study(dir, "first") + " --out " + out).code == 0);  // rerun: listed once
+  std::ifstream again(out + "/index.md");
+  const std::string rerun((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
+  CHECK(rerun.find("\n## first\n") == rerun.rfind("\n## first\n"));
+  CHECK_THAT(rerun, Catch::Contains("\n## second\n"));
+  fs::remove_all(dir);
+}
+
+// Issue 30, finding 10: a repeated --set key took the last value, an empty --fields or
+// --shard was ignored, --rtol nan was accepted, h0 = 0 printed "energy error nan", and an
+// overflow exited 3 without naming the parameter.
+TEST_CASE("cli: repeated --set keys, empty values, non-finite tolerances and overflows are named", "[app][bad-input][reliability]") {
+  const std::string out = tmpdir("smaller");
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {kRun + "--dt 1e-3 --set e=0.9 --set e=0.5 --out " + out,
+       "nsbench: error: --set e=0.5: parameter 'e' is already set by --set e=0.9; valid: each parameter once"},
+      {kRun + "--dt 1e-3 --set e=0.9 --set problem.e=0.5 --out " + out,
+       "nsbench: error: --set problem.e=0.5: parameter 'e' is already set by --set e=0.9"},
+      {kRun + "--dt 1e-3 --out " + out + " --fields ''", "nsbench: error: --fields '': an empty value"},
+      {kRun + "--dt 1e-3 --set v0=1e308 --out " + out,
+       "nsbench: error: problem bouncing-mass: its initial state is not finite (energy inf): a parameter overflows; "
+       "parameters given: --set v0=1e308"},
+  };
+  for (const auto& [args, message] : refused) {
+    const auto r = nsbench(args);
+    INFO(args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::StartsWith(message));
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+  }
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"bouncing --shard '' --out " + out, "nsbench-study: error: --shard '': an empty value"},
+           {"bouncing --verify reports --rtol nan", "nsbench-study: error: --rtol nan: must be a finite number >= 0"},
+           {"bouncing --verify reports --atol nan", "nsbench-study: error: --atol nan: must be a finite number >= 0"}}) {
+    const auto r = study(args);
+    INFO(args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.output, Catch::StartsWith(message));
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+  }
+  const auto rest = nsbench(kRun + "--dt 1e-3 --set h0=0 --out " + out);
+  CHECK(rest.code == 0);
+  CHECK_THAT(rest.output, Catch::Contains("energy error n/a (max n/a; E0 = 0 and bouncing-mass has no energy scale)") &&
+                              !Catch::Contains("nan"));
+  std::filesystem::remove_all(out);
 }

@@ -162,3 +162,23 @@ TEST_CASE("plugin: --plugin (and --plugin=FILE) works before and after the subco
   CHECK(listed.code == 0);
   CHECK_THAT(listed.output, Catch::Contains("bouncing"));
 }
+
+// Issue 30, finding 5: `head -c 21356 symplectic_euler.so > cut.so; nsbench --plugin cut.so
+// list` died of SIGBUS inside dlopen (a segment mapped past the end of the file). A file cut
+// anywhere is one line naming it, exit 2.
+TEST_CASE("plugin: a truncated plugin file is refused before dlopen, exit 2", "[app][plugin][bad-input][reliability]") {
+  std::ifstream in(kPlugin, std::ios::binary);
+  const std::string whole((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  REQUIRE(whole.size() > 4096);
+  const std::string cut = (fs::temp_directory_path() / "nsbench_plugin_test_cut.so").string();
+  for (const std::size_t size : {std::size_t{3}, std::size_t{63}, std::size_t{200}, std::size_t{4096}, whole.size() / 2,
+                                 whole.size() - 1}) {
+    std::ofstream(cut, std::ios::binary | std::ios::trunc) << whole.substr(0, size);
+    const auto r = run_command(nsbench("--plugin " + cut + " list"));
+    INFO(size << " bytes: " << r.output);
+    CHECK(r.code == 2);
+    CHECK(lines(r.output) == 1);
+    CHECK_THAT(r.output, Catch::StartsWith("nsbench: error: plugin " + cut + ": not a loadable shared library ("));
+  }
+  fs::remove(cut);
+}

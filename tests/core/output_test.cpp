@@ -2,6 +2,9 @@
 // processes.
 #include "core/output.hpp"
 
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -35,6 +38,11 @@ std::vector<std::string> names(const fs::path& dir) {
   return v;
 }
 
+// Marks `dir` as the suite's own output, as a ReportDirectory leaves it.
+void mark_own(const fs::path& dir) { std::ofstream(dir / nsb::kOutputMarker) << "nsbench output\n"; }
+
+fs::perms mode(const fs::path& p) { return fs::symlink_status(p).permissions(); }
+
 // Above any pid_max (2^22): no such process.
 constexpr const char* kDeadPid = "4194305";
 
@@ -44,6 +52,7 @@ TEST_CASE("report directory: staged beside, swapped in whole, others' files kept
   TempDir tmp;
   const fs::path out = tmp.path / "report";
   fs::create_directories(out / "figures");
+  mark_own(out);
   std::ofstream(out / "other_study.md") << "kept";
   std::ofstream(out / "table.md") << "old";
   std::ofstream(out / "figures" / "f.png") << "png";
@@ -68,6 +77,7 @@ TEST_CASE("report directory: abandoned without commit, the old report stays; a k
   TempDir tmp;
   const fs::path out = tmp.path / "report";
   fs::create_directories(out);
+  mark_own(out);
   std::ofstream(out / "table.md") << "old";
   fs::create_directories(tmp.path / (std::string(".report.staging.") + kDeadPid));
   {
@@ -96,6 +106,92 @@ TEST_CASE("report directory: only our own staging of a dead process goes; a live
   expected.push_back("report");
   std::sort(expected.begin(), expected.end());
   CHECK(names(tmp.path) == expected);
+}
+
+TEST_CASE("report directory: a directory the suite did not write is refused whole, untouched", "[core][output]") {
+  // Issue 30, finding 1: a 1777 --out with a 0700 subdirectory, a FIFO and a dangling
+  // symlink came back 0755 with the FIFO and the symlink deleted, exit 0.
+  TempDir tmp;
+  const fs::path out = tmp.path / "d";
+  fs::create_directories(out / "private");
+  fs::permissions(out, fs::perms(01777));
+  fs::permissions(out / "private", fs::perms(0700));
+  REQUIRE(::mkfifo((out / "fifo").c_str(), 0600) == 0);
+  fs::create_symlink("nowhere", out / "dg");
+  CHECK_THROWS_WITH(nsb::ReportDirectory(out), Catch::StartsWith("--out '" + out.string() + "': not empty and not an nsbench output"));
+  CHECK_THROWS_WITH(nsb::claim_output_directory(out, "--fields"), Catch::StartsWith("--fields '" + out.string() + "': not empty"));
+  CHECK(mode(out) == fs::perms(01777));
+  CHECK(mode(out / "private") == fs::perms(0700));
+  CHECK(fs::is_fifo(fs::symlink_status(out / "fifo")));
+  CHECK(fs::is_symlink(fs::symlink_status(out / "dg")));
+  CHECK(names(tmp.path) == std::vector<std::string>{"d"});  // no staging left
+}
+
+TEST_CASE("report directory: in the suite's own output, an entry it never writes is refused by name", "[core][output]") {
+  // A symlink to an absolute file made the staging write through "staging/../file"; a FIFO,
+  // a socket or a symlink would be deleted by the swap. The suite writes none of them.
+  TempDir tmp;
+  const fs::path out = tmp.path / "report", outside = tmp.path / "outside.md";
+  std::ofstream(outside) << "someone else's";
+  const auto refused = [&](const fs::path& entry, const std::string& kind) {
+    fs::create_directories(out / "figures");
+    mark_own(out);
+    std::ofstream(out / "table.md") << "old";
+    CHECK_THROWS_WITH(nsb::ReportDirectory(out), "--out '" + out.string() + "': holds '" + entry.string() + "', " + kind +
+                                                     " the suite never writes; its output directory is replaced whole, so "
+                                                     "it would be deleted; move it away or choose another directory");
+    CHECK(fs::exists(fs::symlink_status(entry)));
+    CHECK(names(tmp.path) == std::vector<std::string>{"outside.md", "report"});
+    fs::remove_all(out);
+  };
+  fs::create_directories(out / "figures");
+  fs::create_symlink(outside, out / "figures" / "outside.md");
+  refused(out / "figures" / "outside.md", "a symbolic link");
+  CHECK(!fs::exists(tmp.path / "figures" / "outside.md"));
+  fs::create_directories(out);
+  REQUIRE(::mkfifo((out / "fifo").c_str(), 0600) == 0);
+  refused(out / "fifo", "a FIFO");
+  fs::create_directories(out);
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  const std::string sock = (out / "sock").string();
+  REQUIRE(sock.size() < sizeof addr.sun_path);
+  std::copy(sock.begin(), sock.end(), addr.sun_path);
+  REQUIRE(::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0);
+  ::close(fd);
+  refused(out / "sock", "a socket");
+}
+
+TEST_CASE("report directory: new, empty and own directories are written, their modes kept", "[core][output]") {
+  TempDir tmp;
+  const fs::path fresh = tmp.path / "new" / "report", empty = tmp.path / "empty";
+  fs::create_directories(empty);
+  fs::permissions(empty, fs::perms(01777));
+  for (const auto& out : {fresh, empty}) {
+    nsb::ReportDirectory report(out);
+    fs::create_directories(report.path() / "private");
+    nsb::write_file_atomic(report.path() / "private" / "table.md", "new");
+    report.commit();
+  }
+  CHECK(mode(empty) == fs::perms(01777));
+  CHECK(fs::exists(fresh / nsb::kOutputMarker));
+  CHECK(fs::exists(empty / nsb::kOutputMarker));
+  // The suite's own, re-permissioned by its user: written again, the modes stay.
+  fs::permissions(empty / "private", fs::perms(0700));
+  {
+    nsb::ReportDirectory report(empty);
+    nsb::write_file_atomic(report.path() / "private" / "table.md", "newer");
+    report.commit();
+  }
+  CHECK(mode(empty) == fs::perms(01777));
+  CHECK(mode(empty / "private") == fs::perms(0700));
+  CHECK(read(empty / "private" / "table.md") == "newer");
+  // A shard run claims its --out the same way (the merge later replaces it whole).
+  const fs::path shards = tmp.path / "shards";
+  nsb::claim_output_directory(shards, "--out");
+  CHECK(fs::exists(shards / nsb::kOutputMarker));
+  nsb::claim_output_directory(shards, "--out");
 }
 
 TEST_CASE("stale temporaries of dead processes are removed, live ones kept", "[core][output]") {

@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <cmath>
 
 #include "integrators/registry.hpp"
@@ -225,4 +226,13 @@ TEST_CASE("mass on bar: field mesh of the bar (clamped node without dof) and ele
     p.cell_stress(u, sigma);
     for (nsb::Index e = 0; e < 8; ++e) CHECK(sigma(e, 0) == Approx(3.0 * eps));
   }
+}
+
+// Issue 30, finding 6: a size that cannot fit is refused before allocating, as for the other bars.
+TEST_CASE("mass on bar: an N that cannot fit in memory is refused before allocating", "[problems][mass-on-bar]") {
+  ::setenv("NSBENCH_MEMORY_LIMIT", "1G", 1);
+  CHECK_THROWS_WITH(nsb::make_problem("mass-on-bar", {{"N", "100000000"}}),
+                    "mass-on-bar: N = 100000000 needs about 18.6 GiB, more than the 1 GiB available "
+                    "(NSBENCH_MEMORY_LIMIT); valid: N <= 5368709");
+  ::unsetenv("NSBENCH_MEMORY_LIMIT");
 }

@@ -1,5 +1,6 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <cmath>
 
 #include "problems/registry.hpp"
@@ -250,4 +251,14 @@ TEST_CASE("two bars: field mesh (two bodies) and element stress against the exac
   }
   CHECK(compared >= 50);
   CHECK(loaded >= 20);
+}
+
+// Issue 30, finding 6: N1 = N2 = 1e8 was OOM-killed after 142 s; refused before allocating.
+TEST_CASE("two bars: sizes that cannot fit in memory are refused before allocating", "[problems][two-bars]") {
+  ::setenv("NSBENCH_MEMORY_LIMIT", "1G", 1);
+  CHECK_THROWS_WITH(nsb::make_problem("two-bars", {{"N1", "100000000"}, {"N2", "100000000"}}),
+                    "two-bars: N1 + N2 = 100000000 + 100000000 needs about 37.3 GiB, more than the 1 GiB available "
+                    "(NSBENCH_MEMORY_LIMIT); valid: N1 + N2 <= 5368709");
+  CHECK(nsb::make_problem("two-bars", {{"N1", "100"}, {"N2", "200"}})->ndof() > 300);
+  ::unsetenv("NSBENCH_MEMORY_LIMIT");
 }

@@ -101,3 +101,50 @@ TEST_CASE("reference cache: an edited or truncated series is regenerated, not us
   CHECK(read() == text);
   CHECK(nsb::cached_reference(dir.path, request()).from_cache);
 }
+
+// Issue 30, finding 2: "summary" renamed segfaulted, "ok" -> "nk" failed later, "[]" was
+// called an unreadable shard file. Every damaged entry is rebuilt (with a warning line).
+TEST_CASE("reference cache: a damaged entry is rebuilt, never used or fatal", "[reference][cache]") {
+  TempDir dir;
+  const auto first = nsb::cached_reference(dir.path, request());
+  const fs::path json = dir.path / (nsb::reference_key(first.metadata) + ".json");
+  std::ifstream in(json, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    const auto at = t.find(from);
+    REQUIRE(at != std::string::npos);
+    return t.replace(at, from.size(), to);
+  };
+  const std::string damaged = GENERATE_COPY(
+      replaced("\"summary\"", "\"rummary\""), replaced("\"ok\"", "\"nk\""), replaced("\"steps\": ", "\"steps\": 0.5+"),
+      replaced("\"work\": {", "\"work\": {\"x\": null, "), replaced("\"series_fnv1a64\"", "\"series\""),
+      std::string("[]"), std::string("null"), std::string("{}"), std::string(100000, '['));
+  CAPTURE(damaged.substr(0, 60));
+  std::ofstream(json, std::ios::binary | std::ios::trunc) << damaged;
+  const auto rebuilt = nsb::cached_reference(dir.path, request());
+  CHECK_FALSE(rebuilt.from_cache);
+  CHECK(rebuilt.summary["status"] == "ok");
+  CHECK(rebuilt.summary["steps"] == first.summary["steps"]);
+  CHECK(rebuilt.series.values == first.series.values);
+  CHECK(nsb::cached_reference(dir.path, request()).from_cache);
+}
+
+// Issue 30, finding 3: an unusable cache location threw out of the study (SIGABRT). The
+// cache only saves time, so the run is computed and not stored, with a warning.
+TEST_CASE("reference cache: an unusable location computes the run without storing it", "[reference][cache]") {
+  TempDir dir;
+  fs::create_directories(dir.path);
+  const auto expected = nsb::cached_reference(dir.path / "ok", request());
+  const std::string key = nsb::reference_key(expected.metadata);
+  std::ofstream(dir.path / "file") << "a regular file";
+  fs::create_directories(dir.path / "csv_dir" / (key + ".csv"));
+  for (const fs::path& cache : {fs::path("/proc/x"), dir.path / "file", dir.path / "file" / "sub", dir.path / "csv_dir"}) {
+    CAPTURE(cache);
+    nsb::CachedReference ref;
+    REQUIRE_NOTHROW(ref = nsb::cached_reference(cache, request()));
+    CHECK_FALSE(ref.from_cache);
+    CHECK(ref.series.values == expected.series.values);
+  }
+  CHECK(fs::is_directory(dir.path / "csv_dir" / (key + ".csv")));  // not ours to remove
+}

@@ -367,3 +367,22 @@ TEST_CASE("modal-exact: refuses what it cannot integrate exactly, saying why", "
   CHECK_THROWS_WITH(me.init(big, big.initial_state()), Catch::Contains("max_dofs"));
   CHECK_THROWS_AS(ModalExact(Params(ModalExact::parameters_spec(), {{"samples_per_period", "1"}})), nsb::InputError);
 }
+
+// Issue 30, finding 10: modal-exact counted no work, so no budget stopped it (1e8 steps in
+// 27 s, status ok). Each step and each event inside it is one F_int-evaluation equivalent.
+TEST_CASE("modal-exact: its work counts against a run's budget", "[reference][modal-exact]") {
+  const nsb::BouncingMass p(Params(nsb::BouncingMass::parameters_spec(), {{"e", "0.9"}}));
+  auto me = make_me();
+  me.init(p, p.initial_state());
+  nsb::RunOptions options;
+  options.dt = 1e-3;
+  options.t_end = 10.0;
+  options.record_series = false;
+  options.max_force_evaluations = 1000;
+  const nsb::RunResult r = nsb::run(p, me, options);
+  CHECK(r.status == nsb::RunStatus::OverBudget);
+  CHECK(r.steps <= 1001);
+  CHECK(r.work.force_evaluations == 0);
+  CHECK(r.work.extra.at("force_equivalents") >= static_cast<double>(r.steps));
+  CHECK_THAT(r.message, Catch::StartsWith("budget of 1000 F_int evaluations (or their equivalents) exceeded"));
+}

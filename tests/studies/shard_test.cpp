@@ -7,7 +7,9 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
+#include <functional>
 
 #include "core/output.hpp"
 #include "../app/run_cli.hpp"
@@ -112,6 +114,28 @@ TEST_CASE("shards: a damaged shard is refused naming the file", "[studies][shard
     write_rehashed(first, j);
     expected = "result 0 is not an object";
   }
+  // Issue 30, finding 7: these were accepted (and a values array too short read past its end).
+  SECTION("a bogus status, rehashed") {
+    j["results"]["0"]["status"] = "fine";
+    write_rehashed(first, j);
+    expected = "result 0: status \"fine\" is not a run status";
+  }
+  SECTION("fractional steps, rehashed") {
+    j["results"]["2"]["steps"] = 2.5;
+    write_rehashed(first, j);
+    expected = "result 2: steps 2.5 is not a whole number >= 0";
+  }
+  SECTION("negative steps, rehashed") {
+    j["results"]["2"]["steps"] = -3;
+    write_rehashed(first, j);
+    expected = "result 2: steps -3 is not a whole number >= 0";
+  }
+  SECTION("an array nested 100,000 deep") {
+    std::string text = j.dump();
+    text.insert(text.size() - 1, ",\"deep\":" + std::string(100000, '[') + std::string(100000, ']'));
+    std::ofstream(first, std::ios::trunc) << text;
+    expected = "not a JSON object (damaged, cut short or nested deeper than 64)";
+  }
   SECTION("another study definition, rehashed") {
     j["cases"][0]["dt"] = 0.2;
     write_rehashed(first, j);
@@ -147,4 +171,37 @@ TEST_CASE("nsbench-study: /dev/zero as a study file and a huge --shard are one l
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::StartsWith("nsbench-study: error: --shard '99999999999999999999/2': expected I/N"));
   CHECK_FALSE(fs::exists("/tmp/nsbench_never_written"));
+}
+
+// Issue 30, finding 7: a study file's result whose values array is empty (its hash
+// recomputed) segfaulted in the tables; null values, a missing key, a bad history are refused
+// by the study's own schema (StudyEntry::check_result).
+TEST_CASE("nsbench-study --merge: a result against its study's schema, one line and exit 2", "[studies][shard][cli]") {
+  TempDir dir;
+  const std::string study = fmt::format("{}/studies/examples/bouncing_quick.toml", NSBENCH_SOURCE_DIR);
+  const auto cli = [&](const std::string& args) {
+    return nsb::test::run_command(fmt::format("'{}' run {} --out {} {}", NSBENCH_STUDY_CLI, study, dir.path.string(), args));
+  };
+  // A one-shard run of the quick study takes seconds; its shard file is then damaged.
+  REQUIRE(cli("--shard 1/1").code == 0);
+  const fs::path file = nsb::shard_path(dir.path, "bouncing_quick", 1, 1);
+  const Json whole = read_json(file);
+  REQUIRE(whole["results"]["0"]["status"] == "ok");
+  const std::vector<std::pair<std::function<void(Json&)>, std::string>> damages = {
+      {[](Json& r) { r["values"] = Json::array(); }, "values is not an array of"},
+      {[](Json& r) { r["values"] = nullptr; }, "values is not an array of"},
+      {[](Json& r) { r.erase("message"); }, "no key 'message'"},
+      {[](Json& r) { r["history"] = {{"t", {0.1, 0.2}}, {"e", {0.1}}}; }, "history is not two arrays"},
+      {[](Json& r) { r["cpu"] = "fast"; }, "cpu is not a number"},
+  };
+  for (const auto& [damage, expected] : damages) {
+    Json j = whole;
+    damage(j["results"]["0"]);
+    write_rehashed(file, j);
+    const auto merged = cli("--merge");
+    INFO(expected << ": " << merged.output);
+    CHECK(merged.code == 2);
+    CHECK(std::count(merged.output.begin(), merged.output.end(), '\n') == 1);
+    CHECK_THAT(merged.output, Catch::StartsWith("nsbench-study: error: --merge: " + file.string() + ": result 0: " + expected));
+  }
 }

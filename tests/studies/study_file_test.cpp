@@ -123,6 +123,25 @@ TEST_CASE("fit_order: slope and 95% interval by hand on three points and t quant
   CHECK(nsb::student_t975(1000) == Approx(1.9623391).epsilon(1e-6));
 }
 
+// Issue 30, finding 8: steps = [1e-2, 1e-2, 1e-3] gave order 1.2505 with an interval 3e-15
+// wide, status ok: a repeated step is not a new point of the fit.
+TEST_CASE("fit_order: a repeated abscissa counts once; a study file refuses repeated steps", "[studies][study_file]") {
+  const nsb::OrderFit fit = nsb::fit_order({1e-2, 1e-2, 1e-3}, {1e-2, 1e-2, 1e-4});
+  CHECK(fit.points == 2);
+  CHECK(fit.order == Approx(2.0).epsilon(1e-12));
+  CHECK(std::isnan(fit.low));  // two distinct points: no interval
+  CHECK(std::isnan(fit.high));
+  const nsb::OrderFit same = nsb::fit_order({1e-3, 2e-3, 2e-3, 4e-3}, {1e-6, 4e-6, 4e-6, 16e-6});
+  CHECK(same.points == 3);
+  CHECK(same.order == Approx(2.0).epsilon(1e-12));
+  CHECK(nsb::fit_order({1e-2, 1e-2}, {1e-2, 2e-2}).points == 1);
+  CHECK(std::isnan(nsb::fit_order({1e-2, 1e-2}, {1e-2, 2e-2}).order));
+  CHECK(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 1e-2, 1e-3]")) ==
+        "f.toml:11: integrator[0].steps[1]: 0.01 repeats steps[0]; valid: distinct values");
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "tolerances = [1e-4, 1e-6, 1e-4]\ndt = 1e-2")),
+             Catch::EndsWith("integrator[0].tolerances[2]: 0.0001 repeats tolerances[0]; valid: distinct values"));
+}
+
 TEST_CASE("fit_order: the 95% interval covers a known slope in about 95% of noisy samples", "[studies][study_file]") {
   std::mt19937_64 rng(12345);
   std::normal_distribution<double> noise(0.0, 0.2);
@@ -618,4 +637,31 @@ TEST_CASE("study file: a hausdorff measure converges where the max-norm velocity
              Catch::Contains("measure[1].time_scale"));
   CHECK_THAT(error_of(replaced(text, "kind = \"hausdorff\"\nobservable = \"v\"\n", "kind = \"hausdorff\"\nobservable = \"u\"\n")),
              Catch::Contains("not an observable"));
+}
+
+// Issue 30, finding 9: a newline in a study file's name broke the reports' metadata lines.
+TEST_CASE("study file: a name with a control character is refused in one line", "[studies][study_file]") {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("nsbench_study_name_{}", ::getpid());
+  fs::create_directories(dir);
+  const fs::path file = dir / "two\nlines.toml";
+  std::ofstream(file) << kMinimal;
+  try {
+    nsb::read_study_file(file);
+    FAIL("accepted");
+  } catch (const nsb::InputError& e) {
+    const std::string what = e.what();
+    CHECK(what == "study file '" + (dir / "two lines.toml").string() + "': its name holds the control character 0x0a; "
+                  "valid: a name without control characters (newlines, tabs, escapes)");
+  }
+  fs::remove_all(dir);
+}
+
+// Issue 30, finding 10: floor = inf was accepted, and max_force_evaluations = 0 (no budget)
+// let each case run up to 2e8 steps.
+TEST_CASE("study file: an infinite floor and a zero budget are refused", "[studies][study_file]") {
+  CHECK_THAT(error_of(replaced(kMinimal, "solution = \"exact\"", "solution = \"exact\"\nfloor = inf")),
+             Catch::EndsWith("reference.floor: inf is not a finite number >= 0; valid: [0, inf)"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 0")),
+             Catch::EndsWith("study.max_force_evaluations: 0 is out of range; valid: [1, 1125899906842624]"));
+  CHECK(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 1")) == "(no error)");
 }

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <limits>
 #include <string>
 
@@ -91,4 +92,48 @@ TEST_CASE("Markdown tables: a '|' in a label is escaped, the row keeps its cells
   const std::string md = nsb::markdown_grid(hostile_table());
   CHECK_THAT(md, Catch::Contains("| a\\|b | -2.25e-12 | n/a | 20 |"));
   CHECK_THAT(md, Catch::Contains("| x\\input /etc/hostname \\relax | 1.50e-03 | 1.98 | 10 |"));
+}
+
+// Issue 30, finding 9: a '\r' went unquoted into CSV, NUL and ESC bytes reached every
+// format, and a newline in a label or title split Markdown rows and added headings.
+TEST_CASE("tables: control bytes and newlines in labels never split a row, a heading or a comment", "[studies][tables]") {
+  nsb::Table t;
+  t.id = "controls";
+  t.title = "title\n# injected heading";
+  t.caption = "caption\n\n| a | fake row |";
+  t.columns = {{"label\nsplit", "", "", "a\ndescription"}, {"err", "", "{:.2e}", ""}};
+  t.add_row({std::string("cr\rin"), 1.0});
+  t.add_row({std::string("nul\0esc\x1b[31mred", 15), 2.0});
+  t.add_row({std::string("new\nline"), 3.0});
+  t.metadata = {{"study_file", "a\nb.toml"}};
+  const auto lines = [](const std::string& text) {
+    std::vector<std::string> v;
+    std::size_t begin = 0;
+    for (std::size_t end; (end = text.find('\n', begin)) != std::string::npos; begin = end + 1) v.push_back(text.substr(begin, end - begin));
+    return v;
+  };
+  const auto has_control = [](const std::string& text, const std::string& kept) {
+    return std::any_of(text.begin(), text.end(), [&](char c) {
+      return (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) && kept.find(c) == std::string::npos;
+    });
+  };
+  const std::string csv = nsb::to_csv(t), md = nsb::to_markdown(t), tex = nsb::to_latex(t);
+  CHECK_FALSE(has_control(md, "\n"));
+  CHECK_FALSE(has_control(tex, "\n"));
+  CHECK_FALSE(has_control(csv, "\n\r"));  // inside quotes only
+  CHECK_THAT(csv, Catch::Contains("\"cr\rin\",1\n") && Catch::Contains("\"new\nline\",3\n") &&
+                      Catch::Contains("nul\\x00esc\\x1b[31mred,2\n") && Catch::Contains("# study_file: a b.toml\n"));
+  CHECK_THAT(md, Catch::Contains("| nul\\x00esc\\x1b[31mred | 2.00e+00 |"));
+  // Markdown: one heading, the grid's lines all rows, the caption one paragraph.
+  int headings = 0, rows = 0;
+  for (const auto& line : lines(md)) {
+    headings += line.rfind("#", 0) == 0;
+    rows += line.rfind("|", 0) == 0;
+  }
+  CHECK(headings == 1);
+  CHECK(rows == 2 + 3);
+  CHECK_THAT(md, Catch::StartsWith("## title # injected heading\n\ncaption  | a | fake row |\n"));
+  // TeX: no blank line (a paragraph break) inside the table, every comment line one line.
+  for (const auto& line : lines(tex)) CHECK_FALSE(line.empty());
+  CHECK_THAT(tex, Catch::Contains("% study_file: a b.toml\n") && Catch::Contains("new line & "));
 }

@@ -1,0 +1,18 @@
+#pragma once
+// The memory check of the bar problems (signorini-bar and its variants, two-bars,
+// mass-on-bar), before anything of size N is allocated: N = 1e8 ended in std::bad_alloc after
+// seconds, N1 = N2 = 1e8 in the OOM killer after minutes. The estimate is
+// kBarBytesPerElement per element: the construction's triplet lists, K, M and the element
+// stiffnesses, and a run's state and work vectors (a run of N = 1e7 peaks at 2.0 GB).
+#include <string>
+
+namespace nsb {
+
+inline constexpr double kBarBytesPerElement = 200.0;
+
+// Throws InputError "WHAT needs about X GiB, more than the Y GiB available (SOURCE); valid:
+// PARAM <= Z" (Z the most elements that fit) when `elements` bar elements do not fit in
+// memory_available() (core/environment.hpp).
+void require_bar_memory(double elements, const std::string& what, const std::string& param);
+
+}  // namespace nsb
