@@ -3,10 +3,10 @@
 //   nsbench [--plugin FILE]... list
 //   nsbench [--plugin FILE]... run --problem P --integrator I --dt DT --t-end T [--set key=value]... --out DIR
 //                                  [--fields DIR [--fields-every K]]   ParaView field output
-//                                  (integrators/field_output.hpp) of the problem's bodies
+//                                  (run/field_output.hpp) of the problem's bodies
 //   nsbench [--plugin FILE]... check --integrator I | --problem P   the generic properties
 //                                  every integrator (problem) is held to
-//                                  (integrators/conformance.hpp), one line each; exit 1 when
+//                                  (check/conformance.hpp), one line each; exit 1 when
 //                                  one fails
 // Every option may stand before or after the subcommand (app/cli_options.hpp).
 // Plugins (core/plugin.hpp) also come from NSBENCH_PLUGINS (colon-separated).
@@ -32,11 +32,11 @@
 #include "core/output.hpp"
 #include "core/plugin.hpp"
 #include "core/wait_policy.hpp"
-#include "integrators/conformance.hpp"
-#include "integrators/field_output.hpp"
+#include "check/conformance.hpp"
+#include "run/field_output.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
-#include "integrators/run_case.hpp"
+#include "run/run.hpp"
+#include "run/run_case.hpp"
 #include "problems/registry.hpp"
 
 namespace {

@@ -4,7 +4,7 @@
 // its core with another process gets its time slices late, and the whole team waits for it
 // at the end of every parallel region (issue 36). No waiting policy cures that
 // (core/wait_policy.hpp makes the waiting cheap, not the waited-for thread faster), so the run
-// loop (integrators/run.cpp) measures:
+// loop (run/run.cpp) measures:
 //   probe     kProbeSteps steps on T threads, then as many on one (the first step of each
 //             window, which wakes or starts the team, not counted); their wall times summed.
 //             A probe stops early once its sum exceeds the other size's whole probe (this

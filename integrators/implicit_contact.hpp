@@ -30,10 +30,10 @@
 #include <vector>
 
 #include "integrators/contact_responses.hpp"
-#include "integrators/coulomb.hpp"
+#include "solvers/coulomb.hpp"
 #include "integrators/integrator.hpp"
-#include "integrators/lcp.hpp"
-#include "integrators/sparse_cholesky.hpp"
+#include "solvers/lcp.hpp"
+#include "solvers/sparse_cholesky.hpp"
 
 namespace nsb {
 

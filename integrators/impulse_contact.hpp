@@ -18,9 +18,9 @@
 // Contacts that share no dof with another (W block diagonal): each in closed form, still
 // explicit and allocation-free; otherwise nonsmooth Gauss–Seidel over the closed contacts.
 // The frictionless path is the one above, untouched.
-#include "integrators/coulomb.hpp"
+#include "solvers/coulomb.hpp"
 #include "integrators/integrator.hpp"
-#include "integrators/lcp.hpp"
+#include "solvers/lcp.hpp"
 
 namespace nsb {
 

@@ -31,7 +31,7 @@
 //                 naming mu.
 // Helpers for a new scheme: ImpulseContact (integrators/impulse_contact.hpp: Moreau's
 // velocity-level impulse law with restitution, and Coulomb friction, given M^{-1} diagonal),
-// lcp_parameter_specs() / lcp_options() (its LCP solver's parameters, integrators/lcp.hpp),
+// lcp_parameter_specs() / lcp_options() (its LCP solver's parameters, solvers/lcp.hpp),
 // CentralDifference (integrators/central_difference.hpp: the explicit staggered update), and
 // solve_coulomb_local for one contact's 2D Coulomb law. A minimal correct example:
 // examples/plugin/symplectic_euler.cpp; the method and conventions: docs/method.md.

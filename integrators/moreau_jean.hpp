@@ -66,11 +66,11 @@
 // the position shift is O(h * penetration speed) per step, the scheme stays first order
 // with impacts and of the theta-method's order in smooth phases (no correction there).
 #include "integrators/contact_responses.hpp"
-#include "integrators/coulomb.hpp"
+#include "solvers/coulomb.hpp"
 #include "integrators/implicit_contact.hpp"
 #include "integrators/integrator.hpp"
-#include "integrators/lcp.hpp"
-#include "integrators/sparse_cholesky.hpp"
+#include "solvers/lcp.hpp"
+#include "solvers/sparse_cholesky.hpp"
 
 namespace nsb {
 

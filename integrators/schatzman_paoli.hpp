@@ -39,8 +39,8 @@
 // which, like the trapezoidal rule (moreau_jean.hpp), leaves a (-1)^k mode undamped there.
 #include "integrators/contact_responses.hpp"
 #include "integrators/integrator.hpp"
-#include "integrators/lcp.hpp"
-#include "integrators/sparse_cholesky.hpp"
+#include "solvers/lcp.hpp"
+#include "solvers/sparse_cholesky.hpp"
 
 namespace nsb {
 

@@ -101,7 +101,7 @@ struct Contacts {
 // What the stress is (which measure, where in the cell) is stated by each problem's
 // cell_stress(); what a body array is, by its body_data(). Vertex cells have no stress and
 // element cells no body arrays: a field is written only where it means something
-// (integrators/field_output.hpp writes the two kinds as two datasets of one series).
+// (run/field_output.hpp writes the two kinds as two datasets of one series).
 // A degree of freedom that is no translation of a point (a rigid body's rotation) reaches
 // the picture through a body array, not through point_dofs (which maps components linearly
 // to dofs).

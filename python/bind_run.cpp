@@ -1,7 +1,7 @@
 // nsbench._run (nsbench.run wraps it) and nsbench.check: a run and the conformance checks, in C++
 // with the GIL released.
 //
-// A run goes through the command line's code (integrators/run_case.hpp, integrators/run.hpp):
+// A run goes through the command line's code (run/run_case.hpp, run/run.hpp):
 // the same names, the same routing of parameters, the same checks and messages, the same
 // series. The series' values are moved into the NumPy array (no copy); the states (u and v at
 // every sample) are gathered by a StateSink. The summary is the command line's summary.json.
@@ -9,9 +9,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include "integrators/conformance.hpp"
+#include "check/conformance.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/run_case.hpp"
+#include "run/run_case.hpp"
 #include "problems/registry.hpp"
 #include "python/bindings.hpp"
 
@@ -123,7 +123,7 @@ void bind_run(py::module_& m) {
   m.def("_run", &run_case, "problem"_a, "integrator"_a, "dt"_a, "t_end"_a,
         "nsbench.run's C++ side: (columns, series rows x columns, state times, u, v, summary JSON).");
   m.def("check", &check, "integrator"_a = py::none(), "problem"_a = py::none(),
-        "The conformance checks of `nsbench check` (integrators/conformance.hpp): a list of dicts with\n"
+        "The conformance checks of `nsbench check` (check/conformance.hpp): a list of dicts with\n"
         "subject, property, outcome ('pass', 'FAIL', 'not measured') and figure.");
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // An integrator written in Python (nsbench.Integrator, python/nsbench/__init__.py) as an
 // nsb::Integrator: the registry owns it like any other, so it runs in nsbench.run, in study files
-// and in nsbench.check (integrators/conformance.hpp) beside the built-ins.
+// and in nsbench.check (check/conformance.hpp) beside the built-ins.
 //
 // The Python object is an instance of the user's class (made from the registered class with its
 // validated parameters, as a dict). Its `init(problem, initial)` and `step(dt)` follow the C++

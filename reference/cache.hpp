@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 
 namespace nsb {
 

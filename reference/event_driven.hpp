@@ -50,7 +50,7 @@
 #include <memory>
 
 #include "integrators/integrator.hpp"
-#include "integrators/lcp.hpp"
+#include "solvers/lcp.hpp"
 #include "reference/cvode.hpp"
 #include "reference/node_contacts.hpp"
 

@@ -94,7 +94,7 @@
 #include <vector>
 
 #include "integrators/integrator.hpp"
-#include "integrators/lcp.hpp"
+#include "solvers/lcp.hpp"
 #include "reference/node_contacts.hpp"
 
 namespace nsb {

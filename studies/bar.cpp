@@ -51,7 +51,7 @@
 #include <tuple>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/signorini_bar.hpp"
 #include "reference/modal_exact.hpp"
 #include "studies/study.hpp"

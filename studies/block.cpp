@@ -45,7 +45,7 @@
 #include <cmath>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/block_2d.hpp"
 #include "reference/cache.hpp"
 #include "studies/ranking.hpp"

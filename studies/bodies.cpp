@@ -51,7 +51,7 @@
 #include <optional>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/ball_chain.hpp"
 #include "problems/mass_on_bar.hpp"
 #include "problems/registry.hpp"

@@ -30,7 +30,7 @@
 #include <map>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/bouncing_bar.hpp"
 #include "problems/signorini_bar.hpp"
 #include "studies/study.hpp"

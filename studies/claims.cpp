@@ -26,7 +26,7 @@
 #include <cmath>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/registry.hpp"
 #include "problems/rolling_disk.hpp"
 #include "problems/signorini_bar.hpp"

@@ -39,7 +39,7 @@
 #include <map>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
 #include "studies/study.hpp"

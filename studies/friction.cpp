@@ -56,7 +56,7 @@
 #include <optional>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/registry.hpp"
 #include "problems/rolling_disk.hpp"
 #include "problems/sliding_mass.hpp"

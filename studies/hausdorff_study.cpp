@@ -26,7 +26,7 @@
 #include <map>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/bouncing_bar.hpp"
 #include "problems/registry.hpp"
 #include "problems/rolling_disk.hpp"

@@ -3,7 +3,7 @@
 // tests reuse: the velocity graph of a run, the exact graph, and the errors between them.
 #include <functional>
 
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "studies/hausdorff.hpp"
 #include "studies/study.hpp"
 

@@ -47,7 +47,7 @@
 #include <cstdlib>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/registry.hpp"
 #include "studies/study.hpp"
 

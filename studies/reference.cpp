@@ -17,7 +17,7 @@
 #include <cmath>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
 #include "reference/cache.hpp"

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "studies/ranking.hpp"
 #include "studies/table.hpp"
 

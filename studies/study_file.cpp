@@ -8,7 +8,7 @@
 //                A reference integrator's samples are interpolated linearly in time.
 //   impact-time  max over the first `count` impacts of |t_i (scheme) - t_i (exact)|, t_i the
 //                end of the first step with an impulse after a step without one [s].
-//   energy       (E - E0)/|E0| (E0 = 0: the problem's energy_scale(), integrators/run.hpp), E the scheme's own energy: max |.|, final, or drift (its
+//   energy       (E - E0)/|E0| (E0 = 0: the problem's energy_scale(), run/run.hpp), E the scheme's own energy: max |.|, final, or drift (its
 //                least-squares slope in time, 1/s).
 //   momentum     max over the samples of |P - P0 - sum_k (1^T F_ext(t_k) dt_k + 1^T L^T Lambda_k)|
 //                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
@@ -100,7 +100,7 @@ std::vector<Json> file_cases(const StudySpec& spec) {
 }
 
 // Observables of a state: the problem's own or the run driver's generic kinetic, potential,
-// total_energy, min_gap (series columns of integrators/run.hpp). `energy`: the scheme's own
+// total_energy, min_gap (series columns of run/run.hpp). `energy`: the scheme's own
 // (Integrator::energy), else v^T M v / 2 + V(u).
 double state_observable(const Problem& problem, const SpMat& M, const State& s, const Vec& impulses, double dt,
                         const std::string& name, std::span<double> buffer, const Energy* energy) {

@@ -216,7 +216,7 @@ std::vector<std::string> names_of(const auto& registry) {
   return names;
 }
 
-// The run driver's limits (integrators/run.cpp), checked here so that a study stops at its
+// The run driver's limits (run/run.cpp), checked here so that a study stops at its
 // file's line before any run or any file is written.
 void check_step(const Checker& c, double dt, const std::string& path, double t_end) {
   const long limit = RunOptions{}.max_steps;

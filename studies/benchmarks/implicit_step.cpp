@@ -15,7 +15,7 @@
 //                                   step; the limit is the bare factorisation + solve.
 //
 // The bare kernels: CHOLMOD's C API on the same matrix M + c K (K at the state the step
-// starts from), configured as integrators/sparse_cholesky.hpp configures it (simplicial
+// starts from), configured as solvers/sparse_cholesky.hpp configures it (simplicial
 // LL^T, final_ll, default ordering; symbolic analysis outside the timing), solves through
 // cholmod_solve2 with its workspace kept. c is each scheme's own coefficient at its default
 // parameters: moreau-jean h^2 theta^2 (theta = 1/2), nsga beta h^2 (1 - alpha_f) / (1 -

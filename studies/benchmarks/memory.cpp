@@ -5,7 +5,7 @@
 //
 //   BM_PeakRss/bouncing-mass/steps   one whole run (time: the run's; units: its steps)
 //
-// The series is streamed to disk as the run goes (CsvSeriesFile, integrators/run.hpp), so
+// The series is streamed to disk as the run goes (CsvSeriesFile, run/run.hpp), so
 // the peak is the program's fixed footprint and must not grow with the number of steps
 // (holding the series in memory, 2e6 steps took 966 MB). The CSV (about 200 bytes a
 // step, 0.2 GB at 1e6) goes to a temporary directory removed after each run. A factor 10 in

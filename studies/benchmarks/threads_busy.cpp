@@ -28,7 +28,7 @@
 #include "core/threads.hpp"
 #include "core/wait_policy.hpp"
 #include "integrators/cd_lagrange.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/block_2d.hpp"
 
 namespace {

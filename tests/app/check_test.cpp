@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "integrators/conformance.hpp"
+#include "check/conformance.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "run_cli.hpp"

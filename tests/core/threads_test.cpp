@@ -5,7 +5,7 @@
 
 #include "core/threads.hpp"
 #include "integrators/cd_lagrange.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/block_2d.hpp"
 #include "problems/signorini_bar.hpp"
 

@@ -16,9 +16,9 @@
 #include <cmath>
 
 #include "integrators/cd_lagrange.hpp"
-#include "integrators/conformance.hpp"
+#include "check/conformance.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "tests/integrators/every_integrator.hpp"
 #include "problems/block_2d.hpp"
 
@@ -82,7 +82,7 @@ TEST_CASE("every integrator on block-2d in free flight: linear momentum kept to 
     SECTION(entry.name) {
       // sum_a F_int,a = 0 and K (rigid translation) = 0, so no scheme that only adds
       // M^{-1}-weighted internal forces or solves with M + c K changes P; rounding as above.
-      // The measurement is the library's (integrators/conformance.hpp), also `nsbench check`'s.
+      // The measurement is the library's (check/conformance.hpp), also `nsbench check`'s.
       const auto drift = nsb::free_flight_momentum_drift(entry, 1000);
       if (!drift) {
         SUCCEED("declined");

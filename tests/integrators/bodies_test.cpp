@@ -7,7 +7,7 @@
 
 #include "integrators/impulse_contact.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/ball_chain.hpp"
 #include "problems/two_blocks.hpp"
 #include "tests/integrators/every_integrator.hpp"

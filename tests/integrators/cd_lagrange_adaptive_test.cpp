@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "integrators/cd_lagrange_adaptive.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/spring_chain.hpp"
 

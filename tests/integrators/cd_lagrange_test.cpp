@@ -2,7 +2,7 @@
 #include <cmath>
 
 #include "integrators/cd_lagrange.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/bouncing_mass.hpp"
 
 using Catch::Detail::Approx;

@@ -9,7 +9,7 @@
 
 #include "integrators/cd_penalty.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "integrators/spring_dashpot.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/signorini_bar.hpp"

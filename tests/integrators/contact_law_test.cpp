@@ -2,11 +2,11 @@
 // integrator is tested here without editing this file): impulses are non-negative and
 // act only on closed or closing contacts; impact times within O(dt) of the exact ones;
 // energy in flight i within O(dt) of E0 e^(2i). The measurements are the library's
-// (integrators/conformance.hpp), which `nsbench check` runs on plugins.
+// (check/conformance.hpp), which `nsbench check` runs on plugins.
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "integrators/conformance.hpp"
+#include "check/conformance.hpp"
 #include "integrators/registry.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "tests/integrators/every_integrator.hpp"

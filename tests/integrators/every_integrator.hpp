@@ -2,7 +2,7 @@
 // For the tests that run every registered integrator on one problem.
 #include <string>
 
-#include "integrators/conformance.hpp"
+#include "check/conformance.hpp"
 
 namespace nsb::testing {
 

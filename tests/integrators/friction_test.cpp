@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/rolling_disk.hpp"
 #include "problems/sliding_mass.hpp"
 #include "tests/integrators/every_integrator.hpp"

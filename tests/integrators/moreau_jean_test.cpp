@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "integrators/moreau_jean.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/bouncing_mass.hpp"
 
 using Catch::Detail::Approx;

@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/block_2d.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/signorini_bar.hpp"

@@ -6,7 +6,7 @@
 
 #include "integrators/cd_lagrange.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "tests/integrators/every_integrator.hpp"
 #include "problems/signorini_bar.hpp"
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <map>
 
-#include "integrators/conformance.hpp"
+#include "check/conformance.hpp"
 #include "integrators/registry.hpp"
 
 namespace {

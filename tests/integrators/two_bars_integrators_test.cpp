@@ -5,7 +5,7 @@
 #include <string>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/two_bars.hpp"
 #include "tests/integrators/every_integrator.hpp"
 

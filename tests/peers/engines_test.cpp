@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
 #include "problems/sliding_mass.hpp"

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/mass_on_bar.hpp"
 #include "problems/registry.hpp"
 

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/bouncing_mass.hpp"
 
 using nsb::BouncingMass;

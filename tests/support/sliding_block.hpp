@@ -14,7 +14,7 @@
 #include <cmath>
 #include <string>
 
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/block_2d.hpp"
 
 namespace nsb::testing {

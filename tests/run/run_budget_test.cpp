@@ -3,7 +3,7 @@
 #include <time.h>
 
 #include "integrators/registry.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/registry.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-#include "integrators/conformance.hpp"
+#include "check/conformance.hpp"
 
 #include <fmt/format.h>
 
@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "core/threads.hpp"
-#include "integrators/field_output.hpp"
-#include "integrators/run.hpp"
+#include "run/field_output.hpp"
+#include "run/run.hpp"
 #include "problems/block_2d.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/sliding_mass.hpp"

@@ -1,4 +1,4 @@
-// The 2D Moreau–Coulomb solves of integrators/coulomb.hpp against the law itself: every
+// The 2D Moreau–Coulomb solves of solvers/coulomb.hpp against the law itself: every
 // case of random local problems is enumerated by brute force (separate, stick, slip+,
 // slip-), and the solver's answer must be the one consistent case; the Gauss–Seidel over
 // coupled contacts must satisfy the law on every contact; friction must never add energy.
@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "integrators/coulomb.hpp"
+#include "solvers/coulomb.hpp"
 
 namespace {
 

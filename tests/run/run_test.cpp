@@ -1,6 +1,6 @@
 // The run driver's series streamed to a file (issue 20: memory bounded whatever the length)
 // and its energy-error scale when E0 = 0.
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 
 #include <unistd.h>
 

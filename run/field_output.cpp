@@ -1,4 +1,4 @@
-#include "integrators/field_output.hpp"
+#include "run/field_output.hpp"
 
 #include <fmt/format.h>
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "integrators/integrator.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 
 namespace nsb {
 

@@ -44,7 +44,7 @@
 #include <vector>
 
 #include "core/output.hpp"
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 #include "problems/problem.hpp"
 
 namespace nsb {

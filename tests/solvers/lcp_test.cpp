@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "integrators/lcp.hpp"
+#include "solvers/lcp.hpp"
 
 TEST_CASE("LCP: diagonal Delassus is solved in closed form", "[integrators][lcp]") {
   Eigen::MatrixXd D = Eigen::Vector3d(2.0, 1.0, 4.0).asDiagonal();

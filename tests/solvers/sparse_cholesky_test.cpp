@@ -3,7 +3,7 @@
 #include <cstdlib>
 
 #include "integrators/registry.hpp"
-#include "integrators/sparse_cholesky.hpp"
+#include "solvers/sparse_cholesky.hpp"
 #include "problems/signorini_bar.hpp"
 #include "studies/study.hpp"
 

@@ -1,4 +1,4 @@
-#include "integrators/sparse_cholesky.hpp"
+#include "solvers/sparse_cholesky.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>

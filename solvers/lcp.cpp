@@ -1,4 +1,4 @@
-#include "integrators/lcp.hpp"
+#include "solvers/lcp.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "integrators/coulomb.hpp"
+#include "solvers/coulomb.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "integrators/run.hpp"
+#include "run/run.hpp"
 
 #include <fmt/format.h>
 #include <time.h>

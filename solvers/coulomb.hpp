@@ -29,7 +29,7 @@
 // (velocity units, relative, as the frictionless LCP's residual in lcp.hpp) <= tolerance.
 #include <Eigen/Core>
 
-#include "integrators/lcp.hpp"
+#include "solvers/lcp.hpp"
 
 namespace nsb {
 

@@ -1,4 +1,4 @@
-#include "integrators/run_case.hpp"
+#include "run/run_case.hpp"
 
 #include <fmt/format.h>
 

@@ -27,7 +27,7 @@ class SeriesSink {
   virtual void row(std::span<const double> values) = 0;
 };
 
-// Where a run's states go (RunOptions::state_sink; field output, integrators/field_output.hpp):
+// Where a run's states go (RunOptions::state_sink; field output, run/field_output.hpp):
 // the initial state, every state_every-th step's and the last one's (the state the summary
 // reports, also when the run stops early), with the impulses of the step that ended there
 // (zero for the initial state). It only reads: the run's numbers are the same without it.

@@ -1,8 +1,8 @@
-// Field output (integrators/field_output.hpp): a run with a FieldWriter writes the first,
+// Field output (run/field_output.hpp): a run with a FieldWriter writes the first,
 // every k-th and the last state, the .pvd lists them with the steps' times, the values read
 // back are the run's doubles exactly, writing allocates nothing and changes no number of
 // the run.
-#include "integrators/field_output.hpp"
+#include "run/field_output.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
