@@ -29,15 +29,6 @@ void require(bool ok, const std::string& name, double value, const std::string& 
   if (!ok) throw InputError("rocking-block: " + name + " = " + number(value) + " is outside " + range);
 }
 
-CornerContact corner(double px, double py, const Eigen::Vector3d& U) {
-  const double c = std::cos(U(2)), s = std::sin(U(2));
-  CornerContact k;
-  k.gap = U(1) + px * s + py * c;
-  k.normal_row << 0.0, 1.0, px * c - py * s;
-  k.tangent_row << 1.0, 0.0, -px * s - py * c;
-  return k;
-}
-
 // psi'' = p^2 sin(psi) as a first-order system in (psi, psi').
 struct Pendulum {
   double p2;
@@ -49,7 +40,7 @@ struct Pendulum {
 }  // namespace
 
 BlockCorners block_corners(double b, double h, const Eigen::Vector3d& U) {
-  return {corner(b, -h, U), corner(-b, -h, U)};
+  return {body_point_contact(b, -h, U), body_point_contact(-b, -h, U)};
 }
 
 double housner_ratio(double alpha) {
@@ -170,8 +161,12 @@ double RockingBlockExact::rise_time(double w) const {
 
 double RockingBlockExact::amplitude(double w) const {
   if (topples_from_upright(w)) return inf;
-  const double half = std::sin(0.5 * alpha_);
-  return alpha_ - 2.0 * std::asin(std::sqrt(half * half - w * w / (4.0 * p_ * p_)));
+  // alpha - psi_m = 2 (asin A - asin B), A = sin(alpha / 2), B = sin(psi_m / 2) = sqrt(A^2 - q),
+  // q = w^2 / (4 p^2), written without the cancellation: asin A - asin B = asin(q / (A cos(psi_m / 2)
+  // + B cos(alpha / 2))).
+  const double A = std::sin(0.5 * alpha_), q = w * w / (4.0 * p_ * p_);
+  const double B = std::sqrt(A * A - q);
+  return 2.0 * std::asin(q / (A * std::sqrt(1.0 - B * B) + B * std::cos(0.5 * alpha_)));
 }
 
 bool RockingBlockExact::topples_from_upright(double w) const {
@@ -259,8 +254,9 @@ void RockingBlockExact::march_impacts(double t, int sigma, double omega_minus) {
       return;
     }
     if (decay < 1.0) {
+      // Stop once the phases no longer advance t: what remains is below its rounding.
       const double tail = 2.0 * w / (p_ * p_ * std::sin(alpha_) * (1.0 - decay));
-      if (tail <= 1e-17 * t || impacts_.size() >= max_impacts) {
+      if (t_next == t || t + tail == t || impacts_.size() >= max_impacts) {
         t_rest_ = t + tail;
         if (impacts_.size() >= max_impacts) t_end_ = t_next;  // nothing marched beyond it
         return;

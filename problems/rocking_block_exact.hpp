@@ -46,7 +46,9 @@
 //     degrees: Housner's outcome, the old corner's impulse zero and it lifts;
 //   * e > 0 (same blocks): the striking corner bounces, both corners leave the floor (flight);
 //   * mu < mu_H: the new corner slips, omega+ / omega- = 1 - 6 (1 + e) sin(alpha)
-//     (sin(alpha) - mu cos(alpha)) / (1 + 3 sin^2(alpha) - 3 mu sin(alpha) cos(alpha));
+//     (sin(alpha) - mu cos(alpha)) / (1 + 3 sin^2(alpha) - 3 mu sin(alpha) cos(alpha)), the
+//     old corner lifting while 1 - 3 sin^2(alpha) + 3 mu sin(alpha) cos(alpha) >= 0 (else both
+//     corners stay down and slide, omega+ = 0, for e = 0);
 //   * alpha above 54.7 degrees: the block rebounds about its old corner, omega+ = -e omega-
 //     (at rest for e = 0), given mu >= cot(alpha).
 //   A sequence of impacts continues while the outcome is a rocking phase (about the new or the
@@ -54,8 +56,8 @@
 //
 // Time to rest: with |ratio| < 1 the speeds after the impacts fall geometrically, and since
 // t_rise(w) = w / (p^2 sin(alpha)) (1 + O(w)) the phases' durations do too: the impacts
-// accumulate at t_rest = t_1 + sum_k 2 t_rise(w_k). The sum runs until the remaining terms are
-// below round-off of t (then the tail, 2 w / (p^2 sin(alpha) (1 - |ratio|)), is added).
+// accumulate at t_rest = t_1 + sum_k 2 t_rise(w_k). The sum runs until the phases no longer
+// advance t in floating point (then the tail, 2 w / (p^2 sin(alpha) (1 - |ratio|)), is added).
 //
 // Bad input (InputError, one line): b or h not > 0 (alpha outside (0, 90) degrees), m or g not
 // > 0, mu < 0, e outside [0, 1], |theta0| >= 90 degrees (radians, pi/2: a corner in the floor).
@@ -68,16 +70,13 @@
 #include <optional>
 #include <vector>
 
+#include "problems/point_contact.hpp"
+
 namespace nsb {
 
-// One corner's gap, normal row L = dg/dU and tangent row T at U = (x, y, theta).
-struct CornerContact {
-  double gap = 0.0;
-  Eigen::RowVector3d normal_row;
-  Eigen::RowVector3d tangent_row;
-};
+// The bottom corners' gaps and rows at U = (x, y, theta).
 struct BlockCorners {
-  CornerContact right, left;  // bottom corners (+b, -h) and (-b, -h)
+  PointContact right, left;  // (+b, -h) and (-b, -h)
 };
 BlockCorners block_corners(double b, double h, const Eigen::Vector3d& U);
 
