@@ -229,6 +229,7 @@ void RockingBlockExact::march_impacts(double t, int sigma, double omega_minus) {
   }
   const double decay = std::abs(ratio_);
   const Pendulum f{p_ * p_};
+  double lost = 0.0;
   for (;;) {
     const double omega_plus = ratio_ * omega_minus;
     const double w = std::abs(omega_plus);
@@ -247,7 +248,9 @@ void RockingBlockExact::march_impacts(double t, int sigma, double omega_minus) {
       t_end_ = hit.t;
       return;
     }
-    const double t_next = t + 2.0 * rise_time(w);
+    // Compensated summation of the phases: `lost` is what t lacks of their exact sum.
+    const double step = 2.0 * rise_time(w) + lost;
+    const double t_next = t + step;
     if (decay == 1.0 && impacts_.size() >= max_periodic_impacts) {
       ending_ = Ending::rocks_forever;
       t_end_ = t_next;
@@ -256,12 +259,13 @@ void RockingBlockExact::march_impacts(double t, int sigma, double omega_minus) {
     if (decay < 1.0) {
       // Stop once the phases no longer advance t: what remains is below its rounding.
       const double tail = 2.0 * w / (p_ * p_ * std::sin(alpha_) * (1.0 - decay));
-      if (t_next == t || t + tail == t || impacts_.size() >= max_impacts) {
-        t_rest_ = t + tail;
+      if (t_next == t || t + (tail + lost) == t || impacts_.size() >= max_impacts) {
+        t_rest_ = t + (tail + lost);
         if (impacts_.size() >= max_impacts) t_end_ = t_next;  // nothing marched beyond it
         return;
       }
     }
+    lost = step - (t_next - t);
     t = t_next;
     sigma = next_sigma;
     omega_minus = -next_sigma * w;

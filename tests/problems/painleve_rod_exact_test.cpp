@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <string>
@@ -166,5 +167,22 @@ TEST_CASE("painleve rod: bad input is one line naming the parameter and its rang
     CHECK(text.find(std::string(c.name) + " = ") != std::string::npos);
     CHECK(text.find(c.range) != std::string::npos);
     CHECK(text.find('\n') == std::string::npos);
+  }
+}
+
+// Not a check: prints the numbers docs/rigid_bodies.md quotes. Hidden; run it by its tag:
+// build/tests/nsbench_tests "[rigid_numbers]"
+TEST_CASE("painleve rod: the numbers of docs/rigid_bodies.md", "[.][rigid_numbers]") {
+  const PainleveRodExact rod(cardillo);
+  const auto& end = rod.end_state();
+  std::printf("painleve rod, cardillo data: jam at t* = %.15f s, phi -> %.12f deg, phi' -> %.9f rad/s "
+              "(sqrt(g / (s sin 45 deg)) = %.9f), lambda = %.6g at D = %.1e; x' = %.9f m/s; "
+              "RK4 (dtau 2e-4) %.15f s\n",
+              rod.end_time(), end.phi * 180.0 / pi, end.vphi, std::sqrt(10.0 / std::sin(pi / 4)),
+              rod.normal_force(end.phi, end.vphi), rod.denominator(end.phi), end.vx, rk4_jam_time(2e-4));
+  for (const double t : {0.2, 0.4, 0.6, 0.8}) {
+    const auto s = *rod.state(t);
+    std::printf("  t %.1f: phi %.12f deg, x_end %.12f m, normal_force %.12f N\n", t, s.phi * 180.0 / pi, rod.x_end(s),
+                rod.normal_force(s.phi, s.vphi));
   }
 }

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <string>
@@ -292,4 +293,24 @@ TEST_CASE("rocking block: bad input is one line naming the parameter and its ran
     CHECK(text.find(c.range) != std::string::npos);
     CHECK(text.find('\n') == std::string::npos);
   }
+}
+
+// Not a check: prints the numbers docs/rigid_bodies.md quotes. Hidden; run it by its tag:
+// build/tests/nsbench_tests "[rigid_numbers]"
+TEST_CASE("rocking block: the numbers of docs/rigid_bodies.md", "[.][rigid_numbers]") {
+  std::printf("alpha_deg  housner_ratio  mu_H  moreau_e0_mu_inf  moreau_e0_mu_H/2 (kind)  moreau_e0.5_mu_inf (kind)\n");
+  for (const double alpha_deg : {5.0, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0}) {
+    const double alpha = alpha_deg * pi / 180.0, b = std::sin(alpha), h = std::cos(alpha);
+    const double mu_H = 3.0 * b * h / (1.0 + 3.0 * h * h);
+    const auto stick = nsb::moreau_impact(b, h, 1.0, 0.0, 1e308, 1, -1.0);
+    const auto slip = nsb::moreau_impact(b, h, 1.0, 0.0, 0.5 * mu_H, 1, -1.0);
+    const auto bounce = nsb::moreau_impact(b, h, 1.0, 0.5, 1e308, 1, -1.0);
+    std::printf("%4.0f  %.16f  %.6f  %.16f  %.6f (%d)  %.6f (%d)\n", alpha_deg, nsb::housner_ratio(alpha), mu_H,
+                stick.ratio, slip.ratio, static_cast<int>(slip.kind), bounce.ratio, static_cast<int>(bounce.kind));
+  }
+  const auto ex = block(0.2, 1.0, 0.1, 0.0);
+  std::printf("block b 0.2 h 1 m 1 g 9.81 theta0 0.1 (Housner): first impact %.15f s, %zu impacts, rest at %.15f s, "
+              "amplitude after impacts 1..3: %.12f %.12f %.12f rad\n",
+              ex.impacts()[0].t, ex.impacts().size(), ex.rest_time(), ex.impacts()[0].amplitude_after,
+              ex.impacts()[1].amplitude_after, ex.impacts()[2].amplitude_after);
 }
