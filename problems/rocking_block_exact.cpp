@@ -302,6 +302,13 @@ std::optional<RockingBlockExact::State> RockingBlockExact::state(double t) const
   return state_in_phase(*std::prev(after), t);
 }
 
+Eigen::Vector2d RockingBlockExact::pivot_force(double theta, double omega) const {
+  const double sigma = theta > 0.0 ? 1.0 : theta < 0.0 ? -1.0 : omega >= 0.0 ? 1.0 : -1.0;
+  const double psi = alpha_ - sigma * theta, rate2 = omega * omega, p2 = p_ * p_;
+  return {sigma * m_ * R_ * std::sin(psi) * (p2 * std::cos(psi) - rate2),
+          m_ * g_ - m_ * R_ * (p2 * std::sin(psi) * std::sin(psi) + rate2 * std::cos(psi))};
+}
+
 double RockingBlockExact::energy(const State& s) const {
   return 0.5 * m_ * (s.vx * s.vx + s.vy * s.vy) + 0.5 * (m_ * R_ * R_ / 3.0) * s.omega * s.omega + m_ * g_ * s.y;
 }

@@ -147,6 +147,11 @@ class RockingBlockExact {
   // impact that leaves rocking, or the end of the last marched phase.
   double end_time() const { return t_end_; }
   double energy(const State& s) const;          // kinetic + m g y
+  // The floor's force on the pivot while rocking, (F, N) = m (x'', y'' + g): with the pivot
+  // sigma = sign(theta) (sign(omega) at theta = 0), psi = alpha - sigma theta, psi' = -sigma omega,
+  //     F = sigma m R sin(psi) (p^2 cos(psi) - psi'^2),   N = m g - m R (p^2 sin^2(psi) + psi'^2 cos(psi)).
+  // The rocking phase is the motion only while N >= 0 and |F| <= mu N; the march does not check it.
+  Eigen::Vector2d pivot_force(double theta, double omega) const;
 
   // Closed forms of a phase started at theta = 0 with speed w (w^2 < 4 p^2 sin^2(alpha / 2)).
   double rise_time(double w) const;

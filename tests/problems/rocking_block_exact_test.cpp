@@ -130,6 +130,14 @@ TEST_CASE("rocking block: energy constant between impacts, contact held, impact 
         CHECK(std::abs(pivot.tangent_row.dot(Eigen::Vector3d(s.vx, s.vy, s.omega))) < 1e-14);
         CHECK(std::abs(pivot.normal_row.dot(Eigen::Vector3d(s.vx, s.vy, s.omega))) < 1e-14);
       }
+      // The pivot's force against the momentum's rate (fourth-order central differences).
+      const double tm = t0 + 0.3 * (t1 - t0), d = 1e-4;
+      const auto a2 = *ex.state(tm - 2 * d), a1 = *ex.state(tm - d), b1 = *ex.state(tm + d), b2 = *ex.state(tm + 2 * d);
+      const auto mid = *ex.state(tm);
+      const auto force = ex.pivot_force(mid.theta, mid.omega);
+      CHECK((a2.vx - 8 * a1.vx + 8 * b1.vx - b2.vx) / (12 * d) == Approx(force(0)).margin(1e-9));
+      CHECK((a2.vy - 8 * a1.vy + 8 * b1.vy - b2.vy) / (12 * d) + 9.81 == Approx(force(1)).margin(1e-9));
+      CHECK(force(1) > 0.0);
       // The turning point: |theta| = amplitude, omega = 0, half-way through the phase.
       const auto top = *ex.state(t0 + ex.rise_time(w));
       CHECK(std::abs(top.theta) == Approx(ex.amplitude(w)).epsilon(1e-12));
