@@ -1,6 +1,7 @@
 #pragma once
-// Painlevé rod, exact sliding phase (Génot and Brogliato 1999; Glocker, "Set-valued force
-// laws", section 5.3.4; derivations in docs/rigid_bodies.md).
+// Painlevé rod, exact sliding phase (F. Génot, B. Brogliato, "New results on Painlevé
+// paradoxes", European Journal of Mechanics A/Solids 18, 1999; Ch. Glocker, "Set-valued force
+// laws", Springer 2001; derivations in docs/rigid_bodies.md).
 //
 // A rod of length 2 s, mass m, J = m s^2 / 3, centre (x, y), angle phi to the floor; its end
 // A = (x + s cos phi, y - s sin phi) slides on the rough floor y = 0 (Coulomb, mu) ahead of
