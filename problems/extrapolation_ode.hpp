@@ -52,7 +52,7 @@ bool try_step(const F& f, double t, Vec<N>& y, double H, double tol, double& nex
     for (int k = 1; k <= j; ++k) {
       const double ratio = static_cast<double>(n) / (n - 2 * k);
       Vec<N> improved = table[k - 1] + (table[k - 1] - row_prev) / (ratio * ratio - 1.0);
-      row_prev = table[k];
+      if (k < j) row_prev = table[k];
       table[k] = improved;
     }
     if (j < 2) continue;

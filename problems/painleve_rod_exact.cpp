@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <string>
 
-#include "core/parameters.hpp"
 #include "problems/extrapolation_ode.hpp"
+#include "problems/input_check.hpp"
 
 namespace nsb {
 
@@ -16,16 +15,6 @@ namespace {
 using Vec7 = extrapolation::Vec<7>;  // (t, x, y, phi, x', y', phi') as functions of tau
 constexpr double jam_denominator = 1e-10;
 constexpr double horizon = 1e4;  // in sqrt(s / g)
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-void require(bool ok, const std::string& name, double value, const std::string& range) {
-  if (!ok) throw InputError("painleve-rod: " + name + " = " + number(value) + " is outside " + range);
-}
 
 }  // namespace
 
@@ -52,14 +41,15 @@ struct PainleveRodExact::Equations {
 PainleveRodExact::PainleveRodExact(const PainleveRodSpec& spec)
     : s_(spec.s), m_(spec.m), phi0_(spec.phi0_degrees * std::numbers::pi / 180.0), v0_(spec.v0),
       mu_(spec.mu), g_(spec.g), J_(spec.m * spec.s * spec.s / 3.0), sigma_(spec.v0 > 0.0 ? 1.0 : -1.0) {
-  require(s_ > 0.0 && std::isfinite(s_), "s", s_, "(0, inf)");
-  require(m_ > 0.0 && std::isfinite(m_), "m", m_, "(0, inf)");
-  require(g_ > 0.0 && std::isfinite(g_), "g", g_, "(0, inf)");
-  require(mu_ >= 0.0 && std::isfinite(mu_), "mu", mu_, "[0, inf)");
-  require(spec.phi0_degrees > 0.0 && spec.phi0_degrees < 90.0, "phi0", spec.phi0_degrees,
+  require_input(s_ > 0.0 && std::isfinite(s_), "painleve-rod", "s", s_, "(0, inf)");
+  require_input(m_ > 0.0 && std::isfinite(m_), "painleve-rod", "m", m_, "(0, inf)");
+  require_input(g_ > 0.0 && std::isfinite(g_), "painleve-rod", "g", g_, "(0, inf)");
+  require_input(mu_ >= 0.0 && std::isfinite(mu_), "painleve-rod", "mu", mu_, "[0, inf)");
+  require_input(spec.phi0_degrees > 0.0 && spec.phi0_degrees < 90.0, "painleve-rod", "phi0", spec.phi0_degrees,
           "(0, 90) degrees (end A on the floor, the other end above it)");
-  require(v0_ != 0.0 && std::isfinite(v0_), "v0", v0_, "(-inf, 0) or (0, inf): the closed form is the sliding phase");
-  require(denominator(phi0_) > 0.0, "phi0", spec.phi0_degrees,
+  require_input(v0_ != 0.0 && std::isfinite(v0_), "painleve-rod", "v0", v0_,
+                "(-inf, 0) or (0, inf): the closed form is the sliding phase");
+  require_input(denominator(phi0_) > 0.0, "painleve-rod", "phi0", spec.phi0_degrees,
           "the degrees where 1 + (m s^2 / J) cos phi (cos phi - mu sigma sin phi) > 0 (no non-negative "
           "normal force holds end A on the floor there)");
 

@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <string>
 
-#include "core/parameters.hpp"
 #include "problems/extrapolation_ode.hpp"
+#include "problems/input_check.hpp"
 
 namespace nsb {
 
@@ -18,16 +17,6 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr std::size_t max_impacts = 200000;        // march cap (a very slender block)
 constexpr std::size_t max_periodic_impacts = 10000;  // |ratio| = 1: marched this far
 constexpr double horizon_periods = 1e4;             // first-phase search horizon, in 1 / p
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-void require(bool ok, const std::string& name, double value, const std::string& range) {
-  if (!ok) throw InputError("rocking-block: " + name + " = " + number(value) + " is outside " + range);
-}
 
 // psi'' = p^2 sin(psi) as a first-order system in (psi, psi').
 struct Pendulum {
@@ -135,15 +124,15 @@ RockingBlockExact::RockingBlockExact(const RockingBlockSpec& spec)
     : b_(spec.b), h_(spec.h), m_(spec.m), g_(spec.g), theta0_(spec.theta0), omega0_(spec.omega0),
       mu_(spec.mu), e_(spec.e), law_(spec.law), t_rest_(inf), t_end_(inf) {
   const std::string alpha_range = "(0, inf): the slenderness alpha = atan(b / h) must lie in (0, 90) degrees";
-  require(b_ > 0.0 && std::isfinite(b_), "b", b_, alpha_range);
-  require(h_ > 0.0 && std::isfinite(h_), "h", h_, alpha_range);
-  require(m_ > 0.0 && std::isfinite(m_), "m", m_, "(0, inf)");
-  require(g_ > 0.0 && std::isfinite(g_), "g", g_, "(0, inf)");
-  require(mu_ >= 0.0, "mu", mu_, "[0, inf)");
-  require(e_ >= 0.0 && e_ <= 1.0, "e", e_, "[0, 1]");
-  require(std::abs(theta0_) < std::numbers::pi / 2, "theta0", theta0_,
+  require_input(b_ > 0.0 && std::isfinite(b_), "rocking-block", "b", b_, alpha_range);
+  require_input(h_ > 0.0 && std::isfinite(h_), "rocking-block", "h", h_, alpha_range);
+  require_input(m_ > 0.0 && std::isfinite(m_), "rocking-block", "m", m_, "(0, inf)");
+  require_input(g_ > 0.0 && std::isfinite(g_), "rocking-block", "g", g_, "(0, inf)");
+  require_input(mu_ >= 0.0, "rocking-block", "mu", mu_, "[0, inf)");
+  require_input(e_ >= 0.0 && e_ <= 1.0, "rocking-block", "e", e_, "[0, 1]");
+  require_input(std::abs(theta0_) < std::numbers::pi / 2, "rocking-block", "theta0", theta0_,
           "(-pi/2, pi/2) rad (beyond it an upper corner starts in the floor)");
-  require(std::isfinite(omega0_), "omega0", omega0_, "(-inf, inf)");
+  require_input(std::isfinite(omega0_), "rocking-block", "omega0", omega0_, "(-inf, inf)");
   R_ = std::hypot(b_, h_);
   alpha_ = std::atan2(b_, h_);
   p_ = std::sqrt(0.75 * g_ / R_);

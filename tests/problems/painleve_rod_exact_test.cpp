@@ -5,8 +5,8 @@
 #include <random>
 #include <string>
 
-#include "core/parameters.hpp"
 #include "problems/painleve_rod_exact.hpp"
+#include "tests/support/input_error.hpp"
 
 using Catch::Detail::Approx;
 using nsb::PainleveRodExact;
@@ -140,14 +140,6 @@ TEST_CASE("painleve rod: the other endings", "[painleve_rod_exact]") {
 }
 
 TEST_CASE("painleve rod: bad input is one line naming the parameter and its range", "[painleve_rod_exact]") {
-  const auto message = [](PainleveRodSpec spec) -> std::string {
-    try {
-      PainleveRodExact rod(spec);
-    } catch (const nsb::InputError& err) {
-      return err.what();
-    }
-    return "";
-  };
   struct Case {
     const char* name;
     PainleveRodSpec spec;
@@ -162,7 +154,7 @@ TEST_CASE("painleve rod: bad input is one line naming the parameter and its rang
       {"v0", {1.0, 1.0, 31.0, 0.0, 5.0 / 3.0, 10.0}, "sliding phase"},
   };
   for (const auto& c : cases) {
-    const std::string text = message(c.spec);
+    const std::string text = nsb::test::input_error_text<PainleveRodExact>(c.spec);
     INFO(text);
     CHECK(text.find(std::string(c.name) + " = ") != std::string::npos);
     CHECK(text.find(c.range) != std::string::npos);

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/parameters.hpp"
 #include "problems/rocking_block_exact.hpp"
+#include "tests/support/input_error.hpp"
 
 using Catch::Detail::Approx;
 using nsb::CornerImpact;
@@ -271,14 +271,6 @@ TEST_CASE("rocking block: the impact laws in a sequence", "[rocking_block_exact]
 }
 
 TEST_CASE("rocking block: bad input is one line naming the parameter and its range", "[rocking_block_exact]") {
-  const auto message = [](RockingBlockSpec spec) -> std::string {
-    try {
-      RockingBlockExact ex(spec);
-    } catch (const nsb::InputError& err) {
-      return err.what();
-    }
-    return "";
-  };
   struct Case {
     const char* name;
     void (*set)(RockingBlockSpec&);
@@ -295,7 +287,7 @@ TEST_CASE("rocking block: bad input is one line naming the parameter and its ran
   for (const auto& c : cases) {
     RockingBlockSpec spec;
     c.set(spec);
-    const std::string text = message(spec);
+    const std::string text = nsb::test::input_error_text<RockingBlockExact>(spec);
     INFO(text);
     CHECK(text.find(std::string(c.name) + " = ") != std::string::npos);
     CHECK(text.find(c.range) != std::string::npos);
