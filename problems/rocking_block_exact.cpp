@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 
 #include "problems/extrapolation_ode.hpp"
@@ -39,6 +40,8 @@ double housner_ratio(double alpha) {
 
 CornerImpact moreau_impact(double b, double h, double m, double e, double mu, int pivot, double omega_minus) {
   const double sigma = pivot > 0 ? 1.0 : -1.0;
+  if (!(sigma * omega_minus < 0.0))
+    throw std::invalid_argument("moreau_impact: pivot * omega_minus must be < 0 (the other corner approaching)");
   const double R2 = b * b + h * h;
   const Eigen::Vector3d Minv(1.0 / m, 1.0 / m, 3.0 / (m * R2));
   Eigen::Matrix3d G;  // rows: new corner's L, old corner's L, common T (theta = 0)

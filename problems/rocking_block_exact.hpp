@@ -85,7 +85,7 @@ double housner_ratio(double alpha);
 
 // Moreau's outcome of the impact at theta = 0 while pivoting on corner `pivot` (+1 left,
 // -1 right) with angular velocity omega_minus (pivot * omega_minus < 0: the other corner
-// approaches).
+// approaches; std::invalid_argument otherwise).
 struct CornerImpact {
   enum class Kind { rocks_on_new_corner, rocks_on_old_corner, rest, flight, slip };
   Kind kind = Kind::rest;

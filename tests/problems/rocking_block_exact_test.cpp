@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -264,10 +265,25 @@ TEST_CASE("rocking block: the impact laws in a sequence", "[rocking_block_exact]
   const auto wide = block(2.0, 1.0, 0.3, 0.0);
   CHECK(wide.impacts().size() == 1);
   CHECK(wide.rest_time() == wide.impacts()[0].t);
-  // Launched hard enough, it topples: ends on its side.
-  const auto topple = block(0.2, 1.0, 0.0, 3.0);
-  CHECK(topple.ending() == RockingBlockExact::Ending::topples);
-  CHECK(topple.state(topple.end_time())->theta == Approx(pi / 2).epsilon(1e-13));
+  // Launched hard enough, or tilted beyond alpha, it topples: ends on its side.
+  for (const auto& topple : {block(0.2, 1.0, 0.0, 3.0), block(0.2, 1.0, -0.25, 0.0)}) {
+    CHECK(topple.ending() == RockingBlockExact::Ending::topples);
+    CHECK(topple.impacts().empty());
+    CHECK(std::abs(topple.state(topple.end_time())->theta) == Approx(pi / 2).epsilon(1e-13));
+  }
+  // A wide block with e > 0 under Moreau's law rebounds about the same corner: theta keeps its
+  // sign, the speed falls by e at each impact, the energy above rest by e^2.
+  const auto rebound = block(2.0, 1.0, -0.3, 0.0, RockingImpactLaw::moreau, 0.5, 1.0);
+  CHECK(rebound.impact_ratio() == Approx(-0.5).epsilon(1e-14));
+  REQUIRE(rebound.impacts().size() > 3);
+  CHECK(rebound.ending() == RockingBlockExact::Ending::rest);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto& im = rebound.impacts()[k];
+    const double t_mid = 0.5 * (im.t + rebound.impacts()[k + 1].t);
+    CHECK(rebound.state(t_mid)->theta < 0.0);
+    CHECK(im.omega_after == Approx(-0.5 * im.omega_before).epsilon(1e-14));
+  }
+  CHECK_THROWS_AS(nsb::moreau_impact(0.2, 1.0, 1.0, 0.0, 1.0, 1, 0.5), std::invalid_argument);
 }
 
 TEST_CASE("rocking block: bad input is one line naming the parameter and its range", "[rocking_block_exact]") {
