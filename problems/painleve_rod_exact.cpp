@@ -1,6 +1,7 @@
 #include "problems/painleve_rod_exact.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -27,6 +28,13 @@ struct PainleveRodExact::Equations {
     z << 0.0, 0.0, rod->s_ * std::sin(rod->phi0_), rod->phi0_, rod->v0_, 0.0, 0.0;
     return z;
   }
+  // Positive while sliding, each of order one: D above the jam threshold, lambda (as its
+  // numerator), the slip in the initial direction, phi above 0 and below 90 degrees.
+  std::array<double, 5> margins(const Vec7& z) const {
+    const double phi = z(3), v_scale = std::abs(rod->v0_) + std::sqrt(rod->g_ * rod->s_);
+    return {rod->denominator(phi) - jam_denominator, 1.0 - rod->s_ * z(6) * z(6) * std::sin(phi) / rod->g_,
+            rod->sigma_ * (z(4) - rod->s_ * std::sin(phi) * z(6)) / v_scale, phi, std::numbers::pi / 2 - phi};
+  }
   Vec7 operator()(double, const Vec7& z) const {
     const double phi = z(3), D = rod->denominator(phi);
     const double N = rod->m_ * (rod->g_ - rod->s_ * z(6) * z(6) * std::sin(phi));
@@ -46,46 +54,35 @@ PainleveRodExact::PainleveRodExact(const PainleveRodSpec& spec)
   require_input(g_ > 0.0 && std::isfinite(g_), "painleve-rod", "g", g_, "(0, inf)");
   require_input(mu_ >= 0.0 && std::isfinite(mu_), "painleve-rod", "mu", mu_, "[0, inf)");
   require_input(spec.phi0_degrees > 0.0 && spec.phi0_degrees < 90.0, "painleve-rod", "phi0", spec.phi0_degrees,
-          "(0, 90) degrees (end A on the floor, the other end above it)");
+                "(0, 90) degrees (end A on the floor, the other end above it)");
   require_input(v0_ != 0.0 && std::isfinite(v0_), "painleve-rod", "v0", v0_,
                 "(-inf, 0) or (0, inf): the closed form is the sliding phase");
   require_input(denominator(phi0_) > 0.0, "painleve-rod", "phi0", spec.phi0_degrees,
-          "the degrees where 1 + (m s^2 / J) cos phi (cos phi - mu sigma sin phi) > 0 (no non-negative "
-          "normal force holds end A on the floor there)");
+                "the degrees where 1 + (m s^2 / J) cos phi (cos phi - mu sigma sin phi) > 0 (no "
+                "non-negative normal force holds end A on the floor there)");
 
   const Equations rate{this};
-  // Positive while sliding: D above the jam threshold, lambda (as D lambda), the slip in the
-  // initial direction, phi inside (0, 90) degrees; each scaled to order one.
-  const double v_scale = std::abs(v0_) + std::sqrt(g_ * s_);
   const auto event = [&](double, const Vec7& z) {
-    const double phi = z(3);
-    const double slip = sigma_ * (z(4) - s_ * std::sin(phi) * z(6)) / v_scale;
-    return std::min({denominator(phi) - jam_denominator, 1.0 - s_ * z(6) * z(6) * std::sin(phi) / g_, slip, phi,
-                     std::numbers::pi / 2 - phi});
+    const auto margin = rate.margins(z);
+    return *std::min_element(margin.begin(), margin.end());
   };
-  const Vec7 z0 = rate.initial();
   const double time_scale = std::sqrt(s_ / g_);
-  const auto hit = extrapolation::find_event<7>(rate, event, 0.0, z0, horizon * time_scale, 0.01 * time_scale);
+  const auto hit = extrapolation::find_event<7>(rate, event, 0.0, rate.initial(), horizon * time_scale, 0.01 * time_scale);
   const Vec7& z = hit.y;
   end_ = {z(0), z(1), z(2), z(3), z(4), z(5), z(6)};
   t_end_ = z(0);
   if (!hit.found) return;
-  const double phi = z(3), D = denominator(phi);
-  const double slip = sigma_ * (z(4) - s_ * std::sin(phi) * z(6)) / v_scale;
-  const double lift = 1.0 - s_ * z(6) * z(6) * std::sin(phi) / g_;
-  const double jam = D - jam_denominator;
-  const double nearest = std::min({std::abs(jam), std::abs(lift), std::abs(slip), std::abs(phi),
-                                   std::abs(std::numbers::pi / 2 - phi)});
-  if (nearest == std::abs(jam)) {
-    ending_ = Ending::jam;
+  // The margin that reached 0 is the one nearest to it.
+  const auto margin = rate.margins(z);
+  const auto nearest = std::min_element(margin.begin(), margin.end(),
+                                        [](double a, double b) { return std::abs(a) < std::abs(b); }) - margin.begin();
+  constexpr Ending endings[] = {Ending::jam, Ending::lifts_off, Ending::slip_stops, Ending::leaves_range,
+                                Ending::leaves_range};
+  ending_ = endings[nearest];
+  if (ending_ == Ending::jam) {  // the time left to reach D = 0, u / phi'* = D / (-D'(phi) phi')
+    const double phi = z(3);
     const double D_prime = -(m_ * s_ * s_ / J_) * (std::sin(2.0 * phi) + mu_ * sigma_ * std::cos(2.0 * phi));
-    t_end_ += D / (-D_prime * z(6));
-  } else if (nearest == std::abs(lift)) {
-    ending_ = Ending::lifts_off;
-  } else if (nearest == std::abs(slip)) {
-    ending_ = Ending::slip_stops;
-  } else {
-    ending_ = Ending::leaves_range;
+    t_end_ += denominator(phi) / (-D_prime * z(6));
   }
 }
 
@@ -110,8 +107,7 @@ std::optional<PainleveRodExact::State> PainleveRodExact::state(double t) const {
   if (!(t >= 0.0 && t <= t_end_)) return std::nullopt;
   const Equations rate{this};
   const Vec7 z0 = rate.initial();
-  State s{0.0, z0(1), z0(2), z0(3), z0(4), z0(5), z0(6)};
-  if (t == 0.0) return s;
+  if (t == 0.0) return State{0.0, z0(1), z0(2), z0(3), z0(4), z0(5), z0(6)};
   const double time_scale = std::sqrt(s_ / g_);
   const auto before_t = [t](double, const Vec7& z) { return t - z(0); };
   const auto hit = extrapolation::find_event<7>(rate, before_t, 0.0, z0, horizon * time_scale, 0.01 * time_scale);

@@ -62,7 +62,8 @@ class PainleveRodExact {
   double end_time() const { return t_end_; }
   const State& end_state() const { return end_; }  // at the jam: the last integrated state
 
-  // The state at 0 <= t <= end_time() (nullopt outside).
+  // The state at 0 <= t <= end_time(); nullopt outside, and possibly in the last ~1e-11 s
+  // before a jam (past the threshold on D, where the time is closed by the tail formula).
   std::optional<State> state(double t) const;
   double x_end(const State& s) const;       // x of end A
   double end_height(const State& s) const;  // y of end A (0 while sliding)

@@ -134,7 +134,7 @@ RockingBlockExact::RockingBlockExact(const RockingBlockSpec& spec)
   require_input(mu_ >= 0.0, "rocking-block", "mu", mu_, "[0, inf)");
   require_input(e_ >= 0.0 && e_ <= 1.0, "rocking-block", "e", e_, "[0, 1]");
   require_input(std::abs(theta0_) < std::numbers::pi / 2, "rocking-block", "theta0", theta0_,
-          "(-pi/2, pi/2) rad (beyond it an upper corner starts in the floor)");
+                "(-pi/2, pi/2) rad (beyond it an upper corner starts in the floor)");
   require_input(std::isfinite(omega0_), "rocking-block", "omega0", omega0_, "(-inf, inf)");
   R_ = std::hypot(b_, h_);
   alpha_ = std::atan2(b_, h_);
