@@ -123,6 +123,12 @@ TEST_CASE("painleve rod: the cardillo data jam at phi = 45 degrees", "[painleve_
   // 1e-13); the test's own RK4 (error O(dtau^4)) agrees.
   CHECK(rod.end_time() == Approx(0.81454965867007).margin(1e-12));
   CHECK(rk4_jam_time(2e-4) == Approx(rod.end_time()).margin(1e-10));
+  // Near the jam lambda ~ u^(kappa - 1) + O(1), u = phi* - phi, kappa = 2/3: the slope of
+  // log(lambda) against log(u) between u ~ 4e-7 and 4e-9 is -1/3 up to the O(u^(1/3)) term.
+  const auto s1 = *rod.state(rod.end_time() - 1e-7), s2 = *rod.state(rod.end_time() - 1e-9);
+  const double slope = std::log(rod.normal_force(s2.phi, s2.vphi) / rod.normal_force(s1.phi, s1.vphi)) /
+                       std::log((pi / 4 - s2.phi) / (pi / 4 - s1.phi));
+  CHECK(slope == Approx(-1.0 / 3.0).margin(0.01));
   // cardillo's marker (t = 0.83) lies after it: the sliding phase has ended there.
   CHECK_FALSE(rod.state(0.83).has_value());
 }
