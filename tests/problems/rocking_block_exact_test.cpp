@@ -174,6 +174,11 @@ TEST_CASE("rocking block: Housner's impacts keep the angular momentum about the 
     CHECK(ex.ending() == RockingBlockExact::Ending::rest);
     CHECK(ex.rest_time() >= all.back().t);
     CHECK(ex.rest_time() - all.back().t < 1e-12);
+    // The rest time against the series summed in long double far past round-off (no tail).
+    long double series = all.front().t;
+    for (double w = std::abs(all.front().omega_after); w > 1e-300; w *= ex.impact_ratio())
+      series += 2.0L * ex.rise_time(w);
+    CHECK(ex.rest_time() == Approx(static_cast<double>(series)).epsilon(4e-16));
     const auto rest = *ex.state(ex.rest_time() + 1.0);
     CHECK(rest.theta == 0.0);
     CHECK(rest.omega == 0.0);
