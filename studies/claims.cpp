@@ -342,6 +342,7 @@ Table bar_hausdorff_table(const std::vector<BarGraphFit>& bars) {
 Table impact_energy_table(const Conditions& c) {
   Table t;
   t.id = "claims_impact_energy";
+  t.lead = true;  // short: on the first page beside the claims
   t.title = "Claim (4) at impact: the jump in total energy across each contact phase, cd-lagrange on the bouncing bar";
   t.caption = fmt::format(
       "Doyen-Ern-Piperno's bouncing bar, N = 100, dt = 0.9 h / c, to the first impact + 3 periods 16 L / c. A contact phase: "

@@ -95,7 +95,9 @@ std::string ReportIndex::text() const {
     headline += part.headline;
   }
   std::string index = header_;
-  if (!lead.empty()) index += "## Claims\n\nThe verdicts are computed from measured figures (the rules are in the caption).\n\n" + lead + "\n";
+  if (!lead.empty()) index += "## Claims\n\nEach claim is tested under the conditions its source states (as claimed) and beyond them; every "
+                              "verdict is computed from measured figures by the rule in the caption, the conditions are written "
+                              "out in the table, and the properties matrix asks the same of every scheme.\n\n" + lead + "\n";
   if (!headline.empty())
     index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
              "caption).\n\n" + headline + "\n";
