@@ -270,4 +270,22 @@ SpinningBlock spinning_block(const std::string& integrator, long free_steps, lon
   return out;
 }
 
+BodiesCost bodies_contact_cost(const std::string& integrator) {
+  BodiesCost out;
+  const auto problem = make_problem("two-blocks", {{"g", "0"}, {"upper_vx", "0.5"}, {"upper_vy", "-1"}, {"e", "0"}});
+  auto it = make_integrator(integrator);
+  if (const auto why = init_or_decline(*it, *problem)) {
+    out.note = "declined: " + *why;
+    return out;
+  }
+  RunOptions o;
+  o.dt = 1e-4;
+  o.t_end = 0.1;
+  o.record_series = false;
+  const RunResult r = run(*problem, *it, o, [&](const Integrator& in, const StepInfo&) { out.contact_steps += in.impulses().sum() > 0.0; });
+  out.work = it->work();
+  if (r.status != RunStatus::Ok) out.note = std::string(status_name(r.status)) + ": " + r.message;
+  return out;
+}
+
 }  // namespace nsb

@@ -67,4 +67,14 @@ struct SpinningBlock {
 };
 SpinningBlock spinning_block(const std::string& integrator, long free_steps, long floor_steps);
 
+// (6) Contact between two deformable bodies (H = L M^{-1} L^T not diagonal): two-blocks as the
+// bodies study runs it (no gravity, the upper block at (0.5, -1) m/s, e = 0, mu = 0), dt 1e-4 s
+// to t = 0.1 s (it lands at 0.05 s): work counters and the steps with a contact.
+struct BodiesCost {
+  long contact_steps = 0;
+  WorkCounters work;
+  std::string note;
+};
+BodiesCost bodies_contact_cost(const std::string& integrator);
+
 }  // namespace nsb
