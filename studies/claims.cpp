@@ -197,61 +197,6 @@ void bar_run(Work& work) {
   work.add(it->work(), contacts);
 }
 
-struct EnergyFigures {
-  double first = 0, second = 0, adaptive = 0, cfl = 0, dt_min = 1e300, dt_max = 0;
-  double no_root = 0;  // adaptive steps whose energy equation had no root
-  bool adaptive_ok = true;
-};
-
-// The energy study's two long runs (studies/energy.cpp): the bouncing mass, e = 1, dt 1e-3, 100
-// impacts; the spring chain between walls 0.5 m away, e = 1, dt 0.02 s, 40 s. Errors relative
-// to E_1, the scheme's energy after its first step.
-void energy_run(const std::string& name, const std::map<std::string, std::string>& params, double dt, double t_end,
-                EnergyFigures& e) {
-  const auto problem = problem_of(name, params);
-  RunOptions o;
-  o.dt = dt;
-  o.t_end = t_end;
-  o.record_series = false;
-  for (const char* scheme : {"cd-lagrange", "cd-lagrange-adaptive"}) {
-    const bool adaptive = std::string(scheme) == "cd-lagrange-adaptive";
-    auto it = make_integrator(scheme);
-    it->init(*problem, problem->initial_state());
-    double e1 = kNaN;
-    const RunResult r = run(*problem, *it, o, [&](const Integrator& in, const StepInfo& info) {
-      const double energy = in.energy().total();
-      if (std::isnan(e1)) e1 = energy;
-      const double err = std::abs(energy - e1) / std::abs(e1);
-      if (adaptive) {
-        e.adaptive = std::max(e.adaptive, err);
-        e.cfl = std::max(e.cfl, info.dt / problem->stable_step());
-        if (in.state().t < t_end * (1 - 1e-12)) {  // the last step is cut to land on t_end
-          e.dt_min = std::min(e.dt_min, info.dt);
-          e.dt_max = std::max(e.dt_max, info.dt);
-        }
-      } else {
-        double& half = in.state().t <= 0.5 * t_end ? e.first : e.second;
-        half = std::max(half, err);
-      }
-    });
-    if (adaptive) {
-      e.adaptive_ok = e.adaptive_ok && r.status == RunStatus::Ok;
-      const auto nr = r.work.extra.find("no_root_steps");
-      e.no_root += nr == r.work.extra.end() ? 0.0 : nr->second;
-    } else if (r.status != RunStatus::Ok) {
-      e.first = e.second = kNaN;
-    }
-  }
-}
-
-EnergyFigures energy_runs() {
-  EnergyFigures e;
-  const double period = 2.0 * std::sqrt(2.0 / 9.81);
-  energy_run("bouncing-mass", {{"e", "1"}, {"h0", "1"}}, 1e-3, 100 * period, e);
-  energy_run("spring-chain", {{"wall", "both"}, {"gap", "0.5"}}, 0.02, 40.0, e);
-  return e;
-}
-
 struct LongRun {
   bool ok = false;
   long impacts = 0, target = 0, steps = 0;
@@ -398,7 +343,10 @@ std::vector<Table> claims_tables(const StudyOptions& options) {
   disk_run(work, momentum);
   chain_run(work, momentum);
   const auto orders = hausdorff_orders("cd-lagrange");
-  const EnergyFigures energy = energy_runs();
+  EnergyFigures energy = energy_runs("cd-lagrange");
+  const EnergyFigures adaptive = energy_runs("cd-lagrange-adaptive");
+  energy.adaptive = adaptive.adaptive, energy.cfl = adaptive.cfl, energy.dt_min = adaptive.dt_min, energy.dt_max = adaptive.dt_max;
+  energy.no_root = adaptive.no_root, energy.adaptive_ok = adaptive.adaptive_ok;
   const LongRun longrun = long_run(options.full);
   const Conditions cond = conditions_runs();
   work_beyond.add(cond.singular.work, cond.singular.contact_steps);

@@ -270,6 +270,60 @@ SpinningBlock spinning_block(const std::string& integrator, long free_steps, lon
   return out;
 }
 
+namespace {
+
+void energy_run(const std::string& scheme, const std::string& name, const Overrides& params, double dt, double t_end,
+                EnergyFigures& e) {
+  const auto problem = make_problem(name, params);
+  RunOptions o;
+  o.dt = dt;
+  o.t_end = t_end;
+  o.record_series = false;
+  const bool adaptive = scheme == "cd-lagrange-adaptive";
+  auto it = make_integrator(scheme);
+  if (const auto why = init_or_decline(*it, *problem)) {
+    e.note = "declined: " + *why;
+    e.first = e.second = e.adaptive = kNaN;
+    e.adaptive_ok = false;
+    return;
+  }
+  double e1 = kNaN;
+  const RunResult r = run(*problem, *it, o, [&](const Integrator& in, const StepInfo& info) {
+    const double energy = in.energy().total();
+    if (std::isnan(e1)) e1 = energy;
+    const double err = std::abs(energy - e1) / std::abs(e1);
+    if (adaptive) {
+      e.adaptive = std::max(e.adaptive, err);
+      e.cfl = std::max(e.cfl, info.dt / problem->stable_step());
+      if (in.state().t < t_end * (1 - 1e-12)) {  // the last step is cut to land on t_end
+        e.dt_min = std::min(e.dt_min, info.dt);
+        e.dt_max = std::max(e.dt_max, info.dt);
+      }
+    } else {
+      double& half = in.state().t <= 0.5 * t_end ? e.first : e.second;
+      half = std::max(half, err);
+    }
+  });
+  if (adaptive) {
+    e.adaptive_ok = e.adaptive_ok && r.status == RunStatus::Ok;
+    const auto nr = r.work.extra.find("no_root_steps");
+    e.no_root += nr == r.work.extra.end() ? 0.0 : nr->second;
+  } else if (r.status != RunStatus::Ok) {
+    e.first = e.second = kNaN;
+    e.note = std::string(status_name(r.status)) + ": " + r.message;
+  }
+}
+
+}  // namespace
+
+EnergyFigures energy_runs(const std::string& integrator) {
+  EnergyFigures e;
+  const double period = 2.0 * std::sqrt(2.0 / 9.81);
+  energy_run(integrator, "bouncing-mass", {{"e", "1"}, {"h0", "1"}}, 1e-3, 100 * period, e);
+  energy_run(integrator, "spring-chain", {{"wall", "both"}, {"gap", "0.5"}}, 0.02, 40.0, e);
+  return e;
+}
+
 BodiesCost bodies_contact_cost(const std::string& integrator) {
   BodiesCost out;
   const auto problem = make_problem("two-blocks", {{"g", "0"}, {"upper_vx", "0.5"}, {"upper_vy", "-1"}, {"e", "0"}});

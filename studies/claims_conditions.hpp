@@ -67,6 +67,20 @@ struct SpinningBlock {
 };
 SpinningBlock spinning_block(const std::string& integrator, long free_steps, long floor_steps);
 
+// (4), (5) The energy study's two long runs with e = 1 (studies/energy.cpp): the bouncing mass,
+// h0 1, dt 1e-3, 100 impacts; the spring chain between walls 0.5 m away, dt 0.02 s, 40 s. Errors
+// |E - E_1| / E_1, E the scheme's own energy, E_1 after its first step; each figure the worst
+// of the two runs. A fixed-step scheme fills first / second (max over each half of the run; NaN
+// when a run failed or was declined); cd-lagrange-adaptive fills the adaptive figures.
+struct EnergyFigures {
+  double first = 0, second = 0;          // fixed step
+  double adaptive = 0, cfl = 0, dt_min = 1e300, dt_max = 0;  // adaptive: max error, largest step / stable step, steps
+  double no_root = 0;  // adaptive steps whose energy equation had no root
+  bool adaptive_ok = true;
+  std::string note;  // a declined or failed run
+};
+EnergyFigures energy_runs(const std::string& integrator);
+
 // (6) Contact between two deformable bodies (H = L M^{-1} L^T not diagonal): two-blocks as the
 // bodies study runs it (no gravity, the upper block at (0.5, -1) m/s, e = 0, mu = 0), dt 1e-4 s
 // to t = 0.1 s (it lands at 0.05 s): work counters and the steps with a contact.

@@ -13,6 +13,8 @@
 //                 balance with the impulses' moments), relative: <= 1e-10
 //   impact energy the largest |energy jump| across a contact phase of the bouncing bar, singular
 //                 mass (as claimed) and lumped mass with e = 1 (beyond): <= 1e-2
+//   energy drift  the claims study's long runs (e = 1): max |E - E_1| / E_1 over each half, no
+//                 drift rule; the adaptive step (cd-lagrange-adaptive) exact rule
 //   contact cost  LCP iterations per step with a contact, on the block's floor run (H diagonal)
 //                 and between two deformable blocks (two-blocks, H not diagonal) (reported)
 // A scheme that declines a problem (a singular mass, a nonlinear body) has n/a there.
@@ -79,6 +81,13 @@ Json properties_case(const Json& c) {
   }
   const auto fits = bar_hausdorff(name, {"singular", "lumped"});
   out["hausdorff"] = {{"singular", bar_counts(fits, "singular")}, {"lumped", bar_counts(fits, "lumped")}};
+  const EnergyFigures energy = energy_runs(name);
+  if (!energy.note.empty())
+    out["energy"] = {{"note", energy.note}};
+  else if (name == "cd-lagrange-adaptive")
+    out["energy"] = {{"adaptive", real(energy.adaptive)}, {"completed", energy.adaptive_ok}, {"cfl", real(energy.cfl)}};
+  else
+    out["energy"] = {{"first", real(energy.first)}, {"second", real(energy.second)}};
   const BodiesCost bodies = bodies_contact_cost(name);
   if (bodies.note.empty())
     out["bodies"] = {{"lcp_per_contact_step", bodies.contact_steps > 0 ? real(static_cast<double>(bodies.work.lcp_iterations) / static_cast<double>(bodies.contact_steps)) : Json(nullptr)}};
@@ -103,6 +112,7 @@ std::string notes(const Json& r) {
   add(r["impact"]["singular"]);
   add(r["impact"]["lumped"]);
   add(r["bodies"]);
+  add(r["energy"]);
   return fmt::format("{}", fmt::join(seen, "; "));
 }
 
@@ -115,6 +125,15 @@ std::string hausdorff_verdict_cell(const Json& h) {
   return short_verdict(k == n ? Verdict::Holds : k > 0 ? Verdict::Conditional : Verdict::Fails);
 }
 Cell bodies_cell(const Json& b) { return b.contains("lcp_per_contact_step") && !b["lcp_per_contact_step"].is_null() ? Cell{real(b["lcp_per_contact_step"])} : Cell{}; }
+Cell field(const Json& j, const char* key) { return j.contains(key) && !j[key].is_null() ? Cell{real(j[key])} : Cell{}; }
+std::string drift_verdict_cell(const Json& e) {
+  if (!e.contains("first")) return "n/a";
+  return energy_no_drift(real(e["first"]), real(e["second"])) ? "holds" : "fails";
+}
+std::string adaptive_verdict_cell(const Json& e) {
+  if (!e.contains("adaptive")) return "n/a";
+  return e["completed"].get<bool>() && real(e["adaptive"]) <= kEnergyExact ? "holds" : "fails";
+}
 Cell impact_cell(const Json& e) { return e.contains("jump") ? Cell{real(e["jump"])} : Cell{}; }
 std::string impact_verdict_cell(const Json& e) {
   if (!e.contains("jump")) return "n/a";
@@ -135,9 +154,12 @@ std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::
       "(conditional) or none. Momentum: the spinning block's linear and angular momentum, free flight ({} steps) and the "
       "angular balance with the impulses' moments on the floor, relative: <= {:g}. Impact energy: the largest |jump| in "
       "total energy across a contact phase of the bouncing bar ([claims_impact_energy](claims_impact_energy.md)), "
-      "singular mass and lumped mass with e = 1: <= {:g}. Contact cost: LCP iterations per step with a contact (reported), on the block's floor run (H diagonal) and between "
+      "singular mass and lumped mass with e = 1: <= {:g}. Long-time energy (the claims study's runs: bouncing mass, e = 1, "
+      "100 impacts, dt 1e-3; spring chain between walls, dt 0.02 s, 40 s): max |E - E_1| / E_1 over each half, no drift when "
+      "the second half's <= {:g} x the first's + {:g}; the adaptive step (cd-lagrange-adaptive only) exact when <= {:g}. Contact cost: LCP iterations per step with a contact (reported), on the block's floor run (H diagonal) and between "
       "two deformable blocks (two-blocks as the bodies study runs it, dt 1e-4 s to 0.1 s: H not diagonal).",
-      kFloorSteps, kHausdorffMinOrder, 2 * bar_graph_observables().size(), kFreeSteps, kMomentumTolerance, kImpactEnergy);
+      kFloorSteps, kHausdorffMinOrder, 2 * bar_graph_observables().size(), kFreeSteps, kMomentumTolerance, kImpactEnergy,
+      kEnergyDriftFactor, kEnergyRoundOff, kEnergyExact);
   t.columns = {{"integrator", "", "", ""},
                {"factorisations/step", "", "{:.3g}", "spinning block on the floor"},
                {"solves/step", "", "{:.3g}", ""},
@@ -153,12 +175,17 @@ std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::
                {"impact as claimed", "", "", "verdict"},
                {"impact jump, lumped e=1", "", "{:.2e}", "relative"},
                {"impact beyond", "", "", "verdict"},
+               {"E err, 1st half", "", "{:.2e}", "long runs, fixed step"},
+               {"E err, 2nd half", "", "{:.2e}", ""},
+               {"no drift", "", "", "verdict"},
+               {"E err, adaptive", "", "{:.2e}", "long runs, adaptive step"},
+               {"adaptive exact", "", "", "verdict (n/a: no adaptive step)"},
                {"LCP it./contact step", "", "{:.3g}", "block on the floor (H diagonal), reported"},
                {"LCP it./contact step, bodies", "", "{:.3g}", "two blocks (H not diagonal), reported"},
                {"notes", "", "", "why a cell is n/a (declined, failed)"}};
   Figure map{"properties", "Properties matrix: verdict per scheme and property", "", "integrator", {}, {"integrator"}};
   map.kind = "verdict_map";
-  map.values = {"explicit", "H as claimed", "H beyond", "momentum", "impact as claimed", "impact beyond"};
+  map.values = {"explicit", "H as claimed", "H beyond", "momentum", "impact as claimed", "impact beyond", "no drift", "adaptive exact"};
   map.caption = "Green: holds; amber: holds under conditions (some of the graphs); red: fails; grey: n/a (declined). "
                 "The figures behind each cell are in the properties table.";
   t.figures = {map};
@@ -178,6 +205,8 @@ std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::
     t.add_row({cases[k]["integrator"].get<std::string>(), num("factorizations_per_step"), num("solves_per_step"), explicit_v,
                hausdorff_cell(hs), hausdorff_verdict_cell(hs), hausdorff_cell(hl), hausdorff_verdict_cell(hl), num("linear"),
                num("angular"), momentum_v, impact_cell(is), impact_verdict_cell(is), impact_cell(il), impact_verdict_cell(il),
+               field(r["energy"], "first"), field(r["energy"], "second"), drift_verdict_cell(r["energy"]), field(r["energy"], "adaptive"),
+               adaptive_verdict_cell(r["energy"]),
                num("lcp_per_contact_step"), bodies_cell(r["bodies"]), notes(r)});
   }
   return {t};
