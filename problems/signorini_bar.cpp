@@ -34,6 +34,7 @@ ParamSpecs bar_spec(const Defaults& d) {
       bar_mass_spec(),
       ParamSpec::real("stiff_ratio", 1.0, 0.0, 1e12,
                       "Young's modulus of the half at the wall over E (stiff/soft bar; no exact solution unless 1)", true),
+      ParamSpec::real("e", 0.0, 0.0, 1.0, "Newton restitution coefficient of the contact node (no effect on a massless node)"),
   });
   return specs;
 }
@@ -96,6 +97,7 @@ SignoriniBar::SignoriniBar(const Params& params, std::string name)
   contacts_.normal.insert(0, 0) = 1.0;
   contacts_.normal.makeCompressed();
   contacts_.gap_offset = Vec::Constant(1, gap0_);
+  contacts_.restitution = params.real("e");
 }
 
 // Each parameter may be in range and their products not (L = 1e308 made the momentum -inf in

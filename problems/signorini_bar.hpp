@@ -7,7 +7,8 @@
 //
 // The wall is at x = -g0. Parameters: L, E, rho, A, v0 >= 0, g0 >= 0, g >= 0 (gravity towards
 // the wall, default 0), N (linear elements), mass = lumped | consistent | singular,
-// stiff_ratio r > 0. c = sqrt(E / rho), T = 2 L / c, t0 = g0 / v0 (v0 = 0: never, or
+// stiff_ratio r > 0, e (Newton restitution of the contact node, default 0; see below).
+// c = sqrt(E / rho), T = 2 L / c, t0 = g0 / v0 (v0 = 0: never, or
 // at once when g0 = 0 too).
 // Stiff/soft bar (hard cases): the elements of the half at the wall (centre x < L/2) have
 // Young's modulus r E. The stable step is then set by the stiffer half and the slow
@@ -27,8 +28,9 @@
 // momentum -rho A L v0 + A rho c v0 clamp(s, 0, T); the bar leaves the wall with +v0.
 //
 // Discretisation: nodes x_i = i h, h = L / N, i = 0..N; dof i is u(x_i); contact on node 0:
-// L = [1 0 ... 0], gap offset g0, restitution e = 0 (a continuum contact has no impact law;
-// the lumped model's node impacts are inelastic and the study shows what that costs).
+// L = [1 0 ... 0], gap offset g0, restitution e = 0 by default (a continuum contact has no
+// impact law; the lumped model's node impacts are then inelastic and the study shows what that
+// costs; e = 1 makes them elastic, the claims study's energy-at-impact test).
 //     K: element (E A / h) [1 -1; -1 1];  strain energy U^T K U / 2.
 //     lumped      M = rho A h diag(1/2, 1, ..., 1, 1/2)
 //     consistent  element (rho A h / 6) [2 1; 1 2]

@@ -540,7 +540,27 @@ def draw_deformed(spec, reports, paper=False):
     finish_coloured(fig, axes, coll, extend, spec, meta, reports, paper)
 
 
-DRAWERS = {"space_time": draw_space_time, "deformed": draw_deformed}
+def draw_verdict_map(spec, reports, paper=False):
+    """A heat map of verdicts: one row per value of spec's `y` column (the scheme), one column
+    per `values` column (a property's verdict), coloured holds / conditional / fails / n/a."""
+    from matplotlib.colors import ListedColormap
+    meta, rows = read_table(os.path.join(reports, spec["csv"]))
+    levels = {"holds": 0, "conditional": 1, "fails": 2}
+    names = [row[spec["y"]] for row in rows]
+    z = [[levels.get(row[c], 3) for c in spec["values"]] for row in rows]
+    fig, ax = plt.subplots(figsize=(1.0 + 0.9 * len(spec["values"]), 0.8 + 0.32 * len(names)))
+    ax.imshow(z, cmap=ListedColormap(["#4daf4a", "#ffb000", "#e41a1c", "#bbbbbb"]), vmin=-0.5, vmax=3.5, aspect="auto")
+    for i, row in enumerate(rows):
+        for j, c in enumerate(spec["values"]):
+            ax.text(j, i, row[c], ha="center", va="center", fontsize=6 if paper else 7)
+    ax.set_xticks(range(len(spec["values"])), spec["values"], rotation=30, ha="right", fontsize=8)
+    ax.set_yticks(range(len(names)), names, fontsize=8)
+    if not paper:
+        fig.suptitle(spec["title"], fontsize=11)
+    save(fig, spec, meta, reports, paper)
+
+
+DRAWERS = {"space_time": draw_space_time, "deformed": draw_deformed, "verdict_map": draw_verdict_map}
 
 
 def save(fig, spec, meta, reports, paper, legend=None):

@@ -23,6 +23,12 @@ constexpr double kHausdorffMinOrder = 0.5;
 bool hausdorff_converges(const OrderFit& fit);
 Verdict hausdorff_verdict(const std::vector<OrderFit>& per_problem);
 
+// The verdict of a claim tested under several conditions: holds when every one is met, holds
+// under the stated conditions when some are, fails when none is (or there is none).
+Verdict conditions_verdict(const std::vector<bool>& met);
+// "not tested": a claim's column for which nsbench has no measurement.
+constexpr const char* kNotTested = "not tested";
+
 // (3) Momentum balances: the largest residual (linear and angular, relative to the largest
 // momentum) <= 1e-10.
 constexpr double kMomentumTolerance = 1e-10;
@@ -37,6 +43,11 @@ constexpr double kEnergyDriftFactor = 2.0;
 constexpr double kEnergyRoundOff = 1e-12;
 constexpr double kEnergyExact = 1e-9;
 Verdict energy_verdict(double fixed_first_half, double fixed_second_half, double adaptive_max);
+bool energy_no_drift(double fixed_first_half, double fixed_second_half);
+// Energy at impact: every contact phase changes the total energy by at most 1e-2 of the
+// kinetic energy at the first impact (and at least one phase happened).
+constexpr double kImpactEnergy = 1e-2;
+bool impact_energy_kept(long phases, double worst_jump);
 
 // (5) Adaptive step with a CFL check: the run completes, every step <= the stable step, and the
 // step changes (largest / smallest > 1 + 1e-6).

@@ -15,6 +15,7 @@ extern const StudyEntry friction_study;
 extern const StudyEntry bodies_study;
 extern const StudyEntry hausdorff_study;
 extern const StudyEntry claims_study;
+extern const StudyEntry properties_study;
 
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
@@ -31,6 +32,7 @@ const std::vector<StudyEntry>& study_registry() {
       bodies_study,
       hausdorff_study,
       claims_study,
+      properties_study,
   };
   return entries;
 }

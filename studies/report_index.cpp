@@ -32,11 +32,14 @@ IndexPart index_part(const StudyEntry& s, const std::vector<Table>& tables) {
       part.section += fmt::format("- {} ([csv]({}.csv))\n", one_line(t.title), t.id);
     else
       part.section += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", one_line(t.title), t.id, t.id, t.id);
-    for (const auto& f : t.figures)
+    std::string pictures;  // a lead table's figures go with it to the top
+    for (const auto& f : t.figures) {
       part.section += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf)){}\n", one_line(f.title), f.id, f.id,
                                   f.caption.empty() ? "" : "\n\n  " + one_line(f.caption));
-    const std::string full = fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n", one_line(t.title), t.id, one_line(s.name),
-                                         one_line(t.caption), markdown_grid(t));
+      pictures += fmt::format("\n![{}](figures/{}.png)\n\n{}\n", one_line(f.title), f.id, one_line(f.caption));
+    }
+    const std::string full = fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n{}", one_line(t.title), t.id, one_line(s.name),
+                                         one_line(t.caption), markdown_grid(t), t.lead ? pictures : std::string());
     if (t.lead) part.lead += full;
     if (t.headline) part.headline += full;
   }
@@ -92,7 +95,9 @@ std::string ReportIndex::text() const {
     headline += part.headline;
   }
   std::string index = header_;
-  if (!lead.empty()) index += "## Claims\n\nThe verdicts are computed from measured figures (the rules are in the caption).\n\n" + lead + "\n";
+  if (!lead.empty()) index += "## Claims\n\nEach claim is tested under the conditions its source states (as claimed) and beyond them; every "
+                              "verdict is computed from measured figures by the rule in the caption, the conditions are written "
+                              "out in the table, and the properties matrix asks the same of every scheme.\n\n" + lead + "\n";
   if (!headline.empty())
     index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
              "caption).\n\n" + headline + "\n";

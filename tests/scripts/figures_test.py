@@ -133,6 +133,10 @@ def write_report(root):
     with open(os.path.join(root, "arrows.csv"), "w") as f:
         f.write("# git_revision: test\nintegrator,instant,x [m],y [m],Lambda_x [N s],Lambda_y [N s]\n")
         f.write("cd-lagrange,t = 0.2,0,0,0.1,2\ncd-lagrange,t = 0.2,2,0,0,1\n")
+    # A verdict heat map (the properties matrix): every verdict and an unknown word (drawn as n/a).
+    with open(os.path.join(root, "verdicts.csv"), "w") as f:
+        f.write("# git_revision: test\nintegrator,explicit,momentum\n")
+        f.write("cd-lagrange,holds,conditional\nmoreau-jean,fails,n/a\n")
     specs = [
         {"id": "traj", "title": "traj", "csv": "traj.csv", "x": "t [s]", "y": "x [m]", "series": ["integrator", "ball"],
          "panels": [], "log_x": False, "log_y": False, "small_multiples": True, "overlay": "exact"},
@@ -143,6 +147,9 @@ def write_report(root):
          "panels": ["integrator", "instant"], "log_x": False, "log_y": False, "kind": "deformed",
          "values": ["x1", "y1", "x2", "y2", "x3", "y3", "x4", "y4"], "positions": [], "value_label": "sigma_yy [Pa]",
          "arrows_csv": "arrows.csv"},
+        {"id": "verdicts", "title": "verdicts", "csv": "verdicts.csv", "x": "", "y": "integrator", "series": [],
+         "panels": ["integrator"], "log_x": False, "log_y": False, "kind": "verdict_map", "values": ["explicit", "momentum"],
+         "positions": [], "value_label": ""},
         {"id": "conv", "title": "conv", "csv": "conv.csv", "x": "dt [s]", "y": "err", "series": ["integrator"],
          "panels": [], "log_x": True, "log_y": True, "slopes": [1, 2], "small_multiples": False, "deviation": False},
         {"id": "evals", "title": "evals", "csv": "conv.csv", "x": "F_int evals", "y": "err", "series": ["integrator"],
@@ -161,7 +168,7 @@ def test_figures():
         script = os.path.join(os.path.dirname(figures.__file__), "figures.py")
         for style, sub in (("screen", "figures"), ("paper", os.path.join("figures", "paper"))):
             subprocess.run(["/usr/bin/python3", script, root, "--style", style], check=True, capture_output=True)
-            for fid in ("conv", "evals", "hist", "traj", "field", "cells"):
+            for fid in ("conv", "evals", "hist", "traj", "field", "cells", "verdicts"):
                 for ext in ("png", "pdf"):
                     path = os.path.join(root, sub, f"{fid}.{ext}")
                     check(os.path.getsize(path) > 1000, f"{path} missing or empty")
@@ -177,7 +184,7 @@ def test_figures():
                            env=dict(os.environ, NSBENCH_JOBS=jobs))
             drawn[jobs] = {name: open(os.path.join(root, "figures", name), "rb").read()
                            for name in sorted(os.listdir(os.path.join(root, "figures"))) if name.endswith((".png", ".pdf"))}
-        check(len(drawn["1"]) == 12 and drawn["1"] == drawn["3"], "figures differ between 1 and 3 processes")
+        check(len(drawn["1"]) == 14 and drawn["1"] == drawn["3"], "figures differ between 1 and 3 processes")
         for jobs in ("0", "two"):
             bad = subprocess.run(["/usr/bin/python3", script, root], capture_output=True, text=True,
                                  env=dict(os.environ, NSBENCH_JOBS=jobs))

@@ -50,3 +50,19 @@ TEST_CASE("claims: momentum, energy, adaptive step and robustness rules", "[clai
   CHECK(robustness_verdict(false, 100000, 100000, 1e-3, 0.5) == Verdict::Fails);
   CHECK(std::string(verdict_name(Verdict::Conditional)) == "holds under the stated conditions");
 }
+
+TEST_CASE("claims: a claim under several conditions holds on all, under conditions on some, fails on none", "[claims]") {
+  CHECK(conditions_verdict({true, true}) == Verdict::Holds);
+  CHECK(conditions_verdict({true, false}) == Verdict::Conditional);
+  CHECK(conditions_verdict({false, false}) == Verdict::Fails);
+  CHECK(conditions_verdict({}) == Verdict::Fails);  // nothing tested: no verdict in its favour
+  CHECK(energy_no_drift(1e-4, 2e-4));
+  CHECK_FALSE(energy_no_drift(1e-4, 2.1e-4));
+}
+
+TEST_CASE("claims: energy at impact is kept within 1e-2 per contact phase, and only when a phase happened", "[claims]") {
+  CHECK(impact_energy_kept(3, 0.99e-2));
+  CHECK_FALSE(impact_energy_kept(3, 1.01e-2));
+  CHECK_FALSE(impact_energy_kept(0, 0.0));  // no contact: nothing shown
+  CHECK_FALSE(impact_energy_kept(3, kNaN));
+}
