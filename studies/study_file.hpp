@@ -10,6 +10,7 @@
 //
 // Every error in the file is an InputError "FILE:LINE: key.path: what is wrong; valid: ...".
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -23,13 +24,18 @@ using Overrides = std::map<std::string, std::string>;
 struct FileProblem {
   std::string name, label;
   Overrides parameters;
+  double t_end = 0.0;              // its own end time (0: study.t_end)
+  long max_force_evaluations = 0;  // its own F_int budget per run (0: study.max_force_evaluations)
 };
 
-// What an integrator runs on one problem: its parameters and either a list of steps or a
-// list of tolerances (set as `tolerance_parameter`, each run with the fixed step `dt`).
+// What an integrator runs on one problem: its parameters and either a list of steps, a list
+// of fractions of the problem's stable step (Problem::stable_step(), 2 / omega_max: dt =
+// fraction * stable step) or a list of tolerances (set as `tolerance_parameter`, each run
+// with the fixed step `dt`).
 struct FileSweep {
   Overrides parameters;
   std::vector<double> steps;
+  std::vector<double> stable_fractions;
   std::vector<double> tolerances;
   std::string tolerance_parameter = "rtol";
   double dt = 0.0;
@@ -78,6 +84,10 @@ struct StudySpec {
   long sample_every = 1;
   int cpu_repeats = 3;
   long max_force_evaluations = 10'000'000;
+  // Outcome thresholds: "energy blow-up" past energy_blow_up E scale (study_file.cpp),
+  // "penetration" when max(0, -g) exceeds max_penetration (infinite: never).
+  double energy_blow_up = 2.0;
+  double max_penetration = std::numeric_limits<double>::infinity();
   std::vector<double> targets{1e-2, 1e-4};
   std::vector<FileProblem> problems;
   std::vector<FileIntegrator> integrators;
@@ -87,6 +97,8 @@ struct StudySpec {
   // The measure the ranking and the work-precision figures use (study.rank_by, a measure's
   // label; default: the first error measure); measures.size(): none.
   std::size_t ranked = 0;
+  double t_end_of(const FileProblem& p) const { return p.t_end > 0.0 ? p.t_end : t_end; }
+  long budget_of(const FileProblem& p) const { return p.max_force_evaluations > 0 ? p.max_force_evaluations : max_force_evaluations; }
 };
 
 // Reads and checks a study file (.json: JSON, anything else: TOML).

@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 
+#include "problems/registry.hpp"
 #include "studies/study.hpp"
 #include "studies/study_file.hpp"
 
@@ -664,4 +665,82 @@ TEST_CASE("study file: an infinite floor and a zero budget are refused", "[studi
   CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 0")),
              Catch::EndsWith("study.max_force_evaluations: 0 is out of range; valid: [1, 1125899906842624]"));
   CHECK(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 1")) == "(no error)");
+}
+
+TEST_CASE("study file: per-problem end times and budgets, stable-step sweeps and outcome thresholds: bad input named",
+          "[studies][study_file]") {
+  using Catch::StartsWith;
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nt_end = -1")),
+             StartsWith("f.toml:8: problem[0].t_end: -1 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nt_end = 0.005")),
+             StartsWith("f.toml:12: integrator[0].steps[0]: dt = 0.01 is larger than the t_end of problem 'bouncing-mass' = 0.005; "
+                        "valid: dt <= t_end"));
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nmax_force_evaluations = 0")),
+             StartsWith("f.toml:8: problem[0].max_force_evaluations: 0 is out of range; valid: [1, "));
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2]\nstable_steps = [0.5]")),
+             StartsWith("f.toml:9: integrator[0]: give one of steps, stable_steps or tolerances; valid: one sweep per integrator"));
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 200]")),
+             StartsWith("f.toml:11: integrator[0].stable_steps[1]: 200 stable steps is no step of a study; valid: (0, 100]"));
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 0.5]")),
+             StartsWith("f.toml:11: integrator[0].stable_steps[1]: 0.5 repeats stable_steps[0]; valid: distinct values"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = 0")),
+             StartsWith("f.toml:4: study.energy_blow_up: 0 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_penetration = \"1e-3\"")),
+             StartsWith("f.toml:4: study.max_penetration: expected a number, got a string"));
+  // The bouncing mass has no stiffness: its stable step is no finite step.
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5]")),
+             StartsWith("f.toml:11: integrator[0].stable_steps[0]: dt = inf is larger than study.t_end (problem 'bouncing-mass', "
+                        "stable step inf) = 0.6"));
+}
+
+TEST_CASE("study file: a problem's own end time and budget, dt from the stable step, and a penetration threshold run",
+          "[studies][study_file]") {
+  const std::string text = quick_study("0.6", "max_penetration = 1e-12\n") + R"(
+[[problem]]
+name = "bouncing-mass"
+label = "short"
+t_end = 0.3
+
+[[problem]]
+name = "bouncing-mass"
+label = "budget"
+max_force_evaluations = 5
+
+[[problem]]
+name = "signorini-bar"
+label = "bar"
+parameters = { N = 10 }
+t_end = 0.05
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2]
+[integrator.per_problem.bar]
+stable_steps = [0.5, 0.25]
+
+[[measure]]
+kind = "penetration"
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "w.toml", false);
+  CHECK(spec.t_end_of(spec.problems[0]) == 0.3);
+  CHECK(spec.t_end_of(spec.problems[1]) == 0.6);
+  CHECK(spec.budget_of(spec.problems[1]) == 5);
+  CHECK(spec.budget_of(spec.problems[0]) == spec.max_force_evaluations);
+  const auto cases = nsb::study_cases(nsb::file_study(spec), {});
+  REQUIRE(cases.size() == 4);
+  const double stable = nsb::make_problem("signorini-bar", {{"N", "10"}})->stable_step();
+  CHECK(cases[2]["dt"].get<double>() == 0.5 * stable);
+  CHECK(cases[3]["dt"].get<double>() == 0.25 * stable);
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(spec, &results);
+  CHECK(results[0]["steps"] == 30);                                    // 0.3 s at 1e-2: before the impact at 0.45 s
+  CHECK(results[0]["status"] == "ok");                                 // no contact, no penetration
+  CHECK(results[1]["status"] == "over budget");                        // 5 F_int evaluations
+  CHECK(results[2]["steps"] == static_cast<long>(std::ceil(0.05 / (0.5 * stable) - 1e-9)));
+  // CD-Lagrange's velocity-level contact lets the mass through the floor by O(dt v): above 1e-12.
+  const std::string text2 = replaced(text, "t_end = 0.3", "t_end = 0.6");
+  std::vector<nsb::Json> results2;
+  run_all(nsb::parse_study_text(text2, "w.toml", false), &results2);
+  CHECK(results2[0]["status"] == "penetration");
+  CHECK_THAT(results2[0]["message"].get<std::string>(), Catch::StartsWith("max penetration "));
 }
