@@ -14,6 +14,8 @@
 //                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
 //                balances momentum exactly when the internal forces sum to zero.
 //   penetration  max over the steps of max(0, -g).
+// An error, energy or momentum measure with a `window` [t0, t1] is sampled there only (its l2
+// norm the mean over t1 - t0), e.g. a smooth window before the first impact.
 //   hausdorff    H(run, ref) between the graphs {(t, o)} of an observable (the run's samples;
 //                the exact solution with its jumps as vertical segments, or the reference run's
 //                samples), in scaled coordinates (t / time_scale, o / value_scale), by default
@@ -226,6 +228,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const std::size_t nobs = problem->observable_names().size();
   std::vector<double> obs(nobs), obs_ref(nobs);
   std::vector<Accumulator> acc(spec.measures.size());
+  for (std::size_t m = 0; m < acc.size(); ++m) acc[m].t_prev = spec.measures[m].window_start;
   std::vector<bool> on(spec.measures.size());  // measured on this problem
   bool stops = false;                          // a stop-time or onset-time measure is
   for (std::size_t m = 0; m < spec.measures.size(); ++m) {
@@ -254,8 +257,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const auto sample = [&](const Integrator& it) {
     const State& s = it.state();
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
-      if (!on[m]) continue;
       const FileMeasure& fm = spec.measures[m];
+      if (!on[m] || s.t < fm.window_start || s.t > fm.window_end) continue;
       Accumulator& a = acc[m];
       double e = kNaN;
       if (fm.kind == MeasureKind::Error) {
@@ -324,7 +327,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     }
     switch (fm.kind) {
       case MeasureKind::Error:
-        v = (fm.norm == "final" ? a.last : fm.norm == "max" ? a.largest : std::sqrt(a.square / t_end)) / scale;
+        v = (fm.norm == "final" ? a.last : fm.norm == "max" ? a.largest : std::sqrt(a.square / (std::min(t_end, fm.window_end) - fm.window_start))) / scale;
         break;
       case MeasureKind::ImpactTime: {
         const auto exact = problem->impact_times(t_end);

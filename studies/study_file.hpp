@@ -69,6 +69,9 @@ struct FileMeasure {
   double time_scale = 0.0;       // Hausdorff: T (0: t_end)
   double value_scale = 0.0;      // Hausdorff: V (0: the reference's largest |value|)
   std::vector<std::string> problems;  // the labels of the problems it is measured on (empty: all)
+  // Error, energy, momentum: sampled on [window_start, window_end] only (the whole run by default).
+  double window_start = 0.0;
+  double window_end = std::numeric_limits<double>::infinity();
   bool applies_to(const std::string& problem_label) const;
   // Smaller is better and never negative: a measure the ranking may rank by.
   bool rankable() const;

@@ -324,6 +324,38 @@ std::size_t ranked_measure(const Checker& c, const Json& study, const std::vecto
   return static_cast<std::size_t>(named - measures.begin());
 }
 
+// A problem's grid = { key = [values], ... }: one problem per point of the product of the
+// lists (keys in alphabetical order, the last varying fastest), each with the base parameters
+// and its point's, labelled "label, key = value, ..."; no grid: the problem itself.
+constexpr std::size_t kMaxGridPoints = 1000;
+
+std::vector<FileProblem> grid_points(const Checker& c, const Json& j, const std::string& path, const FileProblem& base,
+                                     const ParamSpecs& specs) {
+  std::vector<FileProblem> points{base};
+  const Json* grid = c.find(j, "grid");
+  if (!grid) return points;
+  const std::string at = child(path, "grid");
+  c.expect(*grid, at, grid->is_object() && !grid->empty(), "a table of parameter = [values, ...]");
+  for (const auto& [key, values] : grid->items()) {
+    const std::string key_path = child(at, key);
+    c.expect(values, key_path, values.is_array() && !values.empty(), "an array of one or more values");
+    if (base.parameters.count(key)) c.fail(key_path, "also given in parameters", "each parameter in one of parameters and grid");
+    std::vector<FileProblem> next;
+    for (const FileProblem& point : points)
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        const Overrides one = c.parameters(Json{{key, values[i]}}, at, specs);
+        FileProblem q = point;
+        q.parameters[key] = one.at(key);
+        q.label += fmt::format(", {} = {}", key, one.at(key));
+        next.push_back(q);
+      }
+    if (next.size() > kMaxGridPoints)
+      c.fail(at, fmt::format("{} problems or more in the grid", next.size()), fmt::format("at most {} points", kMaxGridPoints));
+    points = std::move(next);
+  }
+  return points;
+}
+
 // The end time of the longest run: the bound of the series held in memory.
 double longest_t_end(const StudySpec& spec) {
   double t = spec.t_end;
@@ -404,7 +436,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   for (std::size_t i = 0; i < problems.size(); ++i) {
     const Json& j = problems[i];
     const std::string path = element("problem", i);
-    c.keys(j, path, {"name", "label", "parameters", "t_end", "max_force_evaluations"});
+    c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations"});
     FileProblem p;
     p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
     p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
@@ -413,14 +445,16 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     if (const Json* v = c.find(j, "t_end")) p.t_end = c.positive(*v, child(path, "t_end"));
     if (const Json* v = c.find(j, "max_force_evaluations"))
       p.max_force_evaluations = c.integer(*v, child(path, "max_force_evaluations"), 1, 1L << 50);
-    for (const auto& q : spec.problems)
-      if (q.label == p.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", p.label), "distinct labels");
-    try {
-      instances.push_back(make_problem(p.name, p.parameters));
-    } catch (const InputError& e) {
-      c.fail(child(path, "parameters"), e.what());
+    for (const FileProblem& q : grid_points(c, j, path, p, entry.parameters())) {
+      for (const auto& r : spec.problems)
+        if (r.label == q.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", q.label), "distinct labels");
+      try {
+        instances.push_back(make_problem(q.name, q.parameters));
+      } catch (const InputError& e) {
+        c.fail(child(path, c.find(j, "grid") ? "grid" : "parameters"), e.what());
+      }
+      spec.problems.push_back(q);
     }
-    spec.problems.push_back(p);
   }
 
   const Json& integrators = list("integrator");
@@ -523,7 +557,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
         if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
       } else {
-        keys({"observable", "norm"});
+        keys({"observable", "norm", "window"});
       }
       if (!spec.has_reference) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
                                       "[reference] solution = \"exact\" or integrator = NAME");
@@ -561,13 +595,27 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       }
       m.label = onset ? "onset time err" : "stop time err";
     } else if (m.kind == MeasureKind::Energy) {
-      keys({"norm", "history"});
+      keys({"norm", "history", "window"});
       if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "final", "drift"});
       if (const Json* v = c.find(j, "history")) m.history = c.boolean(*v, child(path, "history"));
       m.label = fmt::format("energy err {}", m.norm);
     } else {
-      keys({});
+      keys(kind == "momentum" ? std::vector<std::string>{"window"} : std::vector<std::string>{});
       m.label = kind == "momentum" ? "momentum residual" : "penetration";
+    }
+    if (const Json* v = c.find(j, "window")) {
+      const std::string at = child(path, "window");
+      c.expect(*v, at, v->is_array() && v->size() == 2 && (*v)[0].is_number() && (*v)[1].is_number(), "an array [t0, t1] of two numbers");
+      m.window_start = (*v)[0].get<double>();
+      m.window_end = (*v)[1].get<double>();
+      if (!(m.window_start >= 0.0 && m.window_start < m.window_end && std::isfinite(m.window_end)))
+        c.fail(at, fmt::format("[{}, {}] is no time window", m.window_start, m.window_end), "0 <= t0 < t1, finite");
+      for (const std::size_t p : on)
+        if (!(m.window_start < spec.t_end_of(spec.problems[p])))
+          c.fail(at, fmt::format("the window starts at {} s, not before the end of problem '{}' ({} s)", m.window_start,
+                                 spec.problems[p].label, spec.t_end_of(spec.problems[p])),
+                 "t0 < t_end, or problems = [...]");
+      m.label += fmt::format(", t in [{:g}, {:g}]", m.window_start, m.window_end);
     }
     if (const Json* v = c.find(j, "label")) m.label = c.string(*v, child(path, "label"));
     for (const auto& q : spec.measures)

@@ -744,3 +744,52 @@ kind = "penetration"
   CHECK(results2[0]["status"] == "penetration");
   CHECK_THAT(results2[0]["message"].get<std::string>(), Catch::StartsWith("max penetration "));
 }
+
+TEST_CASE("study file: a grid of problem parameters and a measure's time window", "[studies][study_file]") {
+  using Catch::StartsWith;
+  const std::string grid = replaced(kMinimal, "parameters = { e = 0.5 }", "label = \"mass\"\ngrid = { e = [0.5, 0.9], h0 = [1, 2] }");
+  const nsb::StudySpec s = nsb::parse_study_text(grid, "g.toml", false);
+  REQUIRE(s.problems.size() == 4);  // keys in alphabetical order, the last varying fastest
+  CHECK(s.problems[0].label == "mass, e = 0.5, h0 = 1");
+  CHECK(s.problems[1].label == "mass, e = 0.5, h0 = 2");
+  CHECK(s.problems[3].label == "mass, e = 0.9, h0 = 2");
+  CHECK(s.problems[3].parameters.at("e") == "0.9");
+  CHECK(s.problems[3].parameters.at("h0") == "2");
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "grid = { e = [0.5, 1.5] }")),
+             StartsWith("f.toml:7: problem[0].grid.e: ") && Catch::Contains("valid: [0, 1]"));
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\ngrid = { e = [0.9] }")),
+             StartsWith("f.toml:8: problem[0].grid.e: also given in parameters"));
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "grid = { e = [] }")),
+             StartsWith("f.toml:7: problem[0].grid.e: expected an array of one or more values"));
+
+  // Before the first impact (0.4515 s) Moreau-Jean and the exact solution are both free flight.
+  const std::string window = quick_study("0.6") + R"(
+[[problem]]
+name = "bouncing-mass"
+[[integrator]]
+name = "moreau-jean"
+steps = [1e-2]
+[reference]
+solution = "exact"
+[[measure]]
+kind = "error"
+window = [0.0, 0.4]
+[[measure]]
+kind = "error"
+)";
+  const nsb::StudySpec w = nsb::parse_study_text(window, "w.toml", false);
+  CHECK(w.measures[0].label == "err u max, t in [0, 0.4]");
+  std::vector<nsb::Json> results;
+  run_all(w, &results);
+  const double in_window = results[0]["values"][0], whole = results[0]["values"][1];
+  CHECK(in_window < 0.2 * whole);  // the impact's error is outside the window
+  CHECK(in_window > 0.0);
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = [0.5, 0.2]")),
+             StartsWith("f.toml:18: measure[0].window: [0.5, 0.2] is no time window; valid: 0 <= t0 < t1, finite"));
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = [0.7, 0.9]")),
+             StartsWith("f.toml:18: measure[0].window: the window starts at 0.7 s, not before the end of problem 'bouncing-mass'"));
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"penetration\"\nwindow = [0, 0.1]")),
+             StartsWith("f.toml:18: measure[0].window: unknown key"));
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = 0.4")),
+             StartsWith("f.toml:18: measure[0].window: expected an array [t0, t1] of two numbers"));
+}
