@@ -95,6 +95,7 @@ class MomentumBalance {
   const Problem& problem_;
   Vec ones_, mass_row_, gap_row_, f_ext_;
   double p0_ = 0.0, impulse_sum_ = 0.0;
+  double constant_force_sum_ = std::numeric_limits<double>::quiet_NaN();  // 1^T F_ext of a constant load
 };
 
 // Contact phases: a phase starts at a step with a contact impulse after a step without one,

@@ -471,6 +471,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
                            "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
 
+  for (const FileFigure& f : spec.figures)
+    t.figures.push_back({spec.name + "_" + f.id, f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
+
   // Event times are against the problem's exact solution whatever the reference.
   const bool exact_times = primary != spec.measures.end() && is_event_time(primary->kind);
   std::vector<RankingProblem> ranking;

@@ -77,6 +77,19 @@ struct FileMeasure {
   bool rankable() const;
 };
 
+// A figure the file declares, drawn from the work-precision table: y against x (column names:
+// problem, integrator, dt, tol, a measure's label, CPU, steps, F_int evals), one line per
+// value of `series`, one panel per value of `panels`.
+struct FileFigure {
+  std::string id;  // <name>_<id>
+  std::string title;
+  std::string x, y;
+  std::vector<std::string> series{"integrator"};
+  std::vector<std::string> panels{"problem"};
+  bool log_x = true, log_y = true;
+  std::vector<double> slopes;  // reference slopes drawn as triangles (log-log)
+};
+
 struct StudySpec {
   std::string file;   // as given
   std::string name;   // the file's stem, [a-z0-9_] only: table ids and shard files
@@ -97,6 +110,7 @@ struct StudySpec {
   FileReference reference;
   bool has_reference = false;
   std::vector<FileMeasure> measures;
+  std::vector<FileFigure> figures;
   // The measure the ranking and the work-precision figures use (study.rank_by, a measure's
   // label; default: the first error measure); measures.size(): none.
   std::size_t ranked = 0;

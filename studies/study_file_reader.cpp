@@ -356,6 +356,57 @@ std::vector<FileProblem> grid_points(const Checker& c, const Json& j, const std:
   return points;
 }
 
+// [[figure]]: drawn from the work-precision table, its columns named by their headers.
+std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const std::vector<FileMeasure>& measures) {
+  std::vector<FileFigure> figures;
+  const Json* list = c.find(root, "figure");
+  if (!list) return figures;
+  c.expect(*list, "figure", list->is_array(), "one or more [[figure]] tables");
+  std::vector<std::string> columns{"problem", "integrator", "dt", "tol"};
+  for (const auto& m : measures) columns.push_back(m.label);
+  columns.insert(columns.end(), {"CPU", "steps", "F_int evals"});
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const Json& j = (*list)[i];
+    const std::string path = element("figure", i);
+    c.expect(j, path, j.is_object(), "a table");
+    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes"});
+    FileFigure f;
+    f.id = c.string(c.require(j, path, "id"), child(path, "id"));
+    if (f.id.empty() || !std::all_of(f.id.begin(), f.id.end(), [](char ch) { return std::islower(static_cast<unsigned char>(ch)) || std::isdigit(static_cast<unsigned char>(ch)) || ch == '_'; }))
+      c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", f.id), "[a-z0-9_]+");
+    for (const auto& g : figures)
+      if (g.id == f.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", f.id), "distinct ids");
+    if (f.id == "work_precision" || f.id == "work_precision_evals" || f.id == "energy_history" || f.id.rfind("convergence_", 0) == 0)
+      c.fail(child(path, "id"), fmt::format("'{}' is the id of a figure the study draws itself", f.id),
+             "another id than work_precision, work_precision_evals, energy_history, convergence_*");
+    f.title = c.string(c.require(j, path, "title"), child(path, "title"));
+    f.x = c.choice(c.require(j, path, "x"), child(path, "x"), columns);
+    f.y = c.choice(c.require(j, path, "y"), child(path, "y"), columns);
+    const auto names = [&](const char* key, std::vector<std::string>& out) {
+      if (const Json* v = c.find(j, key)) {
+        const std::string at = child(path, key);
+        c.expect(*v, at, v->is_array(), "an array of column names");
+        out.clear();
+        for (std::size_t k = 0; k < v->size(); ++k) out.push_back(c.choice((*v)[k], element(at, k), columns));
+      }
+    };
+    names("series", f.series);
+    names("panels", f.panels);
+    if (const Json* v = c.find(j, "log_x")) f.log_x = c.boolean(*v, child(path, "log_x"));
+    if (const Json* v = c.find(j, "log_y")) f.log_y = c.boolean(*v, child(path, "log_y"));
+    if (const Json* v = c.find(j, "slopes")) {
+      const std::string at = child(path, "slopes");
+      c.expect(*v, at, v->is_array(), "an array of numbers");
+      for (std::size_t k = 0; k < v->size(); ++k) {
+        c.expect((*v)[k], element(at, k), (*v)[k].is_number(), "a number");
+        f.slopes.push_back((*v)[k].get<double>());
+      }
+    }
+    figures.push_back(f);
+  }
+  return figures;
+}
+
 // The end time of the longest run: the bound of the series held in memory.
 double longest_t_end(const StudySpec& spec) {
   double t = spec.t_end;
@@ -403,7 +454,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   }
   const Checker c(file, lines, json ? &text : nullptr);
   c.expect(root, "(file)", root.is_object(), "a table");
-  c.keys(root, "", {"study", "problem", "integrator", "reference", "measure"});
+  c.keys(root, "", {"study", "problem", "integrator", "reference", "measure", "figure"});
 
   StudySpec spec;
   spec.file = file;
@@ -623,6 +674,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     spec.measures.push_back(m);
   }
   spec.ranked = ranked_measure(c, study, spec.measures);
+  spec.figures = read_figures(c, root, spec.measures);
   if (std::any_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; }))
     for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
       const auto held = [&](const FileSweep& sweep, const std::string& path) {

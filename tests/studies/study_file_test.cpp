@@ -793,3 +793,25 @@ kind = "error"
   CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = 0.4")),
              StartsWith("f.toml:18: measure[0].window: expected an array [t0, t1] of two numbers"));
 }
+
+TEST_CASE("study file: figures declared in the file are drawn from the work-precision table; bad ones named",
+          "[studies][study_file]") {
+  using Catch::StartsWith;
+  const std::string fig = kMinimal + "\n[[figure]]\nid = \"steps\"\ntitle = \"Steps\"\nx = \"dt\"\ny = \"steps\"\nslopes = [-1]\n";
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(nsb::reduced_study(nsb::parse_study_text(fig, "min.toml", false), 1.0, 2, 100000), &results);
+  const nsb::Table& wp = table(tables, "_work_precision");
+  const auto f = std::find_if(wp.figures.begin(), wp.figures.end(), [](const nsb::Figure& g) { return g.id == "min_steps"; });
+  REQUIRE(f != wp.figures.end());
+  CHECK(f->x == "dt");
+  CHECK(f->y == "steps");
+  CHECK(f->series == std::vector<std::string>{"integrator"});
+  CHECK(f->slopes == std::vector<double>{-1.0});
+  CHECK_THAT(error_of(replaced(fig, "y = \"steps\"", "y = \"stpes\"")),
+             StartsWith("f.toml:23: figure[0].y: 'stpes' is not valid (nearest: steps); valid: problem, integrator, dt, tol, err u max, CPU,"));
+  CHECK_THAT(error_of(replaced(fig, "id = \"steps\"", "id = \"Steps!\"")),
+             StartsWith("f.toml:20: figure[0].id: 'Steps!' is not a file name of a-z, 0-9 and _; valid: [a-z0-9_]+"));
+  CHECK_THAT(error_of(replaced(fig, "id = \"steps\"", "id = \"work_precision\"")),
+             StartsWith("f.toml:20: figure[0].id: 'work_precision' is the id of a figure the study draws itself"));
+  CHECK_THAT(error_of(replaced(fig, "title = \"Steps\"\n", "")), StartsWith("f.toml:19: figure[0]: missing key 'title'"));
+}
