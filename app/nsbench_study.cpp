@@ -1,6 +1,6 @@
 // nsbench-study: runs the registered studies and writes their reports.
 //
-//   nsbench-study list
+//   nsbench-study list                                             the studies, each with the file that defines it
 // Every form takes --plugin FILE (repeatable) and reads NSBENCH_PLUGINS (core/plugin.hpp).
 //   nsbench-study all|NAME... [--out DIR] [--full]                 run, write the reports
 //   nsbench-study all|NAME... [--out DIR] [--full] --shard I/N     run shard I of N only
@@ -39,6 +39,7 @@
 #include "studies/performance.hpp"
 #include "studies/report_index.hpp"
 #include "studies/shard.hpp"
+#include "studies/registry.hpp"
 #include "studies/study.hpp"
 #include "studies/verify.hpp"
 #include "studies/study_file.hpp"
@@ -115,7 +116,7 @@ int main(int argc, char** argv) {
   try {
     nsb::load_plugins(plugins);
     if (names == std::vector<std::string>{"list"}) {
-      for (const auto& s : registry) fmt::print("{:<12} {}\n", s.name, s.description);
+      for (const auto& s : registry) fmt::print("{:<12} {} [{}]\n", s.name, s.description, nsb::study_source(s.name));
       return 0;
     }
     if (const std::string slow = nsb::unoptimized_plugins_warning(); !slow.empty()) fmt::print(stderr, "nsbench-study: {}\n", slow);

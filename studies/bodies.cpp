@@ -127,7 +127,7 @@ RunOptions options_for(double dt, double t_end) {
 }
 
 Json status_of(const RunResult& r) {
-  return {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps}, {"cpu", r.cpu_seconds}};
+  return {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps}, {"cpu", r.step_cpu_seconds}};
 }
 
 Json run_cradle(const BodiesCase& bc, const std::string& integrator_name, double knob) {
@@ -309,7 +309,7 @@ std::vector<Column> group_columns(const std::vector<Column>& own) {
   std::vector<Column> columns = {{"integrator", "", "", ""}, {"case", "", "", ""}};
   columns.insert(columns.end(), own.begin(), own.end());
   columns.insert(columns.end(), {{"steps", "", "", ""},
-                                 {"CPU", "s", "{:.2e}", "thread CPU time of the observed run", true},
+                                 cost_column(),
                                  {"note", "", "", "why a run is n/a, diverged or over budget"}});
   return columns;
 }

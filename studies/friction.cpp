@@ -289,7 +289,7 @@ std::vector<Column> group_columns(const std::vector<Column>& own) {
   columns.insert(columns.end(), {{"max E gain", "", "{:.1e}", "max over steps of (E_{k+1} - E_k) / E scale"},
                                  {"at t", "s", "{:.4g}", "end of the step of the largest gain"},
                                  {"steps", "", "", ""},
-                                 {"CPU", "s", "{:.2e}", "thread CPU time of the stepping of the observed run (observer excluded)", true},
+                                 cost_column(),
                                  {"note", "", "", "why a run is n/a, diverged or over budget, or a stop where the "
                                                   "exact solution has none"}});
   return columns;

@@ -1,3 +1,7 @@
+#include "studies/registry.hpp"
+
+#include <map>
+
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -35,6 +39,19 @@ const std::vector<StudyEntry>& study_registry() {
       properties_study,
   };
   return entries;
+}
+
+std::string study_source(const std::string& name) {
+  static const std::map<std::string, std::string> sources = {
+      {"bouncing", "studies/bouncing.cpp"},   {"hard", "studies/hard_cases.cpp"},
+      {"precision", "studies/work_precision.cpp"}, {"energy", "studies/energy.cpp"},
+      {"reference", "studies/reference.cpp"}, {"bar", "studies/bar.cpp"},
+      {"block", "studies/block.cpp"},         {"peers", "studies/peers.cpp"},
+      {"bouncing-bar", "studies/bouncing_bar.cpp"}, {"friction", "studies/friction.cpp"},
+      {"bodies", "studies/bodies.cpp"},       {"hausdorff", "studies/hausdorff_study.cpp"},
+      {"claims", "studies/claims.cpp"}};
+  const auto it = sources.find(name);
+  return it == sources.end() ? "" : it->second;
 }
 
 }  // namespace nsb

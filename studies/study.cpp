@@ -36,9 +36,6 @@ std::string median_cpu_text(int repeats) {
                      "over {} s)", repeats, kLongRunSeconds);
 }
 
-double above_round_off(double error) {
-  return error > kRoundOffError ? error : std::numeric_limits<double>::quiet_NaN();
-}
 
 Json real(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }
 double real(const Json& j) { return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>(); }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "run/run.hpp"
+#include "studies/measures.hpp"
 #include "studies/ranking.hpp"
 #include "studies/table.hpp"
 
@@ -119,36 +120,5 @@ class IntervalMax {
 // problem (an InputError from init, e.g. a massless dof) the reason, which a study writes as
 // an n/a row; nullopt when the scheme took it.
 std::optional<std::string> init_or_decline(Integrator& integrator, const Problem& problem);
-
-// Errors at or below this are round-off (a scheme exact for the case: Moreau-Jean's velocity
-// under a constant force, a plugin at e = 1 on the bouncing mass): they carry no order and stay
-// out of every study's order fits. The studies' errors are relative, or absolute on motions of
-// size one (s, m, m/s), so one absolute threshold serves them all.
-constexpr double kRoundOffError = 1e-11;
-// The error, or NaN when it is at round-off (<= kRoundOffError) or not a number.
-double above_round_off(double error);
-
-// Observed order between two refinements: log(e1/e2) / log(h1/h2); NaN when an error is
-// not positive and finite.
-double observed_order(double h1, double e1, double h2, double e2);
-// Least-squares slope of log e against log h over the points with positive finite error
-// (repeated h counted once, as fit_order); NaN with fewer than two such points.
-double fitted_order(const std::vector<double>& h, const std::vector<double>& e);
-
-// The same fit with its 95% confidence interval: slope +- t_{0.975, n-2} * its standard error
-// (residual variance s^2 = SSR / (n - 2), SE = s / sqrt(Sxx)). The interval is NaN with fewer
-// than three points (no residual degree of freedom). The points are the distinct h: repeats
-// of an h (a deterministic run repeated) are one point, at the mean of their log e, and
-// `points` counts distinct h; otherwise each repeat would add a residual degree of freedom
-// and narrow the interval without adding information.
-struct OrderFit {
-  double order = std::numeric_limits<double>::quiet_NaN();
-  double low = std::numeric_limits<double>::quiet_NaN();
-  double high = std::numeric_limits<double>::quiet_NaN();
-  int points = 0;
-};
-OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& e);
-// Two-sided 97.5% quantile of Student's t with `dof` >= 1 degrees of freedom.
-double student_t975(int dof);
 
 }  // namespace nsb

@@ -14,6 +14,8 @@
 //                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
 //                balances momentum exactly when the internal forces sum to zero.
 //   penetration  max over the steps of max(0, -g).
+// An error, energy or momentum measure with a `window` [t0, t1] is sampled there only (its l2
+// norm the mean over t1 - t0), e.g. a smooth window before the first impact.
 //   hausdorff    H(run, ref) between the graphs {(t, o)} of an observable (the run's samples;
 //                the exact solution with its jumps as vertical segments, or the reference run's
 //                samples), in scaled coordinates (t / time_scale, o / value_scale), by default
@@ -25,17 +27,17 @@
 // A measure naming `problems` is measured on those only (n/a on the others). The ranking and
 // the work-precision figures use the measure study.rank_by names (default: the first error).
 // Status: ok, diverged, over budget, n/a (declined), or energy blow-up: at some step the
-// scheme's energy rose above E0 by more than kEnergyBlowUp E scale (|E0|, or the problem's
+// scheme's energy rose above E0 by more than study.energy_blow_up (default 2) E scale (|E0|, or the problem's
 // energy_scale() when E0 = 0) plus the work W the surroundings can have done on the system by
 // then:
-//     max_k (E_k - E0 - W_k) / E scale > kEnergyBlowUp,
+//     max_k (E_k - E0 - W_k) / E scale > energy_blow_up,
 //     W_k = sum_{j<=k} ( sum_i |w_i| |Lambda_T,i,j|  +  max(0, F_ext(t_j) . (U_{j+1} - U_j)) ),
 // the first term the work a moving obstacle (tangential velocity w, a belt) can do through
 // friction, the second that of a time-dependent load (only then: a constant load's work is in
 // the potential, part of E). Energy lost is never a blow-up: friction, inelastic impacts and
 // numerical damping only lower E (a mass sliding down a slope against friction goes from
-// E0 = 2 J to -5 J). The row keeps its values; the ranking leaves it out and says so. A
-// per-problem override of an integrator's parameters shows in its rows' integrator cell,
+// E0 = 2 J to -5 J). The row keeps its values; the ranking leaves it out and says so. Status
+// penetration: max(0, -g) over the steps above study.max_penetration (the same). A per-problem override of an integrator's parameters shows in its rows' integrator cell,
 // "label [key=value]".
 #include "studies/study_file.hpp"
 
@@ -61,7 +63,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kHistoryIntervals = 200;
-constexpr double kEnergyBlowUp = 2.0;  // max (E - E0 - W) / E scale beyond which a run is not valid
 
 // The integrator's label, marked " (python)" for a class written in Python, with the parameters
 // a problem's override changed.
@@ -76,7 +77,7 @@ std::string shown_label(const FileIntegrator& fi, const std::string& problem_lab
 
 ReferenceRequest reference_request(const StudySpec& spec, const FileProblem& p) {
   const FileReference& r = spec.reference;
-  return {p.name, p.parameters, r.integrator, r.parameters, r.dt, spec.t_end, r.sample_every};
+  return {p.name, p.parameters, r.integrator, r.parameters, r.dt, spec.t_end_of(p), r.sample_every};
 }
 
 std::vector<Json> file_cases(const StudySpec& spec) {
@@ -88,6 +89,11 @@ std::vector<Json> file_cases(const StudySpec& spec) {
       for (double x : tol ? s.tolerances : s.steps)
         cases.push_back({{"problem", p}, {"integrator", i}, {"dt", tol ? s.dt : x}, {"tol", tol ? Json(x) : Json(nullptr)},
                          {"file_hash", spec.hash}});
+      if (!s.stable_fractions.empty()) {
+        const double stable = make_problem(spec.problems[p].name, spec.problems[p].parameters)->stable_step();
+        for (double f : s.stable_fractions)
+          cases.push_back({{"problem", p}, {"integrator", i}, {"dt", f * stable}, {"tol", nullptr}, {"file_hash", spec.hash}});
+      }
     }
   // A reference integrator runs once per problem, here, before the cases that read it.
   if (spec.has_reference && !spec.reference.exact)
@@ -194,9 +200,8 @@ class EnergyGrowth {
 // One measure's running figures.
 struct Accumulator {
   double scale = 0.0, largest = 0.0, square = 0.0, last = kNaN, t_prev = 0.0;
-  double st = 0, se = 0, stt = 0, ste = 0, n = 0;  // drift fit
-  std::vector<double> impacts;
-  bool in_contact = false;
+  RunningSlope drift;
+  ContactPhases impacts;
   Polyline graph;  // Hausdorff: the run's samples
 };
 
@@ -208,9 +213,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   if (!c["tol"].is_null()) params[fi.sweep_for(fp.label).tolerance_parameter] = fmt::format("{}", c["tol"].get<double>());
   RunOptions options;
   options.dt = c["dt"];
-  options.t_end = spec.t_end;
+  const double t_end = spec.t_end_of(fp);
+  options.t_end = t_end;
   options.record_series = false;
-  options.max_force_evaluations = spec.max_force_evaluations;
+  options.max_force_evaluations = spec.budget_of(fp);
   auto integrator = make_integrator(fi.name, params);
   try {
     integrator->init(*problem, problem->initial_state());
@@ -222,6 +228,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const std::size_t nobs = problem->observable_names().size();
   std::vector<double> obs(nobs), obs_ref(nobs);
   std::vector<Accumulator> acc(spec.measures.size());
+  for (std::size_t m = 0; m < acc.size(); ++m) acc[m].t_prev = spec.measures[m].window_start;
   std::vector<bool> on(spec.measures.size());  // measured on this problem
   bool stops = false;                          // a stop-time or onset-time measure is
   for (std::size_t m = 0; m < spec.measures.size(); ++m) {
@@ -229,10 +236,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     on[m] = fm.applies_to(fp.label);
     stops = stops || (on[m] && (fm.kind == MeasureKind::StopTime || fm.kind == MeasureKind::OnsetTime));
   }
-  const Vec ones = Vec::Ones(problem->ndof());
-  const Vec mass_row = M.transpose() * ones, gap_row = problem->gap_operator() * ones;
-  Vec f_ext(problem->ndof());
-  const double p0 = mass_row.dot(integrator->state().v);
+  MomentumBalance momentum(*problem, integrator->state().v);
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (on[m] && spec.measures[m].kind == MeasureKind::Hausdorff) {
       const Energy energy = integrator->energy();
@@ -240,11 +244,11 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0, spec.measures[m].observable, obs, &energy));
     }
   const double e0 = integrator->energy().total(), e_scale = energy_error_scale(*problem, e0);
-  double impulse_sum = 0.0, t_prev = 0.0;
+  double t_prev = 0.0;
   EnergyGrowth growth(*problem, integrator->state(), e0);
   std::optional<SlipStop> stop;
   if (stops) stop.emplace(*problem, integrator->state());
-  IntervalMax history(spec.t_end, kHistoryIntervals, 1);
+  IntervalMax history(t_end, kHistoryIntervals, 1);
   const auto history_measure = std::find_if(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) {
     return m.kind == MeasureKind::Energy && m.history;
   });
@@ -253,8 +257,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const auto sample = [&](const Integrator& it) {
     const State& s = it.state();
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
-      if (!on[m]) continue;
       const FileMeasure& fm = spec.measures[m];
+      if (!on[m] || s.t < fm.window_start || s.t > fm.window_end) continue;
       Accumulator& a = acc[m];
       double e = kNaN;
       if (fm.kind == MeasureKind::Error) {
@@ -274,12 +278,11 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy));
       } else if (fm.kind == MeasureKind::Energy) {
         e = (it.energy().total() - e0) / e_scale;
-        a.st += s.t, a.se += e, a.stt += s.t * s.t, a.ste += s.t * e, a.n += 1;
+        a.drift.add(s.t, e);
         e = fm.norm == "final" ? e : std::abs(e);
       } else if (fm.kind == MeasureKind::Momentum) {
-        const double p = mass_row.dot(s.v);
-        e = std::abs(p - p0 - impulse_sum);
-        a.scale = std::max({a.scale, std::abs(p), std::abs(p0)});
+        e = momentum.residual(s.v);
+        a.scale = std::max({a.scale, std::abs(momentum.momentum(s.v)), std::abs(momentum.initial())});
       }
       a.largest = std::max(a.largest, std::abs(e));
       a.square += e * e * (s.t - a.t_prev);
@@ -290,14 +293,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   long step = 0;
   const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo& info) {
     const State& s = it.state();
-    problem->external_force(s.t - info.dt, f_ext);
-    impulse_sum += ones.dot(f_ext) * info.dt + gap_row.dot(it.impulses());
+    momentum.add(it, info.dt);
     const bool contact = it.impulses().sum() > 0.0;
     for (std::size_t m = 0; m < spec.measures.size(); ++m)
-      if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) {
-        if (contact && !acc[m].in_contact) acc[m].impacts.push_back(s.t);
-        acc[m].in_contact = contact;
-      }
+      if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) acc[m].impacts.add(s.t, contact);
     growth.add(it, info.dt);
     if (stop) stop->add(s);
     if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(it.energy().total() - e0) / e_scale});
@@ -307,9 +306,12 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps},
               {"force_evaluations", r.work.force_evaluations}};
   if (r.status != RunStatus::Ok) return out;
-  if (const double g = growth.largest() / e_scale; g > kEnergyBlowUp) {
+  if (const double g = growth.largest() / e_scale; g > spec.energy_blow_up) {
     out["status"] = "energy blow-up";
-    out["message"] = fmt::format("max (E - E0 - W) / E scale = {:.3g} > {}", g, kEnergyBlowUp);
+    out["message"] = fmt::format("max (E - E0 - W) / E scale = {:.3g} > {}", g, spec.energy_blow_up);
+  } else if (r.max_penetration > spec.max_penetration) {
+    out["status"] = "penetration";
+    out["message"] = fmt::format("max penetration {:.3g} > {}", r.max_penetration, spec.max_penetration);
   }
   if (step % spec.sample_every != 0) sample(*integrator);
   history.finish();
@@ -325,20 +327,19 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     }
     switch (fm.kind) {
       case MeasureKind::Error:
-        v = (fm.norm == "final" ? a.last : fm.norm == "max" ? a.largest : std::sqrt(a.square / spec.t_end)) / scale;
+        v = (fm.norm == "final" ? a.last : fm.norm == "max" ? a.largest : std::sqrt(a.square / (std::min(t_end, fm.window_end) - fm.window_start))) / scale;
         break;
       case MeasureKind::ImpactTime: {
-        const auto exact = problem->impact_times(spec.t_end);
+        const auto exact = problem->impact_times(t_end);
         const std::size_t n = std::min<std::size_t>(fm.count, exact.size());
-        v = a.impacts.size() < n ? kNaN : 0.0;  // an impact missed: no error to report
-        for (std::size_t i = 0; i < n && i < a.impacts.size(); ++i) v = std::max(v, std::abs(a.impacts[i] - exact[i]));
+        const std::vector<double>& impacts = a.impacts.starts();
+        v = impacts.size() < n ? kNaN : 0.0;  // an impact missed: no error to report
+        for (std::size_t i = 0; i < n && i < impacts.size(); ++i) v = std::max(v, std::abs(impacts[i] - exact[i]));
         break;
       }
-      case MeasureKind::Energy: {
-        const double det = a.n * a.stt - a.st * a.st;
-        v = fm.norm == "max" ? a.largest : fm.norm == "final" ? a.last : (det > 0 ? (a.n * a.ste - a.st * a.se) / det : kNaN);
+      case MeasureKind::Energy:
+        v = fm.norm == "max" ? a.largest : fm.norm == "final" ? a.last : a.drift.slope();
         break;
-      }
       case MeasureKind::Momentum: v = a.largest / scale; break;
       case MeasureKind::Penetration: v = r.max_penetration; break;
       case MeasureKind::StopTime:
@@ -348,10 +349,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         break;
       }
       case MeasureKind::Hausdorff: {
-        const Polyline ref = reference.graph(fm.observable, spec.t_end, obs_ref);
+        const Polyline ref = reference.graph(fm.observable, t_end, obs_ref);
         double largest = 0.0;
         for (double x : ref.x) largest = std::max(largest, std::abs(x));
-        const double T = fm.time_scale > 0.0 ? fm.time_scale : spec.t_end;
+        const double T = fm.time_scale > 0.0 ? fm.time_scale : t_end;
         const double V = fm.value_scale > 0.0 ? fm.value_scale : largest > 0.0 ? largest : 1.0;
         v = hausdorff(scaled(a.graph, T, V), scaled(ref, T, V));
         break;
@@ -436,7 +437,10 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                                      {"status", "", "", fmt::format("energy blow-up: E rose above E0 by more than {} E scale "
                                                                     "(|E0|, or the problem's energy scale when E0 = 0) plus the "
                                                                     "work W a moving obstacle and time-dependent loads can have "
-                                                                    "done; energy lost never counts (not ranked)", kEnergyBlowUp)}});
+                                                                    "done; energy lost never counts (not ranked){}", spec.energy_blow_up,
+                                                                    std::isfinite(spec.max_penetration)
+                                                                        ? fmt::format("; penetration: max(0, -g) above {}", spec.max_penetration)
+                                                                        : "")}});
   t.metadata = meta;
   Table orders;
   orders.id = spec.name + "_orders";
@@ -466,6 +470,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     if (converges(m.kind))
       t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
                            "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
+
+  for (const FileFigure& f : spec.figures)
+    t.figures.push_back({spec.name + "_" + f.id, f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
 
   // Event times are against the problem's exact solution whatever the reference.
   const bool exact_times = primary != spec.measures.end() && is_event_time(primary->kind);

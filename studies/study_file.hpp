@@ -10,6 +10,7 @@
 //
 // Every error in the file is an InputError "FILE:LINE: key.path: what is wrong; valid: ...".
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -23,13 +24,18 @@ using Overrides = std::map<std::string, std::string>;
 struct FileProblem {
   std::string name, label;
   Overrides parameters;
+  double t_end = 0.0;              // its own end time (0: study.t_end)
+  long max_force_evaluations = 0;  // its own F_int budget per run (0: study.max_force_evaluations)
 };
 
-// What an integrator runs on one problem: its parameters and either a list of steps or a
-// list of tolerances (set as `tolerance_parameter`, each run with the fixed step `dt`).
+// What an integrator runs on one problem: its parameters and either a list of steps, a list
+// of fractions of the problem's stable step (Problem::stable_step(), 2 / omega_max: dt =
+// fraction * stable step) or a list of tolerances (set as `tolerance_parameter`, each run
+// with the fixed step `dt`).
 struct FileSweep {
   Overrides parameters;
   std::vector<double> steps;
+  std::vector<double> stable_fractions;
   std::vector<double> tolerances;
   std::string tolerance_parameter = "rtol";
   double dt = 0.0;
@@ -63,9 +69,25 @@ struct FileMeasure {
   double time_scale = 0.0;       // Hausdorff: T (0: t_end)
   double value_scale = 0.0;      // Hausdorff: V (0: the reference's largest |value|)
   std::vector<std::string> problems;  // the labels of the problems it is measured on (empty: all)
+  // Error, energy, momentum: sampled on [window_start, window_end] only (the whole run by default).
+  double window_start = 0.0;
+  double window_end = std::numeric_limits<double>::infinity();
   bool applies_to(const std::string& problem_label) const;
   // Smaller is better and never negative: a measure the ranking may rank by.
   bool rankable() const;
+};
+
+// A figure the file declares, drawn from the work-precision table: y against x (column names:
+// problem, integrator, dt, tol, a measure's label, CPU, steps, F_int evals), one line per
+// value of `series`, one panel per value of `panels`.
+struct FileFigure {
+  std::string id;  // <name>_<id>
+  std::string title;
+  std::string x, y;
+  std::vector<std::string> series{"integrator"};
+  std::vector<std::string> panels{"problem"};
+  bool log_x = true, log_y = true;
+  std::vector<double> slopes;  // reference slopes drawn as triangles (log-log)
 };
 
 struct StudySpec {
@@ -78,15 +100,22 @@ struct StudySpec {
   long sample_every = 1;
   int cpu_repeats = 3;
   long max_force_evaluations = 10'000'000;
+  // Outcome thresholds: "energy blow-up" past energy_blow_up E scale (study_file.cpp),
+  // "penetration" when max(0, -g) exceeds max_penetration (infinite: never).
+  double energy_blow_up = 2.0;
+  double max_penetration = std::numeric_limits<double>::infinity();
   std::vector<double> targets{1e-2, 1e-4};
   std::vector<FileProblem> problems;
   std::vector<FileIntegrator> integrators;
   FileReference reference;
   bool has_reference = false;
   std::vector<FileMeasure> measures;
+  std::vector<FileFigure> figures;
   // The measure the ranking and the work-precision figures use (study.rank_by, a measure's
   // label; default: the first error measure); measures.size(): none.
   std::size_t ranked = 0;
+  double t_end_of(const FileProblem& p) const { return p.t_end > 0.0 ? p.t_end : t_end; }
+  long budget_of(const FileProblem& p) const { return p.max_force_evaluations > 0 ? p.max_force_evaluations : max_force_evaluations; }
 };
 
 // Reads and checks a study file (.json: JSON, anything else: TOML).

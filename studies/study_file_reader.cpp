@@ -218,11 +218,11 @@ std::vector<std::string> names_of(const auto& registry) {
 
 // The run driver's limits (run/run.cpp), checked here so that a study stops at its
 // file's line before any run or any file is written.
-void check_step(const Checker& c, double dt, const std::string& path, double t_end) {
+void check_step(const Checker& c, double dt, const std::string& path, double t_end, const std::string& whose = "study.t_end") {
   const long limit = RunOptions{}.max_steps;
-  if (dt > t_end) c.fail(path, fmt::format("dt = {:g} is larger than study.t_end = {:g}", dt, t_end), "dt <= t_end");
+  if (dt > t_end) c.fail(path, fmt::format("dt = {:g} is larger than {} = {:g}", dt, whose, t_end), "dt <= t_end");
   if (t_end / dt > static_cast<double>(limit))
-    c.fail(path, fmt::format("study.t_end / dt = {:g} / {:g} = {:.3g} steps, more than a run's limit of {}", t_end, dt, t_end / dt, limit),
+    c.fail(path, fmt::format("{} / dt = {:g} / {:g} = {:.3g} steps, more than a run's limit of {}", whose, t_end, dt, t_end / dt, limit),
            fmt::format("dt >= t_end / {} = {:g}", limit, t_end / static_cast<double>(limit)));
 }
 
@@ -243,9 +243,16 @@ void check_held_samples(const Checker& c, double dt, long sample_every, double t
   }
 }
 
-void check_steps(const Checker& c, const FileSweep& s, const std::string& path, double t_end) {
-  for (std::size_t i = 0; i < s.steps.size(); ++i) check_step(c, s.steps[i], element(child(path, "steps"), i), t_end);
-  if (!s.tolerances.empty()) check_step(c, s.dt, child(path, "dt"), t_end);
+// The steps of a sweep on one problem (`stable`: its stable step), against its end time.
+void check_steps(const Checker& c, const FileSweep& s, const std::string& path, const StudySpec& spec, const FileProblem& p,
+                 double stable) {
+  const double t_end = spec.t_end_of(p);
+  const std::string whose = p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end";
+  for (std::size_t i = 0; i < s.steps.size(); ++i) check_step(c, s.steps[i], element(child(path, "steps"), i), t_end, whose);
+  for (std::size_t i = 0; i < s.stable_fractions.size(); ++i)
+    check_step(c, s.stable_fractions[i] * stable, element(child(path, "stable_steps"), i), t_end,
+               fmt::format("{} (problem '{}', stable step {:g})", whose, p.label, stable));
+  if (!s.tolerances.empty()) check_step(c, s.dt, child(path, "dt"), t_end, whose);
 }
 
 FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, const IntegratorEntry& entry,
@@ -253,14 +260,22 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
   FileSweep s = base ? *base : FileSweep{};
   if (const Json* p = c.find(j, "parameters"))
     for (const auto& [k, v] : c.parameters(*p, child(path, "parameters"), entry.parameters())) s.parameters[k] = v;
-  if (const Json* v = c.find(j, "steps")) {
-    s.steps = c.distinct_list(*v, child(path, "steps"));
+  // A sweep given here replaces the base's (steps, stable_steps or tolerances).
+  const auto given = [&](const char* key) { return c.find(j, key) != nullptr; };
+  if (given("steps") || given("stable_steps") || given("tolerances")) {
+    s.steps.clear();
+    s.stable_fractions.clear();
     s.tolerances.clear();
   }
-  if (const Json* v = c.find(j, "tolerances")) {
-    s.tolerances = c.distinct_list(*v, child(path, "tolerances"));
-    if (!c.find(j, "steps")) s.steps.clear();
+  if (const Json* v = c.find(j, "steps")) s.steps = c.distinct_list(*v, child(path, "steps"));
+  if (const Json* v = c.find(j, "stable_steps")) {
+    s.stable_fractions = c.distinct_list(*v, child(path, "stable_steps"));
+    for (std::size_t i = 0; i < s.stable_fractions.size(); ++i)
+      if (s.stable_fractions[i] > 100.0)
+        c.fail(element(child(path, "stable_steps"), i), fmt::format("{} stable steps is no step of a study", s.stable_fractions[i]),
+               "(0, 100]: dt as a multiple of the problem's stable step 2 / omega_max");
   }
+  if (const Json* v = c.find(j, "tolerances")) s.tolerances = c.distinct_list(*v, child(path, "tolerances"));
   if (const Json* v = c.find(j, "tolerance_parameter")) {
     std::vector<std::string> reals;
     for (const auto& p : entry.parameters())
@@ -268,8 +283,10 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
     s.tolerance_parameter = c.choice(*v, child(path, "tolerance_parameter"), reals);
   }
   if (const Json* v = c.find(j, "dt")) s.dt = c.positive(*v, child(path, "dt"));
-  if (!s.steps.empty() && !s.tolerances.empty()) c.fail(path, "give steps or tolerances, not both");
-  if (s.steps.empty() && s.tolerances.empty()) c.fail(path, "no sweep", "steps = [dt, ...] or tolerances = [tol, ...] with dt");
+  if (!s.steps.empty() + !s.stable_fractions.empty() + !s.tolerances.empty() > 1)
+    c.fail(path, "give one of steps, stable_steps or tolerances", "one sweep per integrator and problem");
+  if (s.steps.empty() && s.stable_fractions.empty() && s.tolerances.empty())
+    c.fail(path, "no sweep", "steps = [dt, ...], stable_steps = [fraction, ...] or tolerances = [tol, ...] with dt");
   if (!s.tolerances.empty()) {
     if (!(s.dt > 0.0)) c.fail(path, "a tolerance sweep needs its step: dt = ...");
     const auto specs = entry.parameters();
@@ -305,6 +322,96 @@ std::size_t ranked_measure(const Checker& c, const Json& study, const std::vecto
     c.fail("study.rank_by", fmt::format("measure '{}' is signed (an energy error's final value or drift): not an error to rank by", label),
            fmt::format("{}", fmt::join(valid, ", ")));
   return static_cast<std::size_t>(named - measures.begin());
+}
+
+// A problem's grid = { key = [values], ... }: one problem per point of the product of the
+// lists (keys in alphabetical order, the last varying fastest), each with the base parameters
+// and its point's, labelled "label, key = value, ..."; no grid: the problem itself.
+constexpr std::size_t kMaxGridPoints = 1000;
+
+std::vector<FileProblem> grid_points(const Checker& c, const Json& j, const std::string& path, const FileProblem& base,
+                                     const ParamSpecs& specs) {
+  std::vector<FileProblem> points{base};
+  const Json* grid = c.find(j, "grid");
+  if (!grid) return points;
+  const std::string at = child(path, "grid");
+  c.expect(*grid, at, grid->is_object() && !grid->empty(), "a table of parameter = [values, ...]");
+  for (const auto& [key, values] : grid->items()) {
+    const std::string key_path = child(at, key);
+    c.expect(values, key_path, values.is_array() && !values.empty(), "an array of one or more values");
+    if (base.parameters.count(key)) c.fail(key_path, "also given in parameters", "each parameter in one of parameters and grid");
+    std::vector<FileProblem> next;
+    for (const FileProblem& point : points)
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        const Overrides one = c.parameters(Json{{key, values[i]}}, at, specs);
+        FileProblem q = point;
+        q.parameters[key] = one.at(key);
+        q.label += fmt::format(", {} = {}", key, one.at(key));
+        next.push_back(q);
+      }
+    if (next.size() > kMaxGridPoints)
+      c.fail(at, fmt::format("{} problems or more in the grid", next.size()), fmt::format("at most {} points", kMaxGridPoints));
+    points = std::move(next);
+  }
+  return points;
+}
+
+// [[figure]]: drawn from the work-precision table, its columns named by their headers.
+std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const std::vector<FileMeasure>& measures) {
+  std::vector<FileFigure> figures;
+  const Json* list = c.find(root, "figure");
+  if (!list) return figures;
+  c.expect(*list, "figure", list->is_array(), "one or more [[figure]] tables");
+  std::vector<std::string> columns{"problem", "integrator", "dt", "tol"};
+  for (const auto& m : measures) columns.push_back(m.label);
+  columns.insert(columns.end(), {"CPU", "steps", "F_int evals"});
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const Json& j = (*list)[i];
+    const std::string path = element("figure", i);
+    c.expect(j, path, j.is_object(), "a table");
+    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes"});
+    FileFigure f;
+    f.id = c.string(c.require(j, path, "id"), child(path, "id"));
+    if (f.id.empty() || !std::all_of(f.id.begin(), f.id.end(), [](char ch) { return std::islower(static_cast<unsigned char>(ch)) || std::isdigit(static_cast<unsigned char>(ch)) || ch == '_'; }))
+      c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", f.id), "[a-z0-9_]+");
+    for (const auto& g : figures)
+      if (g.id == f.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", f.id), "distinct ids");
+    if (f.id == "work_precision" || f.id == "work_precision_evals" || f.id == "energy_history" || f.id.rfind("convergence_", 0) == 0)
+      c.fail(child(path, "id"), fmt::format("'{}' is the id of a figure the study draws itself", f.id),
+             "another id than work_precision, work_precision_evals, energy_history, convergence_*");
+    f.title = c.string(c.require(j, path, "title"), child(path, "title"));
+    f.x = c.choice(c.require(j, path, "x"), child(path, "x"), columns);
+    f.y = c.choice(c.require(j, path, "y"), child(path, "y"), columns);
+    const auto names = [&](const char* key, std::vector<std::string>& out) {
+      if (const Json* v = c.find(j, key)) {
+        const std::string at = child(path, key);
+        c.expect(*v, at, v->is_array(), "an array of column names");
+        out.clear();
+        for (std::size_t k = 0; k < v->size(); ++k) out.push_back(c.choice((*v)[k], element(at, k), columns));
+      }
+    };
+    names("series", f.series);
+    names("panels", f.panels);
+    if (const Json* v = c.find(j, "log_x")) f.log_x = c.boolean(*v, child(path, "log_x"));
+    if (const Json* v = c.find(j, "log_y")) f.log_y = c.boolean(*v, child(path, "log_y"));
+    if (const Json* v = c.find(j, "slopes")) {
+      const std::string at = child(path, "slopes");
+      c.expect(*v, at, v->is_array(), "an array of numbers");
+      for (std::size_t k = 0; k < v->size(); ++k) {
+        c.expect((*v)[k], element(at, k), (*v)[k].is_number(), "a number");
+        f.slopes.push_back((*v)[k].get<double>());
+      }
+    }
+    figures.push_back(f);
+  }
+  return figures;
+}
+
+// The end time of the longest run: the bound of the series held in memory.
+double longest_t_end(const StudySpec& spec) {
+  double t = spec.t_end;
+  for (const auto& p : spec.problems) t = std::max(t, spec.t_end_of(p));
+  return t;
 }
 
 std::string stem_name(const std::string& file) {
@@ -347,7 +454,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   }
   const Checker c(file, lines, json ? &text : nullptr);
   c.expect(root, "(file)", root.is_object(), "a table");
-  c.keys(root, "", {"study", "problem", "integrator", "reference", "measure"});
+  c.keys(root, "", {"study", "problem", "integrator", "reference", "measure", "figure"});
 
   StudySpec spec;
   spec.file = file;
@@ -357,7 +464,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 
   const Json& study = c.require(root, "", "study");
   c.expect(study, "study", study.is_object(), "a table");
-  c.keys(study, "study", {"title", "t_end", "sample_every", "cpu_repeats", "max_force_evaluations", "targets", "rank_by"});
+  c.keys(study, "study", {"title", "t_end", "sample_every", "cpu_repeats", "max_force_evaluations", "targets", "rank_by",
+                          "energy_blow_up", "max_penetration"});
   spec.title = c.string(c.require(study, "study", "title"), "study.title");
   spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
   if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
@@ -365,6 +473,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   if (const Json* v = c.find(study, "max_force_evaluations"))  // >= 1: no budget (0) would let a case run 2e8 steps
     spec.max_force_evaluations = c.integer(*v, "study.max_force_evaluations", 1, 1L << 50);
   if (const Json* v = c.find(study, "targets")) spec.targets = c.positive_list(*v, "study.targets");
+  if (const Json* v = c.find(study, "energy_blow_up")) spec.energy_blow_up = c.positive(*v, "study.energy_blow_up");
+  if (const Json* v = c.find(study, "max_penetration")) spec.max_penetration = c.positive(*v, "study.max_penetration");
 
   const auto list = [&](const char* key) -> const Json& {
     const Json& a = c.require(root, "", key);
@@ -377,24 +487,29 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   for (std::size_t i = 0; i < problems.size(); ++i) {
     const Json& j = problems[i];
     const std::string path = element("problem", i);
-    c.keys(j, path, {"name", "label", "parameters"});
+    c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations"});
     FileProblem p;
     p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
     p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
     const auto& entry = find_problem(p.name);
     if (const Json* v = c.find(j, "parameters")) p.parameters = c.parameters(*v, child(path, "parameters"), entry.parameters());
-    for (const auto& q : spec.problems)
-      if (q.label == p.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", p.label), "distinct labels");
-    try {
-      instances.push_back(make_problem(p.name, p.parameters));
-    } catch (const InputError& e) {
-      c.fail(child(path, "parameters"), e.what());
+    if (const Json* v = c.find(j, "t_end")) p.t_end = c.positive(*v, child(path, "t_end"));
+    if (const Json* v = c.find(j, "max_force_evaluations"))
+      p.max_force_evaluations = c.integer(*v, child(path, "max_force_evaluations"), 1, 1L << 50);
+    for (const FileProblem& q : grid_points(c, j, path, p, entry.parameters())) {
+      for (const auto& r : spec.problems)
+        if (r.label == q.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", q.label), "distinct labels");
+      try {
+        instances.push_back(make_problem(q.name, q.parameters));
+      } catch (const InputError& e) {
+        c.fail(child(path, c.find(j, "grid") ? "grid" : "parameters"), e.what());
+      }
+      spec.problems.push_back(q);
     }
-    spec.problems.push_back(p);
   }
 
   const Json& integrators = list("integrator");
-  const std::vector<std::string> sweep_keys{"parameters", "steps", "tolerances", "tolerance_parameter", "dt"};
+  const std::vector<std::string> sweep_keys{"parameters", "steps", "stable_steps", "tolerances", "tolerance_parameter", "dt"};
   for (std::size_t i = 0; i < integrators.size(); ++i) {
     const Json& j = integrators[i];
     const std::string path = element("integrator", i);
@@ -408,7 +523,6 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       if (q.label == it.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", it.label), "distinct labels");
     const auto& entry = find_integrator(it.name);
     it.sweep = read_sweep(c, j, path, entry, nullptr);
-    check_steps(c, it.sweep, path, spec.t_end);
     if (const Json* pp = c.find(j, "per_problem")) {
       const std::string pp_path = child(path, "per_problem");
       c.expect(*pp, pp_path, pp->is_object(), "a table keyed by problem label");
@@ -419,8 +533,13 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         c.expect(o, child(pp_path, label), o.is_object(), "a table");
         c.keys(o, child(pp_path, label), sweep_keys);
         it.per_problem[label] = read_sweep(c, o, child(pp_path, label), entry, &it.sweep);
-        check_steps(c, it.per_problem[label], child(pp_path, label), spec.t_end);
       }
+    }
+    for (std::size_t p = 0; p < spec.problems.size(); ++p) {
+      const std::string& label = spec.problems[p].label;
+      const bool own = it.per_problem.count(label) > 0;
+      check_steps(c, it.sweep_for(label), own ? child(child(path, "per_problem"), label) : path, spec, spec.problems[p],
+                  instances[p]->stable_step());
     }
     spec.integrators.push_back(it);
   }
@@ -444,9 +563,10 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       if (const Json* v = c.find(*r, "parameters"))
         ref.parameters = c.parameters(*v, "reference.parameters", find_integrator(ref.integrator).parameters());
       ref.dt = c.positive(c.require(*r, "reference", "dt"), "reference.dt");
-      check_step(c, ref.dt, "reference.dt", spec.t_end);
+      for (const auto& p : spec.problems)
+        check_step(c, ref.dt, "reference.dt", spec.t_end_of(p), p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end");
       if (const Json* v = c.find(*r, "sample_every")) ref.sample_every = c.integer(*v, "reference.sample_every", 1, 1L << 40);
-      check_held_samples(c, ref.dt, ref.sample_every, spec.t_end, "reference.dt", "the reference run", "reference.sample_every");
+      check_held_samples(c, ref.dt, ref.sample_every, longest_t_end(spec), "reference.dt", "the reference run", "reference.sample_every");
     }
     if (const Json* v = c.find(*r, "floor")) {
       c.expect(*v, "reference.floor", v->is_number(), "a number");
@@ -488,7 +608,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
         if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
       } else {
-        keys({"observable", "norm"});
+        keys({"observable", "norm", "window"});
       }
       if (!spec.has_reference) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
                                       "[reference] solution = \"exact\" or integrator = NAME");
@@ -509,7 +629,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       keys({"count"});
       if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));
       for (const std::size_t p : on)
-        if (instances[p]->impact_times(spec.t_end).empty())
+        if (instances[p]->impact_times(spec.t_end_of(spec.problems[p])).empty())
           c.fail(child(path, "kind"), fmt::format("problem '{}' knows no impact times before t_end", spec.problems[p].label),
                  "problems with known impacts (bouncing-mass, rolling-disk dropped from h0 > 0), or problems = [...]");
       m.label = "impact time err";
@@ -518,7 +638,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       const bool onset = m.kind == MeasureKind::OnsetTime;
       for (const std::size_t p : on) {
         const ExactStop exact = exact_stop(*instances[p]);
-        if (exact.rolling != onset || !(exact.stop_time <= spec.t_end))
+        if (exact.rolling != onset || !(exact.stop_time <= spec.t_end_of(spec.problems[p])))
           c.fail(child(path, "kind"), fmt::format("problem '{}' has no exact {} by t_end", spec.problems[p].label,
                                                   onset ? "rolling onset" : "stop time"),
                  onset ? "rolling-disk problems that roll by t_end, or problems = [...]"
@@ -526,13 +646,27 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       }
       m.label = onset ? "onset time err" : "stop time err";
     } else if (m.kind == MeasureKind::Energy) {
-      keys({"norm", "history"});
+      keys({"norm", "history", "window"});
       if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "final", "drift"});
       if (const Json* v = c.find(j, "history")) m.history = c.boolean(*v, child(path, "history"));
       m.label = fmt::format("energy err {}", m.norm);
     } else {
-      keys({});
+      keys(kind == "momentum" ? std::vector<std::string>{"window"} : std::vector<std::string>{});
       m.label = kind == "momentum" ? "momentum residual" : "penetration";
+    }
+    if (const Json* v = c.find(j, "window")) {
+      const std::string at = child(path, "window");
+      c.expect(*v, at, v->is_array() && v->size() == 2 && (*v)[0].is_number() && (*v)[1].is_number(), "an array [t0, t1] of two numbers");
+      m.window_start = (*v)[0].get<double>();
+      m.window_end = (*v)[1].get<double>();
+      if (!(m.window_start >= 0.0 && m.window_start < m.window_end && std::isfinite(m.window_end)))
+        c.fail(at, fmt::format("[{}, {}] is no time window", m.window_start, m.window_end), "0 <= t0 < t1, finite");
+      for (const std::size_t p : on)
+        if (!(m.window_start < spec.t_end_of(spec.problems[p])))
+          c.fail(at, fmt::format("the window starts at {} s, not before the end of problem '{}' ({} s)", m.window_start,
+                                 spec.problems[p].label, spec.t_end_of(spec.problems[p])),
+                 "t0 < t_end, or problems = [...]");
+      m.label += fmt::format(", t in [{:g}, {:g}]", m.window_start, m.window_end);
     }
     if (const Json* v = c.find(j, "label")) m.label = c.string(*v, child(path, "label"));
     for (const auto& q : spec.measures)
@@ -540,14 +674,19 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     spec.measures.push_back(m);
   }
   spec.ranked = ranked_measure(c, study, spec.measures);
+  spec.figures = read_figures(c, root, spec.measures);
   if (std::any_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; }))
     for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
       const auto held = [&](const FileSweep& sweep, const std::string& path) {
         for (std::size_t k = 0; k < sweep.steps.size(); ++k)
-          check_held_samples(c, sweep.steps[k], spec.sample_every, spec.t_end, element(child(path, "steps"), k),
+          check_held_samples(c, sweep.steps[k], spec.sample_every, longest_t_end(spec), element(child(path, "steps"), k),
                              "a run's graph for a Hausdorff distance", "study.sample_every");
+        for (std::size_t k = 0; k < sweep.stable_fractions.size(); ++k)
+          for (const auto& problem : instances)
+            check_held_samples(c, sweep.stable_fractions[k] * problem->stable_step(), spec.sample_every, longest_t_end(spec),
+                               element(child(path, "stable_steps"), k), "a run's graph for a Hausdorff distance", "study.sample_every");
         if (!sweep.tolerances.empty())
-          check_held_samples(c, sweep.dt, spec.sample_every, spec.t_end, child(path, "dt"), "a run's graph for a Hausdorff distance",
+          check_held_samples(c, sweep.dt, spec.sample_every, longest_t_end(spec), child(path, "dt"), "a run's graph for a Hausdorff distance",
                              "study.sample_every");
       };
       const std::string path = element("integrator", i);
@@ -571,10 +710,15 @@ StudySpec read_study_file(const std::filesystem::path& path) {
 
 StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, long budget) {
   spec.t_end *= t_scale;
+  for (auto& p : spec.problems) {
+    p.t_end *= t_scale;
+    if (p.max_force_evaluations > 0) p.max_force_evaluations = std::min(p.max_force_evaluations, budget);
+  }
   spec.cpu_repeats = 0;
   spec.max_force_evaluations = budget;
   const auto cut = [&](FileSweep& s) {
     if (s.steps.size() > max_runs) s.steps.resize(max_runs);
+    if (s.stable_fractions.size() > max_runs) s.stable_fractions.resize(max_runs);
     if (s.tolerances.size() > max_runs) s.tolerances.resize(max_runs);
   };
   for (auto& it : spec.integrators) {

@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 
+#include "problems/registry.hpp"
 #include "studies/study.hpp"
 #include "studies/study_file.hpp"
 
@@ -664,4 +665,153 @@ TEST_CASE("study file: an infinite floor and a zero budget are refused", "[studi
   CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 0")),
              Catch::EndsWith("study.max_force_evaluations: 0 is out of range; valid: [1, 1125899906842624]"));
   CHECK(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 1")) == "(no error)");
+}
+
+TEST_CASE("study file: per-problem end times and budgets, stable-step sweeps and outcome thresholds: bad input named",
+          "[studies][study_file]") {
+  using Catch::StartsWith;
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nt_end = -1")),
+             StartsWith("f.toml:8: problem[0].t_end: -1 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nt_end = 0.005")),
+             StartsWith("f.toml:12: integrator[0].steps[0]: dt = 0.01 is larger than the t_end of problem 'bouncing-mass' = 0.005; "
+                        "valid: dt <= t_end"));
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nmax_force_evaluations = 0")),
+             StartsWith("f.toml:8: problem[0].max_force_evaluations: 0 is out of range; valid: [1, "));
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2]\nstable_steps = [0.5]")),
+             StartsWith("f.toml:9: integrator[0]: give one of steps, stable_steps or tolerances; valid: one sweep per integrator"));
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 200]")),
+             StartsWith("f.toml:11: integrator[0].stable_steps[1]: 200 stable steps is no step of a study; valid: (0, 100]"));
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 0.5]")),
+             StartsWith("f.toml:11: integrator[0].stable_steps[1]: 0.5 repeats stable_steps[0]; valid: distinct values"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = 0")),
+             StartsWith("f.toml:4: study.energy_blow_up: 0 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_penetration = \"1e-3\"")),
+             StartsWith("f.toml:4: study.max_penetration: expected a number, got a string"));
+  // The bouncing mass has no stiffness: its stable step is no finite step.
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5]")),
+             StartsWith("f.toml:11: integrator[0].stable_steps[0]: dt = inf is larger than study.t_end (problem 'bouncing-mass', "
+                        "stable step inf) = 0.6"));
+}
+
+TEST_CASE("study file: a problem's own end time and budget, dt from the stable step, and a penetration threshold run",
+          "[studies][study_file]") {
+  const std::string text = quick_study("0.6", "max_penetration = 1e-12\n") + R"(
+[[problem]]
+name = "bouncing-mass"
+label = "short"
+t_end = 0.3
+
+[[problem]]
+name = "bouncing-mass"
+label = "budget"
+max_force_evaluations = 5
+
+[[problem]]
+name = "signorini-bar"
+label = "bar"
+parameters = { N = 10 }
+t_end = 0.05
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2]
+[integrator.per_problem.bar]
+stable_steps = [0.5, 0.25]
+
+[[measure]]
+kind = "penetration"
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "w.toml", false);
+  CHECK(spec.t_end_of(spec.problems[0]) == 0.3);
+  CHECK(spec.t_end_of(spec.problems[1]) == 0.6);
+  CHECK(spec.budget_of(spec.problems[1]) == 5);
+  CHECK(spec.budget_of(spec.problems[0]) == spec.max_force_evaluations);
+  const auto cases = nsb::study_cases(nsb::file_study(spec), {});
+  REQUIRE(cases.size() == 4);
+  const double stable = nsb::make_problem("signorini-bar", {{"N", "10"}})->stable_step();
+  CHECK(cases[2]["dt"].get<double>() == 0.5 * stable);
+  CHECK(cases[3]["dt"].get<double>() == 0.25 * stable);
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(spec, &results);
+  CHECK(results[0]["steps"] == 30);                                    // 0.3 s at 1e-2: before the impact at 0.45 s
+  CHECK(results[0]["status"] == "ok");                                 // no contact, no penetration
+  CHECK(results[1]["status"] == "over budget");                        // 5 F_int evaluations
+  CHECK(results[2]["steps"] == static_cast<long>(std::ceil(0.05 / (0.5 * stable) - 1e-9)));
+  // CD-Lagrange's velocity-level contact lets the mass through the floor by O(dt v): above 1e-12.
+  const std::string text2 = replaced(text, "t_end = 0.3", "t_end = 0.6");
+  std::vector<nsb::Json> results2;
+  run_all(nsb::parse_study_text(text2, "w.toml", false), &results2);
+  CHECK(results2[0]["status"] == "penetration");
+  CHECK_THAT(results2[0]["message"].get<std::string>(), Catch::StartsWith("max penetration "));
+}
+
+TEST_CASE("study file: a grid of problem parameters and a measure's time window", "[studies][study_file]") {
+  using Catch::StartsWith;
+  const std::string grid = replaced(kMinimal, "parameters = { e = 0.5 }", "label = \"mass\"\ngrid = { e = [0.5, 0.9], h0 = [1, 2] }");
+  const nsb::StudySpec s = nsb::parse_study_text(grid, "g.toml", false);
+  REQUIRE(s.problems.size() == 4);  // keys in alphabetical order, the last varying fastest
+  CHECK(s.problems[0].label == "mass, e = 0.5, h0 = 1");
+  CHECK(s.problems[1].label == "mass, e = 0.5, h0 = 2");
+  CHECK(s.problems[3].label == "mass, e = 0.9, h0 = 2");
+  CHECK(s.problems[3].parameters.at("e") == "0.9");
+  CHECK(s.problems[3].parameters.at("h0") == "2");
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "grid = { e = [0.5, 1.5] }")),
+             StartsWith("f.toml:7: problem[0].grid.e: ") && Catch::Contains("valid: [0, 1]"));
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\ngrid = { e = [0.9] }")),
+             StartsWith("f.toml:8: problem[0].grid.e: also given in parameters"));
+  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "grid = { e = [] }")),
+             StartsWith("f.toml:7: problem[0].grid.e: expected an array of one or more values"));
+
+  // Before the first impact (0.4515 s) Moreau-Jean and the exact solution are both free flight.
+  const std::string window = quick_study("0.6") + R"(
+[[problem]]
+name = "bouncing-mass"
+[[integrator]]
+name = "moreau-jean"
+steps = [1e-2]
+[reference]
+solution = "exact"
+[[measure]]
+kind = "error"
+window = [0.0, 0.4]
+[[measure]]
+kind = "error"
+)";
+  const nsb::StudySpec w = nsb::parse_study_text(window, "w.toml", false);
+  CHECK(w.measures[0].label == "err u max, t in [0, 0.4]");
+  std::vector<nsb::Json> results;
+  run_all(w, &results);
+  const double in_window = results[0]["values"][0], whole = results[0]["values"][1];
+  CHECK(in_window < 0.2 * whole);  // the impact's error is outside the window
+  CHECK(in_window > 0.0);
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = [0.5, 0.2]")),
+             StartsWith("f.toml:18: measure[0].window: [0.5, 0.2] is no time window; valid: 0 <= t0 < t1, finite"));
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = [0.7, 0.9]")),
+             StartsWith("f.toml:18: measure[0].window: the window starts at 0.7 s, not before the end of problem 'bouncing-mass'"));
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"penetration\"\nwindow = [0, 0.1]")),
+             StartsWith("f.toml:18: measure[0].window: unknown key"));
+  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = 0.4")),
+             StartsWith("f.toml:18: measure[0].window: expected an array [t0, t1] of two numbers"));
+}
+
+TEST_CASE("study file: figures declared in the file are drawn from the work-precision table; bad ones named",
+          "[studies][study_file]") {
+  using Catch::StartsWith;
+  const std::string fig = kMinimal + "\n[[figure]]\nid = \"steps\"\ntitle = \"Steps\"\nx = \"dt\"\ny = \"steps\"\nslopes = [-1]\n";
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(nsb::reduced_study(nsb::parse_study_text(fig, "min.toml", false), 1.0, 2, 100000), &results);
+  const nsb::Table& wp = table(tables, "_work_precision");
+  const auto f = std::find_if(wp.figures.begin(), wp.figures.end(), [](const nsb::Figure& g) { return g.id == "min_steps"; });
+  REQUIRE(f != wp.figures.end());
+  CHECK(f->x == "dt");
+  CHECK(f->y == "steps");
+  CHECK(f->series == std::vector<std::string>{"integrator"});
+  CHECK(f->slopes == std::vector<double>{-1.0});
+  CHECK_THAT(error_of(replaced(fig, "y = \"steps\"", "y = \"stpes\"")),
+             StartsWith("f.toml:23: figure[0].y: 'stpes' is not valid (nearest: steps); valid: problem, integrator, dt, tol, err u max, CPU,"));
+  CHECK_THAT(error_of(replaced(fig, "id = \"steps\"", "id = \"Steps!\"")),
+             StartsWith("f.toml:20: figure[0].id: 'Steps!' is not a file name of a-z, 0-9 and _; valid: [a-z0-9_]+"));
+  CHECK_THAT(error_of(replaced(fig, "id = \"steps\"", "id = \"work_precision\"")),
+             StartsWith("f.toml:20: figure[0].id: 'work_precision' is the id of a figure the study draws itself"));
+  CHECK_THAT(error_of(replaced(fig, "title = \"Steps\"\n", "")), StartsWith("f.toml:19: figure[0]: missing key 'title'"));
 }

@@ -1,9 +1,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include "integrators/registry.hpp"
 #include "studies/parallel.hpp"
+#include "studies/registry.hpp"
 #include "studies/study.hpp"
 
 using Catch::Detail::Approx;
@@ -107,4 +109,14 @@ TEST_CASE("interval histories: the largest value of each interval at its last st
   const nsb::IntervalMax none;  // a run that never started (n/a)
   CHECK(none.times().empty());
   CHECK(none.largest(1).empty());
+}
+
+TEST_CASE("registry: each built-in study names the file that defines it, and the file exists", "[studies]") {
+  for (const auto& s : nsb::study_registry()) {
+    const std::string source = nsb::study_source(s.name);
+    INFO(s.name);
+    REQUIRE_FALSE(source.empty());
+    CHECK(std::filesystem::exists(std::filesystem::path(NSBENCH_SOURCE_DIR) / source));
+  }
+  CHECK(nsb::study_source("no-such-study").empty());
 }

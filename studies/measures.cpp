@@ -1,0 +1,134 @@
+// The measures of studies/measures.hpp.
+#include "studies/measures.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrators/integrator.hpp"
+
+namespace nsb {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+bool usable(double e) { return e > 0.0 && std::isfinite(e); }
+}  // namespace
+
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
+  LineFit fit;
+  fit.points = static_cast<int>(std::min(x.size(), y.size()));
+  if (fit.points < 2) return fit;
+  const double n = fit.points;
+  double mx = 0, my = 0;
+  for (int i = 0; i < fit.points; ++i) {
+    mx += x[i] / n;
+    my += y[i] / n;
+  }
+  double sxx = 0, sxy = 0;
+  for (int i = 0; i < fit.points; ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
+  if (!(sxx > 0.0)) return fit;
+  fit.slope = sxy / sxx;
+  if (fit.points < 3) return fit;
+  double ssr = 0;
+  for (int i = 0; i < fit.points; ++i) {
+    const double r = y[i] - my - fit.slope * (x[i] - mx);
+    ssr += r * r;
+  }
+  const double half = student_t975(fit.points - 2) * std::sqrt(ssr / (n - 2) / sxx);
+  fit.low = fit.slope - half;
+  fit.high = fit.slope + half;
+  return fit;
+}
+
+void RunningSlope::add(double x, double y) {
+  n_ += 1.0;
+  const double dx = x - mean_x_;
+  mean_x_ += dx / n_;
+  mean_y_ += (y - mean_y_) / n_;
+  cxy_ += dx * (y - mean_y_);
+  cxx_ += dx * (x - mean_x_);
+}
+
+double RunningSlope::slope() const { return cxx_ > 0.0 ? cxy_ / cxx_ : kNaN; }
+
+double above_round_off(double error) { return error > kRoundOffError ? error : kNaN; }
+
+double observed_order(double h1, double e1, double h2, double e2) {
+  if (!usable(e1) || !usable(e2) || h1 == h2) return kNaN;
+  return std::log(e1 / e2) / std::log(h1 / h2);
+}
+
+double fitted_order(const std::vector<double>& h, const std::vector<double>& e) { return fit_order(h, e).order; }
+
+double student_t975(int dof) {
+  // Tabulated to 30 degrees of freedom; beyond, the Cornish-Fisher expansion about the normal
+  // quantile (error below 1e-5 there).
+  static const double table[] = {12.7062047, 4.3026527, 3.1824463, 2.7764451, 2.5705818, 2.4469119,
+                                 2.3646243, 2.3060041, 2.2621572, 2.2281389, 2.2009852, 2.1788128,
+                                 2.1603687, 2.1447867, 2.1314495, 2.1199053, 2.1098155, 2.1009220,
+                                 2.0930241, 2.0859634, 2.0796138, 2.0738731, 2.0686576, 2.0638986,
+                                 2.0595386, 2.0555294, 2.0518305, 2.0484071, 2.0452296, 2.0422725};
+  if (dof < 1) return kNaN;
+  if (dof <= 30) return table[dof - 1];
+  const double z = 1.959963985, n = dof;
+  return z + (z * z * z + z) / (4 * n) + (5 * std::pow(z, 5) + 16 * z * z * z + 3 * z) / (96 * n * n) +
+         (3 * std::pow(z, 7) + 19 * std::pow(z, 5) + 17 * z * z * z - 15 * z) / (384 * n * n * n);
+}
+
+OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& e) {
+  std::vector<double> x, y, repeats;  // one point per distinct h: the mean of log e over its repeats
+  for (std::size_t i = 0; i < h.size() && i < e.size(); ++i)
+    if (usable(e[i]) && h[i] > 0.0 && std::isfinite(h[i])) {
+      const double lh = std::log(h[i]);
+      const auto at = std::find(x.begin(), x.end(), lh) - x.begin();
+      if (at == static_cast<std::ptrdiff_t>(x.size())) {
+        x.push_back(lh);
+        y.push_back(0.0);
+        repeats.push_back(0.0);
+      }
+      repeats[at] += 1.0;
+      y[at] += (std::log(e[i]) - y[at]) / repeats[at];
+    }
+  const LineFit line = fit_line(x, y);
+  return {line.slope, line.low, line.high, line.points};
+}
+
+MomentumBalance::MomentumBalance(const Problem& problem, const Vec& v0)
+    : problem_(problem),
+      ones_(Vec::Ones(problem.ndof())),
+      mass_row_(problem.mass_matrix().transpose() * ones_),
+      gap_row_(problem.gap_operator() * ones_),
+      f_ext_(problem.ndof()),
+      p0_(mass_row_.dot(v0)) {
+  if (problem.external_force_is_constant()) {  // summed once: the observer's cost stays that of a dot product
+    problem.external_force(0.0, f_ext_);
+    constant_force_sum_ = ones_.dot(f_ext_);
+  }
+}
+
+void MomentumBalance::add(const Integrator& integrator, double dt) {
+  double force_sum = constant_force_sum_;
+  if (std::isnan(force_sum)) {
+    problem_.external_force(integrator.state().t - dt, f_ext_);
+    force_sum = ones_.dot(f_ext_);
+  }
+  impulse_sum_ += force_sum * dt + gap_row_.dot(integrator.impulses());
+}
+
+double MomentumBalance::residual(const Vec& v) const { return std::abs(mass_row_.dot(v) - p0_ - impulse_sum_); }
+
+bool ContactPhases::add(double t, bool contact) {
+  const bool starts = contact && !in_contact_ && t - last_contact_ > min_flight_;
+  if (starts) starts_.push_back(t);
+  if (contact) last_contact_ = t;
+  in_contact_ = contact;
+  return starts;
+}
+
+Column cost_column() {
+  return {"CPU", "s", "{:.2e}", "thread CPU time of the stepping of the observed run (observer excluded)", true};
+}
+
+}  // namespace nsb

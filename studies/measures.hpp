@@ -1,0 +1,124 @@
+#pragma once
+// One library of the measures the studies take of a run, each a small observer fed after every
+// step or a function of a run's numbers, each tested on a case with a known answer
+// (tests/studies/measures_test.cpp):
+//   - least-squares fits: a line with its 95% confidence interval (fit_line), the same fed one
+//     point at a time (RunningSlope, an energy drift), and the convergence order in log-log
+//     (fit_order, fitted_order, observed_order);
+//   - momentum balance of a 1D problem (MomentumBalance): P - P0 - sum of the impulses of the
+//     external forces and the contacts;
+//   - contact phases and impact times (ContactPhases);
+//   - the cost of a run: the thread CPU time of its stepping, observer excluded (cost_column,
+//     RunResult::step_cpu_seconds; median_cpu_seconds in studies/study.hpp for timed runs);
+//   - stop and onset times of a slip (studies/slip_stop.hpp) and the Hausdorff distance between
+//     graphs (studies/hausdorff.hpp) are the measures of those headers.
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "problems/problem.hpp"
+#include "studies/table.hpp"
+
+namespace nsb {
+
+class Integrator;
+
+// ---- Least-squares fits ----------------------------------------------------------------
+
+// Least squares y = a + b x over the points (x_i, y_i) as given (the caller leaves out what
+// is not a point), with the 95% confidence interval of b: b +- t_{0.975, n-2} SE, residual
+// variance s^2 = SSR / (n - 2), SE = s / sqrt(Sxx), Sxx = sum (x_i - mean x)^2. The slope is
+// NaN with fewer than two points or all x equal; the interval with fewer than three points
+// (no residual degree of freedom).
+struct LineFit {
+  double slope = std::numeric_limits<double>::quiet_NaN();
+  double low = std::numeric_limits<double>::quiet_NaN();
+  double high = std::numeric_limits<double>::quiet_NaN();
+  int points = 0;
+};
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
+
+// The least-squares slope of y against x fed one point at a time, by Welford's updates
+// (means and co-moments, no cancellation over millions of steps); NaN before two distinct x.
+class RunningSlope {
+ public:
+  void add(double x, double y);
+  double slope() const;
+
+ private:
+  double n_ = 0.0, mean_x_ = 0.0, mean_y_ = 0.0, cxy_ = 0.0, cxx_ = 0.0;
+};
+
+// Errors at or below this are round-off (a scheme exact for the case: Moreau-Jean's velocity
+// under a constant force, a plugin at e = 1 on the bouncing mass): they carry no order and stay
+// out of every study's order fits. The studies' errors are relative, or absolute on motions of
+// size one (s, m, m/s), so one absolute threshold serves them all.
+constexpr double kRoundOffError = 1e-11;
+// The error, or NaN when it is at round-off (<= kRoundOffError) or not a number.
+double above_round_off(double error);
+
+// Observed order between two refinements: log(e1/e2) / log(h1/h2); NaN when an error is
+// not positive and finite.
+double observed_order(double h1, double e1, double h2, double e2);
+
+// The convergence order: fit_line of log e against log h with its 95% interval over the
+// points with positive finite error. The points are the distinct h: repeats of an h (a
+// deterministic run repeated) are one point, at the mean of their log e, and `points` counts
+// distinct h; otherwise each repeat would add a residual degree of freedom and narrow the
+// interval without adding information.
+struct OrderFit {
+  double order = std::numeric_limits<double>::quiet_NaN();
+  double low = std::numeric_limits<double>::quiet_NaN();
+  double high = std::numeric_limits<double>::quiet_NaN();
+  int points = 0;
+};
+OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& e);
+// Its order alone (NaN with fewer than two such points).
+double fitted_order(const std::vector<double>& h, const std::vector<double>& e);
+// Two-sided 97.5% quantile of Student's t with `dof` >= 1 degrees of freedom.
+double student_t975(int dof);
+
+// ---- Observers fed after every step ----------------------------------------------------
+
+// Momentum balance of a 1D problem, P = 1^T M v: after each step of length dt ending at t,
+//     P_k - P_0 - sum_j ( 1^T F_ext(t_j - dt_j) dt_j + 1^T L^T Lambda_j ),
+// zero for a scheme that balances momentum exactly when the internal forces sum to zero.
+class MomentumBalance {
+ public:
+  MomentumBalance(const Problem& problem, const Vec& v0);
+  void add(const Integrator& integrator, double dt);  // after each step
+  double momentum(const Vec& v) const { return mass_row_.dot(v); }
+  double initial() const { return p0_; }
+  double residual(const Vec& v) const;  // |P - P0 - impulses|, absolute
+
+ private:
+  const Problem& problem_;
+  Vec ones_, mass_row_, gap_row_, f_ext_;
+  double p0_ = 0.0, impulse_sum_ = 0.0;
+  double constant_force_sum_ = std::numeric_limits<double>::quiet_NaN();  // 1^T F_ext of a constant load
+};
+
+// Contact phases: a phase starts at a step with a contact impulse after a step without one,
+// more than `min_flight` after the last step with an impulse (a chattering contact is one
+// phase). Its start times are the impact times the studies compare with exact ones.
+class ContactPhases {
+ public:
+  explicit ContactPhases(double min_flight = 0.0) : min_flight_(min_flight) {}
+  // After each step ending at t: whether it had a contact impulse; true when a phase starts.
+  bool add(double t, bool contact);
+  const std::vector<double>& starts() const { return starts_; }
+
+ private:
+  double min_flight_;
+  bool in_contact_ = false;
+  double last_contact_ = -1e300;
+  std::vector<double> starts_;
+};
+
+// ---- Cost --------------------------------------------------------------------------------
+
+// The one definition of a run's cost in a table: the thread CPU time of the stepping of the
+// observed run, the observer excluded (RunResult::step_cpu_seconds); a timing column.
+Column cost_column();
+
+}  // namespace nsb

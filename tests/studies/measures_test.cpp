@@ -1,0 +1,104 @@
+// The measures of studies/measures.hpp, each on a case with a known answer.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+#include "run/run.hpp"
+#include "studies/measures.hpp"
+
+using Catch::Detail::Approx;
+
+TEST_CASE("fit_line: an exact line, and its slope and 95% interval by hand on three points", "[studies][measures]") {
+  const nsb::LineFit exact = nsb::fit_line({1.0, 2.0, 3.0, 4.0}, {5.0, 7.0, 9.0, 11.0});  // y = 3 + 2 x
+  CHECK(exact.slope == Approx(2.0).epsilon(1e-14));
+  CHECK(exact.low == Approx(2.0).epsilon(1e-12));
+  CHECK(exact.high == Approx(2.0).epsilon(1e-12));
+  CHECK(exact.points == 4);
+  // x = 0, 1, 2; y = 0, 1, 3: Sxx = 2, Sxy = 3, slope 3/2; residuals 1/6, -1/3, 1/6, SSR = 1/6;
+  // half width t_{0.975,1} sqrt(SSR / 1 / Sxx) = 12.7062047 sqrt(1/12).
+  const nsb::LineFit f = nsb::fit_line({0.0, 1.0, 2.0}, {0.0, 1.0, 3.0});
+  CHECK(f.slope == Approx(1.5).epsilon(1e-14));
+  CHECK(f.high - f.slope == Approx(12.7062047 * std::sqrt(1.0 / 12.0)).epsilon(1e-12));
+  CHECK(f.slope - f.low == Approx(12.7062047 * std::sqrt(1.0 / 12.0)).epsilon(1e-12));
+  // Two points: a slope, no interval; one point, or all x equal: nothing.
+  const nsb::LineFit two = nsb::fit_line({1.0, 3.0}, {1.0, 2.0});
+  CHECK(two.slope == Approx(0.5));
+  CHECK(std::isnan(two.low));
+  CHECK(std::isnan(nsb::fit_line({1.0}, {1.0}).slope));
+  CHECK(std::isnan(nsb::fit_line({2.0, 2.0, 2.0}, {1.0, 2.0, 3.0}).slope));
+}
+
+TEST_CASE("fit_order is fit_line in log-log over the distinct steps", "[studies][measures]") {
+  const std::vector<double> h{1e-3, 2e-3, 4e-3}, e{1e-6, 5e-6, 15e-6};
+  std::vector<double> lh, le;
+  for (std::size_t i = 0; i < h.size(); ++i) lh.push_back(std::log(h[i])), le.push_back(std::log(e[i]));
+  const nsb::OrderFit order = nsb::fit_order(h, e);
+  const nsb::LineFit line = nsb::fit_line(lh, le);
+  CHECK(order.order == line.slope);
+  CHECK(order.low == line.low);
+  CHECK(order.high == line.high);
+  CHECK(order.points == 3);
+}
+
+TEST_CASE("RunningSlope: the least-squares slope one point at a time", "[studies][measures]") {
+  nsb::RunningSlope s;
+  CHECK(std::isnan(s.slope()));
+  s.add(0.0, 1.0);
+  CHECK(std::isnan(s.slope()));  // one point: no slope
+  std::vector<double> x{0.0}, y{1.0};
+  for (int k = 1; k <= 1000; ++k) {
+    const double t = 1e-3 * k, e = 1.0 - 0.25 * t + 1e-3 * std::sin(37.0 * k);  // drift -1/4 plus noise
+    s.add(t, e);
+    x.push_back(t), y.push_back(e);
+  }
+  CHECK(s.slope() == Approx(nsb::fit_line(x, y).slope).epsilon(1e-10));
+  CHECK(s.slope() == Approx(-0.25).margin(1e-2));
+}
+
+TEST_CASE("ContactPhases: a phase starts after a step without impulse, more than min_flight after the last", "[studies][measures]") {
+  nsb::ContactPhases any;
+  const std::vector<std::pair<double, bool>> steps{{0.1, false}, {0.2, true}, {0.3, true}, {0.4, false},
+                                                   {0.5, true}, {0.6, false}, {1.0, false}, {1.1, true}};
+  for (const auto& [t, c] : steps) any.add(t, c);
+  CHECK(any.starts() == std::vector<double>{0.2, 0.5, 1.1});
+  nsb::ContactPhases chatter(0.25);  // 0.5 is 0.2 after the last impulse at 0.3: the same phase
+  for (const auto& [t, c] : steps) chatter.add(t, c);
+  CHECK(chatter.starts() == std::vector<double>{0.2, 1.1});
+}
+
+TEST_CASE("MomentumBalance and ContactPhases on the bouncing mass: Moreau-Jean balances momentum, impacts on time",
+          "[studies][measures]") {
+  // m = 1, g = 9.81, h0 = 1: first impact at sqrt(2 h0 / g) = 0.45152 s, the next 2 e sqrt(2 h0/g) later.
+  const auto problem = nsb::make_problem("bouncing-mass", {{"e", "0.9"}, {"h0", "1"}});
+  auto integrator = nsb::make_integrator("moreau-jean");
+  integrator->init(*problem, problem->initial_state());
+  nsb::MomentumBalance balance(*problem, integrator->state().v);
+  nsb::ContactPhases impacts;
+  double worst = 0.0, unbalanced = 0.0;
+  nsb::RunOptions options;
+  options.dt = 1e-4;
+  options.t_end = 1.5;
+  options.record_series = false;
+  nsb::run(*problem, *integrator, options, [&](const nsb::Integrator& it, const nsb::StepInfo& info) {
+    unbalanced = std::max(unbalanced, std::abs(balance.momentum(it.state().v) - balance.initial()));
+    balance.add(it, info.dt);
+    worst = std::max(worst, balance.residual(it.state().v));
+    impacts.add(it.state().t, it.impulses().sum() > 0.0);
+  });
+  CHECK(balance.initial() == 0.0);  // released at rest
+  CHECK(unbalanced > 1.0);          // P itself changes (gravity, impacts)...
+  CHECK(worst < 1e-12);             // ...by exactly the impulses of gravity and the floor
+  const double t1 = std::sqrt(2.0 / 9.81), t2 = t1 + 2 * 0.9 * t1;
+  REQUIRE(impacts.starts().size() == 2);
+  CHECK(impacts.starts()[0] == Approx(t1).margin(2e-4));
+  CHECK(impacts.starts()[1] == Approx(t2).margin(2e-3));
+}
+
+TEST_CASE("cost_column: the stepping time, a timing column", "[studies][measures]") {
+  const nsb::Column c = nsb::cost_column();
+  CHECK(c.name == "CPU");
+  CHECK(c.unit == "s");
+  CHECK(c.timing);
+  CHECK(c.description.find("observer excluded") != std::string::npos);
+}
