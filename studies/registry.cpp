@@ -49,7 +49,7 @@ std::string study_source(const std::string& name) {
       {"block", "studies/block.cpp"},         {"peers", "studies/peers.cpp"},
       {"bouncing-bar", "studies/bouncing_bar.cpp"}, {"friction", "studies/friction.cpp"},
       {"bodies", "studies/bodies.cpp"},       {"hausdorff", "studies/hausdorff_study.cpp"},
-      {"claims", "studies/claims.cpp"}};
+      {"claims", "studies/claims.cpp"},       {"properties", "studies/properties.cpp"}};
   const auto it = sources.find(name);
   return it == sources.end() ? "" : it->second;
 }
