@@ -6,6 +6,7 @@
 
 #include "problems/bar3d_exact.hpp"
 #include "problems/hex8_elements.hpp"
+#include "tests/support/input_error.hpp"
 
 using Catch::Detail::Approx;
 using nsb::Params;
@@ -68,22 +69,14 @@ TEST_CASE("bar-3d: the exact solution is the 1D bar's with the oedometric modulu
 }
 
 TEST_CASE("bar-3d: bad input is one line naming the parameter and its range", "[bar3d_exact]") {
-  const auto text = [](auto call) {
-    try {
-      call();
-    } catch (const nsb::InputError& err) {
-      return std::string(err.what());
-    }
-    return std::string();
-  };
   for (const double nu : {0.5, -0.1, 0.7}) {
-    const std::string t = text([nu] { nsb::p_wave_speed(1.0, nu, 1.0); });
+    const std::string t = nsb::test::input_error_text_of([nu] { nsb::p_wave_speed(1.0, nu, 1.0); });
     INFO(t);
     CHECK(t.find("nu = ") != std::string::npos);
     CHECK(t.find("[0, 0.5)") != std::string::npos);
     CHECK(t.find('\n') == std::string::npos);
   }
-  CHECK(text([] { nsb::p_wave_speed(1.0, 0.3, 0.0); }).find("rho = ") != std::string::npos);
-  CHECK(text([] { nsb::bar3d_contact_duration(-1.0, 1.0, 0.3, 1.0); }).find("L = ") != std::string::npos);
-  CHECK(text([] { nsb::oedometric_modulus(0.0, 0.3); }).find("E = ") != std::string::npos);
+  CHECK(nsb::test::input_error_text_of([] { nsb::p_wave_speed(1.0, 0.3, 0.0); }).find("rho = ") != std::string::npos);
+  CHECK(nsb::test::input_error_text_of([] { nsb::bar3d_contact_duration(-1.0, 1.0, 0.3, 1.0); }).find("L = ") != std::string::npos);
+  CHECK(nsb::test::input_error_text_of([] { nsb::oedometric_modulus(0.0, 0.3); }).find("E = ") != std::string::npos);
 }

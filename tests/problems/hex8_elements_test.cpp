@@ -8,6 +8,7 @@
 
 #include "core/parameters.hpp"
 #include "problems/hex8_elements.hpp"
+#include "tests/support/input_error.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 using Catch::Detail::Approx;
@@ -200,21 +201,13 @@ TEST_CASE("hex8: the linear elastic limit, allocation-free, bad input", "[hex8]"
     CHECK(face == Approx(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) * eps).epsilon(1e-6));
   }
   // Bad input: one line naming the parameter and its range.
-  const auto text = [](auto make) {
-    try {
-      make();
-    } catch (const nsb::InputError& err) {
-      return std::string(err.what());
-    }
-    return std::string();
-  };
-  const std::string bad_nu = text([] { Hex8Material::from_young(Hex8Law::svk, 1.0, 0.5); });
+  const std::string bad_nu = nsb::test::input_error_text_of([] { Hex8Material::from_young(Hex8Law::svk, 1.0, 0.5); });
   CHECK(bad_nu.find("nu = ") != std::string::npos);
   CHECK(bad_nu.find("[0, 0.5)") != std::string::npos);
-  const std::string bad_E = text([] { Hex8Material::from_young(Hex8Law::svk, 0.0, 0.3); });
+  const std::string bad_E = nsb::test::input_error_text_of([] { Hex8Material::from_young(Hex8Law::svk, 0.0, 0.3); });
   CHECK(bad_E.find("E = ") != std::string::npos);
   Eigen::Matrix<double, 8, 1> m;
-  const std::string bad_rho = text([&] { cube.lumped_mass(-1.0, m); });
+  const std::string bad_rho = nsb::test::input_error_text_of([&] { cube.lumped_mass(-1.0, m); });
   CHECK(bad_rho.find("rho = ") != std::string::npos);
   Hex8Nodes inverted = X;
   inverted.row(2) *= -1.0;  // mirrored: det J0 < 0
