@@ -147,6 +147,12 @@ TEST_CASE("sphere on an incline: level floor and launches along the slope", "[sp
   const auto end = flat.state(flat.roll_time() + 1.0);
   CHECK(end.velocity.x() == Approx((level.vx0 + 0.4 * level.R * level.wy0) / 1.4).epsilon(1e-14));
   CHECK(end.velocity.y() == Approx((level.vy0 - 0.4 * level.R * level.wx0) / 1.4).epsilon(1e-14));
+  // A slope of 1e-6 degrees: k ~ 1e7, no overflow, and t_roll within a / b of the level floor's.
+  SphereInclineSpec gentle = level;
+  gentle.alpha = 1e-6;
+  const SphereInclineExact nearly_flat(gentle);
+  CHECK(nearly_flat.roll_time() == Approx(flat.roll_time()).epsilon(2.0 / nearly_flat.k()));
+  CHECK(std::isfinite(nearly_flat.state(0.5 * flat.roll_time()).position.norm()));
   // Down the slope without spin: w stays along e_x, falling at b - a; up the slope at a + b.
   const double alpha = 15.0, mu = 0.3, g = 9.81;
   const double a = g * std::sin(alpha * deg), b = 3.5 * mu * g * std::cos(alpha * deg);
