@@ -16,4 +16,15 @@ std::string input_error_text(const Spec& spec) {
   return "";
 }
 
+// The one-line text of the InputError that call() throws ("" if none).
+template <class Call>
+std::string input_error_text_of(const Call& call) {
+  try {
+    call();
+  } catch (const InputError& err) {
+    return err.what();
+  }
+  return "";
+}
+
 }  // namespace nsb::test
