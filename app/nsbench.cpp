@@ -64,10 +64,13 @@ void list() {
     const auto names = e.make(nsb::Params(e.parameters()))->observable_names();
     fmt::print("      observables (at the defaults): {}\n", names.empty() ? std::string("none of its own") : fmt::format("{}", fmt::join(names, ", ")));
   }
-  fmt::print("integrators (friction: treats Coulomb friction, mu > 0; the others decline it):\n");
+  fmt::print("integrators (friction: treats Coulomb friction, mu > 0; the others decline it. needs: what it can run,\n"
+             "declared in its registry entry, refused when it binds a problem; integrators/capabilities.hpp):\n");
   for (const auto& e : nsb::integrator_registry()) {
-    const bool friction = e.make(nsb::Params(e.parameters()))->treats_friction();
+    const nsb::DeclaredCapabilities declared = e.declared();
+    const bool friction = declared.resolved(nsb::Params(e.parameters())).friction;
     fmt::print("  {:<22} {}{}\n", e.name, e.description, friction ? " [friction]" : "");
+    fmt::print("      needs: {}\n", declared.text());
     print_params(e.parameters());
   }
 }

@@ -14,13 +14,8 @@ CdLagrange::CdLagrange(const Params& params) : Integrator(params), lcp_(lcp_opti
 
 void CdLagrange::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
-  const auto diag = diagonal_mass(mass_);
-  if (!diag)
-    throw InputError(fmt::format("integrator cd-lagrange needs a diagonal mass matrix; problem {} has a non-diagonal one", problem.name()));
-  if ((diag->array() < 0.0).any())
-    throw InputError(fmt::format("integrator cd-lagrange needs non-negative masses; problem {} has a negative one", problem.name()));
   // Massless dofs get minv = 0: the free velocity and the impulses leave them alone.
-  cd_.reset(problem, state_, *diag);
+  cd_.reset(problem, state_, mass_.diagonal());
   const Vec& m = cd_.m;
 
   const Index n = problem.ndof();
@@ -63,7 +58,7 @@ void CdLagrange::init(const Problem& problem, const State& initial) {
   contact_ = ImpulseContact(problem, cd_.minv, lcp_);
 }
 
-StepInfo CdLagrange::step(double tau) {
+StepInfo CdLagrange::advance(double tau) {
   StepInfo info;
   info.dt = tau;
   cd_.drift(*problem_, state_, tau, work_);
@@ -77,7 +72,6 @@ StepInfo CdLagrange::step(double tau) {
     if (d.contact >= 0) impulses_[d.contact] = massless_impulse_[static_cast<Index>(q)];
   }
   work_.lcp_iterations += info.iterations;
-  ++work_.steps;
   return info;
 }
 
@@ -104,6 +98,7 @@ Energy CdLagrange::energy() const {
   return cd_.started ? cd_.energy(*problem_, state_) : Integrator::energy();
 }
 
-NSBENCH_INTEGRATOR({"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>, false});
+NSBENCH_INTEGRATOR({"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>, false, false,
+                    {.friction = true, .explicit_step = true, .mass = MassNeed::Diagonal}});
 
 }  // namespace nsb

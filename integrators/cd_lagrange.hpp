@@ -51,14 +51,11 @@ class CdLagrange final : public Integrator {
   explicit CdLagrange(const Params& params);
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "cd-lagrange"; }
-  bool conditionally_stable() const override { return true; }  // explicit central difference
-  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
   Energy energy() const override;
 
  private:
+  StepInfo advance(double dt_requested) override;
   LcpOptions lcp_;
   ImpulseContact contact_;
   CentralDifference cd_;

@@ -45,13 +45,7 @@ CdLagrangeAdaptive::CdLagrangeAdaptive(const Params& params)
 
 void CdLagrangeAdaptive::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
-  const auto diag = diagonal_mass(mass_);
-  if (!diag)
-    throw InputError(fmt::format("integrator cd-lagrange-adaptive needs a diagonal mass matrix; problem {} has a non-diagonal one", problem.name()));
-  m_ = *diag;
-  if ((m_.array() <= 0.0).any())
-    throw InputError(fmt::format("integrator cd-lagrange-adaptive needs positive masses; problem {} has massless dofs "
-                                 "(valid: every diagonal mass > 0)", problem.name()));
+  m_ = mass_.diagonal();
   minv_ = m_.cwiseInverse();
 
   const Index n = problem.ndof();
@@ -81,11 +75,11 @@ void CdLagrangeAdaptive::init(const Problem& problem, const State& initial) {
   max_residual_ = &extra["max_rel_residual"];
 }
 
-// acc_ = M^{-1} (F_ext(t) - F_int(u)) at the current state.
-void CdLagrangeAdaptive::load_force() {
+// acc_ = M^{-1} (F_ext(t) - F_int(u)) at the current u and the time t.
+void CdLagrangeAdaptive::load_force(double t) {
   problem_->internal_force(state_.u, f_int_);
   ++work_.force_evaluations;
-  if (!problem_->external_force_is_constant()) problem_->external_force(state_.t, f_ext_);
+  if (!problem_->external_force_is_constant()) problem_->external_force(t, f_ext_);
   acc_.noalias() = minv_.cwiseProduct(f_ext_ - f_int_);
 }
 
@@ -96,7 +90,7 @@ void CdLagrangeAdaptive::start(double dt) {
   tau_ = std::min(dt, up);
   if (dt > up) ++*capped_;
   tau_prev_ = tau_;  // w_{1/2} = 1: the talk's weights start as after constant steps
-  load_force();
+  load_force(state_.t);
   state_.v += 0.5 * tau_ * acc_;  // P_{1/2}
   u_next_.noalias() = state_.u + tau_ * state_.v;
   load_cur_ = problem_->load_potential(state_.u);
@@ -105,7 +99,7 @@ void CdLagrangeAdaptive::start(double dt) {
   pot_next_ = problem_->strain_energy(u_next_) + load_next_;
 }
 
-StepInfo CdLagrangeAdaptive::step(double dt_requested) {
+StepInfo CdLagrangeAdaptive::advance(double dt_requested) {
   StepInfo info;
   if (!started_) {
     start(dt_requested);
@@ -114,12 +108,12 @@ StepInfo CdLagrangeAdaptive::step(double dt_requested) {
   // U_{k+1}: the trial position of the accepted step, computed when tau_{k+1} was chosen.
   std::swap(u_prev_, state_.u);
   std::swap(state_.u, u_next_);
-  state_.t += tau_;
+  const double t_next = state_.t + tau_;
   pot_prev_ = pot_cur_;
   pot_cur_ = pot_next_;
   load_prev_ = load_cur_;
   load_cur_ = load_next_;
-  load_force();
+  load_force(t_next);
 
   kinetic_ = 0.5 * state_.v.dot(m_.cwiseProduct(state_.v));
   energy_ = kinetic_ + 0.5 * (pot_prev_ + pot_cur_);
@@ -133,7 +127,6 @@ StepInfo CdLagrangeAdaptive::step(double dt_requested) {
   info.dt = tau_;
   tau_prev_ = tau_;
   tau_ = tau_next_;
-  ++work_.steps;
   return info;
 }
 
@@ -269,6 +262,7 @@ Energy CdLagrangeAdaptive::energy() const {
   return {kinetic_, 0.5 * (pot_prev_ + pot_cur_)};
 }
 
-NSBENCH_INTEGRATOR({"cd-lagrange-adaptive", "CD-Lagrange with the step chosen from the discrete energy balance (KMOW variable step), CFL-capped", &CdLagrangeAdaptive::parameters_spec, &make_from_params<Integrator, CdLagrangeAdaptive>, false});
+NSBENCH_INTEGRATOR({"cd-lagrange-adaptive", "CD-Lagrange with the step chosen from the discrete energy balance (KMOW variable step), CFL-capped", &CdLagrangeAdaptive::parameters_spec, &make_from_params<Integrator, CdLagrangeAdaptive>, false, false,
+                    {.friction = true, .mass = MassNeed::DiagonalPositive}});
 
 }  // namespace nsb

@@ -82,18 +82,16 @@ class CdLagrangeAdaptive final : public Integrator {
   explicit CdLagrangeAdaptive(const Params& params);
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "cd-lagrange-adaptive"; }
-  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
   Energy energy() const override;
 
   // The step the next call of step() will take (tau_{k+2}).
   double next_step() const { return tau_next_; }
 
  private:
+  StepInfo advance(double dt_requested) override;
   void start(double dt);
-  void load_force();
+  void load_force(double t);
   double residual(double tau, StepInfo& info);
   void choose_next_step(StepInfo& info);
 

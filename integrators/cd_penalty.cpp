@@ -62,11 +62,7 @@ CdPenalty::CdPenalty(const Params& params)
 
 void CdPenalty::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
-  const auto m = diagonal_mass(mass_);
-  if (!m || !(m->minCoeff() > 0.0))
-    throw InputError(fmt::format("integrator cd-penalty needs a diagonal mass with positive entries (M^{{-1}} in the update); problem {} has {}",
-                                 problem.name(), m ? "a massless dof" : "a non-diagonal mass"));
-  cd_.reset(problem, state_, *m);
+  cd_.reset(problem, state_, mass_.diagonal());
   const Vec& minv = cd_.minv;
   L_ = problem.gap_operator();
   h_diag_ = Vec::Zero(L_.rows());
@@ -98,7 +94,7 @@ ImpactAccuracy CdPenalty::impact_accuracy() const {
   return {std::numbers::pi / (2.0 * std::asin(std::sqrt(factor_) / 2.0)) + 1.0, false};
 }
 
-StepInfo CdPenalty::step(double tau) {
+StepInfo CdPenalty::advance(double tau) {
   StepInfo info;
   info.dt = tau;
   tau_ = tau;
@@ -132,7 +128,6 @@ StepInfo CdPenalty::step(double tau) {
     tangential_impulses_[i] = lambda_t;
     for (decltype(T_)::InnerIterator it(T_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda_t;
   }
-  ++work_.steps;
   return info;
 }
 
@@ -144,6 +139,7 @@ Energy CdPenalty::energy() const {
   return E;
 }
 
-NSBENCH_INTEGRATOR({"cd-penalty", "explicit central difference with penalty contact (spring-dashpot, kappa = penalty_factor m / dt^2)", &CdPenalty::parameters_spec, &make_from_params<Integrator, CdPenalty>, false});
+NSBENCH_INTEGRATOR({"cd-penalty", "explicit central difference with penalty contact (spring-dashpot, kappa = penalty_factor m / dt^2)", &CdPenalty::parameters_spec, &make_from_params<Integrator, CdPenalty>, false, false,
+                    {.friction = true, .explicit_step = true, .mass = MassNeed::DiagonalPositive}});
 
 }  // namespace nsb

@@ -30,10 +30,9 @@
 // zeta_i chosen per impact so that the scheme's own discrete restitution is e. Why not the
 // continuous map of spring_dashpot.hpp (penalty-bdf's, right for an ODE solved accurately):
 // the scheme resolves the contact in a few steps and its rebound depends on where in a step
-// the impact falls; with the continuous zeta the restitution measured on the bouncing mass
-// over 16 impact phases at e = 0.9 spans 0.838..0.989 at penalty_factor 2 (2 steps per
-// contact), 0.892..0.923 at 0.382 (5 steps), and at e = 0.5 0.477..0.617 (5 steps),
-// 0.489..0.525 (20 steps): no zeta chosen once per problem is within 1% at every phase.
+// the impact falls: with the continuous zeta the restitution of the bouncing mass varies with
+// the impact's phase within the step, by more than any zeta chosen once per problem can
+// correct (docs/measurements.md).
 // The discrete map. One contact, its effective mass m_i alone (H diagonal, no elastic
 // coupling, the external force negligible over the contact, O(n_c tau) of the impulse), in
 // step units x = g_i(U_k), s = tau g'_i(v_{k+1/2}), p = penalty_factor = kappa_i tau^2 / m_i,
@@ -78,9 +77,10 @@
 // Impulses: tau f_i, the contact impulse of the step (>= 0; non-zero only while g_i < 0).
 // Energy: CD-Lagrange's discrete energy plus the springs kappa_i g_i(U_k) g_i(U_{k+1}) / 2
 // where both are closed: the leapfrog invariant while a spring stays on. Across the on/off
-// switches no discrete invariant holds: within a contact resolved in ~2 steps the energy so
-// measured swings by up to 50% of the impact's kinetic energy at penalty_factor 2 (25% at 1;
-// g_{k+1}^2 in place of g_k g_{k+1} doubles it), the price of a coarse penalty.
+// switches no discrete invariant holds: within a contact resolved in a few steps the energy so
+// defined swings by a fraction of the impact's kinetic energy that grows with penalty_factor
+// (g_{k+1}^2 in place of g_k g_{k+1} doubles it; docs/measurements.md), the price of a coarse
+// penalty.
 // Friction (docs/method.md section 6): the regularised Coulomb law of spring_dashpot.hpp,
 // F_T = -mu F_N phi(u_T / v_reg), v_reg = `friction_velocity`, F_N = f_i the spring-dashpot
 // force of the step, in its implicit form: the slip after the kick, u_T(+) = T_i v_{k+3/2} -
@@ -118,12 +118,8 @@ class CdPenalty final : public Integrator {
   explicit CdPenalty(const Params& params);
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "cd-penalty"; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
   // Explicit, and its stable step is below the problem's (stable_step_with_contacts).
-  bool conditionally_stable() const override { return true; }
-  bool treats_friction() const override { return true; }
   Energy energy() const override;
   // The contact lasts n_c = pi / (2 asin(sqrt(penalty_factor) / 2)) steps (the discrete
   // spring's half period) plus the entry step; its restitution is e for an isolated contact
@@ -134,6 +130,7 @@ class CdPenalty final : public Integrator {
   double stable_step_with_contacts() const;
 
  private:
+  StepInfo advance(double dt_requested) override;
   double factor_;
   double e_ = 1.0;
   Vec zeta_;  // per contact, set when it closes

@@ -29,10 +29,9 @@ void CentralDifference::drift(const Problem& problem, State& state, double h, Wo
   parallel_ranges(state.u.size(), [&](Index b, Index e) {
     state.u.segment(b, e - b).noalias() = u_prev.segment(b, e - b) + h * state.v.segment(b, e - b);
   });
-  state.t += h;
   problem.internal_force(state.u, f_int);
   ++work.force_evaluations;
-  if (!problem.external_force_is_constant()) problem.external_force(state.t, f_ext);
+  if (!problem.external_force_is_constant()) problem.external_force(state.t + h, f_ext);
 }
 
 void CentralDifference::kick(State& state, double h) {

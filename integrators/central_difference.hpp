@@ -23,7 +23,8 @@ struct CentralDifference {
 
   // Binds to `problem` at `state`; `mass` diagonal.
   void reset(const Problem& problem, const State& state, Vec mass);
-  // The first step's half kick, then U_{k+1}, t_{k+1}, F_int and F_ext there.
+  // The first step's half kick, then U_{k+1}, and F_int and F_ext there (at t_{k+1} =
+  // state.t + h; state.t itself is left to Integrator::step).
   void drift(const Problem& problem, State& state, double h, WorkCounters& work);
   // V <- V + h M^{-1} (F_ext - F_int), the velocity before it kept in v_prev.
   void kick(State& state, double h);

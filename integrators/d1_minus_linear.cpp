@@ -11,11 +11,7 @@ D1MinusLinear::D1MinusLinear(const Params& params) : Integrator(params), lcp_(lc
 
 void D1MinusLinear::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
-  const auto m = diagonal_mass(mass_);
-  if (!m || !(m->minCoeff() > 0.0))
-    throw InputError(fmt::format("integrator d1-minus-linear needs a diagonal mass with positive entries (M^{{-1}} in every stage); problem {} has {}",
-                                 problem.name(), m ? "a massless dof" : "a non-diagonal mass"));
-  minv_ = m->cwiseInverse();
+  minv_ = mass_.diagonal().cwiseInverse();
   L_ = problem.gap_operator();
   friction_ = problem.contacts().has_friction();
   if (friction_) T_ = problem.contacts().tangent;
@@ -36,7 +32,7 @@ void D1MinusLinear::add_impulses(const Vec& normal, const Vec& tangential, doubl
   }
 }
 
-StepInfo D1MinusLinear::step(double h) {
+StepInfo D1MinusLinear::advance(double h) {
   StepInfo info;
   info.dt = h;
   if (!started_) {
@@ -58,10 +54,9 @@ StepInfo D1MinusLinear::step(double h) {
   std::swap(u_start_, state_.u);
   state_.u.noalias() = u_start_ + h * state_.v + (0.5 * h * h) * a_now_;
   add_impulses(p1_, p1_t_, 0.5 * h, state_.u);
-  state_.t += h;
 
   // Right: A_{k+1}, V^- = V_k + h/2 (A_k + A_{k+1}).
-  if (!problem_->external_force_is_constant()) problem_->external_force(state_.t, f_ext_);
+  if (!problem_->external_force_is_constant()) problem_->external_force(state_.t + h, f_ext_);
   problem_->internal_force(state_.u, f_int_);
   ++work_.force_evaluations;
   a_next_.noalias() = minv_.cwiseProduct(f_ext_ - f_int_);
@@ -102,10 +97,10 @@ StepInfo D1MinusLinear::step(double h) {
   closed_start_ = closed_end;
   info.iterations = iterations;
   work_.lcp_iterations += iterations;
-  ++work_.steps;
   return info;
 }
 
-NSBENCH_INTEGRATOR({"d1-minus-linear", "Schindler-Acary D1MinusLinear, half-explicit velocity level, impacts at the step's end", &D1MinusLinear::parameters_spec, &make_from_params<Integrator, D1MinusLinear>, false});
+NSBENCH_INTEGRATOR({"d1-minus-linear", "Schindler-Acary D1MinusLinear, half-explicit velocity level, impacts at the step's end", &D1MinusLinear::parameters_spec, &make_from_params<Integrator, D1MinusLinear>, false, false,
+                    {.friction = true, .explicit_step = true, .mass = MassNeed::DiagonalPositive}});
 
 }  // namespace nsb

@@ -38,13 +38,10 @@ class D1MinusLinear final : public Integrator {
   explicit D1MinusLinear(const Params& params);
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "d1-minus-linear"; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
-  bool conditionally_stable() const override { return true; }  // explicit in the smooth forces
-  bool treats_friction() const override { return true; }
 
  private:
+  StepInfo advance(double dt_requested) override;
   // v += scale M^{-1} (L^T normal + T^T tangential)
   void add_impulses(const Vec& normal, const Vec& tangential, double scale, VecRef v) const;
   // f(j) for each dof j of the contact rows (normal and tangent): the only velocities the

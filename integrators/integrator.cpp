@@ -9,17 +9,16 @@ namespace nsb {
 void Integrator::bind(const Problem& problem, const State& initial) {
   const Contacts& c = problem.contacts();
   check_contacts(c, problem.ndof(), problem.name());
-  if (c.has_friction() && !treats_friction())
-    throw InputError(fmt::format("integrator {} does not treat Coulomb friction; problem {} has mu = {} (valid for this "
-                                 "scheme: mu = 0; `nsbench list` marks the schemes that treat friction)",
-                                 name(), problem.name(), c.max_mu()));
-  problem_ = &problem;
   mass_ = problem.mass_matrix();
+  if (declared_) check_capabilities(*declared_, name_, params_, problem, mass_);
+  problem_ = &problem;
   state_ = initial;
   impulses_ = Vec::Zero(problem.ncontacts());
   tangential_impulses_ = Vec::Zero(problem.ncontacts());
   work_ = WorkCounters{};
 }
+
+Capabilities Integrator::capabilities() const { return declared_ ? declared_->resolved(params_) : Capabilities{}; }
 
 Energy Integrator::energy() const {
   const Vec& v = state_.v;

@@ -5,30 +5,33 @@
 //
 // The contract (what the studies, the tables and `nsbench check` rely on; a plugin's
 // integrator follows it like every built-in; `nsbench check --integrator NAME` tests it):
+//   registry entry  names the integrator and declares its Capabilities
+//                 (integrators/capabilities.hpp: friction, explicit, mass, linear only,
+//                 node-to-rigid only, largest size); the entry's make() gives both to the
+//                 integrator it builds, so name() is the entry's name and no class repeats it.
 //   constructor(const Params&)  reads its parameters (declared by a static parameters_spec(),
 //                 range-checked before it runs: a value outside is refused with InputError).
-//   init(problem, initial)  calls bind(problem, initial) first: bind() checks the contacts
-//                 (and refuses friction, mu > 0, unless treats_friction()), stores problem_,
-//                 state_ = initial, mass_ = problem.mass_matrix(), and sizes impulses_ and
-//                 tangential_impulses_ to the contacts (zero). Then it builds its caches and
-//                 throws InputError naming the problem for one it cannot run (a mass model,
-//                 a nonlinearity): the studies show that as n/a, never a wrong number.
-//   step(dt)      advances state_ by one step of dt (or of the step it chooses, returned in
-//                 StepInfo::dt): state_.t += that step; ++work_.steps;
-//                 work_.force_evaluations += the F_int evaluations made (budgets and the
-//                 work-precision tables read them); the other counters as they apply.
-//                 impulses_ holds this step's normal impulses, one Lambda_i >= 0 per contact,
-//                 0 on a contact open through the step (zero it, then fill it: never left
-//                 from an earlier step); tangential_impulses_ likewise (0 without friction).
+//   init(problem, initial)  calls bind(problem, initial) first: bind() checks the contacts and
+//                 the declared capabilities (check_capabilities: one refusal wording per kind),
+//                 stores problem_, state_ = initial, mass_ = problem.mass_matrix(), and sizes
+//                 impulses_ and tangential_impulses_ to the contacts (zero). Then it builds its
+//                 caches and throws InputError naming the problem for one it cannot run for a
+//                 reason of its own (not a declared capability): the studies show that as n/a,
+//                 never a wrong number.
+//   advance(dt)   the scheme's step, called by the non-virtual step(dt): advances state_.u and
+//                 state_.v by one step of dt (or of the step it chooses, returned in
+//                 StepInfo::dt), adds the F_int evaluations made to work_.force_evaluations
+//                 (budgets and the work-precision tables read them) and the other counters as
+//                 they apply. step() then sets state_.t to the start time plus that step and
+//                 counts it in work_.steps: advance() leaves both alone (a scheme that needs
+//                 the end time computes it, state_.t + dt). impulses_ holds this step's normal
+//                 impulses, one Lambda_i >= 0 per contact, 0 on a contact open through the
+//                 step (zero it, then fill it: never left from an earlier step);
+//                 tangential_impulses_ likewise (0 without friction).
 //   energy()      override when the scheme's own balance is another energy than
 //                 v^T M v / 2 + V(u) at state_ (a staggered scheme: the half-step energy).
-//   conditionally_stable()  true for an explicit scheme (nsbench run warns above the
-//                 problem's stable_step()).
 //   impact_accuracy()  override when one impact may lag more than 2 steps, or when the
 //                 restitution is not exact (a compliant, penalty contact).
-//   treats_friction()  true only when step() applies the Coulomb law of Contacts (fills
-//                 tangential_impulses_); otherwise bind() declines mu > 0 with a message
-//                 naming mu.
 // Helpers for a new scheme: ImpulseContact (integrators/impulse_contact.hpp: Moreau's
 // velocity-level impulse law with restitution, and Coulomb friction, given M^{-1} diagonal),
 // lcp_parameter_specs() / lcp_options() (its LCP solver's parameters, solvers/lcp.hpp),
@@ -37,9 +40,11 @@
 // examples/plugin/symplectic_euler.cpp; the method and conventions: docs/method.md.
 #include <initializer_list>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "integrators/capabilities.hpp"
 #include "problems/problem.hpp"
 
 namespace nsb {
@@ -102,30 +107,43 @@ struct ImpactAccuracy {
   bool restitution_exact = true;
 };
 
+struct IntegratorEntry;
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
 
-  virtual std::string name() const = 0;
+  // The name of the registry entry that made this integrator ("" for one built directly,
+  // outside the registry: a test's).
+  const std::string& name() const { return name_; }
   // Binds the integrator to `problem` (which must outlive it) and sets the initial state.
   // Throws InputError when the problem is outside what the scheme handles.
   virtual void init(const Problem& problem, const State& initial) = 0;
-  // Advances from state().t by (about) dt_requested; returns the step taken.
-  virtual StepInfo step(double dt_requested) = 0;
+  // Advances from state().t by (about) dt_requested; returns the step taken. Non-virtual: the
+  // time and the step count are kept here, around the scheme's advance().
+  StepInfo step(double dt_requested) {
+    const double t0 = state_.t;
+    const StepInfo info = advance(dt_requested);
+    state_.t = t0 + info.dt;
+    ++work_.steps;
+    return info;
+  }
   // The energy the scheme's own balance is written for; the default is
   // v^T M v / 2 + V(u) at the current state.
   virtual Energy energy() const;
   // Every contact event located since init(), in time order; empty for the schemes that do
   // not locate events (time-stepping).
   virtual const std::vector<ContactEvent>& events() const;
-  // True for a scheme that is only conditionally stable at a fixed step dt: dt must stay
-  // below the problem's stable step (Problem::stable_step) or the run blows up.
-  virtual bool conditionally_stable() const { return false; }
   // See ImpactAccuracy; valid after init().
   virtual ImpactAccuracy impact_accuracy() const { return {}; }
-  // True for a scheme that treats Coulomb friction (Contacts::mu, docs/method.md section 6). bind()
-  // refuses a problem with mu > 0 for every other scheme, so none ignores friction silently.
-  virtual bool treats_friction() const { return false; }
+  // The capabilities the registry entry declares, for this integrator's parameters
+  // (Capabilities::resolved); none for an integrator built outside the registry.
+  Capabilities capabilities() const;
+  // True for a scheme that is only conditionally stable at a fixed step dt: dt must stay
+  // below the problem's stable step (Problem::stable_step) or the run blows up.
+  bool conditionally_stable() const { return capabilities().explicit_step; }
+  // True for a scheme that treats Coulomb friction (Contacts::mu, docs/method.md section 6).
+  bool treats_friction() const { return capabilities().friction; }
 
   const State& state() const { return state_; }
   // Contact impulses Lambda (size p) applied during the last step; >= 0.
@@ -137,8 +155,10 @@ class Integrator {
 
  protected:
   explicit Integrator(Params params) : params_(std::move(params)) {}
-  // Common part of init(): checks the problem's contacts (check_contacts; friction only for a
-  // scheme that treats_friction()), stores the problem and state, sizes the impulses.
+  // The scheme's own step (see the contract above): everything but state_.t and work_.steps.
+  virtual StepInfo advance(double dt_requested) = 0;
+  // Common part of init(): checks the problem's contacts (check_contacts) and the declared
+  // capabilities (check_capabilities), stores the problem and state, sizes the impulses.
   void bind(const Problem& problem, const State& initial);
 
   const Problem* problem_ = nullptr;
@@ -148,6 +168,11 @@ class Integrator {
   Vec tangential_impulses_;
   WorkCounters work_;
   Params params_;
+
+ private:
+  friend struct IntegratorEntry;
+  std::string name_;
+  std::optional<DeclaredCapabilities> declared_;  // the entry's; none outside the registry
 };
 
 }  // namespace nsb

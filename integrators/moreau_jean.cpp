@@ -105,7 +105,7 @@ LcpResult MoreauJean::solve_with_friction() {
                                lcp_storage_, mu_active_);
 }
 
-StepInfo MoreauJean::step(double h) {
+StepInfo MoreauJean::advance(double h) {
   StepInfo info;
   info.dt = h;
   if (problem_->is_linear()) {
@@ -162,12 +162,10 @@ StepInfo MoreauJean::step(double h) {
     if (!res.converged) info.converged = false;
   }
   std::swap(state_.v, v_next_);
-  state_.t += h;
   if (!constant_force) std::swap(f_ext_now_, f_ext_next_);
-  ++work_.steps;
   return info;
 }
 
-NSBENCH_INTEGRATOR({"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false});
+NSBENCH_INTEGRATOR({"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false, false, {.friction = true}});
 
 }  // namespace nsb

@@ -52,10 +52,8 @@
 // fallback LU is Eigen's (UMFPACK calls BLAS too). Debian's serial OpenBLAS keeps its work
 // buffers in one process-wide table taken without a lock, so two studies' cases factorising
 // at once wrote into each other's buffers and changed each other's results; and the BLAS
-// kernel picked for the CPU changes the rounding from one machine to the next. The price,
-// thread CPU per step of the block (min of 3, a heavily loaded 2-core machine: noisy):
-// 32x32 2.7 ms vs 2.4 ms supernodal (+13%), 64x64 19 ms vs 12.6 ms (+50%); factorisation
-// + solve alone on a lightly loaded machine: 1.9 vs 2.5 ms and 14.2 vs 14.4 ms.
+// kernel picked for the CPU changes the rounding from one machine to the next. The price in
+// CPU time per step on the block, measured against the supernodal factor: docs/measurements.md.
 // tests/integrators/moreau_jean_concurrency_test.cpp guards the race.
 //
 // projection = position (Acary, CMAME 256, 2013; Siconos' MoreauJeanDirectProjectionOSI):
@@ -79,12 +77,10 @@ class MoreauJean final : public Integrator {
   explicit MoreauJean(const Params& params);
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "moreau-jean"; }
-  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
 
  private:
+  StepInfo advance(double dt_requested) override;
   void factorize(double h);
   const Vec& contact_response(Index contact);  // W^{-1} L_i^T, cached while W is unchanged
   const Vec& tangent_response(Index contact);  // W^{-1} T_i^T, likewise

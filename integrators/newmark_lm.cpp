@@ -46,7 +46,7 @@ void NewmarkLm::init(const Problem& problem, const State& initial) {
   problem.external_force(state_.t, f_ext_);  // kept as is when constant
 }
 
-StepInfo NewmarkLm::step(double h) {
+StepInfo NewmarkLm::advance(double h) {
   StepInfo info;
   info.dt = h;
   const double c = beta_ * h * h;
@@ -60,8 +60,6 @@ StepInfo NewmarkLm::step(double h) {
   mu_ /= c;  // lambda_{k+1}
   impulses_ = h * ((1.0 - gamma_) * lambda_ + gamma_ * mu_);
   std::swap(lambda_, mu_);
-  state_.t += h;
-  ++work_.steps;
   return info;
 }
 

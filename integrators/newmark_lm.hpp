@@ -38,11 +38,10 @@ class NewmarkLm final : public Integrator {
   explicit NewmarkLm(const Params& params);
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "newmark-lm"; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
 
  private:
+  StepInfo advance(double dt_requested) override;
   double beta_, gamma_;
   ImplicitContact implicit_;
   Vec a_, a_next_, lambda_, mu_, u_pred_, u_next_, f_ext_;

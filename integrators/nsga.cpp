@@ -29,7 +29,7 @@ void Nsga::init(const Problem& problem, const State& initial) {
   problem.external_force(state_.t, f_ext_);  // kept as is when constant
 }
 
-StepInfo Nsga::step(double h) {
+StepInfo Nsga::advance(double h) {
   StepInfo info;
   info.dt = h;
   const double bh2 = beta_ * h * h;
@@ -70,11 +70,9 @@ StepInfo Nsga::step(double h) {
   }
   std::swap(state_.u, q_);
   std::swap(state_.v, w_);
-  state_.t += h;
-  ++work_.steps;
   return info;
 }
 
-NSBENCH_INTEGRATOR({"nsga", "nonsmooth generalised-alpha (Bruls-Acary-Cardona 2014): position correction and velocity impact law, rho_inf", &Nsga::parameters_spec, &make_from_params<Integrator, Nsga>, false});
+NSBENCH_INTEGRATOR({"nsga", "nonsmooth generalised-alpha (Bruls-Acary-Cardona 2014): position correction and velocity impact law, rho_inf", &Nsga::parameters_spec, &make_from_params<Integrator, Nsga>, false, false, {.friction = true}});
 
 }  // namespace nsb

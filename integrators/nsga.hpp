@@ -48,12 +48,11 @@
 // Nonlinear F_int: the smooth step is solved by Newton (newton_tol on the increment, see
 // implicit_contact.hpp), refactorising S each iteration; the corrections use the last S.
 // impulses() = Lambda, the velocity jump's impulse (nu is a position correction, no momentum).
-// Measured cost of the position level (hard study, bouncing mass, e = 1): the correction
-// lifts the smooth step's penetration back to g = 0 while the impact law restores the
-// pre-step speed |g'_k|, so each impact loses m g_grav g_k (g_k in [0, h |g'_k|], the height
-// at the start of the step): O(h) per impact, a loss Moreau-Jean (which leaves U at g_k)
-// does not have. 50 s of bouncing (about 55 impacts) from E = 9.81 J: 8.09 J at h = 1e-3,
-// 9.69 J at h = 1e-4; the 10^4-impact case at h = 1e-3 comes to rest after ~800 impacts.
+// Cost of the position level (bouncing mass, e = 1): the correction lifts the smooth step's
+// penetration back to g = 0 while the impact law restores the pre-step speed |g'_k|, so each
+// impact loses m g_grav g_k (g_k in [0, h |g'_k|], the height at the start of the step): O(h)
+// per impact, a loss Moreau-Jean (which leaves U at g_k) does not have. The energy so lost on
+// the hard study's bouncing mass: docs/measurements.md.
 #include "integrators/implicit_contact.hpp"
 
 namespace nsb {
@@ -63,12 +62,10 @@ class Nsga final : public Integrator {
   explicit Nsga(const Params& params);
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "nsga"; }
-  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
 
  private:
+  StepInfo advance(double dt_requested) override;
   double alpha_m_, alpha_f_, gamma_, beta_;
   ImplicitContact implicit_;
   Vec a_, abar_, abar_next_, u_pred_, u_hat_, q_, w_, nu_, f_ext_, b_;

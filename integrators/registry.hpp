@@ -2,10 +2,14 @@
 // The integrators, by name. Each registers itself in its own .cpp (built-in or plugin):
 //
 //   NSBENCH_INTEGRATOR({"name", "one-line description", &T::parameters_spec,
-//                       &make_from_params<Integrator, T>, /*reference=*/false});
+//                       &make_from_params<Integrator, T>, /*reference=*/false, /*peer=*/false,
+//                       {.friction = true, .explicit_step = true, .mass = MassNeed::DiagonalPositive}});
 //
-// at namespace scope (inside or outside namespace nsb; outside, qualify nsb::). The listing
-// is sorted: the schemes by name, then the peers by name, then the reference solvers by name.
+// at namespace scope (inside or outside namespace nsb; outside, qualify nsb::); the last
+// braces declare its Capabilities (integrators/capabilities.hpp; {} when it needs nothing and
+// treats no friction), optionally followed by a CapabilitySwitch when a parameter changes
+// them (schatzman-paoli: {"theta", 0.0, {.explicit_step = true, ...}}). The listing is sorted: the schemes by name, then the peers by name,
+// then the reference solvers by name.
 #include <map>
 #include <memory>
 #include <string>
@@ -20,13 +24,26 @@ struct IntegratorEntry {
   std::string name;
   std::string description;
   ParamSpecs (*parameters)();
-  std::unique_ptr<Integrator> (*make)(const Params&);
+  // Builds the integrator from its validated parameters (make() calls it).
+  std::unique_ptr<Integrator> (*factory)(const Params&);
   // A reference solver (the studies' yardstick where no exact solution exists); studies
   // rank it with the others but mark it.
   bool reference;
   // A peer: another code's implementation of a scheme (peers/, e.g. Siconos), run side by
   // side with ours; rankings mark it "(peer)".
   bool peer = false;
+  // What it can run, checked when it binds a problem, and how a parameter changes it.
+  Capabilities capabilities = {};
+  CapabilitySwitch capabilities_switch = {};
+
+  DeclaredCapabilities declared() const { return {capabilities, capabilities_switch}; }
+  // The integrator, named after this entry and holding its capabilities.
+  std::unique_ptr<Integrator> make(const Params& params) const {
+    auto integrator = factory(params);
+    integrator->name_ = name;
+    integrator->declared_ = declared();
+    return integrator;
+  }
 };
 
 // What NSBENCH_INTEGRATOR calls (`abi`: the caller's NSBENCH_PLUGIN_ABI).

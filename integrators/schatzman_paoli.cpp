@@ -27,13 +27,7 @@ void SchatzmanPaoli::init(const Problem& problem, const State& initial) {
   L_ = problem.gap_operator();
   d_diagonal_ = false;
   if (explicit_()) {
-    const auto m = diagonal_mass(mass_);
-    if (!m || !(m->minCoeff() > 0.0))
-      throw InputError(fmt::format(
-          "integrator schatzman-paoli: theta = 0 (explicit) needs a diagonal mass with positive entries; problem {} has {} "
-          "(use theta in (0, 0.5] on a linear problem)",
-          problem.name(), m ? "a massless dof" : "a non-diagonal mass"));
-    minv_ = m->cwiseInverse();
+    minv_ = mass_.diagonal().cwiseInverse();
     const SpMat H = SpMat(problem.gap_operator() * minv_.asDiagonal() * problem.gap_operator().transpose());
     d_diagonal_ = true;
     for (Index j = 0; j < H.outerSize(); ++j)
@@ -43,10 +37,6 @@ void SchatzmanPaoli::init(const Problem& problem, const State& initial) {
     if (d_diagonal_ && (h_diag_.array() <= 0.0).any())
       throw InputError(fmt::format("integrator schatzman-paoli: problem {} has a contact with an empty row of L", problem.name()));
   } else {
-    if (!problem.is_linear())
-      throw InputError(fmt::format(
-          "integrator schatzman-paoli: theta = {} needs a linear problem (K factorised once); problem {} is nonlinear (use theta = 0)",
-          theta_, problem.name()));
     problem.tangent_stiffness(state_.u, K_);
     ++work_.tangent_evaluations;
     W_.bind(mass_, K_);  // W's pattern, analysed now: a factor too large is refused up front
@@ -84,7 +74,7 @@ const Vec& SchatzmanPaoli::contact_response(Index i) {
   return responses_.get(L_, i, [this](Vec& r) { solve_in_place(r); });
 }
 
-StepInfo SchatzmanPaoli::step(double h) {
+StepInfo SchatzmanPaoli::advance(double h) {
   StepInfo info;
   info.dt = h;
   if (!explicit_() && h != h_factored_) factorize(h);
@@ -116,9 +106,7 @@ StepInfo SchatzmanPaoli::step(double h) {
   impulse_before_ = impulse;
   std::swap(u_prev_, state_.u);
   std::swap(state_.u, u_next_);
-  state_.t += h;
   started_ = true;
-  ++work_.steps;
   return info;
 }
 
@@ -166,6 +154,7 @@ void SchatzmanPaoli::solve_contacts(double h, StepInfo& info) {
   }
 }
 
-NSBENCH_INTEGRATOR({"schatzman-paoli", "Schatzman-Paoli two-step scheme, position-level impact law (theta = 0: explicit, Carpenter-Taylor-Katona for e = 0)", &SchatzmanPaoli::parameters_spec, &make_from_params<Integrator, SchatzmanPaoli>, false});
+NSBENCH_INTEGRATOR({"schatzman-paoli", "Schatzman-Paoli two-step scheme, position-level impact law (theta = 0: explicit, Carpenter-Taylor-Katona for e = 0)", &SchatzmanPaoli::parameters_spec, &make_from_params<Integrator, SchatzmanPaoli>, false, false,
+                    {.linear_only = true}, {"theta", 0.0, {.explicit_step = true, .mass = MassNeed::DiagonalPositive}}});
 
 }  // namespace nsb

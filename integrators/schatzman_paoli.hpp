@@ -49,16 +49,14 @@ class SchatzmanPaoli final : public Integrator {
   explicit SchatzmanPaoli(const Params& params);
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "schatzman-paoli"; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
-  bool conditionally_stable() const override { return explicit_(); }  // theta = 0: central difference
   // With e > 0 the law spans U_{k-1}..U_{k+1}: the discrete motion rebounds from up to two
   // steps of travel past the obstacle (U_{k+1} = -U_{k-1} for e = 1), one step more than a
   // one-step law.
   ImpactAccuracy impact_accuracy() const override { return {problem_->restitution() > 0.0 ? 3.0 : 2.0, true}; }
 
  private:
+  StepInfo advance(double dt_requested) override;
   bool explicit_() const { return theta_ == 0.0; }
   void factorize(double h);
   void solve_in_place(Vec& x);                 // x <- W^{-1} x

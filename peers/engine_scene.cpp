@@ -18,9 +18,6 @@ Scene scene_of(const Problem& problem, const State& initial, double size, const 
       throw InputError(fmt::format("{}: problem '{}' has an obstacle moving along contact {} (tangent_velocity w = {}); the engine's plane is fixed (valid: w = 0)",
                                    who, problem.name(), i, c.tangent_velocity[i]));
   const std::string& name = problem.name();
-  if (name == "ball-chain")
-    throw InputError(fmt::format("{}: problem 'ball-chain' is declined: its contacts are between bodies, and the engine peers map a single body "
-                                 "on a fixed plane only (bouncing-mass, sliding-mass, rolling-disk)", who));
   if (name != "bouncing-mass" && name != "sliding-mass" && name != "rolling-disk")
     throw InputError(fmt::format("{}: problem '{}' is not one of the rigid problems the engine peers run (valid: bouncing-mass, sliding-mass, "
                                  "rolling-disk); the engines see rigid bodies, not a semi-discrete continuum", who, name));
@@ -91,17 +88,16 @@ namespace nsb {
 
 void EnginePeer::init(const Problem& problem, const State& initial) {
   const std::string who = fmt::format("--integrator {}", name());
-  scene_ = engines::scene_of(problem, initial, params_.real("size"), who);
   bind(problem, initial);
+  scene_ = engines::scene_of(problem, initial, params_.real("size"), who);
   build(scene_);
 }
 
-StepInfo EnginePeer::step(double dt) {
-  const engines::StepResult r = advance(dt);
+StepInfo EnginePeer::advance(double dt) {
+  const engines::StepResult r = engine_step(dt);
   engines::to_state(scene_, r.pose, state_.t + dt, state_);
   impulses_[0] = r.normal_impulse;
   if (scene_.moves_x) tangential_impulses_[0] = r.friction_impulse_x;
-  ++work_.steps;
   ++work_.force_evaluations;
   StepInfo info;
   info.dt = dt;

@@ -14,9 +14,10 @@
 //                  counter-clockwise theta seen with x right and z up, so the contact point's
 //                  slip x' + R theta' is the engine's x' - R omega_y.
 //
-// Every other problem is declined (InputError naming the problem): the engines see rigid
-// bodies, not a semi-discrete continuum; ball-chain (spheres in a row, contacts between
-// bodies) is not mapped yet: one body on a fixed plane is. A rolling-disk whose kappa is not a shape's (2/5,
+// The entries declare node-to-rigid contacts only (one body on a fixed plane; ball-chain's
+// contacts between bodies are refused when the problem binds). Every other problem is
+// declined (InputError naming the problem): the engines see rigid bodies, not a
+// semi-discrete continuum. A rolling-disk whose kappa is not a shape's (2/5,
 // 1/2) is declined naming kappa; an obstacle moving along the contact (w != 0) naming w.
 //
 // Impulses: the engine reports the contact's normal impulse (>= 0) and the world-x component
@@ -76,23 +77,22 @@ struct StepResult {
 namespace nsb {
 
 // The part the three engine peers share: init() builds the scene (declining the rest) and
-// hands it to the engine; step() advances the engine by dt with its own stepper, maps its
-// body back to the problem's dofs and fills the impulses. Work: one step and one force
-// evaluation (the engine's one evaluation of gravity and contacts) per engine step.
+// hands it to the engine; advance() steps the engine by dt with its own stepper, maps its
+// body back to the problem's dofs and fills the impulses. Work: one force evaluation (the
+// engine's one evaluation of gravity and contacts) per engine step.
 class EnginePeer : public Integrator {
  public:
-  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt) override;
 
  protected:
   explicit EnginePeer(const Params& params) : Integrator(params) {}
   // Builds the engine's world for the scene (called by init(); replaces an earlier one).
   virtual void build(const engines::Scene& scene) = 0;
-  virtual engines::StepResult advance(double dt) = 0;
+  virtual engines::StepResult engine_step(double dt) = 0;
   const engines::Scene& scene() const { return scene_; }
 
  private:
+  StepInfo advance(double dt) override;
   engines::Scene scene_;
 };
 

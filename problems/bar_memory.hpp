@@ -1,9 +1,10 @@
 #pragma once
 // The memory check of the bar problems (signorini-bar and its variants, two-bars,
-// mass-on-bar), before anything of size N is allocated: N = 1e8 ended in std::bad_alloc after
-// seconds, N1 = N2 = 1e8 in the OOM killer after minutes. The estimate is
+// mass-on-bar), before anything of size N is allocated (without it a bar too large for the
+// memory ended in std::bad_alloc or in the OOM killer: docs/measurements.md). The estimate is
 // kBarBytesPerElement per element: the construction's triplet lists, K, M and the element
-// stiffnesses, and a run's state and work vectors (a run of N = 1e7 peaks at 2.0 GB).
+// stiffnesses, and a run's state and work vectors (the peak of a large run:
+// docs/measurements.md).
 #include <string>
 
 namespace nsb {

@@ -86,9 +86,10 @@ py::list problem_list() {
 py::list integrator_list() {
   py::list list;
   for (const auto& e : integrator_registry()) {
-    const bool friction = e.make(Params(e.parameters()))->treats_friction();
+    const DeclaredCapabilities declared = e.declared();
+    const bool friction = declared.resolved(Params(e.parameters())).friction;
     list.append(py::dict("name"_a = e.name, "description"_a = e.description, "parameters"_a = parameter_list(e.parameters()),
-                         "reference"_a = e.reference, "peer"_a = e.peer, "friction"_a = friction,
+                         "reference"_a = e.reference, "peer"_a = e.peer, "friction"_a = friction, "needs"_a = declared.text(),
                          "origin"_a = integrator_origin(e.name)));
   }
   return list;
@@ -103,7 +104,8 @@ void bind_registry(py::module_& m) {
         "or choices).");
   m.def("integrators", &integrator_list,
         "The integrators (as `nsbench list`): name, description, parameters (as problems()), reference, peer,\n"
-        "friction (treats Coulomb friction) and origin ('' built in, a plugin's file, or 'python:MODULE.CLASS').");
+        "friction (treats Coulomb friction), needs (its other declared capabilities, as `nsbench list` shows them)\n"
+        "and origin ('' built in, a plugin's file, or 'python:MODULE.CLASS').");
   m.def("load_plugin", &load_plugin, "path"_a,
         "Loads a plugin module (core/plugin.hpp; as `--plugin FILE`): its problems and integrators join the\n"
         "registries. ValueError when the file is missing, not a plugin, built for another ABI or a name is taken.");

@@ -27,15 +27,13 @@ std::string describe(const py::error_already_set& e) {
 
 }  // namespace
 
-PythonIntegrator::PythonIntegrator(Params params, std::string name, const py::object& cls, const py::dict& parameters)
-    : Integrator(std::move(params)), name_(std::move(name)) {
+PythonIntegrator::PythonIntegrator(Params params, const py::object& cls, const py::dict& parameters)
+    : Integrator(std::move(params)) {
   // __new__, then _core, then __init__: the instance reaches this object from its constructor on.
   instance_ = cls.attr("__new__")(cls);
   instance_.attr("_core") = py::cast(this, py::return_value_policy::reference);
   instance_.attr("__init__")(parameters);
   has_energy_ = py::hasattr(instance_, "energy");
-  conditionally_stable_ = py::getattr(instance_, "conditionally_stable", py::bool_(false)).cast<bool>();
-  treats_friction_ = py::getattr(instance_, "treats_friction", py::bool_(false)).cast<bool>();
   accuracy_.lag_steps = py::getattr(instance_, "impact_lag_steps", py::float_(accuracy_.lag_steps)).cast<double>();
   accuracy_.restitution_exact = py::getattr(instance_, "restitution_exact", py::bool_(true)).cast<bool>();
 }
@@ -55,13 +53,13 @@ void PythonIntegrator::init(const Problem& problem, const State& initial) {
   try {
     instance_.attr("init")(py::cast(&problem, py::return_value_policy::reference), initial);
   } catch (const py::error_already_set& e) {
-    if (e.matches(PyExc_ValueError)) throw InputError(fmt::format("{}: {}", name_, py::str(e.value()).cast<std::string>()));
-    throw std::runtime_error(fmt::format("{}.init raised {}", name_, describe(e)));
+    if (e.matches(PyExc_ValueError)) throw InputError(fmt::format("{}: {}", name(), py::str(e.value()).cast<std::string>()));
+    throw std::runtime_error(fmt::format("{}.init raised {}", name(), describe(e)));
   }
-  if (problem_ != &problem) throw std::runtime_error(fmt::format("{}.init did not call self.bind(problem, initial)", name_));
+  if (problem_ != &problem) throw std::runtime_error(fmt::format("{}.init did not call self.bind(problem, initial)", name()));
 }
 
-StepInfo PythonIntegrator::step(double dt_requested) {
+StepInfo PythonIntegrator::advance(double dt_requested) {
   py::gil_scoped_acquire gil;
   StepInfo info;
   try {
@@ -71,12 +69,12 @@ StepInfo PythonIntegrator::step(double dt_requested) {
     else
       info.dt = r.cast<double>();
   } catch (const py::error_already_set& e) {
-    throw std::runtime_error(fmt::format("{}.step raised {}", name_, describe(e)));
+    throw std::runtime_error(fmt::format("{}.step raised {}", name(), describe(e)));
   } catch (const py::cast_error&) {
-    throw std::runtime_error(fmt::format("{}.step returned neither the step taken (a float) nor a StepInfo", name_));
+    throw std::runtime_error(fmt::format("{}.step returned neither the step taken (a float) nor a StepInfo", name()));
   }
   if (!std::isfinite(info.dt) || !(info.dt > 0.0))
-    throw std::runtime_error(fmt::format("{}.step returned the step dt = {}; valid: a finite dt > 0", name_, info.dt));
+    throw std::runtime_error(fmt::format("{}.step returned the step dt = {}; valid: a finite dt > 0", name(), info.dt));
   return info;
 }
 
@@ -87,7 +85,7 @@ Energy PythonIntegrator::energy() const {
     const auto [kinetic, potential] = instance_.attr("energy")().cast<std::pair<double, double>>();
     return {kinetic, potential};
   } catch (const py::error_already_set& e) {
-    throw std::runtime_error(fmt::format("{}.energy raised {}", name_, describe(e)));
+    throw std::runtime_error(fmt::format("{}.energy raised {}", name(), describe(e)));
   }
 }
 
@@ -98,7 +96,6 @@ namespace {
 constexpr std::size_t kSlots = 64;
 
 struct Slot {
-  std::string name;
   py::object cls;
   ParamSpecs specs;
 };
@@ -120,7 +117,7 @@ template <std::size_t K>
 std::unique_ptr<Integrator> slot_make(const Params& params) {
   py::gil_scoped_acquire gil;
   const Slot& s = slots()[K];
-  return std::make_unique<PythonIntegrator>(params, s.name, s.cls, typed_params(s.specs, params));
+  return std::make_unique<PythonIntegrator>(params, s.cls, typed_params(s.specs, params));
 }
 
 struct SlotFunctions {
@@ -143,10 +140,14 @@ void register_python_integrator(const std::string& name, const py::object& cls, 
   const std::string source = fmt::format("python:{}.{}", py::str(cls.attr("__module__")).cast<std::string>(),
                                          py::str(cls.attr("__qualname__")).cast<std::string>());
   const std::size_t k = used_slots;
-  slots()[k] = {name, cls, parameters};
+  slots()[k] = {cls, parameters};
   try {
     register_as_plugin(source, [&] {
-      register_integrator({name, description, kSlotFunctions[k].parameters, kSlotFunctions[k].make, reference}, NSBENCH_PLUGIN_ABI);
+      Capabilities capabilities;
+      capabilities.friction = py::getattr(cls, "treats_friction", py::bool_(false)).cast<bool>();
+      capabilities.explicit_step = py::getattr(cls, "conditionally_stable", py::bool_(false)).cast<bool>();
+      register_integrator({name, description, kSlotFunctions[k].parameters, kSlotFunctions[k].make, reference, false, capabilities},
+                          NSBENCH_PLUGIN_ABI);
     });
   } catch (...) {
     slots()[k] = {};

@@ -6,7 +6,10 @@
 // The Python object is an instance of the user's class (made from the registered class with its
 // validated parameters, as a dict). Its `init(problem, initial)` and `step(dt)` follow the C++
 // contract of integrators/integrator.hpp: init calls self.bind(problem, initial) first, step
-// advances self.state (t, u, v: views of this object's state_) and adds to self.work. This C++
+// advances self.state's u and v (views of this object's state_) and adds to self.work; this
+// object's advance() calls it, and Integrator::step around it keeps the time and the step
+// count. Its class attributes conditionally_stable and treats_friction are read once, at
+// registration, into the registry entry's capabilities. This C++
 // object holds the state, impulses and counters the run driver reads; the Python object reaches
 // them through its `_core` attribute (this object, bound as nsbench._IntegratorCore), so there is
 // no copy between the two. (Not a pybind11 trampoline: the registry's factories return a
@@ -27,15 +30,11 @@ namespace py = pybind11;
 class PythonIntegrator final : public Integrator {
  public:
   // Called with the GIL held: makes the instance cls(parameters as a dict).
-  PythonIntegrator(Params params, std::string name, const py::object& cls, const py::dict& parameters);
+  PythonIntegrator(Params params, const py::object& cls, const py::dict& parameters);
   ~PythonIntegrator() override;
 
-  std::string name() const override { return name_; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
   Energy energy() const override;
-  bool conditionally_stable() const override { return conditionally_stable_; }
-  bool treats_friction() const override { return treats_friction_; }
   ImpactAccuracy impact_accuracy() const override { return accuracy_; }
 
   // For the Python side (nsbench._IntegratorCore).
@@ -48,9 +47,9 @@ class PythonIntegrator final : public Integrator {
   const Problem* problem() const { return problem_; }
 
  private:
-  std::string name_;
+  StepInfo advance(double dt_requested) override;
   py::object instance_;
-  bool has_energy_ = false, conditionally_stable_ = false, treats_friction_ = false;
+  bool has_energy_ = false;
   ImpactAccuracy accuracy_;
 };
 

@@ -41,15 +41,9 @@ EventDriven::EventDriven(const Params& params)
 void EventDriven::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
   const Index n = problem.ndof();
-  const auto m = diagonal_mass(mass_);
-  if (!m) throw InputError("event-driven: needs a diagonal (lumped) mass matrix; this problem's is not diagonal");
-  for (Index k = 0; k < n; ++k)
-    if (!((*m)[k] > 0.0))
-      throw InputError(fmt::format("event-driven: dof {} has mass {}; valid: > 0 (a massless dof is an algebraic "
-                                   "equation, which needs a DAE solver such as IDA)", k, (*m)[k]));
-  minv_ = m->cwiseInverse();
+  minv_ = mass_.diagonal().cwiseInverse();
 
-  contacts_ = node_contacts(problem, name());
+  contacts_ = node_contacts(problem);
   dof_closed_.assign(static_cast<std::size_t>(n), 0);
   closed_.assign(contacts_.size(), 0);
   e_ = problem.restitution();
@@ -225,7 +219,7 @@ void EventDriven::handle_events(double t, const std::vector<int>& fired) {
   cvode_->restart(t, y_);
 }
 
-StepInfo EventDriven::step(double dt) {
+StepInfo EventDriven::advance(double dt) {
   StepInfo info;
   impulses_.setZero();
   const double target = state_.t + dt;
@@ -243,12 +237,12 @@ StepInfo EventDriven::step(double dt) {
   }
   impulses_ += y_.tail(impulses_.size()) - reaction_start;  // closed contacts' reactions
   check_no_penetration(target);
-  state_.t = target;
   state_.u = y_.head(n);
   state_.v = y_.segment(n, n);
   info.dt = dt;
   info.iterations = events;
   publish_work();
+  --work_.steps;  // work().steps is CVODE's own count (Cvode::add_work); step() adds this call back
   return info;
 }
 
@@ -273,6 +267,7 @@ void EventDriven::publish_work() {
   work_.extra["zeno_stops"] = static_cast<double>(zeno_stops_);
 }
 
-NSBENCH_INTEGRATOR({"event-driven", "reference: CVODE with root finding, Newton impacts, closed-contact mode (node-to-rigid contacts)", &EventDriven::parameters_spec, &make_from_params<Integrator, EventDriven>, true});
+NSBENCH_INTEGRATOR({"event-driven", "reference: CVODE with root finding, Newton impacts, closed-contact mode (node-to-rigid contacts)", &EventDriven::parameters_spec, &make_from_params<Integrator, EventDriven>, true, false,
+                    {.mass = MassNeed::DiagonalPositive, .node_to_rigid_only = true}});
 
 }  // namespace nsb

@@ -35,9 +35,9 @@
 // Newton iterations; extra: root_evaluations, events, impacts, releases, zeno_stops,
 // restarts, error_test_failures.
 //
-// Refused (InputError): non-diagonal or singular mass (a massless dof is an algebraic
-// equation: IDA or elimination, not done here), contact rows on several dofs, two contacts
-// on one dof, an initial penetration beyond atol, an open initial gap within atol (it would
+// Declared (the registry entry; refused when the problem binds): a diagonal mass with
+// entries > 0 (a massless dof is an algebraic equation: IDA or elimination, not done here),
+// node-to-rigid contacts. Refused by init() (InputError): an initial penetration beyond atol, an open initial gap within atol (it would
 // count as touching: the run would start on the obstacle, not at the problem's state).
 // Checked after every step: an open contact penetrated beyond 1e3 (atol + rtol |u_d|) is an
 // impact the root finder missed (zeno_velocity tiny, a grazing landing): the run stops as
@@ -61,9 +61,7 @@ class EventDriven final : public Integrator, private OdeSystem {
   explicit EventDriven(const Params& params);
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "event-driven"; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
 
   // Every event located so far: impacts (a Zeno stop for a rebound replaced by a plastic
   // impact) with g' before and after and the impulse, and releases: a closed contact's
@@ -72,6 +70,7 @@ class EventDriven final : public Integrator, private OdeSystem {
   const std::vector<ContactEvent>& events() const override { return event_log_; }
 
  private:
+  StepInfo advance(double dt_requested) override;
   using Contact = NodeContact;
 
   void rhs(double t, ConstVecRef y, VecRef ydot) override;

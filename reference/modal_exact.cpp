@@ -46,18 +46,11 @@ ParamSpecs ModalExact::parameters_spec() {
 ModalExact::ModalExact(const Params& params)
     : Integrator(params),
       zeno_velocity_(params.real("zeno_velocity")),
-      samples_per_period_(params.integer("samples_per_period")),
-      max_dofs_(params.integer("max_dofs")) {}
+      samples_per_period_(params.integer("samples_per_period")) {}
 
 void ModalExact::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
   const Index n = problem.ndof();
-  if (!problem.is_linear())
-    throw InputError(fmt::format("modal-exact: problem {} is nonlinear; valid: a linear problem (F_int = K u with K constant)", problem.name()));
-  if (!problem.external_force_is_constant())
-    throw InputError(fmt::format("modal-exact: the external force of problem {} depends on time; valid: a constant F_ext", problem.name()));
-  if (n > max_dofs_)
-    throw InputError(fmt::format("modal-exact: {} dofs; valid: <= max_dofs = {} (dense eigendecompositions, O(n^3) per contact mode)", n, max_dofs_));
 
   SpMat K;
   problem.tangent_stiffness(initial.u, K);
@@ -82,7 +75,7 @@ void ModalExact::init(const Problem& problem, const State& initial) {
     }
   }
 
-  contacts_ = node_contacts(problem, name());
+  contacts_ = node_contacts(problem);
   const Index p = static_cast<Index>(contacts_.size());
   contact_of_.assign(static_cast<std::size_t>(n), -1);
   for (Index i = 0; i < p; ++i) contact_of_[contacts_[i].dof] = i;
@@ -409,7 +402,7 @@ double ModalExact::refine(Index i, double a, double fa, double b, double fb) {
   return b;
 }
 
-void ModalExact::advance(double tau) {
+void ModalExact::propagate(double tau) {
   const Mode& md = *mode_;
   const Index m = md.size(), p = static_cast<Index>(contacts_.size());
   bool any_closed = false;
@@ -589,10 +582,10 @@ long ModalExact::advance_through_events(double target) {
     if (!(tau_max > 0.0)) break;
     const Found event = find_event(tau_max);
     if (event.contact < 0) {
-      advance(tau_max);
+      propagate(tau_max);
       break;
     }
-    advance(event.tau);
+    propagate(event.tau);
     state_.t = event.tau == tau_max ? target : state_.t + event.tau;
     reconstruct();
     handle_events(event.contact, event.forced);
@@ -604,13 +597,12 @@ long ModalExact::advance_through_events(double target) {
   return events;
 }
 
-StepInfo ModalExact::step(double dt) {
+StepInfo ModalExact::advance(double dt) {
   StepInfo info;
   impulses_.setZero();
   const double target = state_.t + dt;
   info.iterations = advance_through_events(target);
   reconstruct();
-  ++work_.steps;
   force_equivalents_ += 1 + info.iterations;  // a reconstruction per event and per step
   info.dt = dt;
   publish_work();
@@ -638,6 +630,7 @@ void ModalExact::publish_work() {
   for (const auto& [slot, counter] : published_) *slot = static_cast<double>(*counter);
 }
 
-NSBENCH_INTEGRATOR({ModalExact::kName, "reference: exact modal solution of linear problems between contact events, closed-form event signals (node-to-rigid contacts)", &ModalExact::parameters_spec, &make_from_params<Integrator, ModalExact>, true});
+NSBENCH_INTEGRATOR({ModalExact::kName, "reference: exact modal solution of linear problems between contact events, closed-form event signals (node-to-rigid contacts)", &ModalExact::parameters_spec, &make_from_params<Integrator, ModalExact>, true, false,
+                    {.linear_only = true, .constant_force_only = true, .node_to_rigid_only = true, .max_dofs_parameter = "max_dofs"}});
 
 }  // namespace nsb

@@ -79,10 +79,10 @@
 // modes are cached, but for the event log's amortised growth and a multi-contact impact LCP
 // (solve_lcp).
 //
-// Refused (InputError): a nonlinear problem, a time-dependent F_ext, contact rows on
-// several dofs, two contacts on one dof, a massless dof with off-diagonal mass, M_SS not
-// positive definite, K_ZZ singular, K not positive semidefinite, more dofs than max_dofs
-// (dense eigendecomposition), an initial penetration beyond round-off. The massless dofs'
+// Declared (the registry entry; refused when the problem binds): a linear problem, a
+// constant F_ext, node-to-rigid contacts, at most max_dofs dofs (dense eigendecomposition).
+// Refused by init() (InputError): a massless dof with off-diagonal mass, M_SS not positive
+// definite, K_ZZ singular, K not positive semidefinite, an initial penetration beyond round-off. The massless dofs'
 // initial values are replaced by their condensed (quasi-static) ones.
 //
 // References: V. Acary, B. Brogliato, Numerical Methods for Nonsmooth Dynamical Systems,
@@ -108,9 +108,7 @@ class ModalExact final : public Integrator {
   static ParamSpecs parameters_spec();
 
   static constexpr const char* kName = "modal-exact";
-  std::string name() const override { return kName; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
 
   // Every event so far: impacts of massive dofs (with impulse; a Zeno stop for the plastic
   // impact that ends an accumulation), arrivals of massless dofs (no impulse) and releases
@@ -129,6 +127,7 @@ class ModalExact final : public Integrator {
   double displacement(Index dof) const;
 
  private:
+  StepInfo advance(double dt_requested) override;
   using Contact = NodeContact;
   struct Mode {
     std::vector<char> closed;                  // per contact
@@ -169,7 +168,7 @@ class ModalExact final : public Integrator {
   // The first root of signal i in (lo, hi] given its values there (fhi < 0).
   Found locate(Index i, double lo, double flo, double hi, double fhi);
   double refine(Index i, double a, double fa, double b, double fb);
-  void advance(double tau);       // q_, qd_ to tau; closed contacts' reactions into impulses_
+  void propagate(double tau);     // q_, qd_ to tau; closed contacts' reactions into impulses_
   void reconstruct();             // state_.u, state_.v from the mode and q_, qd_
   void project();                 // q_, qd_ from state_.u, state_.v (held, massless set)
   // Impacts, arrivals, closings and releases at the current state; `fired`: the contact
@@ -180,7 +179,6 @@ class ModalExact final : public Integrator {
 
   double zeno_velocity_;
   long samples_per_period_;
-  long max_dofs_;
   LcpOptions lcp_;
   std::vector<Contact> contacts_;
   std::vector<char> massless_;        // per dof

@@ -3,9 +3,6 @@
 // need them: each row i of the gap operator acts on a single dof d,
 //     g_i = g0_i + a_i u_d = a_i (u_d - position_i),   position_i = -g0_i / a_i,
 // and no two contacts act on one dof.
-#include <fmt/format.h>
-
-#include <string>
 #include <vector>
 
 #include "core/parameters.hpp"
@@ -19,20 +16,16 @@ struct NodeContact {
   double position;  // of the dof on the obstacle
 };
 
-// InputError, naming `integrator`, for a row of L on several dofs (or none) and for two rows
-// on one dof.
-inline std::vector<NodeContact> node_contacts(const Problem& problem, const std::string& integrator) {
+// The node contacts of a problem whose contacts are node-to-rigid (checked when the integrator
+// binds the problem: Capabilities::node_to_rigid_only).
+inline std::vector<NodeContact> node_contacts(const Problem& problem) {
   using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   const RowMajor L = problem.gap_operator();
   const Vec& g0 = problem.gap_offset();
   std::vector<NodeContact> contacts;
-  std::vector<char> used(static_cast<std::size_t>(problem.ndof()), 0);
   for (Index i = 0; i < L.rows(); ++i) {
     RowMajor::InnerIterator it(L, i);
-    if (!it || it.value() == 0.0 || (++RowMajor::InnerIterator(it)))
-      throw InputError(fmt::format("{}: contact {} must act on exactly one dof (node-to-rigid contact)", integrator, i));
-    if (used[it.col()]++)
-      throw InputError(fmt::format("{}: contacts share dof {}; valid: one contact per dof", integrator, it.col()));
+    while (it.value() == 0.0) ++it;  // node-to-rigid: one non-zero in the row
     contacts.push_back({it.col(), it.value(), -g0[i] / it.value()});
   }
   return contacts;

@@ -235,7 +235,7 @@ void PenaltyBdf::roots(double, ConstVecRef y, VecRef r) {
   }
 }
 
-StepInfo PenaltyBdf::step(double dt) {
+StepInfo PenaltyBdf::advance(double dt) {
   StepInfo info;
   const Index n = problem_->ndof(), p = L_.rows();
   const Vec lambda_start = y_.tail(y_.size() - 2 * n);
@@ -270,13 +270,13 @@ StepInfo PenaltyBdf::step(double dt) {
     }
     if (!root) break;
   }
-  state_.t = target;
   state_.u = y_.head(n);
   state_.v = y_.segment(n, n);
   impulses_ = y_.segment(2 * n, p) - lambda_start.head(p);
   if (friction_) tangential_impulses_ = y_.tail(p) - lambda_start.tail(p);
   info.dt = dt;
   publish_work();
+  --work_.steps;  // work().steps is CVODE's own count (Cvode::add_work); step() adds this call back
   return info;
 }
 
@@ -296,6 +296,6 @@ void PenaltyBdf::publish_work() {
   work_.extra["restitution_floor"] = restitution_floored_ ? restitution(kMaxDampingRatio) : 0.0;
 }
 
-NSBENCH_INTEGRATOR({"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>, true});
+NSBENCH_INTEGRATOR({"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>, true, false, {.friction = true}});
 
 }  // namespace nsb

@@ -52,19 +52,13 @@
 // missed_switches (switches without a root of their own, found at a CVODE return: a function
 // crossing zero twice within one CVODE step), unconfirmed_roots (roots after which the state
 // kept the contact's mode, e.g. one reported again after its restart), restitution_floor.
-// A missed switch-on is an energy source: the spring starts at k g^2 / 2, never stored (on
-// the hard study's block, a contact left off at g = 0 while closing sank 3.4 mm unseen, and
-// its spring then held 23 E0: see mode()).
+// A missed switch-on is an energy source: the spring starts at k g^2 / 2, never stored (see
+// mode(); what one cost on the hard study's block: docs/measurements.md).
 // Cost of a bouncing contact with e = 1 (inherent, not a defect): the spring is undamped,
-// so every bounce is resolved, its flight and its contact (pi sqrt(m_i / k) long) alike,
-// with a restart at each switch. The hard study's grazing drop (bouncing mass, h0 = 1e-9 m,
-// e = 1, k = 1e10: flights of 29 us, contacts of 31 us) has 1.4e4 bounces per second, ~190
-// F_int evaluations each at rtol 1e-9: 2.6e6 per simulated second, over its budget of 1e6.
-// At atol = 1e-12 m, 1e-3 of that motion, BDF loses ~0.1% of the energy per bounce: the
-// bouncing dies out by t = 0.036 s (its last flight, lower than atol, chatters on noise:
-// 8e3 switches) and the mass then oscillates on the spring (period 63 us) at 1.6e6 F_int per
-// second. atol = 1e-15 keeps the energy (0.3% lost in 0.1 s) at the same cost; k = 1e9 costs
-// 9e5 per second. The switches measure it; the hard study tabulates them.
+// so every bounce is resolved, its flight (2 v / g) and its contact (pi sqrt(m_i / k) long)
+// alike, with a restart at each switch: 1 / (2 v / g + pi sqrt(m / k)) bounces per second,
+// each with its own F_int evaluations. The switches measure it; the hard study tabulates them (its grazing drop:
+// docs/measurements.md).
 // Refused (InputError): a non-diagonal or singular mass (M^{-1} in the right-hand side).
 //
 // References: P. Wriggers, Computational Contact Mechanics, 2nd ed., Springer 2006, ch. 2
@@ -85,10 +79,7 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
   explicit PenaltyBdf(const Params& params);
   static ParamSpecs parameters_spec();
 
-  std::string name() const override { return "penalty-bdf"; }
-  bool treats_friction() const override { return true; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
   // Every switch of a contact's spring on or off (a root, or a switch found at a CVODE
   // return), with g' at the switch (continuous: before = after; no impulse).
   const std::vector<ContactEvent>& events() const override { return event_log_; }
@@ -100,6 +91,7 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
   static double restitution(double zeta);
 
  private:
+  StepInfo advance(double dt_requested) override;
   void rhs(double t, ConstVecRef y, VecRef ydot) override;
   void jacobian(double t, ConstVecRef y, CsrMatrix& J) override;
   void roots(double t, ConstVecRef y, VecRef g) override;

@@ -19,8 +19,7 @@
 //
 // analyze() refuses (InputError) an A whose factor would not fit in memory: CHOLMOD's
 // symbolic analysis gives nnz(L) exactly, and the packed simplicial factor takes a double and
-// an int per entry plus 6 ints per column (measured: 12 nnz(L) + 24 n bytes, tridiagonal and
-// 2D five-point patterns); with CHOLMOD's permuted copy of A and the scheme's A (a double
+// an int per entry plus 6 ints per column, 12 nnz(L) + 24 n bytes (docs/measurements.md); with CHOLMOD's permuted copy of A and the scheme's A (a double
 // and an int per entry, an int per column, each) and CHOLMOD's workspace (about 5 doubles per
 // column), the estimate is 12 nnz(L) + 24 nnz(A) + 72 n bytes, against MemAvailable
 // (/proc/meminfo) or NSBENCH_MEMORY_LIMIT (bytes, or with a K, M or G suffix: powers of 1024).

@@ -13,14 +13,13 @@
 // error stays O(h) over long times); the contact step is Moreau's impulse law with Newton
 // restitution on the contacts the free motion would close, so Lambda >= 0 acts only on
 // closed or closing contacts. Needs a diagonal mass with positive entries (the impulse
-// law divides by H_ii).
+// law divides by H_ii): declared in its registry entry below, with its being explicit, so
+// that nsbench refuses other problems, and `nsbench list` shows it, without building it.
 //
 // References: E. Hairer, C. Lubich, G. Wanner, Geometric Numerical Integration, 2nd ed.,
 // Springer 2006, section VI.3 (symplectic Euler); J.J. Moreau, Unilateral contact and dry
 // friction in finite freedom dynamics, CISM Courses 302, Springer 1988 (impulse contact);
 // M. Jean, The non-smooth contact dynamics method, CMAME 177 (1999) 235-257.
-#include <fmt/format.h>
-
 #include <nsbench/integrators/impulse_contact.hpp>
 #include <nsbench/integrators/registry.hpp>
 
@@ -33,17 +32,9 @@ class SymplecticEuler final : public Integrator {
   explicit SymplecticEuler(const Params& params) : Integrator(params), lcp_(lcp_options(params)) {}
   static ParamSpecs parameters_spec() { return lcp_parameter_specs(); }
 
-  std::string name() const override { return "symplectic-euler"; }
-  // Explicit: stable only for h below the problem's stable step (nsbench run warns above it).
-  bool conditionally_stable() const override { return true; }
-
   void init(const Problem& problem, const State& initial) override {
-    bind(problem, initial);
-    const auto m = diagonal_mass(mass_);
-    if (!m || !(m->array() > 0.0).all())
-      throw InputError(fmt::format("integrator symplectic-euler needs a diagonal mass with positive entries; "
-                                   "problem {} has another", problem.name()));
-    minv_ = m->cwiseInverse();
+    bind(problem, initial);  // checks the entry's capabilities: M diagonal with entries > 0
+    minv_ = mass_.diagonal().cwiseInverse();
     const Index n = problem.ndof();
     f_int_ = Vec::Zero(n);
     f_ext_ = Vec::Zero(n);
@@ -53,7 +44,8 @@ class SymplecticEuler final : public Integrator {
     contact_ = ImpulseContact(problem, minv_, lcp_);
   }
 
-  StepInfo step(double h) override {
+  // One step; Integrator::step() around it advances state_.t by the returned dt and counts it.
+  StepInfo advance(double h) override {
     StepInfo info;
     info.dt = h;
     problem_->internal_force(state_.u, f_int_);
@@ -65,9 +57,7 @@ class SymplecticEuler final : public Integrator {
     state_.u.noalias() = u_prev_ + h * state_.v;  // q_pred
     info.iterations = contact_.apply(state_.u, v_prev_, state_.v, impulses_, tangential_impulses_, info, work_);
     state_.u.noalias() = u_prev_ + h * state_.v;
-    state_.t += h;
     work_.lcp_iterations += info.iterations;
-    ++work_.steps;
     return info;
   }
 
@@ -80,4 +70,7 @@ class SymplecticEuler final : public Integrator {
 }  // namespace
 
 NSBENCH_INTEGRATOR({"symplectic-euler", "plugin example: symplectic Euler, velocity-level impulse contact (Moreau)",
-                    &SymplecticEuler::parameters_spec, &nsb::make_from_params<nsb::Integrator, SymplecticEuler>, false});
+                    &SymplecticEuler::parameters_spec, &nsb::make_from_params<nsb::Integrator, SymplecticEuler>, false, false,
+                    // Explicit (stable only below the problem's stable step: nsbench run warns above it),
+                    // M^{-1} in the update.
+                    {.explicit_step = true, .mass = nsb::MassNeed::DiagonalPositive}});

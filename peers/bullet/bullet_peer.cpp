@@ -87,7 +87,7 @@ void BulletPeer::build(const engines::Scene& s) {
   world_ = std::move(w);
 }
 
-engines::StepResult BulletPeer::advance(double dt) {
+engines::StepResult BulletPeer::engine_step(double dt) {
   World& w = *world_;
   w.world.stepSimulation(dt, 0);
   engines::StepResult r;
@@ -114,6 +114,7 @@ engines::StepResult BulletPeer::advance(double dt) {
 }
 
 NSBENCH_INTEGRATOR({"bullet", "peer: Bullet's btDiscreteDynamicsWorld (sequential impulses, split impulse, e and mu per body) (rigid problems)",
-                    &BulletPeer::parameters_spec, &make_from_params<Integrator, BulletPeer>, false, true});
+                    &BulletPeer::parameters_spec, &make_from_params<Integrator, BulletPeer>, false, true,
+                    {.friction = true, .node_to_rigid_only = true}});
 
 }  // namespace nsb

@@ -53,12 +53,11 @@ class BulletPeer final : public EnginePeer {
   explicit BulletPeer(const Params& params);
   ~BulletPeer() override;
   static ParamSpecs parameters_spec();
-  std::string name() const override { return "bullet"; }
 
  private:
   struct World;
   void build(const engines::Scene& scene) override;
-  engines::StepResult advance(double dt) override;
+  engines::StepResult engine_step(double dt) override;
 
   std::unique_ptr<World> world_;
 };

@@ -147,7 +147,7 @@ void MujocoPeer::set_contact_spring(double dt) {
   world_->spring_dt = dt;
 }
 
-engines::StepResult MujocoPeer::advance(double dt) {
+engines::StepResult MujocoPeer::engine_step(double dt) {
   if (dt != world_->spring_dt) set_contact_spring(dt);
   mjModel* m = world_->m;
   mjData* d = world_->d;
@@ -181,6 +181,7 @@ engines::StepResult MujocoPeer::advance(double dt) {
 }
 
 NSBENCH_INTEGRATOR({"mujoco", "peer: MuJoCo's mj_step (implicit, elliptic cone, noslip), soft contact with the spring-damper of e (rigid problems)",
-                    &MujocoPeer::parameters_spec, &make_from_params<Integrator, MujocoPeer>, false, true});
+                    &MujocoPeer::parameters_spec, &make_from_params<Integrator, MujocoPeer>, false, true,
+                    {.friction = true, .node_to_rigid_only = true}});
 
 }  // namespace nsb

@@ -51,7 +51,6 @@ class MujocoPeer final : public EnginePeer {
   explicit MujocoPeer(const Params& params);
   ~MujocoPeer() override;
   static ParamSpecs parameters_spec();
-  std::string name() const override { return "mujoco"; }
   // A compliant contact: its restitution is the discrete spring's, and each impact lags by
   // about the contact's half period pi tau (2 pi steps at the defaults) plus the detection step.
   ImpactAccuracy impact_accuracy() const override;
@@ -59,7 +58,7 @@ class MujocoPeer final : public EnginePeer {
  private:
   struct World;
   void build(const engines::Scene& scene) override;
-  engines::StepResult advance(double dt) override;
+  engines::StepResult engine_step(double dt) override;
   void set_contact_spring(double dt);
 
   std::unique_ptr<World> world_;

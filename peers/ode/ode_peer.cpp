@@ -119,7 +119,7 @@ void OdePeer::build(const engines::Scene& s) {
   world_ = std::move(w);
 }
 
-engines::StepResult OdePeer::advance(double dt) {
+engines::StepResult OdePeer::engine_step(double dt) {
   ode_thread_init();
   World& w = *world_;
   std::array<dContact, kMaxContacts> contact{};
@@ -149,6 +149,7 @@ engines::StepResult OdePeer::advance(double dt) {
 }
 
 NSBENCH_INTEGRATOR({"ode", "peer: ODE's dWorldStep (direct LCP), contact joints with bounce e, mu (Approx1), ERP/CFM (rigid problems)",
-                    &OdePeer::parameters_spec, &make_from_params<Integrator, OdePeer>, false, true});
+                    &OdePeer::parameters_spec, &make_from_params<Integrator, OdePeer>, false, true,
+                    {.friction = true, .node_to_rigid_only = true}});
 
 }  // namespace nsb

@@ -47,12 +47,11 @@ class OdePeer final : public EnginePeer {
   explicit OdePeer(const Params& params);
   ~OdePeer() override;
   static ParamSpecs parameters_spec();
-  std::string name() const override { return "ode"; }
 
  private:
   struct World;
   void build(const engines::Scene& scene) override;
-  engines::StepResult advance(double dt) override;
+  engines::StepResult engine_step(double dt) override;
 
   std::unique_ptr<World> world_;
 };

@@ -62,27 +62,9 @@ SiconosIntegrator::~SiconosIntegrator() {
   model_.reset();
 }
 
-std::string SiconosIntegrator::name() const {
-  switch (scheme_) {
-    case siconos::Scheme::MoreauJean: return "siconos-moreau-jean";
-    case siconos::Scheme::SchatzmanPaoli: return "siconos-schatzman-paoli";
-    case siconos::Scheme::D1MinusLinear: return "siconos-d1-minus-linear";
-  }
-  return "siconos";
-}
-
 void SiconosIntegrator::init(const Problem& problem, const State& initial) {
   const std::string who = fmt::format("--integrator {}", name());
-  if (!problem.is_linear())
-    throw InputError(fmt::format("{}: problem '{}' has a nonlinear F_int; the Siconos peers run linear problems only (LagrangianLinearTIDS)", who, problem.name()));
-  if (!problem.external_force_is_constant())
-    throw InputError(fmt::format("{}: problem '{}' has a time-dependent F_ext; the Siconos peers take a constant one", who, problem.name()));
-  const long max_dofs = params_.integer("max_dofs");
-  if (problem.ndof() > max_dofs)
-    throw InputError(fmt::format("{}: problem '{}' has {} dofs, above max_dofs = {} (Siconos gets dense matrices)", who, problem.name(), problem.ndof(), max_dofs));
   bind(problem, initial);
-  if ((mass_.diagonal().array() <= 0.0).any())
-    throw InputError(fmt::format("{}: problem '{}' has massless dofs (a zero diagonal mass, e.g. mass=singular); Siconos' LagrangianDS needs an invertible M (valid: mass=lumped|consistent)", who, problem.name()));
   const Contacts& contacts = problem.contacts();
   if (contacts.has_friction())
     for (Index i = 0; i < contacts.size(); ++i)
@@ -134,7 +116,7 @@ void SiconosIntegrator::build(double h) {
   h_ = h;
 }
 
-StepInfo SiconosIntegrator::step(double h) {
+StepInfo SiconosIntegrator::advance(double h) {
   if (!model_) build(h);
   if (h != h_)
     throw InputError(fmt::format("--dt: {} takes one fixed step (Siconos' TimeDiscretisation, built with {}); got {}", name(), h_, h));
@@ -143,8 +125,6 @@ StepInfo SiconosIntegrator::step(double h) {
     const std::lock_guard lock(siconos_mutex());
     stats = model_->step(state_.u.data(), state_.v.data(), impulses_.data(), tangential_impulses_.data());
   }
-  state_.t += h;
-  ++work_.steps;
   ++work_.force_evaluations;  // one K q product per step, inside Siconos
   StepInfo info;
   info.dt = h;
@@ -155,8 +135,11 @@ StepInfo SiconosIntegrator::step(double h) {
   return info;
 }
 
-NSBENCH_INTEGRATOR({"siconos-moreau-jean", "peer: Siconos MoreauJeanOSI(theta, gamma), TimeStepping, Lemke LCP, or 2D NSGS FrictionContact with friction (linear problems)", &SiconosPeer<siconos::Scheme::MoreauJean>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::MoreauJean>>, false, true});
-NSBENCH_INTEGRATOR({"siconos-schatzman-paoli", "peer: Siconos SchatzmanPaoliOSI(theta), TimeStepping, position-level Lemke LCP (linear problems)", &SiconosPeer<siconos::Scheme::SchatzmanPaoli>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::SchatzmanPaoli>>, false, true});
-NSBENCH_INTEGRATOR({"siconos-d1-minus-linear", "peer: Siconos D1MinusLinearOSI, TimeSteppingD1Minus, impact and contact-force Lemke LCPs (linear problems)", &SiconosPeer<siconos::Scheme::D1MinusLinear>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::D1MinusLinear>>, false, true});
+NSBENCH_INTEGRATOR({"siconos-moreau-jean", "peer: Siconos MoreauJeanOSI(theta, gamma), TimeStepping, Lemke LCP, or 2D NSGS FrictionContact with friction (linear problems)", &SiconosPeer<siconos::Scheme::MoreauJean>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::MoreauJean>>, false, true,
+                    {.friction = true, .mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}});
+NSBENCH_INTEGRATOR({"siconos-schatzman-paoli", "peer: Siconos SchatzmanPaoliOSI(theta), TimeStepping, position-level Lemke LCP (linear problems)", &SiconosPeer<siconos::Scheme::SchatzmanPaoli>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::SchatzmanPaoli>>, false, true,
+                    {.mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}});
+NSBENCH_INTEGRATOR({"siconos-d1-minus-linear", "peer: Siconos D1MinusLinearOSI, TimeSteppingD1Minus, impact and contact-force Lemke LCPs (linear problems)", &SiconosPeer<siconos::Scheme::D1MinusLinear>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::D1MinusLinear>>, false, true,
+                    {.mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}});
 
 }  // namespace nsb

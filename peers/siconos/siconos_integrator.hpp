@@ -53,9 +53,10 @@
 // D1MinusLinearOSI*.cpp, FrictionContact.cpp, numerics' fc2d_nsgs.c), read, not copied;
 // M. Jean, The non-smooth contact dynamics method, CMAME 177, 1999 (friction).
 //
-// Declined with an InputError: nonlinear F_int (Siconos' LagrangianDS would need plugins),
-// a time-dependent F_ext, massless dofs (LagrangianDS inverts M), more than `max_dofs` dofs
-// (dense matrices), and with friction an obstacle moving along a contact (w != 0, e.g.
+// Declared capabilities (the registry entries; refused when the problem binds): linear only
+// (Siconos' LagrangianDS would need plugins for a nonlinear F_int; a constant F_ext), no
+// massless dofs (LagrangianDS inverts M), at most `max_dofs` dofs (dense matrices). Declined
+// by init() with an InputError: with friction an obstacle moving along a contact (w != 0, e.g.
 // block-2d's floor_velocity): LagrangianLinearTIR has no velocity offset (y' = C v), and
 // Siconos' time-dependent relation (LagrangianRheonomousR) takes h, its Jacobian and hDot
 // only as plugins loaded from a shared library by path. The step is fixed at the first call
@@ -74,12 +75,10 @@ class SiconosIntegrator : public Integrator {
   // Parameters of a scheme (theta only where Siconos' OSI has one).
   static ParamSpecs parameters_spec(siconos::Scheme scheme);
 
-  std::string name() const override;
-  bool treats_friction() const override { return scheme_ == siconos::Scheme::MoreauJean; }
   void init(const Problem& problem, const State& initial) override;
-  StepInfo step(double dt_requested) override;
 
  private:
+  StepInfo advance(double dt_requested) override;
   void build(double h);  // the Siconos model, once h is known
 
   siconos::Scheme scheme_;

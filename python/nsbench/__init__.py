@@ -85,16 +85,17 @@ class Integrator:
       init(self, problem, initial)  calls self.bind(problem, initial) first (stores the problem,
                   the state, self.mass, sizes the impulses); raises ValueError to decline a
                   problem it cannot run (shown as n/a in the studies).
-      step(self, dt)  advances self.state by one step: self.state.t += the step taken; u and v
-                  updated in place (self.state.u[:] = ..., or assign self.state.u = array); adds
-                  1 to self.work.steps and the F_int evaluations made to
-                  self.work.force_evaluations; fills self.impulses (one Lambda_i >= 0 per
+      step(self, dt)  advances self.state by one step: u and v updated in place
+                  (self.state.u[:] = ..., or assign self.state.u = array); adds the F_int
+                  evaluations made to self.work.force_evaluations; fills self.impulses (one Lambda_i >= 0 per
                   contact, 0 on an open one) every step. Returns the step taken (a float) or a
-                  StepInfo. An exception, or a non-finite state or step, ends the run as diverged
-                  with its message.
+                  StepInfo. nsbench then advances self.state.t by the step taken and adds 1 to
+                  self.work.steps (Integrator::step, as for every integrator). An exception, or a
+                  non-finite state or step, ends the run as diverged with its message.
       energy(self)  optional: (kinetic, potential) of the scheme's own balance.
     Class attributes: conditionally_stable (explicit scheme), treats_friction (fills
-    self.tangential_impulses; otherwise problems with mu > 0 are declined), impact_lag_steps and
+    self.tangential_impulses; otherwise problems with mu > 0 are declined) are read when the
+    class is registered (its capabilities, integrators/capabilities.hpp); impact_lag_steps and
     restitution_exact (integrators/integrator.hpp, ImpactAccuracy).
     self.state.u, .v, self.impulses are views of the C++ integrator's own vectors: no copy.
     """

@@ -167,7 +167,7 @@ TEST_CASE("engine peers: other problems and shapes are declined with the reason"
       const auto chain = nsb::make_problem("spring-chain");
       CHECK_THROWS_WITH(integ->init(*chain, chain->initial_state()), Catch::Contains("not one of the rigid problems"));
       const auto cradle = nsb::make_problem("ball-chain");
-      CHECK_THROWS_WITH(integ->init(*cradle, cradle->initial_state()), Catch::Contains("contacts are between bodies"));
+      CHECK_THROWS_WITH(integ->init(*cradle, cradle->initial_state()), Catch::Contains("needs node-to-rigid contacts"));
       const auto ring = nsb::make_problem("rolling-disk", {{"kappa", "1"}});
       CHECK_THROWS_WITH(integ->init(*ring, ring->initial_state()), Catch::Contains("kappa = 1"));
       CHECK(nsb::find_integrator(engine).peer);

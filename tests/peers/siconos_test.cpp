@@ -11,6 +11,7 @@
 #include "integrators/registry.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
+#include "tests/problems/forwarding_problem.hpp"
 
 namespace {
 
@@ -23,27 +24,14 @@ std::unique_ptr<nsb::Problem> sliding_mass(const std::string& mu, const std::str
 }
 
 // A registered problem on a belt: its contacts' obstacle moves at w along +T.
-class OnBelt final : public nsb::Problem {
+class OnBelt final : public ForwardingProblem {
  public:
-  OnBelt(std::unique_ptr<nsb::Problem> problem, double w) : p_(std::move(problem)), contacts_(p_->contacts()) {
+  OnBelt(std::unique_ptr<nsb::Problem> problem, double w) : ForwardingProblem(std::move(problem)), contacts_(held().contacts()) {
     contacts_.tangent_velocity.setConstant(w);
   }
-  std::string name() const override { return p_->name(); }
-  const nsb::Params& parameters() const override { return p_->parameters(); }
-  nsb::Index ndof() const override { return p_->ndof(); }
-  nsb::SpMat mass_matrix() const override { return p_->mass_matrix(); }
-  void internal_force(nsb::ConstVecRef u, nsb::VecRef f) const override { p_->internal_force(u, f); }
-  void tangent_stiffness(nsb::ConstVecRef u, nsb::SpMat& K) const override { p_->tangent_stiffness(u, K); }
-  bool is_linear() const override { return p_->is_linear(); }
-  void external_force(double t, nsb::VecRef f) const override { p_->external_force(t, f); }
-  double strain_energy(nsb::ConstVecRef u) const override { return p_->strain_energy(u); }
-  double load_potential(nsb::ConstVecRef u) const override { return p_->load_potential(u); }
   const nsb::Contacts& contacts() const override { return contacts_; }
-  nsb::State initial_state() const override { return p_->initial_state(); }
-  double stable_step() const override { return p_->stable_step(); }
 
  private:
-  std::unique_ptr<nsb::Problem> p_;
   nsb::Contacts contacts_;
 };
 

@@ -1,7 +1,8 @@
 // A deliberately broken integrator for `nsbench check` (tests/app/check_test.cpp): CD-Lagrange
 // underneath, so its motion is right, but it reports its impulses with the sign convention
-// inverted (a push apart as Lambda < 0) and never counts its steps (work().steps stays 0, so
-// budgets and tables would read nothing). And a problem whose field mesh names a dof it does
+// inverted (a push apart as Lambda < 0) and never counts its force evaluations
+// (work().force_evaluations stays 0, so budgets and work-precision tables would read nothing;
+// its steps are counted by Integrator::step, as every integrator's are). And a problem whose field mesh names a dof it does
 // not have (`nsbench run --fields` would refuse it): one free mass, otherwise sound.
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
@@ -13,20 +14,17 @@ class Broken final : public nsb::Integrator {
  public:
   explicit Broken(const nsb::Params& params) : Integrator(params), inner_(nsb::make_integrator("cd-lagrange")) {}
   static nsb::ParamSpecs parameters_spec() { return {}; }
-  std::string name() const override { return "broken"; }
-  bool conditionally_stable() const override { return true; }
 
   void init(const nsb::Problem& problem, const nsb::State& initial) override {
     bind(problem, initial);
     inner_->init(problem, initial);
   }
 
-  nsb::StepInfo step(double dt) override {
+  nsb::StepInfo advance(double dt) override {
     const nsb::StepInfo info = inner_->step(dt);
     state_ = inner_->state();
     impulses_ = -inner_->impulses();
     tangential_impulses_ = inner_->tangential_impulses();
-    work_.force_evaluations = inner_->work().force_evaluations;
     return info;
   }
 
@@ -60,5 +58,5 @@ class BrokenMesh final : public nsb::RigidProblem {
 
 NSBENCH_PROBLEM({"broken-mesh", "test plugin: a field mesh naming a dof the problem does not have",
                  &BrokenMesh::parameters_spec, &nsb::make_from_params<nsb::Problem, BrokenMesh>});
-NSBENCH_INTEGRATOR({"broken", "test plugin: inverted impulse sign, no step count", &Broken::parameters_spec,
-                    &nsb::make_from_params<nsb::Integrator, Broken>, false});
+NSBENCH_INTEGRATOR({"broken", "test plugin: inverted impulse sign, no force evaluation count", &Broken::parameters_spec,
+                    &nsb::make_from_params<nsb::Integrator, Broken>, false, false, {.explicit_step = true}});

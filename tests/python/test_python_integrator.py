@@ -26,6 +26,8 @@ def test_it_runs_in_nsbench_run_against_the_exact_solution():
     info = next(e for e in nsbench.integrators() if e["name"] == "py-symplectic-euler")
     assert info["origin"] == "python:symplectic_euler.SymplecticEuler"
     assert [q["name"] for q in info["parameters"]] == ["iterations"]
+    # Its class attributes are its declared capabilities, read at registration.
+    assert info["needs"] == "explicit" and info["friction"] is False
 
 
 def test_it_runs_in_a_study_file_its_rows_marked_python(tmp_path):
