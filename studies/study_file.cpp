@@ -369,6 +369,13 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
 
 }  // namespace
 
+bool is_event_time(MeasureKind kind) {
+  return kind == MeasureKind::ImpactTime || kind == MeasureKind::StopTime || kind == MeasureKind::OnsetTime;
+}
+bool measure_converges(MeasureKind kind) {
+  return kind == MeasureKind::Error || kind == MeasureKind::Hausdorff || is_event_time(kind);
+}
+
 std::string file_result_damage(const StudySpec& spec, const Json& r) {
   const auto reals_or_null = [](const Json& a) {
     return a.is_array() && std::all_of(a.begin(), a.end(), [](const Json& x) { return x.is_number() || x.is_null(); });
@@ -391,15 +398,107 @@ namespace {
 
 double number(const Json& r, const char* key) { return r.contains(key) ? real(r[key]) : kNaN; }
 
-// A time measured against the problem's exact event times [s].
-bool is_event_time(MeasureKind kind) {
-  return kind == MeasureKind::ImpactTime || kind == MeasureKind::StopTime || kind == MeasureKind::OnsetTime;
-}
-// An error that converges with dt: a convergence figure and fitted orders.
-bool converges(MeasureKind kind) { return kind == MeasureKind::Error || kind == MeasureKind::Hausdorff || is_event_time(kind); }
 
 std::string run_label(const Json& c) {
   return c["tol"].is_null() ? fmt::format("dt = {:.2e}", c["dt"].get<double>()) : fmt::format("tol = {:.1e}", c["tol"].get<double>());
+}
+
+// A declared column: the source column under its own header, unit, format and description.
+Column declared_column(const Column& source, const FileColumn& d) {
+  return {d.header.value_or(source.name), d.unit.value_or(source.unit), d.format.value_or(source.format),
+          d.description.value_or(source.description), source.timing};
+}
+
+std::size_t column_index(const Table& t, const std::string& name) {
+  const auto it = std::find_if(t.columns.begin(), t.columns.end(), [&](const Column& c) { return c.name == name; });
+  if (it == t.columns.end()) throw std::logic_error(fmt::format("table {} has no column '{}'", t.id, name));
+  return static_cast<std::size_t>(it - t.columns.begin());
+}
+
+// rows = "case": the work-precision rows, their columns picked, ordered and renamed; the first
+// such table carries the work-precision figures whose columns it shows, under the new names.
+Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
+  Table out;
+  std::vector<std::size_t> at;
+  std::map<std::string, std::string> renamed;
+  for (const FileColumn& c : d.columns) {
+    at.push_back(column_index(runs, c.of));
+    out.columns.push_back(declared_column(runs.columns[at.back()], c));
+    renamed[c.of] = out.columns.back().name;
+  }
+  for (const auto& row : runs.rows) {
+    std::vector<Cell> cells;
+    for (std::size_t k : at) cells.push_back(row[k]);
+    out.add_row(std::move(cells));
+  }
+  if (!with_figures) return out;
+  for (Figure f : runs.figures) {
+    const auto rename = [&](std::string& name) {
+      const auto it = renamed.find(name);
+      return it != renamed.end() && (name = it->second, true);
+    };
+    bool shown = rename(f.x) && rename(f.y);
+    for (auto& s : f.series) shown = shown && rename(s);
+    for (auto& s : f.panels) shown = shown && rename(s);
+    if (shown) out.figures.push_back(f);
+  }
+  return out;
+}
+
+// rows = "group": one row per problem and integrator (in the order of the runs), the fitted
+// orders' columns ("order of <measure>", ...) side by side; n/a where no fit was made.
+Table group_table(const FileTable& d, const Table& orders) {
+  Table out;
+  std::vector<std::pair<Cell, Cell>> groups;  // (problem, integrator)
+  for (const auto& row : orders.rows)
+    if (std::find(groups.begin(), groups.end(), std::pair{row[0], row[1]}) == groups.end()) groups.emplace_back(row[0], row[1]);
+  for (const FileColumn& c : d.columns) {
+    const auto of = c.of.find(" of ");
+    out.columns.push_back(declared_column(orders.columns[column_index(orders, of == std::string::npos ? c.of : c.of.substr(0, of))], c));
+  }
+  for (const auto& [problem, integrator] : groups) {
+    std::vector<Cell> cells;
+    for (const FileColumn& c : d.columns) {
+      const auto of = c.of.find(" of ");
+      if (of == std::string::npos) {
+        cells.push_back(c.of == "problem" ? problem : integrator);
+        continue;
+      }
+      const std::size_t k = column_index(orders, c.of.substr(0, of));
+      const Cell measure = c.of.substr(of + 4);
+      const auto row = std::find_if(orders.rows.begin(), orders.rows.end(),
+                                    [&](const auto& r) { return r[0] == problem && r[1] == integrator && r[2] == measure; });
+      cells.push_back(row == orders.rows.end() ? Cell{} : (*row)[k]);
+    }
+    out.add_row(std::move(cells));
+  }
+  return out;
+}
+
+// The tables the file declares, built from the engine's work-precision (`runs`), orders and
+// ranking tables.
+std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, const Table& orders, const std::optional<Table>& rank) {
+  std::vector<Table> out;
+  bool figures_placed = false;
+  for (const FileTable& d : spec.tables) {
+    Table t;
+    if (d.rows == "ranking") {
+      t = *rank;  // the reader refuses a ranking without a ranked measure
+    } else if (d.rows == "case") {
+      t = case_table(d, runs, !figures_placed);
+      t.caption = runs.caption;
+      figures_placed = true;
+    } else {
+      t = group_table(d, orders);
+      t.caption = orders.caption;
+    }
+    t.id = d.id;
+    t.title = d.title;
+    if (d.caption) t.caption = *d.caption;
+    t.metadata = runs.metadata;
+    out.push_back(std::move(t));
+  }
+  return out;
 }
 
 std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& cases, const std::vector<Json>& results) {
@@ -467,7 +566,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                  {spec.name + "_work_precision_evals", spec.title + ": " + primary->label + " against F_int evaluations", "F_int evals", primary->label, {"integrator"}, {"problem"}, true, true}};
   }
   for (const auto& m : spec.measures)
-    if (converges(m.kind))
+    if (measure_converges(m.kind))
       t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
                            "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
 
@@ -514,7 +613,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     ranking[pi].curves.push_back(curve);
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       const MeasureKind kind = spec.measures[m].kind;
-      if (!converges(kind) || !spec.measures[m].applies_to(plabel)) continue;
+      if (!measure_converges(kind) || !spec.measures[m].applies_to(plabel)) continue;
       std::vector<double> e = ys[m];
       for (double& x : e)
         if (!is_event_time(kind)) x = above_round_off(x);
@@ -523,15 +622,23 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                       number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});
     }
   }
-  std::vector<Table> tables{t};
-  if (!orders.rows.empty()) tables.push_back(orders);
+  const auto runs = std::find_if(spec.tables.begin(), spec.tables.end(), [](const FileTable& d) { return d.rows == "case"; });
+  const std::string runs_id = runs == spec.tables.end() ? t.id : runs->id;  // where the ranked errors are shown
+  std::optional<Table> rank;
   if (primary != spec.measures.end()) {
     std::erase_if(ranking, [&](const RankingProblem& p) { return !primary->applies_to(p.label); });
-    Table rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error",
-                               {primary->label, is_event_time(primary->kind) ? "s" : "", "{:.1e}", primary->label + " of " + t.id},
-                               cpu, ranking);
-    rank.metadata = meta;
-    tables.push_back(rank);
+    rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error",
+                         {primary->label, is_event_time(primary->kind) ? "s" : "", "{:.1e}", primary->label + " of " + runs_id},
+                         cpu, ranking);
+    rank->metadata = meta;
+  }
+  std::vector<Table> tables;
+  if (!spec.tables.empty()) {
+    tables = declared_tables(spec, t, orders, rank);
+  } else {
+    tables.push_back(t);
+    if (!orders.rows.empty()) tables.push_back(orders);
+    if (rank) tables.push_back(*rank);
   }
   if (!history.rows.empty()) tables.push_back(history);
   return tables;

@@ -815,3 +815,78 @@ TEST_CASE("study file: figures declared in the file are drawn from the work-prec
              StartsWith("f.toml:20: figure[0].id: 'work_precision' is the id of a figure the study draws itself"));
   CHECK_THAT(error_of(replaced(fig, "title = \"Steps\"\n", "")), StartsWith("f.toml:19: figure[0]: missing key 'title'"));
 }
+
+TEST_CASE("study file: declared tables pick, order and rename the columns of the runs and of the fitted orders; bad ones named",
+          "[studies][study_file]") {
+  using Catch::StartsWith;
+  const std::string declared = kMinimal + R"(
+[[table]]
+id = "runs"
+title = "Runs"
+caption = "What the rows are."
+columns = ["problem", "integrator", { of = "dt", header = "step", format = "{:.1e}" }, { of = "err u max", header = "err" }, "steps"]
+
+[[table]]
+id = "fits"
+title = "Orders"
+rows = "group"
+columns = ["problem", "integrator", { of = "order of err u max", header = "order" }, "points of err u max"]
+
+[[table]]
+id = "best"
+title = "Cheapest"
+rows = "ranking"
+)";
+  const auto tables = run_all(nsb::reduced_study(nsb::parse_study_text(declared, "min.toml", false), 1.0, 2, 100000));
+  REQUIRE(tables.size() == 3);  // the declared tables only, in their order
+  const nsb::Table& runs = tables[0];
+  CHECK(runs.id == "runs");
+  CHECK(runs.title == "Runs");
+  CHECK(runs.caption == "What the rows are.");
+  REQUIRE(runs.columns.size() == 5);
+  CHECK(runs.columns[2].name == "step");
+  CHECK(runs.columns[2].unit == "s");  // the source's unit
+  CHECK(runs.columns[2].format == "{:.1e}");
+  CHECK(runs.columns[3].name == "err");
+  CHECK(runs.columns[3].format == "{:.3e}");
+  REQUIRE(runs.rows.size() == 2);
+  CHECK(std::get<std::string>(runs.rows[0][1]) == "cd-lagrange");
+  CHECK(std::get<double>(runs.rows[1][2]) == 5e-3);
+  CHECK(std::get<double>(runs.rows[1][3]) > 0.0);
+  // The engine's figures whose columns the table shows, under its headers: CPU is not shown.
+  REQUIRE(runs.figures.size() == 1);
+  CHECK(runs.figures[0].x == "step");
+  CHECK(runs.figures[0].y == "err");
+  const nsb::Table& fits = tables[1];
+  CHECK(fits.id == "fits");
+  REQUIRE(fits.rows.size() == 1);
+  CHECK(fits.columns[2].name == "order");
+  CHECK(std::get<double>(fits.rows[0][2]) > 0.5);
+  CHECK(std::get<long>(fits.rows[0][3]) == 2);
+  CHECK(tables[2].id == "best");
+  CHECK(tables[2].title == "Cheapest");
+  CHECK(std::any_of(tables[2].columns.begin(), tables[2].columns.end(),
+                    [](const nsb::Column& c) { return c.description == "err u max of runs"; }));
+
+  CHECK_THAT(error_of(replaced(declared, "\"steps\"]", "\"stpes\"]")),
+             StartsWith("f.toml:23: table[0].columns[4]: 'stpes' is not valid (nearest: steps); valid: problem, integrator, dt, tol, "
+                        "err u max, CPU, steps, F_int evals, status"));
+  CHECK_THAT(error_of(replaced(declared, "\"points of err u max\"", "\"dt\"")),
+             StartsWith("f.toml:29: table[1].columns[3]: 'dt' is not valid (nearest: "));
+  CHECK_THAT(error_of(replaced(declared, "format = \"{:.1e}\"", "format = \"{:.1q}\"")),
+             StartsWith("f.toml:23: table[0].columns[2].format: '{:.1q}' is no number format"));
+  CHECK_THAT(error_of(replaced(declared, "header = \"step\"", "heading = \"step\"")),
+             StartsWith("f.toml:23: table[0].columns[2].heading: unknown key (nearest valid key: header); valid: of, header, unit, "
+                        "format, description"));
+  CHECK_THAT(error_of(replaced(declared, "id = \"fits\"", "id = \"runs\"")),
+             StartsWith("f.toml:26: table[1].id: id 'runs' used twice; valid: distinct ids"));
+  CHECK_THAT(error_of(replaced(declared, "id = \"runs\"", "id = \"Runs\"")),
+             StartsWith("f.toml:20: table[0].id: 'Runs' is not a file name of a-z, 0-9 and _; valid: [a-z0-9_]+"));
+  CHECK_THAT(error_of(replaced(declared, "rows = \"group\"", "rows = \"groups\"")),
+             StartsWith("f.toml:28: table[1].rows: 'groups' is not valid (nearest: group); valid: case, group, ranking"));
+  CHECK_THAT(error_of(replaced(declared, "rows = \"ranking\"", "rows = \"ranking\"\ncolumns = [\"problem\"]")),
+             StartsWith("f.toml:35: table[2].columns: a ranking's columns are fixed"));
+  CHECK_THAT(error_of(replaced(declared, "title = \"Orders\"\n", "")), StartsWith("f.toml:25: table[1]: missing key 'title'"));
+  CHECK_THAT(error_of(declared + "\n[[figure]]\nid = \"cost\"\ntitle = \"Cost\"\nx = \"CPU\"\ny = \"err u max\"\n"),
+             StartsWith("f.toml:39: figure[0].x: 'CPU' is not a column of table 'runs'; valid: problem, integrator, dt, err u max, steps"));
+}
