@@ -221,7 +221,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   try {
     integrator->init(*problem, problem->initial_state());
   } catch (const InputError& e) {  // the scheme declines the problem
-    return {{"status", "n/a"}, {"message", e.what()}, {"steps", 0}, {"force_evaluations", 0}};
+    return {{"status", "n/a"}, {"message", e.what()}, {"steps", 0}, {"force_evaluations", 0}, {"factorizations", 0}, {"lcp_iterations", 0}};
   }
   const SpMat M = problem->mass_matrix();
   const Reference reference(spec, *problem, M, fp);
@@ -304,7 +304,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     t_prev = s.t;
   });
   Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps},
-              {"force_evaluations", r.work.force_evaluations}};
+              {"force_evaluations", r.work.force_evaluations}, {"factorizations", r.work.factorizations},
+              {"lcp_iterations", r.work.lcp_iterations}};
   if (r.status != RunStatus::Ok) return out;
   if (const double g = growth.largest() / e_scale; g > spec.energy_blow_up) {
     out["status"] = "energy blow-up";
@@ -385,6 +386,8 @@ std::string file_result_damage(const StudySpec& spec, const Json& r) {
   if (r.contains("values") && !(reals_or_null(r["values"]) && r["values"].size() == spec.measures.size()))
     return fmt::format("values is not an array of {} numbers (or null)", spec.measures.size());
   if (r.contains("cpu") && !(r["cpu"].is_number() || r["cpu"].is_null())) return "cpu is not a number";
+  for (const char* key : {"factorizations", "lcp_iterations"})
+    if (r.contains(key) && !r[key].is_number_integer()) return fmt::format("{} is not an integer", key);
   if (r.contains("history")) {
     const Json& h = r["history"];
     if (!h.is_object() || !h.contains("t") || !h.contains("e") || !reals_or_null(h["t"]) || !reals_or_null(h["e"]) ||
@@ -579,6 +582,12 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   for (const auto& p : spec.problems)
     ranking.push_back({p.label, exact_times ? "the exact solution" : against, exact_times ? 0.0 : spec.reference.floor,
                        spec.targets, {}});
+  // The columns only declared tables show: work counters, and each error's order against the
+  // run before it (the previous step or tolerance of the same sweep).
+  std::vector<Column> counters = {{"factorizations", "", "", ""}, {"LCP its", "", "", "LCP iterations"}};
+  for (const auto& m : spec.measures)
+    if (measure_converges(m.kind)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
+  std::vector<std::vector<Cell>> counter_rows;
   std::size_t k = 0;
   while (k < cases.size()) {
     const std::size_t begin = k;
@@ -603,6 +612,15 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       row.insert(row.end(), {number_cell(number(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
                              status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
       t.add_row(std::move(row));
+      const auto count = [&](const char* key) { return r.contains(key) ? Cell{r[key].get<long>()} : Cell{}; };
+      std::vector<Cell> more = {count("factorizations"), count("lcp_iterations")};
+      for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+        if (!measure_converges(spec.measures[m].kind)) continue;
+        const std::size_t i = xs.size() - 1;
+        const auto e = [&](std::size_t j) { return is_event_time(spec.measures[m].kind) ? ys[m][j] : above_round_off(ys[m][j]); };
+        more.push_back(i ? number_cell(observed_order(xs[i - 1], e(i - 1), xs[i], e(i))) : Cell{});
+      }
+      counter_rows.push_back(std::move(more));
       if (primary != spec.measures.end() && status != "n/a")  // a declined run is no point
         curve.points.push_back({run_label(cases[k]), number(r, "cpu"), ys[primary - spec.measures.begin()].back(),
                                 status == "ok" ? "" : status});
@@ -634,7 +652,11 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   }
   std::vector<Table> tables;
   if (!spec.tables.empty()) {
-    tables = declared_tables(spec, t, orders, rank);
+    Table runs_all = t;  // and the columns only declared tables show
+    runs_all.columns.insert(runs_all.columns.end(), counters.begin(), counters.end());
+    for (std::size_t r = 0; r < runs_all.rows.size(); ++r)
+      runs_all.rows[r].insert(runs_all.rows[r].end(), counter_rows[r].begin(), counter_rows[r].end());
+    tables = declared_tables(spec, runs_all, orders, rank);
   } else {
     tables.push_back(t);
     if (!orders.rows.empty()) tables.push_back(orders);

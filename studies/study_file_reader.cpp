@@ -419,7 +419,9 @@ std::vector<std::string> table_sources(const std::string& rows, const std::vecto
   if (rows == "case") {
     sources.insert(sources.end(), {"dt", "tol"});
     for (const auto& m : measures) sources.push_back(m.label);
-    sources.insert(sources.end(), {"CPU", "steps", "F_int evals", "status"});
+    sources.insert(sources.end(), {"CPU", "steps", "F_int evals", "status", "factorizations", "LCP its"});
+    for (const auto& m : measures)
+      if (measure_converges(m.kind)) sources.push_back("pairwise order of " + m.label);
   } else if (rows == "group") {
     for (const auto& m : measures)
       if (measure_converges(m.kind))

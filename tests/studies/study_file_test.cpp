@@ -436,6 +436,7 @@ TEST_CASE("study file: the example in README.md is a valid study file", "[studie
   const nsb::StudySpec spec = nsb::parse_study_text(readme.substr(begin + 8, end - begin - 8), "README.md", false);
   CHECK(spec.measures[spec.ranked].label == "err u max");
   CHECK(spec.measures[1].problems == std::vector<std::string>{"bouncing mass"});
+  CHECK(spec.tables.size() == 1);
 }
 
 TEST_CASE("study file examples: the quick bouncing-mass comparison runs (reduced)", "[studies][study_file]") {
@@ -824,7 +825,8 @@ TEST_CASE("study file: declared tables pick, order and rename the columns of the
 id = "runs"
 title = "Runs"
 caption = "What the rows are."
-columns = ["problem", "integrator", { of = "dt", header = "step", format = "{:.1e}" }, { of = "err u max", header = "err" }, "steps"]
+columns = ["problem", "integrator", { of = "dt", header = "step", format = "{:.1e}" }, { of = "err u max", header = "err" }, "steps", "factorizations",
+           { of = "pairwise order of err u max", header = "order" }]
 
 [[table]]
 id = "fits"
@@ -843,7 +845,7 @@ rows = "ranking"
   CHECK(runs.id == "runs");
   CHECK(runs.title == "Runs");
   CHECK(runs.caption == "What the rows are.");
-  REQUIRE(runs.columns.size() == 5);
+  REQUIRE(runs.columns.size() == 7);
   CHECK(runs.columns[2].name == "step");
   CHECK(runs.columns[2].unit == "s");  // the source's unit
   CHECK(runs.columns[2].format == "{:.1e}");
@@ -853,6 +855,11 @@ rows = "ranking"
   CHECK(std::get<std::string>(runs.rows[0][1]) == "cd-lagrange");
   CHECK(std::get<double>(runs.rows[1][2]) == 5e-3);
   CHECK(std::get<double>(runs.rows[1][3]) > 0.0);
+  CHECK(std::get<long>(runs.rows[1][5]) == 0);  // CD-Lagrange factorizes nothing
+  // The order against the run before: none for the first, that of the two errors for the second.
+  CHECK(std::holds_alternative<std::monostate>(runs.rows[0][6]));
+  CHECK(std::get<double>(runs.rows[1][6]) == Approx(std::log(std::get<double>(runs.rows[0][3]) / std::get<double>(runs.rows[1][3])) / std::log(2.0)));
+  CHECK(runs.columns[6].format == "{:.2f}");
   // The engine's figures whose columns the table shows, under its headers: CPU is not shown.
   REQUIRE(runs.figures.size() == 1);
   CHECK(runs.figures[0].x == "step");
@@ -868,25 +875,25 @@ rows = "ranking"
   CHECK(std::any_of(tables[2].columns.begin(), tables[2].columns.end(),
                     [](const nsb::Column& c) { return c.description == "err u max of runs"; }));
 
-  CHECK_THAT(error_of(replaced(declared, "\"steps\"]", "\"stpes\"]")),
+  CHECK_THAT(error_of(replaced(declared, "\"steps\", \"fact", "\"stpes\", \"fact")),
              StartsWith("f.toml:23: table[0].columns[4]: 'stpes' is not valid (nearest: steps); valid: problem, integrator, dt, tol, "
-                        "err u max, CPU, steps, F_int evals, status"));
+                        "err u max, CPU, steps, F_int evals, status, factorizations, LCP its, pairwise order of err u max"));
   CHECK_THAT(error_of(replaced(declared, "\"points of err u max\"", "\"dt\"")),
-             StartsWith("f.toml:29: table[1].columns[3]: 'dt' is not valid (nearest: "));
+             StartsWith("f.toml:30: table[1].columns[3]: 'dt' is not valid (nearest: "));
   CHECK_THAT(error_of(replaced(declared, "format = \"{:.1e}\"", "format = \"{:.1q}\"")),
              StartsWith("f.toml:23: table[0].columns[2].format: '{:.1q}' is no number format"));
   CHECK_THAT(error_of(replaced(declared, "header = \"step\"", "heading = \"step\"")),
              StartsWith("f.toml:23: table[0].columns[2].heading: unknown key (nearest valid key: header); valid: of, header, unit, "
                         "format, description"));
   CHECK_THAT(error_of(replaced(declared, "id = \"fits\"", "id = \"runs\"")),
-             StartsWith("f.toml:26: table[1].id: id 'runs' used twice; valid: distinct ids"));
+             StartsWith("f.toml:27: table[1].id: id 'runs' used twice; valid: distinct ids"));
   CHECK_THAT(error_of(replaced(declared, "id = \"runs\"", "id = \"Runs\"")),
              StartsWith("f.toml:20: table[0].id: 'Runs' is not a file name of a-z, 0-9 and _; valid: [a-z0-9_]+"));
   CHECK_THAT(error_of(replaced(declared, "rows = \"group\"", "rows = \"groups\"")),
-             StartsWith("f.toml:28: table[1].rows: 'groups' is not valid (nearest: group); valid: case, group, ranking"));
+             StartsWith("f.toml:29: table[1].rows: 'groups' is not valid (nearest: group); valid: case, group, ranking"));
   CHECK_THAT(error_of(replaced(declared, "rows = \"ranking\"", "rows = \"ranking\"\ncolumns = [\"problem\"]")),
-             StartsWith("f.toml:35: table[2].columns: a ranking's columns are fixed"));
-  CHECK_THAT(error_of(replaced(declared, "title = \"Orders\"\n", "")), StartsWith("f.toml:25: table[1]: missing key 'title'"));
+             StartsWith("f.toml:36: table[2].columns: a ranking's columns are fixed"));
+  CHECK_THAT(error_of(replaced(declared, "title = \"Orders\"\n", "")), StartsWith("f.toml:26: table[1]: missing key 'title'"));
   CHECK_THAT(error_of(declared + "\n[[figure]]\nid = \"cost\"\ntitle = \"Cost\"\nx = \"CPU\"\ny = \"err u max\"\n"),
-             StartsWith("f.toml:39: figure[0].x: 'CPU' is not a column of table 'runs'; valid: problem, integrator, dt, err u max, steps"));
+             StartsWith("f.toml:40: figure[0].x: 'CPU' is not a column of table 'runs'; valid: problem, integrator, dt, err u max, steps, factorizations, pairwise order of err u max"));
 }
