@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -875,25 +876,31 @@ rows = "ranking"
   CHECK(std::any_of(tables[2].columns.begin(), tables[2].columns.end(),
                     [](const nsb::Column& c) { return c.description == "err u max of runs"; }));
 
-  CHECK_THAT(error_of(replaced(declared, "\"steps\", \"fact", "\"stpes\", \"fact")),
-             StartsWith("f.toml:23: table[0].columns[4]: 'stpes' is not valid (nearest: steps); valid: problem, integrator, dt, tol, "
-                        "err u max, CPU, steps, F_int evals, status, factorizations, LCP its, pairwise order of err u max"));
-  CHECK_THAT(error_of(replaced(declared, "\"points of err u max\"", "\"dt\"")),
-             StartsWith("f.toml:30: table[1].columns[3]: 'dt' is not valid (nearest: "));
-  CHECK_THAT(error_of(replaced(declared, "format = \"{:.1e}\"", "format = \"{:.1q}\"")),
-             StartsWith("f.toml:23: table[0].columns[2].format: '{:.1q}' is no number format"));
-  CHECK_THAT(error_of(replaced(declared, "header = \"step\"", "heading = \"step\"")),
-             StartsWith("f.toml:23: table[0].columns[2].heading: unknown key (nearest valid key: header); valid: of, header, unit, "
-                        "format, description"));
-  CHECK_THAT(error_of(replaced(declared, "id = \"fits\"", "id = \"runs\"")),
-             StartsWith("f.toml:27: table[1].id: id 'runs' used twice; valid: distinct ids"));
-  CHECK_THAT(error_of(replaced(declared, "id = \"runs\"", "id = \"Runs\"")),
-             StartsWith("f.toml:20: table[0].id: 'Runs' is not a file name of a-z, 0-9 and _; valid: [a-z0-9_]+"));
-  CHECK_THAT(error_of(replaced(declared, "rows = \"group\"", "rows = \"groups\"")),
-             StartsWith("f.toml:29: table[1].rows: 'groups' is not valid (nearest: group); valid: case, group, ranking"));
-  CHECK_THAT(error_of(replaced(declared, "rows = \"ranking\"", "rows = \"ranking\"\ncolumns = [\"problem\"]")),
-             StartsWith("f.toml:36: table[2].columns: a ranking's columns are fixed"));
-  CHECK_THAT(error_of(replaced(declared, "title = \"Orders\"\n", "")), StartsWith("f.toml:26: table[1]: missing key 'title'"));
+  // Each edit of the file and the start of the error it gives.
+  const std::vector<std::array<std::string, 3>> bad = {
+      {"\"steps\", \"fact", "\"stpes\", \"fact",
+       "f.toml:23: table[0].columns[4]: 'stpes' is not valid (nearest: steps); valid: problem, integrator, dt, tol, err u max, "
+       "CPU, steps, F_int evals, status, factorizations, LCP its, pairwise order of err u max"},
+      {"\"points of err u max\"", "\"dt\"",
+       "f.toml:30: table[1].columns[3]: 'dt' is not valid (nearest: "},
+      {"format = \"{:.1e}\"", "format = \"{:.1q}\"",
+       "f.toml:23: table[0].columns[2].format: '{:.1q}' is no number format"},
+      {"header = \"step\"", "heading = \"step\"",
+       "f.toml:23: table[0].columns[2].heading: unknown key (nearest valid key: header); valid: of, header, unit, format, "
+       "description"},
+      {"id = \"fits\"", "id = \"runs\"",
+       "f.toml:27: table[1].id: id 'runs' used twice; valid: distinct ids"},
+      {"id = \"runs\"", "id = \"Runs\"",
+       "f.toml:20: table[0].id: 'Runs' is not a file name of a-z, 0-9 and _; valid: [a-z0-9_]+"},
+      {"rows = \"group\"", "rows = \"groups\"",
+       "f.toml:29: table[1].rows: 'groups' is not valid (nearest: group); valid: case, group, ranking"},
+      {"rows = \"ranking\"", "rows = \"ranking\"\ncolumns = [\"problem\"]",
+       "f.toml:36: table[2].columns: a ranking's columns are fixed"},
+      {"title = \"Orders\"\n", "",
+       "f.toml:26: table[1]: missing key 'title'"},
+  };
+  for (const auto& [from, to, error] : bad) CHECK_THAT(error_of(replaced(declared, from, to)), StartsWith(error));
   CHECK_THAT(error_of(declared + "\n[[figure]]\nid = \"cost\"\ntitle = \"Cost\"\nx = \"CPU\"\ny = \"err u max\"\n"),
-             StartsWith("f.toml:40: figure[0].x: 'CPU' is not a column of table 'runs'; valid: problem, integrator, dt, err u max, steps, factorizations, pairwise order of err u max"));
+             StartsWith("f.toml:40: figure[0].x: 'CPU' is not a column of table 'runs'; valid: problem, integrator, dt, err u max, "
+                        "steps, factorizations, pairwise order of err u max"));
 }
