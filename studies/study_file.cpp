@@ -45,6 +45,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include "core/output.hpp"
@@ -96,7 +97,7 @@ std::vector<Json> file_cases(const StudySpec& spec) {
       }
     }
   // A reference integrator runs once per problem, here, before the cases that read it.
-  if (spec.has_reference && !spec.reference.exact)
+  if (spec.has_reference && !spec.reference.exact && !spec.reference.lockstep)
     for (const auto& p : spec.problems) try {
         cached_reference(reference_cache_dir(), reference_request(spec, p));
       } catch (const InputError& e) {
@@ -120,19 +121,33 @@ double state_observable(const Problem& problem, const SpMat& M, const State& s, 
   return name == "kinetic" ? e.kinetic : name == "potential" ? e.potential : e.total();
 }
 
-// The reference of one case: the exact solution, or the cached run interpolated in time.
+// The reference of one case: the exact solution, a reference integrator stepped with the run
+// (lockstep), or the cached run interpolated in time.
 class Reference {
  public:
   Reference(const StudySpec& spec, const Problem& problem, const SpMat& M, const FileProblem& fp)
       : problem_(problem), M_(M), exact_(!spec.has_reference || spec.reference.exact) {
     if (exact_) return;
+    if (spec.reference.lockstep) {
+      lockstep_ = make_integrator(spec.reference.integrator, spec.reference.parameters);
+      lockstep_->init(problem, problem.initial_state());
+      return;
+    }
     run_ = cached_reference(reference_cache_dir(), reference_request(spec, fp));
     if (run_.summary["status"] != "ok" || run_.series.rows() == 0)
       throw InputError(fmt::format("reference {} on {} failed: {} {}", spec.reference.integrator, fp.label,
                                    run_.summary["status"].dump(), run_.summary["message"].dump()));
     t_ = run_.series.column("t");
   }
+  // A lockstep reference takes the run's step.
+  void advance(double dt) {
+    if (lockstep_) lockstep_->step(dt);
+  }
   double observable(double t, const std::string& name, std::span<double> buffer) const {
+    if (lockstep_) {
+      const Energy energy = lockstep_->energy();
+      return state_observable(problem_, M_, lockstep_->state(), lockstep_->impulses(), 0.0, name, buffer, &energy);
+    }
     if (exact_) {
       const State exact = *problem_.exact_state(t);
       return state_observable(problem_, M_, exact, Vec::Zero(problem_.ncontacts()), 0.0, name, buffer, nullptr);
@@ -148,7 +163,7 @@ class Reference {
     const double t0 = s.at(lo, t_), t1 = s.at(hi, t_), w = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
     return (1 - w) * s.at(lo, col) + w * s.at(hi, col);
   }
-  Vec u(double t) const { return problem_.exact_state(t)->u; }
+  Vec u(double t) const { return lockstep_ ? lockstep_->state().u : problem_.exact_state(t)->u; }
   // The reference's graph of an observable on [0, t_end].
   Polyline graph(const std::string& name, double t_end, std::span<double> buffer) const {
     if (exact_) {
@@ -167,6 +182,7 @@ class Reference {
   bool exact_;
   CachedReference run_;
   std::size_t t_ = 0;
+  std::unique_ptr<Integrator> lockstep_;
 };
 
 // The largest rise of a run's energy above E0 and the work W its surroundings can have done
@@ -217,6 +233,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   options.t_end = t_end;
   options.record_series = false;
   options.max_force_evaluations = spec.budget_of(fp);
+  if (spec.reference.lockstep && fi.name == spec.reference.integrator)  // its error is 0 by construction
+    return {{"status", "n/a"}, {"message", "the reference of this problem"}, {"steps", 0}, {"force_evaluations", 0},
+            {"factorizations", 0}, {"lcp_iterations", 0}};
   auto integrator = make_integrator(fi.name, params);
   try {
     integrator->init(*problem, problem->initial_state());
@@ -224,7 +243,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     return {{"status", "n/a"}, {"message", e.what()}, {"steps", 0}, {"force_evaluations", 0}, {"factorizations", 0}, {"lcp_iterations", 0}};
   }
   const SpMat M = problem->mass_matrix();
-  const Reference reference(spec, *problem, M, fp);
+  Reference reference(spec, *problem, M, fp);
   const std::size_t nobs = problem->observable_names().size();
   std::vector<double> obs(nobs), obs_ref(nobs);
   std::vector<Accumulator> acc(spec.measures.size());
@@ -293,6 +312,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   long step = 0;
   const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo& info) {
     const State& s = it.state();
+    reference.advance(info.dt);
     momentum.add(it, info.dt);
     const bool contact = it.impulses().sum() > 0.0;
     for (std::size_t m = 0; m < spec.measures.size(); ++m)
@@ -508,8 +528,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   const std::vector<std::pair<std::string, std::string>> meta = {
       {"study", spec.name}, {"study_file", spec.file}, {"study_file_fnv1a64", spec.hash}, {"t_end", fmt::format("{}", spec.t_end)}};
   const std::string against = !spec.has_reference ? "no reference"
-                              : spec.reference.exact ? "the exact solution"
-                                                     : fmt::format("{} (dt = {}, cached)", spec.reference.integrator, spec.reference.dt);
+                              : spec.reference.exact    ? "the exact solution"
+                              : spec.reference.lockstep ? fmt::format("{} stepped with each run (lockstep)", spec.reference.integrator)
+                                                        : fmt::format("{} (dt = {}, cached)", spec.reference.integrator, spec.reference.dt);
   const std::string cpu = spec.cpu_repeats > 0
                               ? median_cpu_text(spec.cpu_repeats)
                               : "thread CPU time of the stepping of the observed run (observer excluded)";

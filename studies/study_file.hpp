@@ -56,6 +56,9 @@ struct FileReference {
   double dt = 0.0;
   long sample_every = 1;
   double floor = 0.0;      // the reference's own error in the measures' norm (ranking)
+  // Stepped with each run, step for step at the run's own steps (no cache, no interpolation):
+  // its states at the run's step times (modal-exact: the semi-discrete system's exact solution).
+  bool lockstep = false;
 };
 
 enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime };

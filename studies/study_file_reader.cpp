@@ -645,7 +645,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 
   if (const Json* r = c.find(root, "reference")) {
     c.expect(*r, "reference", r->is_object(), "a table");
-    c.keys(*r, "reference", {"solution", "integrator", "parameters", "dt", "sample_every", "floor"});
+    c.keys(*r, "reference", {"solution", "integrator", "parameters", "dt", "sample_every", "floor", "lockstep"});
     spec.has_reference = true;
     FileReference& ref = spec.reference;
     if (!c.find(*r, "solution") == !c.find(*r, "integrator"))
@@ -661,6 +661,14 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       ref.integrator = c.registered((*r)["integrator"], "reference.integrator", names_of(integrator_registry()), "integrator");
       if (const Json* v = c.find(*r, "parameters"))
         ref.parameters = c.parameters(*v, "reference.parameters", find_integrator(ref.integrator).parameters());
+      if (const Json* v = c.find(*r, "lockstep")) ref.lockstep = c.boolean(*v, "reference.lockstep");
+    }
+    if (ref.exact && c.find(*r, "lockstep"))
+      c.fail("reference.lockstep", "only a reference integrator steps with the runs", "integrator = NAME with lockstep = true");
+    if (ref.lockstep) {
+      for (const char* key : {"dt", "sample_every"})
+        if (c.find(*r, key)) c.fail(child("reference", key), "a lockstep reference steps with each run, at its steps", "no dt or sample_every with lockstep = true");
+    } else if (!ref.exact) {
       ref.dt = c.positive(c.require(*r, "reference", "dt"), "reference.dt");
       for (const auto& p : spec.problems)
         check_step(c, ref.dt, "reference.dt", spec.t_end_of(p), p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end");
@@ -709,6 +717,9 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       } else {
         keys({"observable", "norm", "window"});
       }
+      if (hausdorff && spec.reference.lockstep)
+        c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",
+               "[reference] solution = \"exact\" or a cached integrator (lockstep = false)");
       if (!spec.has_reference) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
                                       "[reference] solution = \"exact\" or integrator = NAME");
       if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2"});
@@ -717,7 +728,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         std::vector<std::string> valid = instances[p]->observable_names();
         valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
         if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
-        if (spec.reference.exact && !hausdorff) valid.insert(valid.begin(), "u");
+        if ((spec.reference.exact || spec.reference.lockstep) && !hausdorff) valid.insert(valid.begin(), "u");
         if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
           c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'{}", m.observable, spec.problems[p].label,
                                                         spec.reference.exact ? "" : " recorded by its reference run"),

@@ -904,3 +904,47 @@ rows = "ranking"
              StartsWith("f.toml:40: figure[0].x: 'CPU' is not a column of table 'runs'; valid: problem, integrator, dt, err u max, "
                         "steps, factorizations, pairwise order of err u max"));
 }
+
+TEST_CASE("study file: a lockstep reference steps with each run; the reference itself is n/a; bad input named",
+          "[studies][study_file]") {
+  using Catch::Contains;
+  using Catch::StartsWith;
+  const std::string lockstep = quick_study("1.0") + R"(
+[[problem]]
+name = "spring-chain"
+parameters = { n = 10, wall = "left" }
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2, 5e-3]
+
+[[integrator]]
+name = "modal-exact"
+steps = [1e-2]
+
+[reference]
+integrator = "modal-exact"
+lockstep = true
+
+[[measure]]
+kind = "error"
+window = [0.0, 0.12]
+)";
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(nsb::parse_study_text(lockstep, "lock.toml", false), &results);
+  REQUIRE(results.size() == 3);
+  // Before the first impact (t = 0.133) CD-Lagrange is of order 2 against the exact semi-discrete chain.
+  const double coarse = results[0]["values"][0], fine = results[1]["values"][0];
+  CHECK(coarse > 0.0);
+  CHECK(std::log2(coarse / fine) == Approx(2.0).margin(0.3));
+  CHECK(results[2]["status"] == "n/a");
+  CHECK(results[2]["message"] == "the reference of this problem");
+  CHECK_THAT(table(tables, "_work_precision").caption, Contains("modal-exact stepped with each run (lockstep)"));
+
+  CHECK_THAT(error_of(replaced(lockstep, "lockstep = true", "lockstep = true\ndt = 1e-3")),
+             StartsWith("f.toml:22: reference.dt: a lockstep reference steps with each run, at its steps"));
+  CHECK_THAT(error_of(replaced(kMinimal, "solution = \"exact\"", "solution = \"exact\"\nlockstep = true")),
+             Contains("reference.lockstep: only a reference integrator steps with the runs"));
+  CHECK_THAT(error_of(replaced(lockstep, "kind = \"error\"\nwindow = [0.0, 0.12]", "kind = \"hausdorff\"\nobservable = \"q\"")),
+             Contains("a Hausdorff distance needs the reference's whole graph"));
+}
