@@ -277,7 +277,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     const State& s = it.state();
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       const FileMeasure& fm = spec.measures[m];
-      if (!on[m] || s.t < fm.window_start || s.t > fm.window_end) continue;
+      const bool inside = s.t >= fm.window_start && s.t <= fm.window_end;
+      if (!on[m] || !(inside || fm.scale_over_run)) continue;  // an error relative to the run: its scale
       Accumulator& a = acc[m];
       double e = kNaN;
       if (fm.kind == MeasureKind::Error) {
@@ -303,6 +304,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         e = momentum.residual(s.v);
         a.scale = std::max({a.scale, std::abs(momentum.momentum(s.v)), std::abs(momentum.initial())});
       }
+      if (!inside) continue;
       a.largest = std::max(a.largest, std::abs(e));
       a.square += e * e * (s.t - a.t_prev);
       a.t_prev = s.t;

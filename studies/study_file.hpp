@@ -76,6 +76,8 @@ struct FileMeasure {
   // Error, energy, momentum: sampled on [window_start, window_end] only (the whole run by default).
   double window_start = 0.0;
   double window_end = std::numeric_limits<double>::infinity();
+  // Error: relative to the largest reference value over the whole run, not the window alone.
+  bool scale_over_run = false;
   bool applies_to(const std::string& problem_label) const;
   // Smaller is better and never negative: a measure the ranking may rank by.
   bool rankable() const;

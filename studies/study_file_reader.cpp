@@ -715,7 +715,9 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
         if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
       } else {
-        keys({"observable", "norm", "window"});
+        keys({"observable", "norm", "window", "relative_to"});
+        if (const Json* v = c.find(j, "relative_to"))
+          m.scale_over_run = c.choice(*v, child(path, "relative_to"), {"window", "run"}) == "run";
       }
       if (hausdorff && spec.reference.lockstep)
         c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",

@@ -929,6 +929,12 @@ lockstep = true
 [[measure]]
 kind = "error"
 window = [0.0, 0.12]
+
+[[measure]]
+kind = "error"
+window = [0.0, 0.12]
+relative_to = "run"
+label = "err over the run's scale"
 )";
   std::vector<nsb::Json> results;
   const auto tables = run_all(nsb::parse_study_text(lockstep, "lock.toml", false), &results);
@@ -937,6 +943,11 @@ window = [0.0, 0.12]
   const double coarse = results[0]["values"][0], fine = results[1]["values"][0];
   CHECK(coarse > 0.0);
   CHECK(std::log2(coarse / fine) == Approx(2.0).margin(0.3));
+  // The same error relative to the chain's largest displacement over the run, not over the
+  // window alone: smaller, as the chain drifts away from the wall.
+  const double over_run = results[0]["values"][1];
+  CHECK(over_run > 0.0);
+  CHECK(over_run < 0.5 * coarse);
   CHECK(results[2]["status"] == "n/a");
   CHECK(results[2]["message"] == "the reference of this problem");
   CHECK_THAT(table(tables, "_work_precision").caption, Contains("modal-exact stepped with each run (lockstep)"));
@@ -945,6 +956,8 @@ window = [0.0, 0.12]
              StartsWith("f.toml:22: reference.dt: a lockstep reference steps with each run, at its steps"));
   CHECK_THAT(error_of(replaced(kMinimal, "solution = \"exact\"", "solution = \"exact\"\nlockstep = true")),
              Contains("reference.lockstep: only a reference integrator steps with the runs"));
-  CHECK_THAT(error_of(replaced(lockstep, "kind = \"error\"\nwindow = [0.0, 0.12]", "kind = \"hausdorff\"\nobservable = \"q\"")),
+  CHECK_THAT(error_of(replaced(lockstep, "relative_to = \"run\"", "relative_to = \"all\"")),
+             Contains("measure[1].relative_to: 'all' is not valid (nearest: "));
+  CHECK_THAT(error_of(replaced(lockstep, "kind = \"error\"\nwindow = [0.0, 0.12]\n\n", "kind = \"hausdorff\"\nobservable = \"q\"\n\n")),
              Contains("a Hausdorff distance needs the reference's whole graph"));
 }
