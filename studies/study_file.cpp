@@ -618,7 +618,8 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     const std::string& plabel = spec.problems[pi].label;
     const FileIntegrator& fi = spec.integrators[ii];
     const std::string ilabel = shown_label(fi, plabel);
-    WorkCurve curve{ilabel, find_integrator(fi.name).reference, {}};
+    const IntegratorEntry& entry = find_integrator(fi.name);
+    WorkCurve curve{ilabel, entry.reference, {}, entry.peer};
     std::vector<double> xs;
     std::vector<std::vector<double>> ys(spec.measures.size());
     for (; k < cases.size() && cases[k]["problem"] == pi && cases[k]["integrator"] == ii; ++k) {

@@ -10,6 +10,7 @@
 #include <random>
 #include <sstream>
 
+#include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "studies/study.hpp"
 #include "studies/study_file.hpp"
@@ -960,4 +961,20 @@ label = "err over the run's scale"
              Contains("measure[1].relative_to: 'all' is not valid (nearest: "));
   CHECK_THAT(error_of(replaced(lockstep, "kind = \"error\"\nwindow = [0.0, 0.12]\n\n", "kind = \"hausdorff\"\nobservable = \"q\"\n\n")),
              Contains("a Hausdorff distance needs the reference's whole graph"));
+}
+
+TEST_CASE("study file: the ranking marks another code's integrator as a peer", "[studies][study_file]") {
+  const auto& registry = nsb::integrator_registry();
+  const auto peer = std::find_if(registry.begin(), registry.end(), [](const nsb::IntegratorEntry& e) { return e.peer; });
+  if (peer == registry.end()) {  // the peers are optional (CMake option NSBENCH_ENGINES, Siconos)
+    WARN("no peer integrator in this build: nothing to check");
+    return;
+  }
+  const std::string text = replaced(kMinimal, "name = \"cd-lagrange\"", "name = \"" + peer->name + "\"");
+  const auto tables = run_all(nsb::reduced_study(nsb::parse_study_text(text, "peer.toml", false), 1.0, 2, 100000));
+  bool marked = false;
+  for (const auto& row : table(tables, "_ranking").rows)
+    for (const auto& cell : row)
+      if (const auto* s = std::get_if<std::string>(&cell)) marked = marked || s->find(peer->name + " (peer)") != std::string::npos;
+  CHECK(marked);
 }
