@@ -45,6 +45,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include "core/output.hpp"
@@ -96,7 +97,7 @@ std::vector<Json> file_cases(const StudySpec& spec) {
       }
     }
   // A reference integrator runs once per problem, here, before the cases that read it.
-  if (spec.has_reference && !spec.reference.exact)
+  if (spec.has_reference && !spec.reference.exact && !spec.reference.lockstep)
     for (const auto& p : spec.problems) try {
         cached_reference(reference_cache_dir(), reference_request(spec, p));
       } catch (const InputError& e) {
@@ -120,19 +121,33 @@ double state_observable(const Problem& problem, const SpMat& M, const State& s, 
   return name == "kinetic" ? e.kinetic : name == "potential" ? e.potential : e.total();
 }
 
-// The reference of one case: the exact solution, or the cached run interpolated in time.
+// The reference of one case: the exact solution, a reference integrator stepped with the run
+// (lockstep), or the cached run interpolated in time.
 class Reference {
  public:
   Reference(const StudySpec& spec, const Problem& problem, const SpMat& M, const FileProblem& fp)
       : problem_(problem), M_(M), exact_(!spec.has_reference || spec.reference.exact) {
     if (exact_) return;
+    if (spec.reference.lockstep) {
+      lockstep_ = make_integrator(spec.reference.integrator, spec.reference.parameters);
+      lockstep_->init(problem, problem.initial_state());
+      return;
+    }
     run_ = cached_reference(reference_cache_dir(), reference_request(spec, fp));
     if (run_.summary["status"] != "ok" || run_.series.rows() == 0)
       throw InputError(fmt::format("reference {} on {} failed: {} {}", spec.reference.integrator, fp.label,
                                    run_.summary["status"].dump(), run_.summary["message"].dump()));
     t_ = run_.series.column("t");
   }
+  // A lockstep reference takes the run's step.
+  void advance(double dt) {
+    if (lockstep_) lockstep_->step(dt);
+  }
   double observable(double t, const std::string& name, std::span<double> buffer) const {
+    if (lockstep_) {
+      const Energy energy = lockstep_->energy();
+      return state_observable(problem_, M_, lockstep_->state(), lockstep_->impulses(), 0.0, name, buffer, &energy);
+    }
     if (exact_) {
       const State exact = *problem_.exact_state(t);
       return state_observable(problem_, M_, exact, Vec::Zero(problem_.ncontacts()), 0.0, name, buffer, nullptr);
@@ -148,7 +163,7 @@ class Reference {
     const double t0 = s.at(lo, t_), t1 = s.at(hi, t_), w = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
     return (1 - w) * s.at(lo, col) + w * s.at(hi, col);
   }
-  Vec u(double t) const { return problem_.exact_state(t)->u; }
+  Vec u(double t) const { return lockstep_ ? lockstep_->state().u : problem_.exact_state(t)->u; }
   // The reference's graph of an observable on [0, t_end].
   Polyline graph(const std::string& name, double t_end, std::span<double> buffer) const {
     if (exact_) {
@@ -167,6 +182,7 @@ class Reference {
   bool exact_;
   CachedReference run_;
   std::size_t t_ = 0;
+  std::unique_ptr<Integrator> lockstep_;
 };
 
 // The largest rise of a run's energy above E0 and the work W its surroundings can have done
@@ -217,14 +233,17 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   options.t_end = t_end;
   options.record_series = false;
   options.max_force_evaluations = spec.budget_of(fp);
+  if (spec.reference.lockstep && fi.name == spec.reference.integrator)  // its error is 0 by construction
+    return {{"status", "n/a"}, {"message", "the reference of this problem"}, {"steps", 0}, {"force_evaluations", 0},
+            {"factorizations", 0}, {"lcp_iterations", 0}};
   auto integrator = make_integrator(fi.name, params);
   try {
     integrator->init(*problem, problem->initial_state());
   } catch (const InputError& e) {  // the scheme declines the problem
-    return {{"status", "n/a"}, {"message", e.what()}, {"steps", 0}, {"force_evaluations", 0}};
+    return {{"status", "n/a"}, {"message", e.what()}, {"steps", 0}, {"force_evaluations", 0}, {"factorizations", 0}, {"lcp_iterations", 0}};
   }
   const SpMat M = problem->mass_matrix();
-  const Reference reference(spec, *problem, M, fp);
+  Reference reference(spec, *problem, M, fp);
   const std::size_t nobs = problem->observable_names().size();
   std::vector<double> obs(nobs), obs_ref(nobs);
   std::vector<Accumulator> acc(spec.measures.size());
@@ -258,7 +277,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     const State& s = it.state();
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       const FileMeasure& fm = spec.measures[m];
-      if (!on[m] || s.t < fm.window_start || s.t > fm.window_end) continue;
+      const bool inside = s.t >= fm.window_start && s.t <= fm.window_end;
+      if (!on[m] || !(inside || fm.scale_over_run)) continue;  // an error relative to the run: its scale
       Accumulator& a = acc[m];
       double e = kNaN;
       if (fm.kind == MeasureKind::Error) {
@@ -284,6 +304,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         e = momentum.residual(s.v);
         a.scale = std::max({a.scale, std::abs(momentum.momentum(s.v)), std::abs(momentum.initial())});
       }
+      if (!inside) continue;
       a.largest = std::max(a.largest, std::abs(e));
       a.square += e * e * (s.t - a.t_prev);
       a.t_prev = s.t;
@@ -293,6 +314,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   long step = 0;
   const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo& info) {
     const State& s = it.state();
+    reference.advance(info.dt);
     momentum.add(it, info.dt);
     const bool contact = it.impulses().sum() > 0.0;
     for (std::size_t m = 0; m < spec.measures.size(); ++m)
@@ -304,7 +326,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     t_prev = s.t;
   });
   Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps},
-              {"force_evaluations", r.work.force_evaluations}};
+              {"force_evaluations", r.work.force_evaluations}, {"factorizations", r.work.factorizations},
+              {"lcp_iterations", r.work.lcp_iterations}};
   if (r.status != RunStatus::Ok) return out;
   if (const double g = growth.largest() / e_scale; g > spec.energy_blow_up) {
     out["status"] = "energy blow-up";
@@ -369,6 +392,13 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
 
 }  // namespace
 
+bool is_event_time(MeasureKind kind) {
+  return kind == MeasureKind::ImpactTime || kind == MeasureKind::StopTime || kind == MeasureKind::OnsetTime;
+}
+bool measure_converges(MeasureKind kind) {
+  return kind == MeasureKind::Error || kind == MeasureKind::Hausdorff || is_event_time(kind);
+}
+
 std::string file_result_damage(const StudySpec& spec, const Json& r) {
   const auto reals_or_null = [](const Json& a) {
     return a.is_array() && std::all_of(a.begin(), a.end(), [](const Json& x) { return x.is_number() || x.is_null(); });
@@ -378,6 +408,8 @@ std::string file_result_damage(const StudySpec& spec, const Json& r) {
   if (r.contains("values") && !(reals_or_null(r["values"]) && r["values"].size() == spec.measures.size()))
     return fmt::format("values is not an array of {} numbers (or null)", spec.measures.size());
   if (r.contains("cpu") && !(r["cpu"].is_number() || r["cpu"].is_null())) return "cpu is not a number";
+  for (const char* key : {"factorizations", "lcp_iterations"})
+    if (r.contains(key) && !r[key].is_number_integer()) return fmt::format("{} is not an integer", key);
   if (r.contains("history")) {
     const Json& h = r["history"];
     if (!h.is_object() || !h.contains("t") || !h.contains("e") || !reals_or_null(h["t"]) || !reals_or_null(h["e"]) ||
@@ -391,23 +423,116 @@ namespace {
 
 double number(const Json& r, const char* key) { return r.contains(key) ? real(r[key]) : kNaN; }
 
-// A time measured against the problem's exact event times [s].
-bool is_event_time(MeasureKind kind) {
-  return kind == MeasureKind::ImpactTime || kind == MeasureKind::StopTime || kind == MeasureKind::OnsetTime;
-}
-// An error that converges with dt: a convergence figure and fitted orders.
-bool converges(MeasureKind kind) { return kind == MeasureKind::Error || kind == MeasureKind::Hausdorff || is_event_time(kind); }
 
 std::string run_label(const Json& c) {
   return c["tol"].is_null() ? fmt::format("dt = {:.2e}", c["dt"].get<double>()) : fmt::format("tol = {:.1e}", c["tol"].get<double>());
+}
+
+// A declared column: the source column under its own header, unit, format and description.
+Column declared_column(const Column& source, const FileColumn& d) {
+  return {d.header.value_or(source.name), d.unit.value_or(source.unit), d.format.value_or(source.format),
+          d.description.value_or(source.description), source.timing};
+}
+
+std::size_t column_index(const Table& t, const std::string& name) {
+  const auto it = std::find_if(t.columns.begin(), t.columns.end(), [&](const Column& c) { return c.name == name; });
+  if (it == t.columns.end()) throw std::logic_error(fmt::format("table {} has no column '{}'", t.id, name));
+  return static_cast<std::size_t>(it - t.columns.begin());
+}
+
+// rows = "case": the work-precision rows, their columns picked, ordered and renamed; the first
+// such table carries the work-precision figures whose columns it shows, under the new names.
+Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
+  Table out;
+  std::vector<std::size_t> at;
+  std::map<std::string, std::string> renamed;
+  for (const FileColumn& c : d.columns) {
+    at.push_back(column_index(runs, c.of));
+    out.columns.push_back(declared_column(runs.columns[at.back()], c));
+    renamed[c.of] = out.columns.back().name;
+  }
+  for (const auto& row : runs.rows) {
+    std::vector<Cell> cells;
+    for (std::size_t k : at) cells.push_back(row[k]);
+    out.add_row(std::move(cells));
+  }
+  if (!with_figures) return out;
+  for (Figure f : runs.figures) {
+    const auto rename = [&](std::string& name) {
+      const auto it = renamed.find(name);
+      return it != renamed.end() && (name = it->second, true);
+    };
+    bool shown = rename(f.x) && rename(f.y);
+    for (auto& s : f.series) shown = shown && rename(s);
+    for (auto& s : f.panels) shown = shown && rename(s);
+    if (shown) out.figures.push_back(f);
+  }
+  return out;
+}
+
+// rows = "group": one row per problem and integrator (in the order of the runs), the fitted
+// orders' columns ("order of <measure>", ...) side by side; n/a where no fit was made.
+Table group_table(const FileTable& d, const Table& orders) {
+  Table out;
+  std::vector<std::pair<Cell, Cell>> groups;  // (problem, integrator)
+  for (const auto& row : orders.rows)
+    if (std::find(groups.begin(), groups.end(), std::pair{row[0], row[1]}) == groups.end()) groups.emplace_back(row[0], row[1]);
+  for (const FileColumn& c : d.columns) {
+    const auto of = c.of.find(" of ");
+    out.columns.push_back(declared_column(orders.columns[column_index(orders, of == std::string::npos ? c.of : c.of.substr(0, of))], c));
+  }
+  for (const auto& [problem, integrator] : groups) {
+    std::vector<Cell> cells;
+    for (const FileColumn& c : d.columns) {
+      const auto of = c.of.find(" of ");
+      if (of == std::string::npos) {
+        cells.push_back(c.of == "problem" ? problem : integrator);
+        continue;
+      }
+      const std::size_t k = column_index(orders, c.of.substr(0, of));
+      const Cell measure = c.of.substr(of + 4);
+      const auto row = std::find_if(orders.rows.begin(), orders.rows.end(),
+                                    [&](const auto& r) { return r[0] == problem && r[1] == integrator && r[2] == measure; });
+      cells.push_back(row == orders.rows.end() ? Cell{} : (*row)[k]);
+    }
+    out.add_row(std::move(cells));
+  }
+  return out;
+}
+
+// The tables the file declares, built from the engine's work-precision (`runs`), orders and
+// ranking tables.
+std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, const Table& orders, const std::optional<Table>& rank) {
+  std::vector<Table> out;
+  bool figures_placed = false;
+  for (const FileTable& d : spec.tables) {
+    Table t;
+    if (d.rows == "ranking") {
+      t = *rank;  // the reader refuses a ranking without a ranked measure
+    } else if (d.rows == "case") {
+      t = case_table(d, runs, !figures_placed);
+      t.caption = runs.caption;
+      figures_placed = true;
+    } else {
+      t = group_table(d, orders);
+      t.caption = orders.caption;
+    }
+    t.id = d.id;
+    t.title = d.title;
+    if (d.caption) t.caption = *d.caption;
+    t.metadata = runs.metadata;
+    out.push_back(std::move(t));
+  }
+  return out;
 }
 
 std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& cases, const std::vector<Json>& results) {
   const std::vector<std::pair<std::string, std::string>> meta = {
       {"study", spec.name}, {"study_file", spec.file}, {"study_file_fnv1a64", spec.hash}, {"t_end", fmt::format("{}", spec.t_end)}};
   const std::string against = !spec.has_reference ? "no reference"
-                              : spec.reference.exact ? "the exact solution"
-                                                     : fmt::format("{} (dt = {}, cached)", spec.reference.integrator, spec.reference.dt);
+                              : spec.reference.exact    ? "the exact solution"
+                              : spec.reference.lockstep ? fmt::format("{} stepped with each run (lockstep)", spec.reference.integrator)
+                                                        : fmt::format("{} (dt = {}, cached)", spec.reference.integrator, spec.reference.dt);
   const std::string cpu = spec.cpu_repeats > 0
                               ? median_cpu_text(spec.cpu_repeats)
                               : "thread CPU time of the stepping of the observed run (observer excluded)";
@@ -467,7 +592,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                  {spec.name + "_work_precision_evals", spec.title + ": " + primary->label + " against F_int evaluations", "F_int evals", primary->label, {"integrator"}, {"problem"}, true, true}};
   }
   for (const auto& m : spec.measures)
-    if (converges(m.kind))
+    if (measure_converges(m.kind))
       t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
                            "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
 
@@ -480,6 +605,12 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   for (const auto& p : spec.problems)
     ranking.push_back({p.label, exact_times ? "the exact solution" : against, exact_times ? 0.0 : spec.reference.floor,
                        spec.targets, {}});
+  // The columns only declared tables show: work counters, and each error's order against the
+  // run before it (the previous step or tolerance of the same sweep).
+  std::vector<Column> counters = {{"factorizations", "", "", ""}, {"LCP its", "", "", "LCP iterations"}};
+  for (const auto& m : spec.measures)
+    if (measure_converges(m.kind)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
+  std::vector<std::vector<Cell>> counter_rows;
   std::size_t k = 0;
   while (k < cases.size()) {
     const std::size_t begin = k;
@@ -487,7 +618,8 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     const std::string& plabel = spec.problems[pi].label;
     const FileIntegrator& fi = spec.integrators[ii];
     const std::string ilabel = shown_label(fi, plabel);
-    WorkCurve curve{ilabel, find_integrator(fi.name).reference, {}};
+    const IntegratorEntry& entry = find_integrator(fi.name);
+    WorkCurve curve{ilabel, entry.reference, {}, entry.peer};
     std::vector<double> xs;
     std::vector<std::vector<double>> ys(spec.measures.size());
     for (; k < cases.size() && cases[k]["problem"] == pi && cases[k]["integrator"] == ii; ++k) {
@@ -504,6 +636,15 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       row.insert(row.end(), {number_cell(number(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
                              status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
       t.add_row(std::move(row));
+      const auto count = [&](const char* key) { return r.contains(key) ? Cell{r[key].get<long>()} : Cell{}; };
+      std::vector<Cell> more = {count("factorizations"), count("lcp_iterations")};
+      for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+        if (!measure_converges(spec.measures[m].kind)) continue;
+        const std::size_t i = xs.size() - 1;
+        const auto e = [&](std::size_t j) { return is_event_time(spec.measures[m].kind) ? ys[m][j] : above_round_off(ys[m][j]); };
+        more.push_back(i ? number_cell(observed_order(xs[i - 1], e(i - 1), xs[i], e(i))) : Cell{});
+      }
+      counter_rows.push_back(std::move(more));
       if (primary != spec.measures.end() && status != "n/a")  // a declined run is no point
         curve.points.push_back({run_label(cases[k]), number(r, "cpu"), ys[primary - spec.measures.begin()].back(),
                                 status == "ok" ? "" : status});
@@ -514,7 +655,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     ranking[pi].curves.push_back(curve);
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       const MeasureKind kind = spec.measures[m].kind;
-      if (!converges(kind) || !spec.measures[m].applies_to(plabel)) continue;
+      if (!measure_converges(kind) || !spec.measures[m].applies_to(plabel)) continue;
       std::vector<double> e = ys[m];
       for (double& x : e)
         if (!is_event_time(kind)) x = above_round_off(x);
@@ -523,15 +664,27 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                       number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});
     }
   }
-  std::vector<Table> tables{t};
-  if (!orders.rows.empty()) tables.push_back(orders);
+  const auto runs = std::find_if(spec.tables.begin(), spec.tables.end(), [](const FileTable& d) { return d.rows == "case"; });
+  const std::string runs_id = runs == spec.tables.end() ? t.id : runs->id;  // where the ranked errors are shown
+  std::optional<Table> rank;
   if (primary != spec.measures.end()) {
     std::erase_if(ranking, [&](const RankingProblem& p) { return !primary->applies_to(p.label); });
-    Table rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error",
-                               {primary->label, is_event_time(primary->kind) ? "s" : "", "{:.1e}", primary->label + " of " + t.id},
-                               cpu, ranking);
-    rank.metadata = meta;
-    tables.push_back(rank);
+    rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error",
+                         {primary->label, is_event_time(primary->kind) ? "s" : "", "{:.1e}", primary->label + " of " + runs_id},
+                         cpu, ranking);
+    rank->metadata = meta;
+  }
+  std::vector<Table> tables;
+  if (!spec.tables.empty()) {
+    Table runs_all = t;  // and the columns only declared tables show
+    runs_all.columns.insert(runs_all.columns.end(), counters.begin(), counters.end());
+    for (std::size_t r = 0; r < runs_all.rows.size(); ++r)
+      runs_all.rows[r].insert(runs_all.rows[r].end(), counter_rows[r].begin(), counter_rows[r].end());
+    tables = declared_tables(spec, runs_all, orders, rank);
+  } else {
+    tables.push_back(t);
+    if (!orders.rows.empty()) tables.push_back(orders);
+    if (rank) tables.push_back(*rank);
   }
   if (!history.rows.empty()) tables.push_back(history);
   return tables;

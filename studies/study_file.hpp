@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,9 @@ struct FileReference {
   double dt = 0.0;
   long sample_every = 1;
   double floor = 0.0;      // the reference's own error in the measures' norm (ranking)
+  // Stepped with each run, step for step at the run's own steps (no cache, no interpolation):
+  // its states at the run's step times (modal-exact: the semi-discrete system's exact solution).
+  bool lockstep = false;
 };
 
 enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime };
@@ -72,6 +76,8 @@ struct FileMeasure {
   // Error, energy, momentum: sampled on [window_start, window_end] only (the whole run by default).
   double window_start = 0.0;
   double window_end = std::numeric_limits<double>::infinity();
+  // Error: relative to the largest reference value over the whole run, not the window alone.
+  bool scale_over_run = false;
   bool applies_to(const std::string& problem_label) const;
   // Smaller is better and never negative: a measure the ranking may rank by.
   bool rankable() const;
@@ -88,6 +94,26 @@ struct FileFigure {
   std::vector<std::string> panels{"problem"};
   bool log_x = true, log_y = true;
   std::vector<double> slopes;  // reference slopes drawn as triangles (log-log)
+};
+
+// A column of a declared table: the source column `of` (a work-precision column for rows =
+// "case"; problem, integrator or "order of <measure>", "CI low of <measure>", "CI high of
+// <measure>", "points of <measure>" for rows = "group"), its header, unit, number format and
+// description (each by default the source's).
+struct FileColumn {
+  std::string of;
+  std::optional<std::string> header, unit, format, description;
+};
+
+// A table the file declares ([[table]]): its id (the file stem, exactly), title, caption and
+// rows: "case" (one per run, the work-precision rows), "group" (one per problem and integrator,
+// the fitted orders side by side) or "ranking" (the headline ranking, its columns fixed).
+// Declared tables replace the engine's work-precision, orders and ranking tables.
+struct FileTable {
+  std::string id, title;
+  std::optional<std::string> caption;
+  std::string rows = "case";
+  std::vector<FileColumn> columns;
 };
 
 struct StudySpec {
@@ -111,12 +137,18 @@ struct StudySpec {
   bool has_reference = false;
   std::vector<FileMeasure> measures;
   std::vector<FileFigure> figures;
+  std::vector<FileTable> tables;  // empty: the engine's own tables
   // The measure the ranking and the work-precision figures use (study.rank_by, a measure's
   // label; default: the first error measure); measures.size(): none.
   std::size_t ranked = 0;
   double t_end_of(const FileProblem& p) const { return p.t_end > 0.0 ? p.t_end : t_end; }
   long budget_of(const FileProblem& p) const { return p.max_force_evaluations > 0 ? p.max_force_evaluations : max_force_evaluations; }
 };
+
+// A time measured against the problem's exact event times [s] (impact, stop, onset times).
+bool is_event_time(MeasureKind kind);
+// An error that converges with dt: a convergence figure and fitted orders.
+bool measure_converges(MeasureKind kind);
 
 // Reads and checks a study file (.json: JSON, anything else: TOML).
 StudySpec read_study_file(const std::filesystem::path& path);

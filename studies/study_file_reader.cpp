@@ -356,6 +356,12 @@ std::vector<FileProblem> grid_points(const Checker& c, const Json& j, const std:
   return points;
 }
 
+bool is_file_stem(const std::string& id) {
+  return !id.empty() && std::all_of(id.begin(), id.end(), [](char ch) {
+    return std::islower(static_cast<unsigned char>(ch)) || std::isdigit(static_cast<unsigned char>(ch)) || ch == '_';
+  });
+}
+
 // [[figure]]: drawn from the work-precision table, its columns named by their headers.
 std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const std::vector<FileMeasure>& measures) {
   std::vector<FileFigure> figures;
@@ -372,7 +378,7 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const s
     c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes"});
     FileFigure f;
     f.id = c.string(c.require(j, path, "id"), child(path, "id"));
-    if (f.id.empty() || !std::all_of(f.id.begin(), f.id.end(), [](char ch) { return std::islower(static_cast<unsigned char>(ch)) || std::isdigit(static_cast<unsigned char>(ch)) || ch == '_'; }))
+    if (!is_file_stem(f.id))
       c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", f.id), "[a-z0-9_]+");
     for (const auto& g : figures)
       if (g.id == f.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", f.id), "distinct ids");
@@ -405,6 +411,99 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const s
     figures.push_back(f);
   }
   return figures;
+}
+
+// The columns a declared table of `rows` may show, by source name.
+std::vector<std::string> table_sources(const std::string& rows, const std::vector<FileMeasure>& measures) {
+  std::vector<std::string> sources{"problem", "integrator"};
+  if (rows == "case") {
+    sources.insert(sources.end(), {"dt", "tol"});
+    for (const auto& m : measures) sources.push_back(m.label);
+    sources.insert(sources.end(), {"CPU", "steps", "F_int evals", "status", "factorizations", "LCP its"});
+    for (const auto& m : measures)
+      if (measure_converges(m.kind)) sources.push_back("pairwise order of " + m.label);
+  } else if (rows == "group") {
+    for (const auto& m : measures)
+      if (measure_converges(m.kind))
+        for (const char* what : {"order", "CI low", "CI high", "points"}) sources.push_back(fmt::format("{} of {}", what, m.label));
+  }
+  return sources;
+}
+
+std::optional<std::string> optional_string(const Checker& c, const Json& j, const std::string& path, const char* key) {
+  if (const Json* v = c.find(j, key)) return c.string(*v, child(path, key));
+  return std::nullopt;
+}
+
+FileColumn read_column(const Checker& c, const Json& j, const std::string& path, const std::vector<std::string>& sources) {
+  FileColumn col;
+  if (j.is_string()) {
+    col.of = c.choice(j, path, sources);
+    return col;
+  }
+  c.expect(j, path, j.is_object(), "a column name or a table { of = NAME, header, unit, format, description }");
+  c.keys(j, path, {"of", "header", "unit", "format", "description"});
+  col.of = c.choice(c.require(j, path, "of"), child(path, "of"), sources);
+  col.header = optional_string(c, j, path, "header");
+  col.unit = optional_string(c, j, path, "unit");
+  col.format = optional_string(c, j, path, "format");
+  col.description = optional_string(c, j, path, "description");
+  if (col.format && !col.format->empty()) try {
+      (void)fmt::format(fmt::runtime(*col.format), 1.0);
+    } catch (const fmt::format_error& e) {
+      c.fail(child(path, "format"), fmt::format("'{}' is no number format ({})", *col.format, e.what()),
+             "a fmt format of one number, e.g. {:.2e}, or \"\" (shortest round-trip)");
+    }
+  return col;
+}
+
+// [[table]]: the tables the study writes instead of the engine's own.
+std::vector<FileTable> read_tables(const Checker& c, const Json& root, const StudySpec& spec) {
+  std::vector<FileTable> tables;
+  const Json* list = c.find(root, "table");
+  if (!list) return tables;
+  c.expect(*list, "table", list->is_array(), "one or more [[table]] tables");
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const Json& j = (*list)[i];
+    const std::string path = element("table", i);
+    c.expect(j, path, j.is_object(), "a table");
+    c.keys(j, path, {"id", "title", "caption", "rows", "columns"});
+    FileTable t;
+    t.id = c.string(c.require(j, path, "id"), child(path, "id"));
+    if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
+    for (const auto& u : tables)
+      if (u.id == t.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", t.id), "distinct ids");
+    t.title = c.string(c.require(j, path, "title"), child(path, "title"));
+    t.caption = optional_string(c, j, path, "caption");
+    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking"});
+    if (t.rows == "ranking") {
+      if (c.find(j, "columns")) c.fail(child(path, "columns"), "a ranking's columns are fixed", "no columns key with rows = \"ranking\"");
+      if (spec.ranked >= spec.measures.size()) c.fail(child(path, "rows"), "the study has no measure to rank by", "case, group");
+    } else {
+      const std::string at = child(path, "columns");
+      const Json& cols = c.require(j, path, "columns");
+      c.expect(cols, at, cols.is_array() && !cols.empty(), "a non-empty array of columns");
+      const auto sources = table_sources(t.rows, spec.measures);
+      for (std::size_t k = 0; k < cols.size(); ++k) t.columns.push_back(read_column(c, cols[k], element(at, k), sources));
+    }
+    tables.push_back(t);
+  }
+  // The figures are drawn from the first table of one row per run: it shows their columns.
+  const auto runs = std::find_if(tables.begin(), tables.end(), [](const FileTable& t) { return t.rows == "case"; });
+  for (std::size_t i = 0; i < spec.figures.size(); ++i) {
+    const std::string path = element("figure", i);
+    if (runs == tables.end()) c.fail(path, "declared tables hold no table of one row per run to draw it from", "a [[table]] with rows = \"case\"");
+    std::vector<std::string> shown;
+    for (const auto& col : runs->columns) shown.push_back(col.of);
+    const FileFigure& f = spec.figures[i];
+    std::vector<std::pair<std::string, std::string>> used{{"x", f.x}, {"y", f.y}};
+    for (const auto& s : f.series) used.emplace_back("series", s);
+    for (const auto& s : f.panels) used.emplace_back("panels", s);
+    for (const auto& [key, name] : used)
+      if (std::find(shown.begin(), shown.end(), name) == shown.end())
+        c.fail(child(path, key), fmt::format("'{}' is not a column of table '{}'", name, runs->id), fmt::format("{}", fmt::join(shown, ", ")));
+  }
+  return tables;
 }
 
 // The end time of the longest run: the bound of the series held in memory.
@@ -454,7 +553,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   }
   const Checker c(file, lines, json ? &text : nullptr);
   c.expect(root, "(file)", root.is_object(), "a table");
-  c.keys(root, "", {"study", "problem", "integrator", "reference", "measure", "figure"});
+  c.keys(root, "", {"study", "problem", "integrator", "reference", "measure", "figure", "table"});
 
   StudySpec spec;
   spec.file = file;
@@ -546,7 +645,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 
   if (const Json* r = c.find(root, "reference")) {
     c.expect(*r, "reference", r->is_object(), "a table");
-    c.keys(*r, "reference", {"solution", "integrator", "parameters", "dt", "sample_every", "floor"});
+    c.keys(*r, "reference", {"solution", "integrator", "parameters", "dt", "sample_every", "floor", "lockstep"});
     spec.has_reference = true;
     FileReference& ref = spec.reference;
     if (!c.find(*r, "solution") == !c.find(*r, "integrator"))
@@ -562,6 +661,14 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       ref.integrator = c.registered((*r)["integrator"], "reference.integrator", names_of(integrator_registry()), "integrator");
       if (const Json* v = c.find(*r, "parameters"))
         ref.parameters = c.parameters(*v, "reference.parameters", find_integrator(ref.integrator).parameters());
+      if (const Json* v = c.find(*r, "lockstep")) ref.lockstep = c.boolean(*v, "reference.lockstep");
+    }
+    if (ref.exact && c.find(*r, "lockstep"))
+      c.fail("reference.lockstep", "only a reference integrator steps with the runs", "integrator = NAME with lockstep = true");
+    if (ref.lockstep) {
+      for (const char* key : {"dt", "sample_every"})
+        if (c.find(*r, key)) c.fail(child("reference", key), "a lockstep reference steps with each run, at its steps", "no dt or sample_every with lockstep = true");
+    } else if (!ref.exact) {
       ref.dt = c.positive(c.require(*r, "reference", "dt"), "reference.dt");
       for (const auto& p : spec.problems)
         check_step(c, ref.dt, "reference.dt", spec.t_end_of(p), p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end");
@@ -608,8 +715,13 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
         if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
       } else {
-        keys({"observable", "norm", "window"});
+        keys({"observable", "norm", "window", "relative_to"});
+        if (const Json* v = c.find(j, "relative_to"))
+          m.scale_over_run = c.choice(*v, child(path, "relative_to"), {"window", "run"}) == "run";
       }
+      if (hausdorff && spec.reference.lockstep)
+        c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",
+               "[reference] solution = \"exact\" or a cached integrator (lockstep = false)");
       if (!spec.has_reference) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
                                       "[reference] solution = \"exact\" or integrator = NAME");
       if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2"});
@@ -618,7 +730,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         std::vector<std::string> valid = instances[p]->observable_names();
         valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
         if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
-        if (spec.reference.exact && !hausdorff) valid.insert(valid.begin(), "u");
+        if ((spec.reference.exact || spec.reference.lockstep) && !hausdorff) valid.insert(valid.begin(), "u");
         if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
           c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'{}", m.observable, spec.problems[p].label,
                                                         spec.reference.exact ? "" : " recorded by its reference run"),
@@ -675,6 +787,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   }
   spec.ranked = ranked_measure(c, study, spec.measures);
   spec.figures = read_figures(c, root, spec.measures);
+  spec.tables = read_tables(c, root, spec);
   if (std::any_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; }))
     for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
       const auto held = [&](const FileSweep& sweep, const std::string& path) {

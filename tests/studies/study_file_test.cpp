@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <random>
 #include <sstream>
 
+#include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "studies/study.hpp"
 #include "studies/study_file.hpp"
@@ -436,6 +438,7 @@ TEST_CASE("study file: the example in README.md is a valid study file", "[studie
   const nsb::StudySpec spec = nsb::parse_study_text(readme.substr(begin + 8, end - begin - 8), "README.md", false);
   CHECK(spec.measures[spec.ranked].label == "err u max");
   CHECK(spec.measures[1].problems == std::vector<std::string>{"bouncing mass"});
+  CHECK(spec.tables.size() == 1);
 }
 
 TEST_CASE("study file examples: the quick bouncing-mass comparison runs (reduced)", "[studies][study_file]") {
@@ -814,4 +817,164 @@ TEST_CASE("study file: figures declared in the file are drawn from the work-prec
   CHECK_THAT(error_of(replaced(fig, "id = \"steps\"", "id = \"work_precision\"")),
              StartsWith("f.toml:20: figure[0].id: 'work_precision' is the id of a figure the study draws itself"));
   CHECK_THAT(error_of(replaced(fig, "title = \"Steps\"\n", "")), StartsWith("f.toml:19: figure[0]: missing key 'title'"));
+}
+
+TEST_CASE("study file: declared tables pick, order and rename the columns of the runs and of the fitted orders; bad ones named",
+          "[studies][study_file]") {
+  using Catch::StartsWith;
+  const std::string declared = kMinimal + R"(
+[[table]]
+id = "runs"
+title = "Runs"
+caption = "What the rows are."
+columns = ["problem", "integrator", { of = "dt", header = "step", format = "{:.1e}" }, { of = "err u max", header = "err" }, "steps", "factorizations",
+           { of = "pairwise order of err u max", header = "order" }]
+
+[[table]]
+id = "fits"
+title = "Orders"
+rows = "group"
+columns = ["problem", "integrator", { of = "order of err u max", header = "order" }, "points of err u max"]
+
+[[table]]
+id = "best"
+title = "Cheapest"
+rows = "ranking"
+)";
+  const auto tables = run_all(nsb::reduced_study(nsb::parse_study_text(declared, "min.toml", false), 1.0, 2, 100000));
+  REQUIRE(tables.size() == 3);  // the declared tables only, in their order
+  const nsb::Table& runs = tables[0];
+  CHECK(runs.id == "runs");
+  CHECK(runs.title == "Runs");
+  CHECK(runs.caption == "What the rows are.");
+  REQUIRE(runs.columns.size() == 7);
+  CHECK(runs.columns[2].name == "step");
+  CHECK(runs.columns[2].unit == "s");  // the source's unit
+  CHECK(runs.columns[2].format == "{:.1e}");
+  CHECK(runs.columns[3].name == "err");
+  CHECK(runs.columns[3].format == "{:.3e}");
+  REQUIRE(runs.rows.size() == 2);
+  CHECK(std::get<std::string>(runs.rows[0][1]) == "cd-lagrange");
+  CHECK(std::get<double>(runs.rows[1][2]) == 5e-3);
+  CHECK(std::get<double>(runs.rows[1][3]) > 0.0);
+  CHECK(std::get<long>(runs.rows[1][5]) == 0);  // CD-Lagrange factorizes nothing
+  // The order against the run before: none for the first, that of the two errors for the second.
+  CHECK(std::holds_alternative<std::monostate>(runs.rows[0][6]));
+  CHECK(std::get<double>(runs.rows[1][6]) == Approx(std::log(std::get<double>(runs.rows[0][3]) / std::get<double>(runs.rows[1][3])) / std::log(2.0)));
+  CHECK(runs.columns[6].format == "{:.2f}");
+  // The engine's figures whose columns the table shows, under its headers: CPU is not shown.
+  REQUIRE(runs.figures.size() == 1);
+  CHECK(runs.figures[0].x == "step");
+  CHECK(runs.figures[0].y == "err");
+  const nsb::Table& fits = tables[1];
+  CHECK(fits.id == "fits");
+  REQUIRE(fits.rows.size() == 1);
+  CHECK(fits.columns[2].name == "order");
+  CHECK(std::get<double>(fits.rows[0][2]) > 0.5);
+  CHECK(std::get<long>(fits.rows[0][3]) == 2);
+  CHECK(tables[2].id == "best");
+  CHECK(tables[2].title == "Cheapest");
+  CHECK(std::any_of(tables[2].columns.begin(), tables[2].columns.end(),
+                    [](const nsb::Column& c) { return c.description == "err u max of runs"; }));
+
+  // Each edit of the file and the start of the error it gives.
+  const std::vector<std::array<std::string, 3>> bad = {
+      {"\"steps\", \"fact", "\"stpes\", \"fact",
+       "f.toml:23: table[0].columns[4]: 'stpes' is not valid (nearest: steps); valid: problem, integrator, dt, tol, err u max, "
+       "CPU, steps, F_int evals, status, factorizations, LCP its, pairwise order of err u max"},
+      {"\"points of err u max\"", "\"dt\"",
+       "f.toml:30: table[1].columns[3]: 'dt' is not valid (nearest: "},
+      {"format = \"{:.1e}\"", "format = \"{:.1q}\"",
+       "f.toml:23: table[0].columns[2].format: '{:.1q}' is no number format"},
+      {"header = \"step\"", "heading = \"step\"",
+       "f.toml:23: table[0].columns[2].heading: unknown key (nearest valid key: header); valid: of, header, unit, format, "
+       "description"},
+      {"id = \"fits\"", "id = \"runs\"",
+       "f.toml:27: table[1].id: id 'runs' used twice; valid: distinct ids"},
+      {"id = \"runs\"", "id = \"Runs\"",
+       "f.toml:20: table[0].id: 'Runs' is not a file name of a-z, 0-9 and _; valid: [a-z0-9_]+"},
+      {"rows = \"group\"", "rows = \"groups\"",
+       "f.toml:29: table[1].rows: 'groups' is not valid (nearest: group); valid: case, group, ranking"},
+      {"rows = \"ranking\"", "rows = \"ranking\"\ncolumns = [\"problem\"]",
+       "f.toml:36: table[2].columns: a ranking's columns are fixed"},
+      {"title = \"Orders\"\n", "",
+       "f.toml:26: table[1]: missing key 'title'"},
+  };
+  for (const auto& [from, to, error] : bad) CHECK_THAT(error_of(replaced(declared, from, to)), StartsWith(error));
+  CHECK_THAT(error_of(declared + "\n[[figure]]\nid = \"cost\"\ntitle = \"Cost\"\nx = \"CPU\"\ny = \"err u max\"\n"),
+             StartsWith("f.toml:40: figure[0].x: 'CPU' is not a column of table 'runs'; valid: problem, integrator, dt, err u max, "
+                        "steps, factorizations, pairwise order of err u max"));
+}
+
+TEST_CASE("study file: a lockstep reference steps with each run; the reference itself is n/a; bad input named",
+          "[studies][study_file]") {
+  using Catch::Contains;
+  using Catch::StartsWith;
+  const std::string lockstep = quick_study("1.0") + R"(
+[[problem]]
+name = "spring-chain"
+parameters = { n = 10, wall = "left" }
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2, 5e-3]
+
+[[integrator]]
+name = "modal-exact"
+steps = [1e-2]
+
+[reference]
+integrator = "modal-exact"
+lockstep = true
+
+[[measure]]
+kind = "error"
+window = [0.0, 0.12]
+
+[[measure]]
+kind = "error"
+window = [0.0, 0.12]
+relative_to = "run"
+label = "err over the run's scale"
+)";
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(nsb::parse_study_text(lockstep, "lock.toml", false), &results);
+  REQUIRE(results.size() == 3);
+  // Before the first impact (t = 0.133) CD-Lagrange is of order 2 against the exact semi-discrete chain.
+  const double coarse = results[0]["values"][0], fine = results[1]["values"][0];
+  CHECK(coarse > 0.0);
+  CHECK(std::log2(coarse / fine) == Approx(2.0).margin(0.3));
+  // The same error relative to the chain's largest displacement over the run, not over the
+  // window alone: smaller, as the chain drifts away from the wall.
+  const double over_run = results[0]["values"][1];
+  CHECK(over_run > 0.0);
+  CHECK(over_run < 0.5 * coarse);
+  CHECK(results[2]["status"] == "n/a");
+  CHECK(results[2]["message"] == "the reference of this problem");
+  CHECK_THAT(table(tables, "_work_precision").caption, Contains("modal-exact stepped with each run (lockstep)"));
+
+  CHECK_THAT(error_of(replaced(lockstep, "lockstep = true", "lockstep = true\ndt = 1e-3")),
+             StartsWith("f.toml:22: reference.dt: a lockstep reference steps with each run, at its steps"));
+  CHECK_THAT(error_of(replaced(kMinimal, "solution = \"exact\"", "solution = \"exact\"\nlockstep = true")),
+             Contains("reference.lockstep: only a reference integrator steps with the runs"));
+  CHECK_THAT(error_of(replaced(lockstep, "relative_to = \"run\"", "relative_to = \"all\"")),
+             Contains("measure[1].relative_to: 'all' is not valid (nearest: "));
+  CHECK_THAT(error_of(replaced(lockstep, "kind = \"error\"\nwindow = [0.0, 0.12]\n\n", "kind = \"hausdorff\"\nobservable = \"q\"\n\n")),
+             Contains("a Hausdorff distance needs the reference's whole graph"));
+}
+
+TEST_CASE("study file: the ranking marks another code's integrator as a peer", "[studies][study_file]") {
+  const auto& registry = nsb::integrator_registry();
+  const auto peer = std::find_if(registry.begin(), registry.end(), [](const nsb::IntegratorEntry& e) { return e.peer; });
+  if (peer == registry.end()) {  // the peers are optional (CMake option NSBENCH_ENGINES, Siconos)
+    WARN("no peer integrator in this build: nothing to check");
+    return;
+  }
+  const std::string text = replaced(kMinimal, "name = \"cd-lagrange\"", "name = \"" + peer->name + "\"");
+  const auto tables = run_all(nsb::reduced_study(nsb::parse_study_text(text, "peer.toml", false), 1.0, 2, 100000));
+  bool marked = false;
+  for (const auto& row : table(tables, "_ranking").rows)
+    for (const auto& cell : row)
+      if (const auto* s = std::get_if<std::string>(&cell)) marked = marked || s->find(peer->name + " (peer)") != std::string::npos;
+  CHECK(marked);
 }
