@@ -120,12 +120,13 @@ class Integrator {
   // Throws InputError when the problem is outside what the scheme handles.
   virtual void init(const Problem& problem, const State& initial) = 0;
   // Advances from state().t by (about) dt_requested; returns the step taken. Non-virtual: the
-  // time and the step count are kept here, around the scheme's advance().
+  // time and the step count (unless the scheme counts its own) are kept here, around the
+  // scheme's advance().
   StepInfo step(double dt_requested) {
     const double t0 = state_.t;
     const StepInfo info = advance(dt_requested);
     state_.t = t0 + info.dt;
-    ++work_.steps;
+    if (!counts_own_steps_) ++work_.steps;
     return info;
   }
   // The energy the scheme's own balance is written for; the default is
@@ -168,6 +169,9 @@ class Integrator {
   Vec tangential_impulses_;
   WorkCounters work_;
   Params params_;
+  // Set by a scheme whose work_.steps is another count than its calls of step(): the CVODE
+  // references report CVODE's internal steps (reference/cvode.hpp).
+  bool counts_own_steps_ = false;
 
  private:
   friend struct IntegratorEntry;

@@ -33,6 +33,7 @@ ParamSpecs EventDriven::parameters_spec() {
 
 EventDriven::EventDriven(const Params& params)
     : Integrator(params), zeno_velocity_(params.real("zeno_velocity")) {
+  counts_own_steps_ = true;  // CVODE's steps (Cvode::add_work)
   settings_.bdf = params.choice("method") == "bdf";
   settings_.rtol = params.real("rtol");
   settings_.atol = params.real("atol");
@@ -242,7 +243,6 @@ StepInfo EventDriven::advance(double dt) {
   info.dt = dt;
   info.iterations = events;
   publish_work();
-  --work_.steps;  // work().steps is CVODE's own count (Cvode::add_work); step() adds this call back
   return info;
 }
 

@@ -40,6 +40,7 @@ PenaltyBdf::PenaltyBdf(const Params& params)
       k_(params.real("stiffness")),
       v_reg_(params.real("friction_velocity")),
       damped_(params.choice("damping") == "restitution") {
+  counts_own_steps_ = true;  // CVODE's steps (Cvode::add_work)
   settings_.bdf = true;
   settings_.rtol = params.real("rtol");
   settings_.atol = params.real("atol");
@@ -276,7 +277,6 @@ StepInfo PenaltyBdf::advance(double dt) {
   if (friction_) tangential_impulses_ = y_.tail(p) - lambda_start.tail(p);
   info.dt = dt;
   publish_work();
-  --work_.steps;  // work().steps is CVODE's own count (Cvode::add_work); step() adds this call back
   return info;
 }
 
