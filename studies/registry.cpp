@@ -51,7 +51,7 @@ const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
       cpp_study(bouncing_study, "studies/bouncing.cpp"),
       cpp_study(hard_cases_study, "studies/hard_cases.cpp"),
-      cpp_study(work_precision_study, "studies/work_precision.cpp"),
+      builtin_file_study("precision", work_precision_study.description, "studies/builtin/precision.toml"),
       cpp_study(energy_study, "studies/energy.cpp"),
       cpp_study(reference_study, "studies/reference.cpp"),
       cpp_study(bar_study, "studies/bar.cpp"),
