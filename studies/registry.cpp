@@ -9,7 +9,6 @@ namespace nsb {
 
 extern const StudyEntry bouncing_study;
 extern const StudyEntry hard_cases_study;
-extern const StudyEntry work_precision_study;
 extern const StudyEntry energy_study;
 extern const StudyEntry reference_study;
 extern const StudyEntry bar_study;
@@ -51,7 +50,8 @@ const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
       cpp_study(bouncing_study, "studies/bouncing.cpp"),
       cpp_study(hard_cases_study, "studies/hard_cases.cpp"),
-      builtin_file_study("precision", work_precision_study.description, "studies/builtin/precision.toml"),
+      builtin_file_study("precision", "work-precision and convergence orders (smooth window and with impacts) against exact solutions",
+                         "studies/builtin/precision.toml"),
       cpp_study(energy_study, "studies/energy.cpp"),
       cpp_study(reference_study, "studies/reference.cpp"),
       cpp_study(bar_study, "studies/bar.cpp"),
