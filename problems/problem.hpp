@@ -84,8 +84,7 @@ struct Contacts {
 // Displacement and velocity are point values taken from the dofs; element cells carry one
 // value per cell and stress component, vertex cells the body arrays.
 //
-//     point a          reference position points.row(a): (x, y) in 1D and 2D (z = 0; y = 0
-//                      for bars), (x, y, z) in 3D
+//     point a          reference position points.row(a) (z = 0, y = 0 for bars; 3D: x, y, z)
 //     its component k  displacement u[point_dofs(a, k)], 0 where point_dofs(a, k) = -1 (a
 //                      clamped node, a direction the body does not move in)
 //     cell c           points cells(c, 0 ..), padded with -1 past its last point (cells has
@@ -93,12 +92,9 @@ struct Contacts {
 //                      1  a vertex: a point mass or the centre of a rigid body ("body cell")
 //                      2  a line along +x of the reference: a bar element or a spring
 //                      4  a bilinear quad, counter-clockwise: a plane element
-//                      8  a trilinear hexahedron (3D), hex8 order: the face zeta = -1
-//                         counter-clockwise seen from +zeta, then the face zeta = +1 in
-//                         the same order (VTK_HEXAHEDRON's order); a solid element
+//                      8  a hexahedron in VTK_HEXAHEDRON's (hex8_elements.hpp's) order: a solid
 //                      cell_body[c] is its body id (0 when there is one body)
-//     element cells    the cells of 2, 4 or 8 points, in their order in `cells`: cell_stress()
-//                      writes one row each, a column per stress_components entry
+//     element cells    cells of 2, 4 or 8 points, in order: cell_stress() rows, a column per stress component
 //     body cells       the vertex cells, in their order: body_data() writes one row each,
 //                      the components of the body_arrays in order (e.g. a rigid body's angle)
 //
