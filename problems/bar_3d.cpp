@@ -255,10 +255,7 @@ std::optional<State> Bar3d::exact_state(double t) const {
   return s;
 }
 
-std::vector<std::string> Bar3d::observable_names() const {
-  return {"u_contact", "v_contact", "contact_force", "u_contact_exact", "v_contact_exact",
-          "contact_force_exact", "momentum", "momentum_exact"};
-}
+std::vector<std::string> Bar3d::observable_names() const { return exact_->observable_names(); }
 
 void Bar3d::observe(const State& s, std::span<double> out) const {
   double u = 0.0, v = 0.0;
@@ -268,16 +265,7 @@ void Bar3d::observe(const State& s, std::span<double> out) const {
       v += s.v[x_dof(0, j, k)];
     }
   const double faces = static_cast<double>((side_ + 1) * (side_ + 1));
-  out[0] = u / faces;
-  out[1] = v / faces;
-  out[2] = 0.0;  // no step, no impulse
-  out[6] = momentum(s.v);
-  double exact[4] = {NAN, NAN, NAN, NAN};
-  if (lateral_held()) exact_->exact_observables(s.t, exact);
-  out[3] = exact[0];
-  out[4] = exact[1];
-  out[5] = exact[2];
-  out[7] = exact[3];
+  exact_->write_observables(s.t, u / faces, v / faces, momentum(s.v), lateral_held(), out);
 }
 
 void Bar3d::observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const {

@@ -142,7 +142,10 @@ TEST_CASE("bar-3d, held, lumped: CD-Lagrange's run is the 1D oedometric bar's, n
             worst = std::max({worst, std::abs(a->state().u[q] - b->state().u[i]), std::abs(a->state().v[q] - b->state().v[i])});
           }
     }
-    CHECK(worst <= 1e-12);
+    // Round-off only: the face nodes' sums differ from the 1D bar's in the last bits, and 300
+    // steps accumulate it (measured 3e-12 with N_side 1, 8e-12 with 2; v0 = 1, u = O(0.1)).
+    INFO("largest difference " << worst);
+    CHECK(worst <= 1e-10);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <fstream>
@@ -343,7 +344,7 @@ TEST_CASE("fields: bar-3d's hexahedra, VTK_HEXAHEDRON in VTK's node order, 3D po
     CHECK(e1.cross(e3).dot(e4) > 0.0);
     for (int k = 0; k < 4; ++k) CHECK((point(n[k + 4]) - point(n[k]) - e4).norm() <= 1e-15);
   }
-  CHECK(X[3 * 47 + 2] == Approx(std::sqrt(1.0)));  // the last point, z = a
+  CHECK(X[3 * 35 + 2] == 1.0);  // the last point, z = a = sqrt(A)
   // Displacements and velocities are the run's, three components each; six stresses.
   const auto u = data_array(vtu, "displacement"), v = data_array(vtu, "velocity");
   for (nsb::Index a = 0; a < mesh->npoints(); ++a)
