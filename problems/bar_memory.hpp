@@ -16,4 +16,7 @@ inline constexpr double kBarBytesPerElement = 200.0;
 // memory_available() (core/environment.hpp).
 void require_bar_memory(double elements, const std::string& what, const std::string& param);
 
+// The same for elements of `bytes_per_element` bytes each (bar-3d's hexahedra).
+void require_element_memory(double elements, double bytes_per_element, const std::string& what, const std::string& param);
+
 }  // namespace nsb

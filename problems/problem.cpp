@@ -41,7 +41,7 @@ int FieldMesh::body_columns() const {
 
 void FieldMesh::append(const FieldMesh& part, Index dof_offset, int body) {
   const Index p0 = npoints(), c0 = ncells(), width = std::max(cells.cols(), part.cells.cols());
-  points.conservativeResize(p0 + part.npoints(), 2);
+  points.conservativeResize(p0 + part.npoints(), part.points.cols());
   points.bottomRows(part.npoints()) = part.points;
   point_dofs.conservativeResize(p0 + part.npoints(), dimension);
   point_dofs.bottomRows(part.npoints()) =

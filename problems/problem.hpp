@@ -84,7 +84,7 @@ struct Contacts {
 // Displacement and velocity are point values taken from the dofs; element cells carry one
 // value per cell and stress component, vertex cells the body arrays.
 //
-//     point a          reference position points.row(a) (z = 0; y = 0 for bars)
+//     point a          reference position points.row(a) (z = 0, y = 0 for bars; 3D: x, y, z)
 //     its component k  displacement u[point_dofs(a, k)], 0 where point_dofs(a, k) = -1 (a
 //                      clamped node, a direction the body does not move in)
 //     cell c           points cells(c, 0 ..), padded with -1 past its last point (cells has
@@ -92,9 +92,9 @@ struct Contacts {
 //                      1  a vertex: a point mass or the centre of a rigid body ("body cell")
 //                      2  a line along +x of the reference: a bar element or a spring
 //                      4  a bilinear quad, counter-clockwise: a plane element
+//                      8  a hexahedron in VTK_HEXAHEDRON's (hex8_elements.hpp's) order: a solid
 //                      cell_body[c] is its body id (0 when there is one body)
-//     element cells    the cells of 2 or 4 points, in their order in `cells`: cell_stress()
-//                      writes one row each, a column per stress_components entry
+//     element cells    cells of 2, 4 or 8 points, in order: cell_stress() rows, a column per stress component
 //     body cells       the vertex cells, in their order: body_data() writes one row each,
 //                      the components of the body_arrays in order (e.g. a rigid body's angle)
 //
@@ -111,8 +111,8 @@ struct FieldArray {
 };
 
 struct FieldMesh {
-  int dimension = 1;                           // 1: along x (bars, chains); 2: in (x, y)
-  Eigen::MatrixXd points;                      // npoints x 2, reference coordinates
+  int dimension = 1;                           // 1: along x (bars, chains); 2: in (x, y); 3: solids
+  Eigen::MatrixXd points;                      // npoints x 2 (x 3 in 3D), reference coordinates
   Eigen::MatrixXi point_dofs;                  // npoints x dimension, dof of each component or -1
   Eigen::MatrixXi cells;                       // ncells x (widest cell), point indices, -1 padded
   std::vector<int> cell_body;                  // ncells, body id
@@ -121,7 +121,7 @@ struct FieldMesh {
 
   Index npoints() const { return points.rows(); }
   Index ncells() const { return cells.rows(); }
-  // Number of points of cell c (1 vertex, 2 line, 4 quad).
+  // Number of points of cell c (1 vertex, 2 line, 4 quad, 8 hexahedron).
   int cell_size(Index c) const;
   // Number of element cells (cells of 2 or more points): the rows of cell_stress().
   Index nelements() const;

@@ -223,25 +223,30 @@ std::vector<std::string> SignoriniBar::observable_names() const {
           "contact_force_exact", "momentum", "momentum_exact"};
 }
 
-void SignoriniBar::observe(const State& s, std::span<double> out) const {
-  out[0] = s.u[0];
-  out[1] = s.v[0];
+void SignoriniBar::write_observables(double t, double u_contact, double v_contact, double momentum, bool with_exact,
+                                     std::span<double> out) const {
+  out[0] = u_contact;
+  out[1] = v_contact;
   out[2] = 0.0;  // no step, no impulse
-  out[6] = momentum(s.v);
-  if (stiff_ratio_ != 1.0 || !(s.t >= 0.0)) {  // no exact solution
+  out[6] = momentum;
+  if (!with_exact || stiff_ratio_ != 1.0 || !(t >= 0.0)) {  // no exact solution
     out[3] = out[4] = out[5] = out[7] = NAN;
   } else if (gravity_ > 0.0) {
-    const BouncingBarExact& b = bouncing_exact(s.t);
-    out[3] = b.displacement(0.0, s.t);
-    out[4] = b.velocity(0.0, s.t);
-    out[5] = b.contact_force(s.t);
-    out[7] = b.momentum(s.t);
+    const BouncingBarExact& b = bouncing_exact(t);
+    out[3] = b.displacement(0.0, t);
+    out[4] = b.velocity(0.0, t);
+    out[5] = b.contact_force(t);
+    out[7] = b.momentum(t);
   } else {
-    out[3] = exact_displacement(0.0, s.t);
-    out[4] = exact_velocity(0.0, s.t);
-    out[5] = exact_contact_force(s.t);
-    out[7] = exact_momentum(s.t);
+    out[3] = exact_displacement(0.0, t);
+    out[4] = exact_velocity(0.0, t);
+    out[5] = exact_contact_force(t);
+    out[7] = exact_momentum(t);
   }
+}
+
+void SignoriniBar::observe(const State& s, std::span<double> out) const {
+  write_observables(s.t, s.u[0], s.v[0], momentum(s.v), true, out);
 }
 
 void SignoriniBar::observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const {

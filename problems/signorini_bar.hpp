@@ -141,6 +141,12 @@ class SignoriniBar final : public Problem {
   double exact_stress(double x, double t) const;
   double exact_contact_force(double t) const;
   double exact_momentum(double t) const;
+  // The columns of observe() at t from the contact end's u_contact, v_contact and the momentum
+  // (contact_force 0: no step); the exact ones NaN where there is no exact solution
+  // (stiff_ratio != 1, t < 0, or !with_exact), from BouncingBarExact with g > 0, else from the
+  // exact_* functions above. bar-3d writes its observables through it.
+  void write_observables(double t, double u_contact, double v_contact, double momentum, bool with_exact,
+                         std::span<double> out) const;
 
   MassModel mass_model() const { return model_; }
   double wave_speed() const { return c_; }

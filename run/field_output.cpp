@@ -14,14 +14,19 @@ namespace nsb {
 
 namespace {
 
-constexpr int kVtkVertex = 1, kVtkLine = 3, kVtkQuad = 9;
+constexpr int kVtkVertex = 1, kVtkLine = 3, kVtkQuad = 9, kVtkHexahedron = 12;
 
 void open_array(std::string& out, const char* type, const std::string& name, int components) {
   fmt::format_to(std::back_inserter(out), "<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
                  type, name, components);
 }
 
-int vtk_type(int points) { return points == 1 ? kVtkVertex : points == 2 ? kVtkLine : kVtkQuad; }
+int vtk_type(int points) {
+  return points == 1 ? kVtkVertex : points == 2 ? kVtkLine : points == 4 ? kVtkQuad : kVtkHexahedron;
+}
+
+// The columns of FieldMesh::points: (x, y) in 1D and 2D, (x, y, z) in 3D.
+Index point_columns(int dimension) { return dimension == 3 ? 3 : 2; }
 
 }  // namespace
 
@@ -29,15 +34,15 @@ void check_field_mesh(const FieldMesh& m, const Problem& p, const std::string& c
   const auto fail = [&](const std::string& why) {
     throw InputError(fmt::format("{}: problem {}: field_mesh(): {}", context, p.name(), why));
   };
-  if (m.dimension != 1 && m.dimension != 2) fail(fmt::format("dimension {}; valid: 1 or 2", m.dimension));
-  if (m.points.cols() != 2 || m.point_dofs.rows() != m.npoints() || m.point_dofs.cols() != m.dimension)
-    fail("points must be npoints x 2 and point_dofs npoints x dimension");
+  if (m.dimension < 1 || m.dimension > 3) fail(fmt::format("dimension {}; valid: 1, 2 or 3", m.dimension));
+  if (m.points.cols() != point_columns(m.dimension) || m.point_dofs.rows() != m.npoints() || m.point_dofs.cols() != m.dimension)
+    fail("points must be npoints x 2 (x 3 in 3D) and point_dofs npoints x dimension");
   if (m.point_dofs.size() > 0 && (m.point_dofs.minCoeff() < -1 || m.point_dofs.maxCoeff() >= p.ndof()))
     fail(fmt::format("a point dof outside [-1, ndof = {})", p.ndof()));
   if (m.cell_body.size() != static_cast<std::size_t>(m.ncells())) fail("cell_body needs one entry per cell");
   for (Index c = 0; c < m.ncells(); ++c) {
     const int n = m.cell_size(c);
-    if (n != 1 && n != 2 && n != 4) fail(fmt::format("cell {} has {} points; valid: 1, 2 or 4", c, n));
+    if (n != 1 && n != 2 && n != 4 && n != 8) fail(fmt::format("cell {} has {} points; valid: 1, 2, 4 or 8", c, n));
     for (Index k = 0; k < m.cells.cols(); ++k)
       if (const int a = m.cells(c, k); k < n ? a >= m.npoints() : a != -1)
         fail(fmt::format("cell {}: point {} outside [0, {}) or not padded with -1", c, a, m.npoints()));
@@ -77,7 +82,8 @@ FieldWriter::Part FieldWriter::make_part(bool elements) const {
                  "<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n<Points>\n",
                  np, nc);
   open_array(part.head, "Float64", "reference_position", 3);
-  for (const Index a : part.points) fmt::format_to(out, "{} {} 0\n", mesh_.points(a, 0), mesh_.points(a, 1));
+  for (const Index a : part.points)
+    fmt::format_to(out, "{} {} {}\n", mesh_.points(a, 0), mesh_.points(a, 1), mesh_.dimension == 3 ? mesh_.points(a, 2) : 0.0);
   part.head += "</DataArray>\n</Points>\n<Cells>\n";
   open_array(part.head, "Int64", "connectivity", 1);
   for (std::size_t j = 0; j < nc; ++j) {

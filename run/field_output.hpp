@@ -12,9 +12,11 @@
 //
 // UnstructuredGrid, ASCII, numbers in shortest round-trip form (a reader gets the run's
 // doubles exactly). Each .vtu holds its cells in the reference configuration (Points, 3
-// components, z = 0; Cells VTK_VERTEX = 1, VTK_LINE = 3, VTK_QUAD = 9) and
+// components, z = 0 below 3D; Cells VTK_VERTEX = 1, VTK_LINE = 3, VTK_QUAD = 9,
+// VTK_HEXAHEDRON = 12 in FieldMesh's hex8 order, which is VTK's) and
 //     PointData  displacement, velocity   3 components, from point_dofs (0 where a
-//                                         component has no dof: a clamp, y and z of bars)
+//                                         component has no dof: a clamp, y and z of bars,
+//                                         the held sides of bar-3d)
 //                contact_impulse          3 components: the impulses the contacts applied
 //                                         in the step that ended at t, L^T Lambda_N +
 //                                         T^T Lambda_T, on the points whose dofs carry the
@@ -50,7 +52,7 @@
 namespace nsb {
 
 // Throws InputError, "CONTEXT: problem NAME: field_mesh(): what is wrong", when `mesh` is not
-// one the writer can write for `problem` (shapes, dofs within ndof, cells of 1, 2 or 4 points
+// one the writer can write for `problem` (shapes, dofs within ndof, cells of 1, 2, 4 or 8 points
 // padded with -1, stress components for element cells, body arrays of 1 or 3 components): a
 // plugin's mesh gets one clear line, not a crash or a file ParaView cannot read.
 void check_field_mesh(const FieldMesh& mesh, const Problem& problem, const std::string& context);

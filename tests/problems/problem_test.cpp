@@ -2,6 +2,7 @@
 // each describes its bodies (points, dofs and cells consistently with ndof, every point in a
 // cell) and writes its elements' stresses and its bodies' arrays without allocating.
 #include <catch2/catch.hpp>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -18,14 +19,14 @@ TEST_CASE("field mesh: points, dofs and cells agree with ndof; stress and body a
     INFO(entry.name);
     REQUIRE(mesh.has_value());  // every built-in problem can be watched
     const int dim = mesh->dimension;
-    REQUIRE((dim == 1 || dim == 2));
-    REQUIRE(mesh->points.cols() == 2);
+    REQUIRE((dim >= 1 && dim <= 3));
+    REQUIRE(mesh->points.cols() == (dim == 3 ? 3 : 2));
     REQUIRE(mesh->point_dofs.rows() == mesh->npoints());
     REQUIRE(mesh->point_dofs.cols() == dim);
     REQUIRE(mesh->cell_body.size() == static_cast<std::size_t>(mesh->ncells()));
     REQUIRE(mesh->ncells() > 0);
-    // Stress components exactly when there are elements (1: a bar's or spring's; 3: plane).
-    if (mesh->nelements() > 0) REQUIRE(mesh->stress_components.size() == (dim == 1 ? 1u : 3u));
+    // Stress components exactly when there are elements (1: a bar's or spring's; 3: plane; 6: solid).
+    if (mesh->nelements() > 0) REQUIRE(mesh->stress_components.size() == (dim == 1 ? 1u : dim == 2 ? 3u : 6u));
     // Every dof at most once, within [0, ndof); 1D meshes lie on y = 0.
     std::set<int> dofs;
     for (nsb::Index a = 0; a < mesh->npoints(); ++a)
@@ -36,12 +37,13 @@ TEST_CASE("field mesh: points, dofs and cells agree with ndof; stress and body a
         CHECK(dofs.insert(d).second);
       }
     if (dim == 1) CHECK(mesh->points.col(1).isZero(0.0));
-    // Cells: 1, 2 or 4 valid points then -1 padding; lines along +x, quads counter-clockwise
-    // (positive signed area); a quad only in 2D; every point in some cell (else invisible).
+    // Cells: 1, 2, 4 or 8 valid points then -1 padding; lines along +x, quads counter-clockwise
+    // (positive signed area), hexahedra in VTK's order (edges 0-1, 0-3, 0-4 right-handed); a
+    // quad only in 2D, a hexahedron only in 3D; every point in some cell (else invisible).
     std::vector<bool> used(static_cast<std::size_t>(mesh->npoints()), false);
     for (nsb::Index c = 0; c < mesh->ncells(); ++c) {
       const int n = mesh->cell_size(c);
-      REQUIRE((n == 1 || n == 2 || (n == 4 && dim == 2)));
+      REQUIRE((n == 1 || n == 2 || (n == 4 && dim == 2) || (n == 8 && dim == 3)));
       for (int k = 0; k < mesh->cells.cols(); ++k) {
         const int a = mesh->cells(c, k);
         if (k >= n) {
@@ -59,6 +61,9 @@ TEST_CASE("field mesh: points, dofs and cells agree with ndof; stress and body a
           const auto a = mesh->points.row(mesh->cells(c, k)), b = mesh->points.row(mesh->cells(c, (k + 1) % 4));
           area += 0.5 * (a.x() * b.y() - b.x() * a.y());
         }
+      } else if (n == 8) {
+        const auto corner = [&](int k) { return Eigen::Vector3d(mesh->points.row(mesh->cells(c, k)).transpose()); };
+        area = (corner(1) - corner(0)).cross(corner(3) - corner(0)).dot(corner(4) - corner(0));
       }
       if (n > 1) CHECK(area > 0.0);
     }

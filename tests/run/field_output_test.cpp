@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <fstream>
@@ -240,7 +241,7 @@ TEST_CASE("fields: writing a state allocates nothing; a problem that describes n
   bad.cells = Eigen::MatrixXi(1, 3);
   bad.cells << 0, 1, 2;
   CHECK_THROWS_WITH(nsb::FieldWriter(Meshless(bad), dir, "--fields", 1),
-                    "--fields: problem meshless: field_mesh(): cell 0 has 3 points; valid: 1, 2 or 4");
+                    "--fields: problem meshless: field_mesh(): cell 0 has 3 points; valid: 1, 2, 4 or 8");
   bad.cells << 0, 1, -1;
   CHECK_THROWS_WITH(nsb::FieldWriter(Meshless(bad), dir, "--fields", 1),
                     "--fields: problem meshless: field_mesh(): element cells and no stress component");
@@ -305,5 +306,59 @@ TEST_CASE("fields: a bar and a striker are two parts, elements with stress and t
   CHECK(data_array(vtu, "angle") == std::vector<double>{2.0});
   CHECK(data_array(vtu, "angular_velocity") == std::vector<double>{3.0});
   CHECK(data_array(vtu, "orientation") == std::vector<double>{std::cos(2.0), std::sin(2.0), 0.0});
+  fs::remove_all(dir);
+}
+
+TEST_CASE("fields: bar-3d's hexahedra, VTK_HEXAHEDRON in VTK's node order, 3D points, six stresses, read back",
+          "[integrators][fields][bar-3d]") {
+  const auto problem = nsb::make_problem("bar-3d", {{"N", "3"}, {"N_side", "2"}, {"lateral", "free"}, {"L", "1.5"}});
+  const fs::path dir = scratch("hex");
+  nsb::RunOptions options;
+  options.dt = 0.5 * problem->stable_step();
+  options.t_end = 10 * options.dt;
+  options.state_every = 5;
+  auto integrator = nsb::make_integrator("cd-lagrange");
+  integrator->init(*problem, problem->initial_state());
+  nsb::FieldWriter writer(*problem, dir, "--fields", 3);
+  options.state_sink = &writer;
+  nsb::run(*problem, *integrator, options);
+  writer.commit();
+  std::vector<std::string> files;
+  REQUIRE(pvd_times(slurp(dir / "fields.pvd"), files).size() == 3);
+  const std::string vtu = slurp(dir / files.back());
+  const auto mesh = problem->field_mesh();
+  CHECK(data_array(vtu, "types") == std::vector<double>(12, 12.0));  // VTK_HEXAHEDRON
+  std::vector<double> offsets;
+  for (int c = 1; c <= 12; ++c) offsets.push_back(8.0 * c);
+  CHECK(data_array(vtu, "offsets") == offsets);
+  // The points in 3D and, per cell, VTK's order: the bottom face counter-clockwise seen from
+  // the top, then the top face above it (edges 0-1, 0-3, 0-4 right-handed, 4 = 0 + e_z).
+  const auto X = data_array(vtu, "reference_position"), cells = data_array(vtu, "connectivity");
+  REQUIRE(X.size() == 3 * 4 * 3 * 3);
+  REQUIRE(cells.size() == 96);
+  const auto point = [&](double a) { return Eigen::Vector3d(X[3 * a], X[3 * a + 1], X[3 * a + 2]); };
+  for (std::size_t c = 0; c < 12; ++c) {
+    const double* n = &cells[8 * c];
+    for (int k = 0; k < 8; ++k) CHECK(n[k] == mesh->cells(static_cast<nsb::Index>(c), k));
+    const Eigen::Vector3d e1 = point(n[1]) - point(n[0]), e3 = point(n[3]) - point(n[0]), e4 = point(n[4]) - point(n[0]);
+    CHECK(e1.cross(e3).dot(e4) > 0.0);
+    for (int k = 0; k < 4; ++k) CHECK((point(n[k + 4]) - point(n[k]) - e4).norm() <= 1e-15);
+  }
+  CHECK(X[3 * 35 + 2] == 1.0);  // the last point, z = a = sqrt(A)
+  // Displacements and velocities are the run's, three components each; six stresses.
+  const auto u = data_array(vtu, "displacement"), v = data_array(vtu, "velocity");
+  for (nsb::Index a = 0; a < mesh->npoints(); ++a)
+    for (int k = 0; k < 3; ++k) {
+      CHECK(u[3 * a + k] == integrator->state().u[mesh->point_dofs(a, k)]);
+      CHECK(v[3 * a + k] == integrator->state().v[mesh->point_dofs(a, k)]);
+    }
+  Eigen::MatrixXd sigma(12, 6);
+  problem->cell_stress(integrator->state().u, sigma);
+  for (int k = 0; k < 6; ++k) {
+    const auto got = data_array(vtu, mesh->stress_components[static_cast<std::size_t>(k)]);
+    REQUIRE(got.size() == 12);
+    for (nsb::Index e = 0; e < 12; ++e) CHECK(got[e] == sigma(e, k));
+  }
+  CHECK(sigma.col(0).minCoeff() < 0.0);  // the wall compresses the bar
   fs::remove_all(dir);
 }

@@ -3,8 +3,9 @@
 against the run: the .pvd's times are the run's written steps, and the fields agree with the
 series (read from the same run) and with an independent recomputation from the read-back
 displacements (the bar's stress, the block's Cauchy stress and strain energy, the springs'
-forces and energy), for every kind of problem: bars, blocks, a bar and a striker, point
-masses, a rigid disk, a spring chain and a ball chain. series.csv is the same with and
+forces and energy, bar-3d's hexahedra and their stress), for every kind of problem: bars,
+blocks, 3D bars, a bar and a striker, point masses, a rigid disk, a spring chain and a ball
+chain. series.csv is the same with and
 without --fields.
 
     fields_test.py NSBENCH
@@ -152,6 +153,43 @@ def test_block(nsbench, tmp):
     check(strained > 0, "the block never deforms")
     check(steps[-1][0] == summary["t_final"], "the last file is not the final state")
     check(any(np.abs(m.point_data["contact_impulse"][:, 1]).max() > 0 for _, m in steps), "no floor impulse written")
+
+
+def test_bar3d(nsbench, tmp):
+    N, S, E, nu, every = 4, 2, 1.0, 0.3, 10
+    lam, mu = E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
+    series, summary, steps = run(nsbench, tmp, "bar-3d", [
+        "--problem", "bar-3d", "--integrator", "cd-lagrange", "--dt", "0.005", "--t-end", "0.5",
+        "--set", f"N={N}", "--set", f"N_side={S}", "--set", "lateral=free", "--fields-every", str(every)])
+    rows = written_rows(series, steps, every)
+    compressed = 0.0
+    for (t, mesh), r in zip(steps, rows):
+        X, u, v = mesh.points, mesh.point_data["displacement"], mesh.point_data["velocity"]
+        cells = mesh.cells[0].data
+        check(mesh.cells[0].type == "hexahedron" and len(cells) == N * S * S, "bar-3d mesh: N x N_side^2 hexahedra")
+        check(len(X) == (N + 1) * (S + 1) ** 2 and close(X.max(axis=0), [1, 1, 1], 1e-15), "bar-3d: the unit cube's points")
+        wall = X[:, 0] == 0
+        check(close(np.mean(u[wall, 0]), series["u_contact"][r], 1e-13, 1e-15), f"t = {t}: wall face's mean u_x")
+        mass = np.zeros(len(X))
+        for c, nodes in enumerate(cells):
+            P = X[nodes]
+            e1, e3, e4 = P[1] - P[0], P[3] - P[0], P[4] - P[0]
+            volume = np.dot(np.cross(e1, e3), e4)
+            check(volume > 0, f"cell {c}: not in VTK's hexahedron order")
+            mass[nodes] += volume / 8
+            # Linear strain at the box's centre: grad N_a = (+-1 / 4 h, +-1 / 4 a, +-1 / 4 a).
+            sign = np.sign(P - P.mean(axis=0))
+            grad = sign / (4 * np.array([np.linalg.norm(e1), np.linalg.norm(e3), np.linalg.norm(e4)]))
+            H = u[nodes].T @ grad
+            eps = 0.5 * (H + H.T)
+            sigma = lam * np.trace(eps) * np.eye(3) + 2 * mu * eps
+            got = [np.ravel(mesh.cell_data[k][0])[c] for k in ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_yz", "sigma_xz", "sigma_xy")]
+            check(close(got, [sigma[0, 0], sigma[1, 1], sigma[2, 2], sigma[1, 2], sigma[0, 2], sigma[0, 1]], 1e-12, 1e-15),
+                  f"t = {t}, cell {c}: stress {got}")
+            compressed = min(compressed, sigma[0, 0])
+        check(close(mass @ v[:, 0], series["momentum"][r], 1e-12, 1e-14), f"t = {t}: momentum along x")
+    check(compressed < -0.1, f"bar-3d: the wall never compresses the bar ({compressed})")
+    check(steps[-1][0] == summary["t_final"], "the last file is not the final state")
 
 
 def flat(mesh, name):
@@ -307,6 +345,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         test_bar(nsbench, tmp)
         test_block(nsbench, tmp)
+        test_bar3d(nsbench, tmp)
         test_bouncing_mass(nsbench, tmp)
         test_sliding_mass(nsbench, tmp)
         test_rolling_disk(nsbench, tmp)
