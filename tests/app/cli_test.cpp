@@ -444,7 +444,7 @@ TEST_CASE("cli: repeated --set keys, empty values, non-finite tolerances and ove
   std::filesystem::remove_all(out);
 }
 
-TEST_CASE("cli: nsbench-study list names each study's file; show refuses a C++ study and an unknown name", "[app]") {
+TEST_CASE("cli: nsbench-study list names each study's file; show prints a study file, refuses a C++ study and an unknown name", "[app]") {
   const auto list = study("list");
   CHECK(list.code == 0);
   CHECK_THAT(list.output, Catch::Contains("[studies/bouncing.cpp]"));
@@ -456,4 +456,9 @@ TEST_CASE("cli: nsbench-study list names each study's file; show refuses a C++ s
   CHECK(unknown.code == 2);
   CHECK_THAT(unknown.output, Catch::Contains("show: unknown study 'bouncin' (nearest: bouncing)"));
   CHECK(study("show").code == 2);
+  // A study file's text, byte for byte as committed, from any directory.
+  const auto shown = nsb::test::run_command(fmt::format("cd / && '{}' show precision", NSBENCH_STUDY_CLI));
+  CHECK(shown.code == 0);
+  std::ifstream in(std::string(NSBENCH_SOURCE_DIR) + "/studies/builtin/precision.toml", std::ios::binary);
+  CHECK(shown.output == std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
 }
