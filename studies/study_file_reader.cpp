@@ -255,8 +255,22 @@ void check_steps(const Checker& c, const FileSweep& s, const std::string& path, 
   if (!s.tolerances.empty()) check_step(c, s.dt, child(path, "dt"), t_end, whose);
 }
 
+// A stiff part's stable step can be far below the step an implicit scheme takes (the hard
+// study's 900 x CFL): a multiple up to 1000.
+constexpr double kMaxStableFraction = 1000.0;
+
+// stable_steps: dt as a multiple of the problem's stable step, (0, 1000].
+std::vector<double> stable_fractions(const Checker& c, const Json& j, const std::string& path) {
+  std::vector<double> v = c.distinct_list(j, path);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (v[i] > kMaxStableFraction)
+      c.fail(element(path, i), fmt::format("{} stable steps is no step of a study", v[i]),
+             fmt::format("(0, {:g}]: dt as a multiple of the problem's stable step 2 / omega_max", kMaxStableFraction));
+  return v;
+}
+
 FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, const IntegratorEntry& entry,
-                     const FileSweep* base) {
+                     const FileSweep* base, bool may_be_empty = false) {
   FileSweep s = base ? *base : FileSweep{};
   if (const Json* p = c.find(j, "parameters"))
     for (const auto& [k, v] : c.parameters(*p, child(path, "parameters"), entry.parameters())) s.parameters[k] = v;
@@ -268,13 +282,7 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
     s.tolerances.clear();
   }
   if (const Json* v = c.find(j, "steps")) s.steps = c.distinct_list(*v, child(path, "steps"));
-  if (const Json* v = c.find(j, "stable_steps")) {
-    s.stable_fractions = c.distinct_list(*v, child(path, "stable_steps"));
-    for (std::size_t i = 0; i < s.stable_fractions.size(); ++i)
-      if (s.stable_fractions[i] > 100.0)
-        c.fail(element(child(path, "stable_steps"), i), fmt::format("{} stable steps is no step of a study", s.stable_fractions[i]),
-               "(0, 100]: dt as a multiple of the problem's stable step 2 / omega_max");
-  }
+  if (const Json* v = c.find(j, "stable_steps")) s.stable_fractions = stable_fractions(c, *v, child(path, "stable_steps"));
   if (const Json* v = c.find(j, "tolerances")) s.tolerances = c.distinct_list(*v, child(path, "tolerances"));
   if (const Json* v = c.find(j, "tolerance_parameter")) {
     std::vector<std::string> reals;
@@ -285,7 +293,7 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
   if (const Json* v = c.find(j, "dt")) s.dt = c.positive(*v, child(path, "dt"));
   if (!s.steps.empty() + !s.stable_fractions.empty() + !s.tolerances.empty() > 1)
     c.fail(path, "give one of steps, stable_steps or tolerances", "one sweep per integrator and problem");
-  if (s.steps.empty() && s.stable_fractions.empty() && s.tolerances.empty())
+  if (s.steps.empty() && s.stable_fractions.empty() && s.tolerances.empty() && !may_be_empty)
     c.fail(path, "no sweep", "steps = [dt, ...], stable_steps = [fraction, ...] or tolerances = [tol, ...] with dt");
   if (!s.tolerances.empty()) {
     if (!(s.dt > 0.0)) c.fail(path, "a tolerance sweep needs its step: dt = ...");
@@ -368,15 +376,17 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const s
   const Json* list = c.find(root, "figure");
   if (!list) return figures;
   c.expect(*list, "figure", list->is_array(), "one or more [[figure]] tables");
-  std::vector<std::string> columns{"problem", "integrator", "dt", "tol"};
-  for (const auto& m : measures) columns.push_back(m.label);
-  columns.insert(columns.end(), {"CPU", "steps", "F_int evals"});
+  std::vector<std::string> run_columns{"problem", "integrator", "dt", "tol"};
+  for (const auto& m : measures) run_columns.push_back(m.label);
+  run_columns.insert(run_columns.end(), {"CPU", "steps", "F_int evals"});
   for (std::size_t i = 0; i < list->size(); ++i) {
     const Json& j = (*list)[i];
     const std::string path = element("figure", i);
     c.expect(j, path, j.is_object(), "a table");
-    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes"});
+    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes", "table"});
     FileFigure f;
+    if (const Json* v = c.find(j, "table")) f.table = c.string(*v, child(path, "table"));
+    const std::vector<std::string>& columns = f.table.empty() ? run_columns : history_column_names();
     f.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(f.id))
       c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", f.id), "[a-z0-9_]+");
@@ -422,10 +432,14 @@ std::vector<std::string> table_sources(const std::string& rows, const std::vecto
     sources.insert(sources.end(), {"CPU", "steps", "F_int evals", "status", "factorizations", "LCP its"});
     for (const auto& m : measures)
       if (measure_converges(m.kind)) sources.push_back("pairwise order of " + m.label);
+    const auto& run = run_column_names();
+    sources.insert(sources.end(), run.begin(), run.end());
   } else if (rows == "group") {
     for (const auto& m : measures)
       if (measure_converges(m.kind))
         for (const char* what : {"order", "CI low", "CI high", "points"}) sources.push_back(fmt::format("{} of {}", what, m.label));
+  } else if (rows == "history") {
+    sources = history_column_names();
   }
   return sources;
 }
@@ -467,7 +481,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     const Json& j = (*list)[i];
     const std::string path = element("table", i);
     c.expect(j, path, j.is_object(), "a table");
-    c.keys(j, path, {"id", "title", "caption", "rows", "columns"});
+    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "problems"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
@@ -475,7 +489,15 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       if (u.id == t.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", t.id), "distinct ids");
     t.title = c.string(c.require(j, path, "title"), child(path, "title"));
     t.caption = optional_string(c, j, path, "caption");
-    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking"});
+    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history"});
+    if (const Json* v = c.find(j, "problems")) {
+      const std::string at = child(path, "problems");
+      if (t.rows != "history") c.fail(at, "only a history table picks its problems", "rows = \"history\"");
+      c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more problem labels");
+      std::vector<std::string> labels;
+      for (const auto& p : spec.problems) labels.push_back(p.label);
+      for (std::size_t k = 0; k < v->size(); ++k) t.problems.push_back(c.choice((*v)[k], element(at, k), labels));
+    }
     if (t.rows == "ranking") {
       if (c.find(j, "columns")) c.fail(child(path, "columns"), "a ranking's columns are fixed", "no columns key with rows = \"ranking\"");
       if (spec.ranked >= spec.measures.size()) c.fail(child(path, "rows"), "the study has no measure to rank by", "case, group");
@@ -488,10 +510,22 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     }
     tables.push_back(t);
   }
-  // The figures are drawn from the first table of one row per run: it shows their columns.
-  const auto runs = std::find_if(tables.begin(), tables.end(), [](const FileTable& t) { return t.rows == "case"; });
+  // The figures are drawn from the first table of one row per run (or the history table they
+  // name): it shows their columns.
+  const auto first_runs = std::find_if(tables.begin(), tables.end(), [](const FileTable& t) { return t.rows == "case"; });
   for (std::size_t i = 0; i < spec.figures.size(); ++i) {
     const std::string path = element("figure", i);
+    auto runs = first_runs;
+    if (!spec.figures[i].table.empty()) {
+      runs = std::find_if(tables.begin(), tables.end(), [&](const FileTable& t) { return t.id == spec.figures[i].table; });
+      if (runs == tables.end() || runs->rows != "history") {
+        std::vector<std::string> histories;
+        for (const auto& t : tables)
+          if (t.rows == "history") histories.push_back(t.id);
+        c.fail(child(path, "table"), fmt::format("'{}' is no declared history table", spec.figures[i].table),
+               histories.empty() ? "a [[table]] with rows = \"history\"" : fmt::format("{}", fmt::join(histories, ", ")));
+      }
+    }
     if (runs == tables.end()) c.fail(path, "declared tables hold no table of one row per run to draw it from", "a [[table]] with rows = \"case\"");
     std::vector<std::string> shown;
     for (const auto& col : runs->columns) shown.push_back(col.of);
@@ -504,6 +538,69 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
         c.fail(child(path, key), fmt::format("'{}' is not a column of table '{}'", name, runs->id), fmt::format("{}", fmt::join(shown, ", ")));
   }
   return tables;
+}
+
+// A problem's own outcome thresholds and energy scale (energy_blow_up, max_penetration,
+// energy_scale) and whether only --full runs it (full_only).
+void read_problem_outcome(const Checker& c, const Json& j, const std::string& path, FileProblem& p) {
+  if (const Json* v = c.find(j, "energy_blow_up")) p.energy_blow_up = c.positive(*v, child(path, "energy_blow_up"));
+  if (const Json* v = c.find(j, "max_penetration")) p.max_penetration = c.positive(*v, child(path, "max_penetration"));
+  if (const Json* v = c.find(j, "energy_scale")) p.energy_scale = c.positive(*v, child(path, "energy_scale"));
+  if (const Json* v = c.find(j, "full_only")) p.full_only = c.boolean(*v, child(path, "full_only"));
+}
+
+// A problem's own steps (steps or stable_steps): the sweep of the integrators that give none.
+std::optional<FileSweep> read_problem_steps(const Checker& c, const Json& j, const std::string& path) {
+  const Json* steps = c.find(j, "steps");
+  const Json* stable = c.find(j, "stable_steps");
+  if (!steps && !stable) return std::nullopt;
+  if (steps && stable) c.fail(path, "give one of steps or stable_steps", "one sweep per problem");
+  FileSweep s;
+  if (steps) s.steps = c.distinct_list(*steps, child(path, "steps"));
+  if (stable) s.stable_fractions = stable_fractions(c, *stable, child(path, "stable_steps"));
+  return s;
+}
+
+// An integrator without a sweep of its own runs each problem's own steps (with its parameters);
+// one that has neither on some problem is refused.
+void take_problem_steps(const Checker& c, FileIntegrator& it, const std::string& path, const StudySpec& spec,
+                        const std::map<std::string, FileSweep>& problem_steps) {
+  if (!it.sweep.steps.empty() || !it.sweep.stable_fractions.empty() || !it.sweep.tolerances.empty()) return;
+  for (const auto& p : spec.problems) {
+    if (it.per_problem.count(p.label)) continue;
+    const auto own = problem_steps.find(p.label);
+    if (own == problem_steps.end())
+      c.fail(path, fmt::format("no sweep for problem '{}', which gives no steps of its own", p.label),
+             "steps = [dt, ...], stable_steps = [fraction, ...] or tolerances = [tol, ...] with dt, or the problem's steps");
+    FileSweep s = own->second;
+    s.parameters = it.sweep.parameters;
+    it.per_problem[p.label] = s;
+  }
+}
+
+// [[integrator]] every = true: every registered integrator (integrator_registry(), in its
+// order), each labelled by its name, with the sweep given here or the problems' own steps.
+std::vector<FileIntegrator> every_integrator(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec,
+                                             const std::map<std::string, FileSweep>& problem_steps) {
+  c.keys(j, path, {"every", "steps", "stable_steps"});
+  if (!c.boolean(j["every"], child(path, "every")))
+    c.fail(child(path, "every"), "false names no integrator", "every = true, or name = an integrator");
+  std::vector<FileIntegrator> out;
+  for (const auto& entry : integrator_registry()) {
+    FileIntegrator it;
+    it.name = it.label = entry.name;
+    it.sweep = read_sweep(c, j, path, entry, nullptr, !problem_steps.empty());
+    take_problem_steps(c, it, path, spec, problem_steps);
+    out.push_back(std::move(it));
+  }
+  return out;
+}
+
+// An integrator joins the study under a label no other has.
+void add_integrator(const Checker& c, StudySpec& spec, FileIntegrator it, const std::string& path) {
+  for (const auto& q : spec.integrators)
+    if (q.label == it.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", it.label), "distinct labels");
+  spec.integrators.push_back(std::move(it));
 }
 
 // The end time of the longest run: the bound of the series held in memory.
@@ -582,11 +679,13 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     return a;
   };
   std::vector<std::unique_ptr<Problem>> instances;
+  std::map<std::string, FileSweep> problem_steps;  // by label: a problem's own steps
   const Json& problems = list("problem");
   for (std::size_t i = 0; i < problems.size(); ++i) {
     const Json& j = problems[i];
     const std::string path = element("problem", i);
-    c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations"});
+    c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations", "steps", "stable_steps",
+                     "energy_blow_up", "max_penetration", "energy_scale", "full_only"});
     FileProblem p;
     p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
     p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
@@ -595,6 +694,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     if (const Json* v = c.find(j, "t_end")) p.t_end = c.positive(*v, child(path, "t_end"));
     if (const Json* v = c.find(j, "max_force_evaluations"))
       p.max_force_evaluations = c.integer(*v, child(path, "max_force_evaluations"), 1, 1L << 50);
+    read_problem_outcome(c, j, path, p);
+    const std::optional<FileSweep> own_steps = read_problem_steps(c, j, path);
     for (const FileProblem& q : grid_points(c, j, path, p, entry.parameters())) {
       for (const auto& r : spec.problems)
         if (r.label == q.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", q.label), "distinct labels");
@@ -604,6 +705,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         c.fail(child(path, c.find(j, "grid") ? "grid" : "parameters"), e.what());
       }
       spec.problems.push_back(q);
+      if (own_steps) problem_steps[q.label] = *own_steps;
     }
   }
 
@@ -612,16 +714,22 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   for (std::size_t i = 0; i < integrators.size(); ++i) {
     const Json& j = integrators[i];
     const std::string path = element("integrator", i);
+    if (c.find(j, "every")) {
+      for (FileIntegrator& it : every_integrator(c, j, path, spec, problem_steps)) {
+        for (std::size_t p = 0; p < spec.problems.size(); ++p)
+          check_steps(c, it.sweep_for(spec.problems[p].label), path, spec, spec.problems[p], instances[p]->stable_step());
+        add_integrator(c, spec, std::move(it), path);
+      }
+      continue;
+    }
     auto keys = sweep_keys;
     keys.insert(keys.end(), {"name", "label", "per_problem"});
     c.keys(j, path, keys);
     FileIntegrator it;
     it.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(integrator_registry()), "integrator");
     it.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : it.name;
-    for (const auto& q : spec.integrators)
-      if (q.label == it.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", it.label), "distinct labels");
     const auto& entry = find_integrator(it.name);
-    it.sweep = read_sweep(c, j, path, entry, nullptr);
+    it.sweep = read_sweep(c, j, path, entry, nullptr, !problem_steps.empty());
     if (const Json* pp = c.find(j, "per_problem")) {
       const std::string pp_path = child(path, "per_problem");
       c.expect(*pp, pp_path, pp->is_object(), "a table keyed by problem label");
@@ -634,13 +742,14 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         it.per_problem[label] = read_sweep(c, o, child(pp_path, label), entry, &it.sweep);
       }
     }
+    take_problem_steps(c, it, path, spec, problem_steps);
     for (std::size_t p = 0; p < spec.problems.size(); ++p) {
       const std::string& label = spec.problems[p].label;
       const bool own = it.per_problem.count(label) > 0;
       check_steps(c, it.sweep_for(label), own ? child(child(path, "per_problem"), label) : path, spec, spec.problems[p],
                   instances[p]->stable_step());
     }
-    spec.integrators.push_back(it);
+    add_integrator(c, spec, std::move(it), path);
   }
 
   if (const Json* r = c.find(root, "reference")) {
@@ -683,7 +792,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     }
   }
 
-  const Json& measures = list("measure");
+  // A study of declared tables may show its runs' own figures alone (outcome, steps, histories).
+  const Json& measures = c.find(root, "measure") || !c.find(root, "table") ? list("measure") : Json::array();
   const std::vector<std::string> kinds{"error", "impact-time", "energy", "momentum", "penetration", "hausdorff", "stop-time", "onset-time"};
   std::vector<std::string> problem_labels;
   for (const auto& p : spec.problems) problem_labels.push_back(p.label);
