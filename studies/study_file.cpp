@@ -100,6 +100,7 @@ std::vector<Json> file_cases(const StudySpec& spec, const StudyOptions& options)
   // A reference integrator runs once per problem, here, before the cases that read it.
   if (spec.has_reference && !spec.reference.exact && !spec.reference.lockstep)
     for (const auto& p : spec.problems) try {
+        if (p.full_only && !options.full) continue;
         cached_reference(reference_cache_dir(), reference_request(spec, p));
       } catch (const InputError& e) {
         throw InputError(fmt::format("study {}, reference run on {}: {}", spec.name, p.label, e.what()));
@@ -381,6 +382,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
               {"force_evaluations", r.work.force_evaluations}, {"factorizations", r.work.factorizations},
               {"lcp_iterations", r.work.lcp_iterations}};
   out.update(figures.result(r, growth.largest() / e_scale));
+  if (spec.cpu_repeats == 0) out["cpu"] = r.step_cpu_seconds;  // the observed run's, whatever its end
   // A blow-up or penetration seen before the budget ran out is reported as such.
   if (r.status != RunStatus::Ok && r.status != RunStatus::OverBudget) return out;
   if (const double g = growth.largest() / e_scale; g > spec.energy_blow_up_of(fp)) {
@@ -439,7 +441,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     values.push_back(real(v));
   }
   out["values"] = values;
-  out["cpu"] = spec.cpu_repeats > 0 ? median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats) : r.step_cpu_seconds;
+  if (spec.cpu_repeats > 0) out["cpu"] = median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats);
   if (history_measure != spec.measures.end())
     out["history"] = {{"t", reals(history.times())}, {"e", reals(history.largest(0))}};
   return out;
@@ -824,21 +826,23 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
 
 }  // namespace
 
+namespace {
+
+std::vector<std::string> column_names(const std::vector<Column>& columns) {
+  std::vector<std::string> names;
+  for (const auto& c : columns) names.push_back(c.name);
+  return names;
+}
+
+}  // namespace
+
 const std::vector<std::string>& run_column_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const auto& c : run_columns()) out.push_back(c.name);
-    return out;
-  }();
+  static const std::vector<std::string> names = column_names(run_columns());
   return names;
 }
 
 const std::vector<std::string>& history_column_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const auto& c : history_columns()) out.push_back(c.name);
-    return out;
-  }();
+  static const std::vector<std::string> names = column_names(history_columns());
   return names;
 }
 
