@@ -1,6 +1,7 @@
 // nsbench-study: runs the registered studies and writes their reports.
 //
 //   nsbench-study list                                             the studies, each with the file that defines it
+//   nsbench-study show NAME                                        the text of a built-in study file (studies/builtin/)
 // Every form takes --plugin FILE (repeatable) and reads NSBENCH_PLUGINS (core/plugin.hpp).
 //   nsbench-study all|NAME... [--out DIR] [--full]                 run, write the reports
 //   nsbench-study all|NAME... [--out DIR] [--full] --shard I/N     run shard I of N only
@@ -22,6 +23,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -76,6 +78,23 @@ std::function<std::string(const Json&, const Json&)> result_check(const nsb::Stu
   return [&spec](const Json&, const Json& result) { return nsb::file_result_damage(*spec, result); };
 }
 
+// `nsbench-study show NAME`: the text of a built-in study file, to copy and edit.
+void show_study_file(const std::vector<nsb::StudyEntry>& registry, const std::vector<std::string>& names) {
+  std::vector<std::string> files, studies;
+  for (const auto& s : registry) {
+    studies.push_back(s.name);
+    if (nsb::builtin_study_file(s.source)) files.push_back(s.name);
+  }
+  const std::string valid = files.empty() ? "none (every built-in study is C++)" : fmt::format("{}", fmt::join(files, ", "));
+  if (names.size() != 2) throw InputError(fmt::format("show: give one study (nsbench-study show NAME); valid: {}", valid));
+  const auto it = std::find_if(registry.begin(), registry.end(), [&](const nsb::StudyEntry& s) { return s.name == names[1]; });
+  if (it == registry.end())
+    throw InputError(fmt::format("show: unknown study '{}' (nearest: {}); valid: {}", names[1], nsb::nearest_name(names[1], studies), valid));
+  const nsb::EmbeddedStudyFile* file = nsb::builtin_study_file(it->source);
+  if (!file) throw InputError(fmt::format("show {}: written in C++ ({}), not a study file; valid: {}", names[1], it->source, valid));
+  fmt::print("{}", file->text);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -86,7 +105,7 @@ int main(int argc, char** argv) {
   std::string out = "reports", shard_text, verify_dir;
   bool full = false, merge = false;
   nsb::VerifyTolerance tolerance;
-  app.add_option("studies", names, "'list', 'all', study names, 'run FILE.toml' (a study file, README), or "
+  app.add_option("studies", names, "'list', 'show NAME' (a built-in study file's text), 'all', study names, 'run FILE.toml' (a study file, README), or "
                                    "'performance BENCH.json...' (the benchmarks' table)")->required();
   std::vector<std::string> plugins;
   app.add_option("--out", out, "output directory (default reports)");
@@ -112,11 +131,15 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "nsbench-study: error: {}\n", e.what());
     return 2;
   }
-  const auto& registry = nsb::study_registry();
   try {
+    const auto& registry = nsb::study_registry();
     nsb::load_plugins(plugins);
     if (names == std::vector<std::string>{"list"}) {
-      for (const auto& s : registry) fmt::print("{:<12} {} [{}]\n", s.name, s.description, nsb::study_source(s.name));
+      for (const auto& s : registry) fmt::print("{:<12} {} [{}]\n", s.name, s.description, s.source);
+      return 0;
+    }
+    if (names[0] == "show") {
+      show_study_file(registry, names);
       return 0;
     }
     if (const std::string slow = nsb::unoptimized_plugins_warning(); !slow.empty()) fmt::print(stderr, "nsbench-study: {}\n", slow);

@@ -1,8 +1,9 @@
 #include "studies/registry.hpp"
 
-#include <map>
+#include <algorithm>
+#include <stdexcept>
 
-#include "studies/study.hpp"
+#include "studies/study_file.hpp"
 
 namespace nsb {
 
@@ -21,37 +22,49 @@ extern const StudyEntry hausdorff_study;
 extern const StudyEntry claims_study;
 extern const StudyEntry properties_study;
 
-const std::vector<StudyEntry>& study_registry() {
-  static const std::vector<StudyEntry> entries = {
-      bouncing_study,
-      hard_cases_study,
-      work_precision_study,
-      energy_study,
-      reference_study,
-      bar_study,
-      block_study,
-      peers_study,
-      bouncing_bar_study,
-      friction_study,
-      bodies_study,
-      hausdorff_study,
-      claims_study,
-      properties_study,
-  };
-  return entries;
+namespace {
+
+StudyEntry cpp_study(StudyEntry entry, const std::string& source) {
+  entry.source = source;
+  return entry;
 }
 
-std::string study_source(const std::string& name) {
-  static const std::map<std::string, std::string> sources = {
-      {"bouncing", "studies/bouncing.cpp"},   {"hard", "studies/hard_cases.cpp"},
-      {"precision", "studies/work_precision.cpp"}, {"energy", "studies/energy.cpp"},
-      {"reference", "studies/reference.cpp"}, {"bar", "studies/bar.cpp"},
-      {"block", "studies/block.cpp"},         {"peers", "studies/peers.cpp"},
-      {"bouncing-bar", "studies/bouncing_bar.cpp"}, {"friction", "studies/friction.cpp"},
-      {"bodies", "studies/bodies.cpp"},       {"hausdorff", "studies/hausdorff_study.cpp"},
-      {"claims", "studies/claims.cpp"},       {"properties", "studies/properties.cpp"}};
-  const auto it = sources.find(name);
-  return it == sources.end() ? "" : it->second;
+}  // namespace
+
+const EmbeddedStudyFile* builtin_study_file(std::string_view path) {
+  const auto& files = builtin_study_files();
+  const auto it = std::find_if(files.begin(), files.end(), [&](const EmbeddedStudyFile& f) { return f.path == path; });
+  return it == files.end() ? nullptr : &*it;
+}
+
+StudyEntry builtin_file_study(const std::string& name, const std::string& description, const std::string& path) {
+  const EmbeddedStudyFile* file = builtin_study_file(path);
+  if (!file) throw std::logic_error(path + " is not embedded (studies/embed_study_files.cmake)");
+  StudyEntry entry = file_study(parse_study_text(std::string(file->text), path, false));
+  entry.name = name;
+  entry.description = description;
+  entry.source = path;
+  return entry;
+}
+
+const std::vector<StudyEntry>& study_registry() {
+  static const std::vector<StudyEntry> entries = {
+      cpp_study(bouncing_study, "studies/bouncing.cpp"),
+      cpp_study(hard_cases_study, "studies/hard_cases.cpp"),
+      cpp_study(work_precision_study, "studies/work_precision.cpp"),
+      cpp_study(energy_study, "studies/energy.cpp"),
+      cpp_study(reference_study, "studies/reference.cpp"),
+      cpp_study(bar_study, "studies/bar.cpp"),
+      cpp_study(block_study, "studies/block.cpp"),
+      cpp_study(peers_study, "studies/peers.cpp"),
+      cpp_study(bouncing_bar_study, "studies/bouncing_bar.cpp"),
+      cpp_study(friction_study, "studies/friction.cpp"),
+      cpp_study(bodies_study, "studies/bodies.cpp"),
+      cpp_study(hausdorff_study, "studies/hausdorff_study.cpp"),
+      cpp_study(claims_study, "studies/claims.cpp"),
+      cpp_study(properties_study, "studies/properties.cpp"),
+  };
+  return entries;
 }
 
 }  // namespace nsb

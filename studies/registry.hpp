@@ -1,12 +1,29 @@
 #pragma once
-// Where each built-in study is defined: the file `nsbench-study list` names beside it (its C++
-// source while it is written in C++; its study file once it is one, issue 31).
+// The built-in studies (study_registry(), studies/study.hpp) are of two kinds: C++ studies,
+// each named with its source, and study files, studies/builtin/<name>.toml, run by the study-file
+// engine (studies/study_file.hpp). The files are embedded in the binary at build time
+// (studies/embed_study_files.cmake), so nsbench-study runs them from any directory and the hash
+// of the text it runs is the file's. `nsbench-study list` shows each study's source.
 #include <string>
+#include <string_view>
+#include <vector>
+
+#include "studies/study.hpp"
 
 namespace nsb {
 
-// The file that defines the built-in study `name`, relative to the repository; "" for a name
-// that is no built-in study.
-std::string study_source(const std::string& name);
+struct EmbeddedStudyFile {
+  std::string_view path;  // relative to the repository: studies/builtin/<name>.toml
+  std::string_view text;
+};
+
+// Every file of studies/builtin/, by path (generated at build time).
+const std::vector<EmbeddedStudyFile>& builtin_study_files();
+// The embedded file `path`; nullptr when there is none.
+const EmbeddedStudyFile* builtin_study_file(std::string_view path);
+
+// The registry entry of the built-in study file `path`: the study-file engine's study
+// (file_study of the parsed text) under the study's own `name` and `description`.
+StudyEntry builtin_file_study(const std::string& name, const std::string& description, const std::string& path);
 
 }  // namespace nsb

@@ -5,8 +5,9 @@
 // (nsbench-study) runs the cases in parallel, or one shard of them (--shard i/n, for a job
 // array), and merges the shards' results into the tables (nsbench-study merge).
 //
-// Studies are listed in studies/registry.cpp, one line each. A study written as a single
-// function returning tables (`run`) is a study of one case.
+// Studies are listed in studies/registry.cpp, one line each: C++ studies and study files
+// (studies/builtin/). A study written as a single function returning tables (`run`) is a study
+// of one case.
 #include <nlohmann/json.hpp>
 #include <functional>
 #include <initializer_list>
@@ -40,6 +41,9 @@ struct StudyEntry {
   std::function<Json(const Json& the_case)> run_case;
   std::function<std::vector<Table>(const std::vector<Json>& cases, const std::vector<Json>& results,
                                    const StudyOptions&)> tables;
+  // The file that defines it, relative to the repository: its study file (studies/builtin/, see
+  // studies/registry.hpp) or its C++ source. Set by the registry.
+  std::string source = "";
 };
 
 const std::vector<StudyEntry>& study_registry();

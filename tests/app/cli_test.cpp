@@ -19,6 +19,7 @@
 #include "core/output.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
+#include "studies/registry.hpp"
 #include "studies/verify.hpp"
 #include "run_cli.hpp"
 
@@ -441,4 +442,18 @@ TEST_CASE("cli: repeated --set keys, empty values, non-finite tolerances and ove
   CHECK_THAT(rest.output, Catch::Contains("energy error n/a (max n/a; E0 = 0 and bouncing-mass has no energy scale)") &&
                               !Catch::Contains("nan"));
   std::filesystem::remove_all(out);
+}
+
+TEST_CASE("cli: nsbench-study list names each study's file; show refuses a C++ study and an unknown name", "[app]") {
+  const auto list = study("list");
+  CHECK(list.code == 0);
+  CHECK_THAT(list.output, Catch::Contains("[studies/bouncing.cpp]"));
+  for (const auto& s : nsb::study_registry()) CHECK_THAT(list.output, Catch::Contains(s.name) && Catch::Contains("[" + s.source + "]"));
+  const auto cpp = study("show bouncing");
+  CHECK(cpp.code == 2);
+  CHECK_THAT(cpp.output, Catch::Contains("show bouncing: written in C++ (studies/bouncing.cpp), not a study file; valid: "));
+  const auto unknown = study("show bouncin");
+  CHECK(unknown.code == 2);
+  CHECK_THAT(unknown.output, Catch::Contains("show: unknown study 'bouncin' (nearest: bouncing)"));
+  CHECK(study("show").code == 2);
 }

@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "integrators/registry.hpp"
@@ -113,10 +115,28 @@ TEST_CASE("interval histories: the largest value of each interval at its last st
 
 TEST_CASE("registry: each built-in study names the file that defines it, and the file exists", "[studies]") {
   for (const auto& s : nsb::study_registry()) {
-    const std::string source = nsb::study_source(s.name);
     INFO(s.name);
-    REQUIRE_FALSE(source.empty());
-    CHECK(std::filesystem::exists(std::filesystem::path(NSBENCH_SOURCE_DIR) / source));
+    REQUIRE_FALSE(s.source.empty());
+    CHECK(std::filesystem::exists(std::filesystem::path(NSBENCH_SOURCE_DIR) / s.source));
   }
-  CHECK(nsb::study_source("no-such-study").empty());
+}
+
+TEST_CASE("registry: every file of studies/builtin/ is embedded as it is and is one built-in study", "[studies]") {
+  const std::filesystem::path dir = std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin";
+  std::size_t on_disk = 0;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) {
+    if (f.path().extension() != ".toml") continue;
+    ++on_disk;
+    const std::string path = "studies/builtin/" + f.path().filename().string();
+    INFO(path);
+    const nsb::EmbeddedStudyFile* embedded = nsb::builtin_study_file(path);
+    REQUIRE(embedded != nullptr);
+    std::ifstream in(f.path(), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(embedded->text == text);  // the build embeds the file's bytes: the same hash
+    const auto& r = nsb::study_registry();
+    CHECK(std::count_if(r.begin(), r.end(), [&](const nsb::StudyEntry& s) { return s.source == path; }) == 1);
+  }
+  CHECK(nsb::builtin_study_files().size() == on_disk);
+  CHECK(nsb::builtin_study_file("studies/builtin/no-such-study.toml") == nullptr);
 }
