@@ -8,7 +8,6 @@
 namespace nsb {
 
 extern const StudyEntry bouncing_study;
-extern const StudyEntry hard_cases_study;
 extern const StudyEntry work_precision_study;
 extern const StudyEntry energy_study;
 extern const StudyEntry reference_study;
@@ -50,7 +49,10 @@ StudyEntry builtin_file_study(const std::string& name, const std::string& descri
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
       cpp_study(bouncing_study, "studies/bouncing.cpp"),
-      cpp_study(hard_cases_study, "studies/hard_cases.cpp"),
+      builtin_file_study("hard",
+                         "hard cases: Zeno, chattering, 10^4 impacts (--full), resting and grazing contact, steps around the "
+                         "CFL limit (bar, block), stiffness ratio 1e6; ok / diverged / energy blow-up / penetration / over budget",
+                         "studies/builtin/hard.toml"),
       cpp_study(work_precision_study, "studies/work_precision.cpp"),
       cpp_study(energy_study, "studies/energy.cpp"),
       cpp_study(reference_study, "studies/reference.cpp"),
