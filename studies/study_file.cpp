@@ -287,7 +287,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   options.t_end = t_end;
   options.record_series = false;
   options.max_force_evaluations = spec.budget_of(fp);
-  options.sample_every = spec.sample_every;  // the driver's check for a non-finite state too
+  options.sample_every = spec.check_every;  // the driver checks the state for NaN at its samples
   if (spec.reference.lockstep && fi.name == spec.reference.integrator)  // its error is 0 by construction
     return not_run("the reference of this problem");
   auto integrator = make_integrator(fi.name, params);

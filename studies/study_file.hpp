@@ -133,6 +133,7 @@ struct StudySpec {
   std::string hash;   // FNV-1a 64 of text, hex
   double t_end = 0.0;
   long sample_every = 1;
+  long check_every = 1;  // the run driver checks the state for a non-finite value every k steps
   int cpu_repeats = 3;
   long max_force_evaluations = 10'000'000;
   // Outcome thresholds: "energy blow-up" past energy_blow_up E scale (study_file.cpp),

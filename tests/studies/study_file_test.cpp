@@ -983,8 +983,8 @@ namespace {
 
 // The signorini bar (N = 100, lumped) at twice its stable step: cd-lagrange's energy grows by
 // 1e220 within 100 steps and its state overflows at step 139.
-std::string unstable_bar(const std::string& sample_every, const std::string& budget) {
-  return quick_study("3.0", "sample_every = " + sample_every + "\n") + R"(
+std::string unstable_bar(const std::string& check_every, const std::string& budget) {
+  return quick_study("3.0", "check_every = " + check_every + "\n") + R"(
 [[problem]]
 name = "signorini-bar"
 label = "bar"
@@ -1021,7 +1021,7 @@ log_x = false
 
 TEST_CASE("study file: a problem's own steps and thresholds, every integrator, run figures and history tables",
           "[studies][study_file]") {
-  // The driver checks the state every sample_every steps: a run that overflows at step 139 is
+  // The driver checks the state every check_every steps: a run that overflows at step 139 is
   // found diverged there, or at the end (150) when checked every 1000 steps.
   for (const auto& [every, steps] : {std::pair{"1", 139L}, {"1000", 150L}}) {
     const auto tables = run_all(nsb::parse_study_text(unstable_bar(every, "1000000"), "f.toml", false));
@@ -1095,6 +1095,8 @@ TEST_CASE("study file: a problem's own steps and thresholds, every integrator an
     CHECK_THAT(error_of(with_problem(std::string(key) + " = 0")),
                StartsWith(fmt::format("f.toml:8: problem[0].{}: 0 is not positive and finite; valid: (0, inf)", key)));
   CHECK_THAT(error_of(with_problem("full_only = 1")), StartsWith("f.toml:8: problem[0].full_only: expected a boolean, got an integer"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\ncheck_every = 0")),
+             StartsWith("f.toml:4: study.check_every: 0 is out of range; valid: [1, "));
   CHECK_THAT(error_of(with_problem("steps = [1e-2]\nstable_steps = [0.5]")),
              StartsWith("f.toml:5: problem[0]: give one of steps or stable_steps; valid: one sweep per problem"));
   CHECK_THAT(error_of(with_problem("stable_steps = [2000]")),
