@@ -53,7 +53,7 @@ const std::vector<StudyEntry>& study_registry() {
                          "hard cases: Zeno, chattering, 10^4 impacts (--full), resting and grazing contact, steps around the "
                          "CFL limit (bar, block), stiffness ratio 1e6; ok / diverged / energy blow-up / penetration / over budget",
                          "studies/builtin/hard.toml"),
-      cpp_study(work_precision_study, "studies/work_precision.cpp"),
+      builtin_file_study("precision", work_precision_study.description, "studies/builtin/precision.toml"),
       cpp_study(energy_study, "studies/energy.cpp"),
       cpp_study(reference_study, "studies/reference.cpp"),
       cpp_study(bar_study, "studies/bar.cpp"),

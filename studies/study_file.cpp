@@ -77,17 +77,20 @@ std::string shown_label(const FileIntegrator& fi, const std::string& problem_lab
 }
 
 ReferenceRequest reference_request(const StudySpec& spec, const FileProblem& p) {
-  const FileReference& r = spec.reference;
+  const FileReference& r = *spec.reference_of(p);
   return {p.name, p.parameters, r.integrator, r.parameters, r.dt, spec.t_end_of(p), r.sample_every};
 }
 
-std::vector<Json> file_cases(const StudySpec& spec, const StudyOptions& options) {
+// A reference run once per problem and cached (not the exact solution, not stepped in lockstep).
+bool cached(const FileReference* r) { return r && !r->exact && !r->lockstep; }
+
+std::vector<Json> file_cases(const StudySpec& spec, bool full) {
   std::vector<Json> cases;
   for (std::size_t p = 0; p < spec.problems.size(); ++p)
-    for (std::size_t i = 0; i < spec.integrators.size() && (options.full || !spec.problems[p].full_only); ++i) {
+    for (std::size_t i = 0; i < spec.integrators.size() && (full || !spec.problems[p].full_only); ++i) {
       const FileSweep& s = spec.integrators[i].sweep_for(spec.problems[p].label);
       const bool tol = !s.tolerances.empty();
-      for (double x : tol ? s.tolerances : s.steps)
+      for (double x : tol ? s.tolerances : full && !s.full_steps.empty() ? s.full_steps : s.steps)
         cases.push_back({{"problem", p}, {"integrator", i}, {"dt", tol ? s.dt : x}, {"tol", tol ? Json(x) : Json(nullptr)},
                          {"file_hash", spec.hash}});
       if (!s.stable_fractions.empty()) {
@@ -98,9 +101,8 @@ std::vector<Json> file_cases(const StudySpec& spec, const StudyOptions& options)
       }
     }
   // A reference integrator runs once per problem, here, before the cases that read it.
-  if (spec.has_reference && !spec.reference.exact && !spec.reference.lockstep)
-    for (const auto& p : spec.problems) try {
-        if (p.full_only && !options.full) continue;
+  for (const auto& p : spec.problems)
+    if (cached(spec.reference_of(p)) && (full || !p.full_only)) try {
         cached_reference(reference_cache_dir(), reference_request(spec, p));
       } catch (const InputError& e) {
         throw InputError(fmt::format("study {}, reference run on {}: {}", spec.name, p.label, e.what()));
@@ -128,16 +130,17 @@ double state_observable(const Problem& problem, const SpMat& M, const State& s, 
 class Reference {
  public:
   Reference(const StudySpec& spec, const Problem& problem, const SpMat& M, const FileProblem& fp)
-      : problem_(problem), M_(M), exact_(!spec.has_reference || spec.reference.exact) {
+      : problem_(problem), M_(M), exact_(!spec.reference_of(fp) || spec.reference_of(fp)->exact) {
     if (exact_) return;
-    if (spec.reference.lockstep) {
-      lockstep_ = make_integrator(spec.reference.integrator, spec.reference.parameters);
+    const FileReference& ref = *spec.reference_of(fp);
+    if (ref.lockstep) {
+      lockstep_ = make_integrator(ref.integrator, ref.parameters);
       lockstep_->init(problem, problem.initial_state());
       return;
     }
     run_ = cached_reference(reference_cache_dir(), reference_request(spec, fp));
     if (run_.summary["status"] != "ok" || run_.series.rows() == 0)
-      throw InputError(fmt::format("reference {} on {} failed: {} {}", spec.reference.integrator, fp.label,
+      throw InputError(fmt::format("reference {} on {} failed: {} {}", ref.integrator, fp.label,
                                    run_.summary["status"].dump(), run_.summary["message"].dump()));
     t_ = run_.series.column("t");
   }
@@ -288,7 +291,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   options.record_series = false;
   options.max_force_evaluations = spec.budget_of(fp);
   options.sample_every = spec.check_every;  // the driver checks the state for NaN at its samples
-  if (spec.reference.lockstep && fi.name == spec.reference.integrator)  // its error is 0 by construction
+  if (const FileReference* ref = spec.reference_of(fp); ref && ref->lockstep && fi.name == ref->integrator)  // its error is 0 by construction
     return not_run("the reference of this problem");
   auto integrator = make_integrator(fi.name, params);
   if (const auto declined = init_or_decline(*integrator, *problem)) return not_run(*declined);
@@ -297,7 +300,11 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const std::size_t nobs = problem->observable_names().size();
   std::vector<double> obs(nobs), obs_ref(nobs);
   std::vector<Accumulator> acc(spec.measures.size());
-  for (std::size_t m = 0; m < acc.size(); ++m) acc[m].t_prev = spec.measures[m].window_start;
+  std::vector<std::pair<double, double>> windows;  // each measure's window on this problem
+  for (std::size_t m = 0; m < acc.size(); ++m) {
+    windows.push_back(spec.measures[m].window_for(fp.label));
+    acc[m].t_prev = windows[m].first;
+  }
   std::vector<bool> on(spec.measures.size());  // measured on this problem
   bool stops = false;                          // a stop-time or onset-time measure is
   for (std::size_t m = 0; m < spec.measures.size(); ++m) {
@@ -329,7 +336,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     const State& s = it.state();
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       const FileMeasure& fm = spec.measures[m];
-      const bool inside = s.t >= fm.window_start && s.t <= fm.window_end;
+      const bool inside = s.t >= windows[m].first && s.t <= windows[m].second;
       if (!on[m] || !(inside || fm.scale_over_run)) continue;  // an error relative to the run: its scale
       Accumulator& a = acc[m];
       double e = kNaN;
@@ -407,7 +414,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     }
     switch (fm.kind) {
       case MeasureKind::Error:
-        v = (fm.norm == "final" ? a.last : fm.norm == "max" ? a.largest : std::sqrt(a.square / (std::min(t_end, fm.window_end) - fm.window_start))) / scale;
+        v = (fm.norm == "final" ? a.last : fm.norm == "max" ? a.largest : std::sqrt(a.square / (std::min(t_end, windows[m].second) - windows[m].first))) / scale;
         break;
       case MeasureKind::ImpactTime: {
         const auto exact = problem->impact_times(t_end);
@@ -485,8 +492,20 @@ namespace {
 double number(const Json& r, const char* key) { return r.contains(key) ? real(r[key]) : kNaN; }
 
 
-std::string run_label(const Json& c) {
-  return c["tol"].is_null() ? fmt::format("dt = {:.2e}", c["dt"].get<double>()) : fmt::format("tol = {:.1e}", c["tol"].get<double>());
+// "dt = ..." or "tol = ...", the number in `format` (default {:.2e} for dt, {:.1e} for tol).
+std::string run_label(const Json& c, const std::optional<std::string>& format = std::nullopt) {
+  const bool tol = !c["tol"].is_null();
+  const double x = c[tol ? "tol" : "dt"].get<double>();
+  return fmt::format("{} = {}", tol ? "tol" : "dt", fmt::format(fmt::runtime(format.value_or(tol ? "{:.1e}" : "{:.2e}")), x));
+}
+
+// What the errors on a problem are measured against, as captions and the ranking say it.
+std::string against_text(const FileReference* r) {
+  if (!r) return "no reference";
+  if (!r->against.empty()) return r->against;
+  return r->exact      ? "the exact solution"
+         : r->lockstep ? fmt::format("{} stepped with each run (lockstep)", r->integrator)
+                       : fmt::format("{} (dt = {}, cached)", r->integrator, r->dt);
 }
 
 // A declared column: the source column under its own header, unit, format and description.
@@ -603,6 +622,9 @@ const std::vector<Column>& history_columns() {
   return columns;
 }
 
+// A declared figure's id: <name>_<id>, or <id> with study.figures = "declared".
+std::string figure_id(const StudySpec& spec, const FileFigure& f) { return spec.declared_figures_only ? f.id : spec.name + "_" + f.id; }
+
 // rows = "history": a row per interval of each run on the table's problems, the columns picked;
 // its figures, the [[figure]]s that name it, under its headers.
 Table history_table(const StudySpec& spec, const FileTable& d, const std::vector<Json>& cases, const std::vector<Json>& results) {
@@ -621,7 +643,7 @@ Table history_table(const StudySpec& spec, const FileTable& d, const std::vector
   }
   for (const FileFigure& f : spec.figures)
     if (f.table == d.id)
-      all.figures.push_back({spec.name + "_" + f.id, f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
+      all.figures.push_back({figure_id(spec, f), f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
   Table t = case_table(d, all, true);
   t.csv_only = true;
   return t;
@@ -659,10 +681,14 @@ std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, con
 std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& cases, const std::vector<Json>& results) {
   const std::vector<std::pair<std::string, std::string>> meta = {
       {"study", spec.name}, {"study_file", spec.file}, {"study_file_fnv1a64", spec.hash}, {"t_end", fmt::format("{}", spec.t_end)}};
-  const std::string against = !spec.has_reference ? "no reference"
-                              : spec.reference.exact    ? "the exact solution"
-                              : spec.reference.lockstep ? fmt::format("{} stepped with each run (lockstep)", spec.reference.integrator)
-                                                        : fmt::format("{} (dt = {}, cached)", spec.reference.integrator, spec.reference.dt);
+  // What the errors are measured against: one text, or one per problem where they differ.
+  std::vector<std::string> per_problem;
+  for (const auto& p : spec.problems) per_problem.push_back(p.label + ": " + against_text(spec.reference_of(p)));
+  const bool one_reference = std::all_of(spec.problems.begin(), spec.problems.end(), [&](const FileProblem& p) {
+    return against_text(spec.reference_of(p)) == against_text(spec.reference_of(spec.problems.front()));
+  });
+  const std::string against = one_reference ? against_text(spec.reference_of(spec.problems.front()))
+                                            : fmt::format("{}", fmt::join(per_problem, "; "));
   const std::string cpu = spec.cpu_repeats > 0
                               ? median_cpu_text(spec.cpu_repeats)
                               : "thread CPU time of the stepping of the observed run (observer excluded)";
@@ -714,28 +740,34 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                      {"energy err", "", "", ""}};
   history.csv_only = true;
   history.metadata = meta;
-  history.figures = {{spec.name + "_energy_history", spec.title + ": energy error", "t", "energy err", {"integrator", "run"}, {"problem"}, false, true}};
+  if (!spec.declared_figures_only)
+    history.figures = {{spec.name + "_energy_history", spec.title + ": energy error", "t", "energy err", {"integrator", "run"}, {"problem"}, false, true}};
 
   const auto primary = spec.measures.begin() + static_cast<long>(std::min(spec.ranked, spec.measures.size()));
-  if (primary != spec.measures.end()) {
+  if (primary != spec.measures.end() && !spec.declared_figures_only) {
     t.figures = {{spec.name + "_work_precision", spec.title + ": " + primary->label + " against CPU time", "CPU", primary->label, {"integrator"}, {"problem"}, true, true},
                  {spec.name + "_work_precision_evals", spec.title + ": " + primary->label + " against F_int evaluations", "F_int evals", primary->label, {"integrator"}, {"problem"}, true, true}};
   }
   for (const auto& m : spec.measures)
-    if (measure_converges(m.kind))
+    if (measure_converges(m.kind) && !spec.declared_figures_only)
       t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
                            "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
 
   for (const FileFigure& f : spec.figures)
     if (f.table.empty())  // else drawn from its history table
-      t.figures.push_back({spec.name + "_" + f.id, f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
+      t.figures.push_back({figure_id(spec, f), f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
 
   // Event times are against the problem's exact solution whatever the reference.
   const bool exact_times = primary != spec.measures.end() && is_event_time(primary->kind);
   std::vector<RankingProblem> ranking;
-  for (const auto& p : spec.problems)
-    ranking.push_back({p.label, exact_times ? "the exact solution" : against, exact_times ? 0.0 : spec.reference.floor,
+  for (const auto& p : spec.problems) {
+    const FileReference* ref = spec.reference_of(p);
+    ranking.push_back({p.label, exact_times ? "the exact solution" : against_text(ref), exact_times || !ref ? 0.0 : ref->floor,
                        spec.targets, {}});
+  }
+  // The first declared ranking's error column and runs' number format.
+  const auto ranking_declared = std::find_if(spec.tables.begin(), spec.tables.end(), [](const FileTable& d) { return d.rows == "ranking"; });
+  const std::optional<std::string> runs_format = ranking_declared == spec.tables.end() ? std::nullopt : ranking_declared->runs_format;
   // The columns only declared tables show: work counters, and each error's order against the
   // run before it (the previous step or tolerance of the same sweep).
   std::vector<Column> counters = {{"factorizations", "", "", ""}, {"LCP its", "", "", "LCP iterations"}};
@@ -779,9 +811,11 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       const std::vector<Cell> run = run_cells(spec, cases[k], r);
       more.insert(more.end(), run.begin(), run.end());
       counter_rows.push_back(std::move(more));
-      if (primary != spec.measures.end() && status != "n/a")  // a declined run is no point
-        curve.points.push_back({run_label(cases[k]), number(r, "cpu"), ys[primary - spec.measures.begin()].back(),
-                                status == "ok" ? "" : status});
+      // A declined run is no point; a run an outcome threshold removed (its values kept: energy
+      // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
+      if (primary != spec.measures.end() && status != "n/a")
+        curve.points.push_back({run_label(cases[k], runs_format), number(r, "cpu"), ys[primary - spec.measures.begin()].back(),
+                                status != "ok" && r.contains("values") ? status : ""});
       if (r.contains("history"))
         for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
           history.add_row({plabel, ilabel, run_label(cases[k]), number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
@@ -803,9 +837,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   std::optional<Table> rank;
   if (primary != spec.measures.end()) {
     std::erase_if(ranking, [&](const RankingProblem& p) { return !primary->applies_to(p.label); });
-    rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error",
-                         {primary->label, is_event_time(primary->kind) ? "s" : "", "{:.1e}", primary->label + " of " + runs_id},
-                         cpu, ranking);
+    Column error{primary->label, is_event_time(primary->kind) ? "s" : "", "{:.1e}", primary->label + " of " + runs_id};
+    if (ranking_declared != spec.tables.end() && ranking_declared->error) error = declared_column(error, *ranking_declared->error);
+    rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error", error, cpu, ranking);
     rank->metadata = meta;
   }
   std::vector<Table> tables;
@@ -850,7 +884,7 @@ StudyEntry file_study(const StudySpec& spec) {
   StudyEntry e;
   e.name = spec.name;
   e.description = fmt::format("{} (study file {}, FNV-1a 64 {})", spec.title, spec.file, spec.hash);
-  e.cases = [spec](const StudyOptions& options) { return file_cases(spec, options); };
+  e.cases = [spec](const StudyOptions& options) { return file_cases(spec, options.full); };
   e.run_case = [spec](const Json& c) { return run_file_case(spec, c); };
   e.tables = [spec](const std::vector<Json>& cases, const std::vector<Json>& results, const StudyOptions&) {
     return file_tables(spec, cases, results);

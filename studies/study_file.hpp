@@ -22,6 +22,19 @@ namespace nsb {
 
 using Overrides = std::map<std::string, std::string>;
 
+struct FileReference {
+  bool exact = true;       // the problem's exact solution; else `integrator`
+  std::string integrator;  // a reference integrator, its run cached
+  Overrides parameters;
+  double dt = 0.0;
+  long sample_every = 1;
+  double floor = 0.0;      // the reference's own error in the measures' norm (ranking)
+  // Stepped with each run, step for step at the run's own steps (no cache, no interpolation):
+  // its states at the run's step times (modal-exact: the semi-discrete system's exact solution).
+  bool lockstep = false;
+  std::string against;     // what the errors are measured against, as captions and the ranking say it ("": said from the above)
+};
+
 struct FileProblem {
   std::string name, label;
   Overrides parameters;
@@ -31,6 +44,10 @@ struct FileProblem {
   // problem's energy_scale() when E0 = 0), and whether only `--full` runs it.
   double energy_blow_up = 0.0, max_penetration = 0.0, energy_scale = 0.0;
   bool full_only = false;
+  std::optional<FileReference> reference;  // its own reference (none: the study's [reference])
+  // The sweep of every integrator that gives none of its own on this problem (and under --full).
+  std::vector<double> steps, full_steps;
+  std::vector<double> stable_fractions;  // or its own stable_steps (dt = fraction x its stable step)
 };
 
 // What an integrator runs on one problem: its parameters and either a list of steps, a list
@@ -40,6 +57,7 @@ struct FileProblem {
 struct FileSweep {
   Overrides parameters;
   std::vector<double> steps;
+  std::vector<double> full_steps;  // the steps under --full (empty: steps)
   std::vector<double> stable_fractions;
   std::vector<double> tolerances;
   std::string tolerance_parameter = "rtol";
@@ -51,18 +69,6 @@ struct FileIntegrator {
   FileSweep sweep;
   std::map<std::string, FileSweep> per_problem;  // by problem label: the sweep, overrides applied
   const FileSweep& sweep_for(const std::string& problem_label) const;
-};
-
-struct FileReference {
-  bool exact = true;       // the problem's exact solution; else `integrator`
-  std::string integrator;  // a reference integrator, its run cached
-  Overrides parameters;
-  double dt = 0.0;
-  long sample_every = 1;
-  double floor = 0.0;      // the reference's own error in the measures' norm (ranking)
-  // Stepped with each run, step for step at the run's own steps (no cache, no interpolation):
-  // its states at the run's step times (modal-exact: the semi-discrete system's exact solution).
-  bool lockstep = false;
 };
 
 enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime };
@@ -77,9 +83,12 @@ struct FileMeasure {
   double time_scale = 0.0;       // Hausdorff: T (0: t_end)
   double value_scale = 0.0;      // Hausdorff: V (0: the reference's largest |value|)
   std::vector<std::string> problems;  // the labels of the problems it is measured on (empty: all)
-  // Error, energy, momentum: sampled on [window_start, window_end] only (the whole run by default).
+  // Error, energy, momentum: sampled on [window_start, window_end] only (the whole run by default),
+  // or on a window of each problem's own (by label; a problem not named: the whole run).
   double window_start = 0.0;
   double window_end = std::numeric_limits<double>::infinity();
+  std::map<std::string, std::pair<double, double>> problem_windows;
+  std::pair<double, double> window_for(const std::string& problem_label) const;
   // Error: relative to the largest reference value over the whole run, not the window alone.
   bool scale_over_run = false;
   bool applies_to(const std::string& problem_label) const;
@@ -91,7 +100,7 @@ struct FileMeasure {
 // problem, integrator, dt, tol, a measure's label, CPU, steps, F_int evals), one line per
 // value of `series`, one panel per value of `panels`.
 struct FileFigure {
-  std::string id;  // <name>_<id>
+  std::string id;  // <name>_<id>; with study.figures = "declared": <id>
   std::string title;
   std::string x, y;
   std::vector<std::string> series{"integrator"};
@@ -123,6 +132,10 @@ struct FileTable {
   std::vector<FileColumn> columns;
   std::vector<std::string> problems;  // history: the labels of the problems whose runs it shows
   bool applies_to(const std::string& problem_label) const;
+  // rows = "ranking" (the first such table): its error column's header, unit, format and
+  // description (`of` unused), and the number format of dt or tol in its runs cells.
+  std::optional<FileColumn> error;
+  std::optional<std::string> runs_format;
 };
 
 struct StudySpec {
@@ -147,6 +160,7 @@ struct StudySpec {
   bool has_reference = false;
   std::vector<FileMeasure> measures;
   std::vector<FileFigure> figures;
+  bool declared_figures_only = false;  // study.figures = "declared": no figures of the engine's own, ids unprefixed
   std::vector<FileTable> tables;  // empty: the engine's own tables
   // The measure the ranking and the work-precision figures use (study.rank_by, a measure's
   // label; default: the first error measure); measures.size(): none.
@@ -155,6 +169,10 @@ struct StudySpec {
   double energy_blow_up_of(const FileProblem& p) const { return p.energy_blow_up > 0.0 ? p.energy_blow_up : energy_blow_up; }
   double max_penetration_of(const FileProblem& p) const { return p.max_penetration > 0.0 ? p.max_penetration : max_penetration; }
   long budget_of(const FileProblem& p) const { return p.max_force_evaluations > 0 ? p.max_force_evaluations : max_force_evaluations; }
+  // The problem's own reference, else the study's; nullptr: none.
+  const FileReference* reference_of(const FileProblem& p) const {
+    return p.reference ? &*p.reference : has_reference ? &reference : nullptr;
+  }
 };
 
 // A time measured against the problem's exact event times [s] (impact, stop, onset times).

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <set>
 #include <sstream>
 #include <toml++/toml.h>
@@ -249,6 +250,7 @@ void check_steps(const Checker& c, const FileSweep& s, const std::string& path, 
   const double t_end = spec.t_end_of(p);
   const std::string whose = p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end";
   for (std::size_t i = 0; i < s.steps.size(); ++i) check_step(c, s.steps[i], element(child(path, "steps"), i), t_end, whose);
+  for (std::size_t i = 0; i < s.full_steps.size(); ++i) check_step(c, s.full_steps[i], element(child(path, "full_steps"), i), t_end, whose);
   for (std::size_t i = 0; i < s.stable_fractions.size(); ++i)
     check_step(c, s.stable_fractions[i] * stable, element(child(path, "stable_steps"), i), t_end,
                fmt::format("{} (problem '{}', stable step {:g})", whose, p.label, stable));
@@ -269,8 +271,10 @@ std::vector<double> stable_fractions(const Checker& c, const Json& j, const std:
   return v;
 }
 
+// An integrator's sweep (`base`: its own, under a per_problem table). Empty: the problems' steps
+// serve it (sweep_from_problems).
 FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, const IntegratorEntry& entry,
-                     const FileSweep* base, bool may_be_empty = false) {
+                     const FileSweep* base) {
   FileSweep s = base ? *base : FileSweep{};
   if (const Json* p = c.find(j, "parameters"))
     for (const auto& [k, v] : c.parameters(*p, child(path, "parameters"), entry.parameters())) s.parameters[k] = v;
@@ -278,10 +282,15 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
   const auto given = [&](const char* key) { return c.find(j, key) != nullptr; };
   if (given("steps") || given("stable_steps") || given("tolerances")) {
     s.steps.clear();
+    s.full_steps.clear();
     s.stable_fractions.clear();
     s.tolerances.clear();
   }
   if (const Json* v = c.find(j, "steps")) s.steps = c.distinct_list(*v, child(path, "steps"));
+  if (const Json* v = c.find(j, "full_steps")) {
+    if (!given("steps")) c.fail(child(path, "full_steps"), "full_steps without steps", "steps = [dt, ...] beside it (full_steps: the sweep under --full)");
+    s.full_steps = c.distinct_list(*v, child(path, "full_steps"));
+  }
   if (const Json* v = c.find(j, "stable_steps")) s.stable_fractions = stable_fractions(c, *v, child(path, "stable_steps"));
   if (const Json* v = c.find(j, "tolerances")) s.tolerances = c.distinct_list(*v, child(path, "tolerances"));
   if (const Json* v = c.find(j, "tolerance_parameter")) {
@@ -293,8 +302,6 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
   if (const Json* v = c.find(j, "dt")) s.dt = c.positive(*v, child(path, "dt"));
   if (!s.steps.empty() + !s.stable_fractions.empty() + !s.tolerances.empty() > 1)
     c.fail(path, "give one of steps, stable_steps or tolerances", "one sweep per integrator and problem");
-  if (s.steps.empty() && s.stable_fractions.empty() && s.tolerances.empty() && !may_be_empty)
-    c.fail(path, "no sweep", "steps = [dt, ...], stable_steps = [fraction, ...] or tolerances = [tol, ...] with dt");
   if (!s.tolerances.empty()) {
     if (!(s.dt > 0.0)) c.fail(path, "a tolerance sweep needs its step: dt = ...");
     const auto specs = entry.parameters();
@@ -309,6 +316,105 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
       }
   }
   return s;
+}
+
+bool no_sweep(const FileSweep& s) { return s.steps.empty() && s.stable_fractions.empty() && s.tolerances.empty(); }
+
+// Where an integrator (at `path`) gives no sweep of its own on a problem, the problem's steps
+// (with the integrator's parameters); neither: an error.
+void sweep_from_problems(const Checker& c, FileIntegrator& it, const std::string& path, const std::vector<FileProblem>& problems) {
+  for (const FileProblem& p : problems) {
+    if (!no_sweep(it.sweep_for(p.label))) continue;
+    if (p.steps.empty() && p.stable_fractions.empty())
+      c.fail(path, fmt::format("no sweep on problem '{}'", p.label),
+             "steps = [dt, ...], stable_steps = [fraction, ...] or tolerances = [tol, ...] with dt, here or as the problem's steps");
+    FileSweep s = it.sweep_for(p.label);
+    s.steps = p.steps;
+    s.full_steps = p.full_steps;
+    s.stable_fractions = p.stable_fractions;
+    it.per_problem[p.label] = s;
+  }
+}
+
+// A problem's steps and full_steps, or stable_steps (checked against its stable step once it
+// exists): the sweep of every integrator that gives none of its own.
+void read_problem_steps(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileProblem& p) {
+  const std::string whose = p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end";
+  for (const char* key : {"steps", "full_steps"}) {
+    const Json* v = c.find(j, key);
+    if (!v) continue;
+    std::vector<double>& steps = std::string(key) == "steps" ? p.steps : p.full_steps;
+    steps = c.distinct_list(*v, child(path, key));
+    for (std::size_t k = 0; k < steps.size(); ++k) check_step(c, steps[k], element(child(path, key), k), spec.t_end_of(p), whose);
+  }
+  if (!p.full_steps.empty() && p.steps.empty())
+    c.fail(child(path, "full_steps"), "full_steps without steps", "steps = [dt, ...] beside it (full_steps: the sweep under --full)");
+  if (const Json* v = c.find(j, "stable_steps")) {
+    if (!p.steps.empty()) c.fail(path, "give one of steps or stable_steps", "one sweep per problem");
+    p.stable_fractions = stable_fractions(c, *v, child(path, "stable_steps"));
+  }
+}
+
+// A reference: the study's [reference] or a problem's own (`path`), checked against the problems
+// it serves (their indices in spec.problems and instances).
+FileReference read_reference(const Checker& c, const Json& r, const std::string& path, const StudySpec& spec,
+                             const std::vector<std::size_t>& served, const std::vector<std::unique_ptr<Problem>>& instances) {
+  c.expect(r, path, r.is_object(), "a table");
+  c.keys(r, path, {"solution", "integrator", "parameters", "dt", "sample_every", "floor", "lockstep", "against"});
+  FileReference ref;
+  if (!c.find(r, "solution") == !c.find(r, "integrator")) c.fail(path, "give one of solution = \"exact\" or integrator = NAME");
+  if (const Json* v = c.find(r, "solution")) {
+    c.choice(*v, child(path, "solution"), {"exact"});
+    for (const std::size_t i : served)
+      if (!instances[i]->exact_state(0.0))
+        c.fail(child(path, "solution"), fmt::format("problem '{}' ({}) has no exact solution", spec.problems[i].label, spec.problems[i].name),
+               "integrator = a reference integrator");
+  } else {
+    ref.exact = false;
+    ref.integrator = c.registered(r["integrator"], child(path, "integrator"), names_of(integrator_registry()), "integrator");
+    if (const Json* v = c.find(r, "parameters"))
+      ref.parameters = c.parameters(*v, child(path, "parameters"), find_integrator(ref.integrator).parameters());
+    if (const Json* v = c.find(r, "lockstep")) ref.lockstep = c.boolean(*v, child(path, "lockstep"));
+  }
+  if (ref.exact && c.find(r, "lockstep"))
+    c.fail(child(path, "lockstep"), "only a reference integrator steps with the runs", "integrator = NAME with lockstep = true");
+  if (ref.lockstep) {
+    for (const char* key : {"dt", "sample_every"})
+      if (c.find(r, key)) c.fail(child(path, key), "a lockstep reference steps with each run, at its steps", "no dt or sample_every with lockstep = true");
+  } else if (!ref.exact) {
+    ref.dt = c.positive(c.require(r, path, "dt"), child(path, "dt"));
+    double longest = 0.0;
+    for (const std::size_t i : served) {
+      const FileProblem& p = spec.problems[i];
+      check_step(c, ref.dt, child(path, "dt"), spec.t_end_of(p), p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end");
+      longest = std::max(longest, spec.t_end_of(p));
+    }
+    if (const Json* v = c.find(r, "sample_every")) ref.sample_every = c.integer(*v, child(path, "sample_every"), 1, 1L << 40);
+    check_held_samples(c, ref.dt, ref.sample_every, longest, child(path, "dt"), "the reference run", child(path, "sample_every"));
+  }
+  if (const Json* v = c.find(r, "floor")) {
+    c.expect(*v, child(path, "floor"), v->is_number(), "a number");
+    ref.floor = v->get<double>();
+    if (!(ref.floor >= 0.0) || !std::isfinite(ref.floor))
+      c.fail(child(path, "floor"), fmt::format("{} is not a finite number >= 0", ref.floor), "[0, inf)");
+  }
+  if (const Json* v = c.find(r, "against")) ref.against = c.string(*v, child(path, "against"));
+  return ref;
+}
+
+// A measure's time window [t0, t1] at `at`, checked against the end of each problem of `on`.
+std::pair<double, double> read_window(const Checker& c, const Json& v, const std::string& at, const StudySpec& spec,
+                                      const std::vector<std::size_t>& on) {
+  c.expect(v, at, v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number(),
+           "an array [t0, t1] of two numbers, or a table of them by problem label");
+  const double t0 = v[0].get<double>(), t1 = v[1].get<double>();
+  if (!(t0 >= 0.0 && t0 < t1 && std::isfinite(t1))) c.fail(at, fmt::format("[{}, {}] is no time window", t0, t1), "0 <= t0 < t1, finite");
+  for (const std::size_t p : on)
+    if (!(t0 < spec.t_end_of(spec.problems[p])))
+      c.fail(at, fmt::format("the window starts at {} s, not before the end of problem '{}' ({} s)", t0, spec.problems[p].label,
+                             spec.t_end_of(spec.problems[p])),
+             "t0 < t_end, or problems = [...]");
+  return {t0, t1};
 }
 
 // study.rank_by: the label of a measure the ranking can rank by; by default the first error.
@@ -371,7 +477,7 @@ bool is_file_stem(const std::string& id) {
 }
 
 // [[figure]]: drawn from the work-precision table, its columns named by their headers.
-std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const std::vector<FileMeasure>& measures) {
+std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const std::vector<FileMeasure>& measures, bool declared_only) {
   std::vector<FileFigure> figures;
   const Json* list = c.find(root, "figure");
   if (!list) return figures;
@@ -392,9 +498,10 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const s
       c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", f.id), "[a-z0-9_]+");
     for (const auto& g : figures)
       if (g.id == f.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", f.id), "distinct ids");
-    if (f.id == "work_precision" || f.id == "work_precision_evals" || f.id == "energy_history" || f.id.rfind("convergence_", 0) == 0)
+    if (!declared_only &&
+        (f.id == "work_precision" || f.id == "work_precision_evals" || f.id == "energy_history" || f.id.rfind("convergence_", 0) == 0))
       c.fail(child(path, "id"), fmt::format("'{}' is the id of a figure the study draws itself", f.id),
-             "another id than work_precision, work_precision_evals, energy_history, convergence_*");
+             "another id than work_precision, work_precision_evals, energy_history, convergence_* (or study.figures = \"declared\")");
     f.title = c.string(c.require(j, path, "title"), child(path, "title"));
     f.x = c.choice(c.require(j, path, "x"), child(path, "x"), columns);
     f.y = c.choice(c.require(j, path, "y"), child(path, "y"), columns);
@@ -449,6 +556,16 @@ std::optional<std::string> optional_string(const Checker& c, const Json& j, cons
   return std::nullopt;
 }
 
+// A number format given at `path`: a fmt format of one number, or "" (shortest round trip).
+void check_number_format(const Checker& c, const std::optional<std::string>& format, const std::string& path) {
+  if (format && !format->empty()) try {
+      (void)fmt::format(fmt::runtime(*format), 1.0);
+    } catch (const fmt::format_error& e) {
+      c.fail(path, fmt::format("'{}' is no number format ({})", *format, e.what()),
+             "a fmt format of one number, e.g. {:.2e}, or \"\" (shortest round-trip)");
+    }
+}
+
 FileColumn read_column(const Checker& c, const Json& j, const std::string& path, const std::vector<std::string>& sources) {
   FileColumn col;
   if (j.is_string()) {
@@ -462,12 +579,7 @@ FileColumn read_column(const Checker& c, const Json& j, const std::string& path,
   col.unit = optional_string(c, j, path, "unit");
   col.format = optional_string(c, j, path, "format");
   col.description = optional_string(c, j, path, "description");
-  if (col.format && !col.format->empty()) try {
-      (void)fmt::format(fmt::runtime(*col.format), 1.0);
-    } catch (const fmt::format_error& e) {
-      c.fail(child(path, "format"), fmt::format("'{}' is no number format ({})", *col.format, e.what()),
-             "a fmt format of one number, e.g. {:.2e}, or \"\" (shortest round-trip)");
-    }
+  check_number_format(c, col.format, child(path, "format"));
   return col;
 }
 
@@ -481,7 +593,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     const Json& j = (*list)[i];
     const std::string path = element("table", i);
     c.expect(j, path, j.is_object(), "a table");
-    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "problems"});
+    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
@@ -501,7 +613,30 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     if (t.rows == "ranking") {
       if (c.find(j, "columns")) c.fail(child(path, "columns"), "a ranking's columns are fixed", "no columns key with rows = \"ranking\"");
       if (spec.ranked >= spec.measures.size()) c.fail(child(path, "rows"), "the study has no measure to rank by", "case, group");
+      const bool first = std::none_of(tables.begin(), tables.end(), [](const FileTable& u) { return u.rows == "ranking"; });
+      if (const Json* v = c.find(j, "error")) {
+        const std::string at = child(path, "error");
+        if (!first) c.fail(at, "the first ranking table sets the error column of every ranking", "no error key here");
+        c.expect(*v, at, v->is_object(), "a table { header, unit, format, description }");
+        c.keys(*v, at, {"header", "unit", "format", "description"});
+        FileColumn col;
+        col.header = optional_string(c, *v, at, "header");
+        col.unit = optional_string(c, *v, at, "unit");
+        col.format = optional_string(c, *v, at, "format");
+        col.description = optional_string(c, *v, at, "description");
+        check_number_format(c, col.format, child(at, "format"));
+        t.error = col;
+      }
+      if (const Json* v = c.find(j, "runs_format")) {
+        const std::string at = child(path, "runs_format");
+        if (!first) c.fail(at, "the first ranking table sets the runs' format of every ranking", "no runs_format key here");
+        t.runs_format = c.string(*v, at);
+        if (t.runs_format->empty()) c.fail(at, "an empty format", "a fmt format of one number, e.g. {:.1e}");
+        check_number_format(c, t.runs_format, at);
+      }
     } else {
+      for (const char* key : {"error", "runs_format"})
+        if (c.find(j, key)) c.fail(child(path, key), fmt::format("only a ranking has {}", key), "rows = \"ranking\"");
       const std::string at = child(path, "columns");
       const Json& cols = c.require(j, path, "columns");
       c.expect(cols, at, cols.is_array() && !cols.empty(), "a non-empty array of columns");
@@ -549,53 +684,6 @@ void read_problem_outcome(const Checker& c, const Json& j, const std::string& pa
   if (const Json* v = c.find(j, "full_only")) p.full_only = c.boolean(*v, child(path, "full_only"));
 }
 
-// A problem's own steps (steps or stable_steps): the sweep of the integrators that give none.
-std::optional<FileSweep> read_problem_steps(const Checker& c, const Json& j, const std::string& path) {
-  const Json* steps = c.find(j, "steps");
-  const Json* stable = c.find(j, "stable_steps");
-  if (!steps && !stable) return std::nullopt;
-  if (steps && stable) c.fail(path, "give one of steps or stable_steps", "one sweep per problem");
-  FileSweep s;
-  if (steps) s.steps = c.distinct_list(*steps, child(path, "steps"));
-  if (stable) s.stable_fractions = stable_fractions(c, *stable, child(path, "stable_steps"));
-  return s;
-}
-
-// An integrator without a sweep of its own runs each problem's own steps (with its parameters);
-// one that has neither on some problem is refused.
-void take_problem_steps(const Checker& c, FileIntegrator& it, const std::string& path, const StudySpec& spec,
-                        const std::map<std::string, FileSweep>& problem_steps) {
-  if (!it.sweep.steps.empty() || !it.sweep.stable_fractions.empty() || !it.sweep.tolerances.empty()) return;
-  for (const auto& p : spec.problems) {
-    if (it.per_problem.count(p.label)) continue;
-    const auto own = problem_steps.find(p.label);
-    if (own == problem_steps.end())
-      c.fail(path, fmt::format("no sweep for problem '{}', which gives no steps of its own", p.label),
-             "steps = [dt, ...], stable_steps = [fraction, ...] or tolerances = [tol, ...] with dt, or the problem's steps");
-    FileSweep s = own->second;
-    s.parameters = it.sweep.parameters;
-    it.per_problem[p.label] = s;
-  }
-}
-
-// [[integrator]] every = true: every registered integrator (integrator_registry(), in its
-// order), each labelled by its name, with the sweep given here or the problems' own steps.
-std::vector<FileIntegrator> every_integrator(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec,
-                                             const std::map<std::string, FileSweep>& problem_steps) {
-  c.keys(j, path, {"every", "steps", "stable_steps"});
-  if (!c.boolean(j["every"], child(path, "every")))
-    c.fail(child(path, "every"), "false names no integrator", "every = true, or name = an integrator");
-  std::vector<FileIntegrator> out;
-  for (const auto& entry : integrator_registry()) {
-    FileIntegrator it;
-    it.name = it.label = entry.name;
-    it.sweep = read_sweep(c, j, path, entry, nullptr, !problem_steps.empty());
-    take_problem_steps(c, it, path, spec, problem_steps);
-    out.push_back(std::move(it));
-  }
-  return out;
-}
-
 // An integrator joins the study under a label no other has.
 void add_integrator(const Checker& c, StudySpec& spec, FileIntegrator it, const std::string& path) {
   for (const auto& q : spec.integrators)
@@ -621,6 +709,12 @@ std::string stem_name(const std::string& file) {
 
 bool FileMeasure::applies_to(const std::string& problem_label) const {
   return problems.empty() || std::find(problems.begin(), problems.end(), problem_label) != problems.end();
+}
+
+std::pair<double, double> FileMeasure::window_for(const std::string& problem_label) const {
+  const auto it = problem_windows.find(problem_label);
+  if (it != problem_windows.end()) return it->second;
+  return problem_windows.empty() ? std::pair{window_start, window_end} : std::pair{0.0, std::numeric_limits<double>::infinity()};
 }
 
 bool FileMeasure::rankable() const { return kind != MeasureKind::Energy || norm == "max"; }
@@ -660,8 +754,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 
   const Json& study = c.require(root, "", "study");
   c.expect(study, "study", study.is_object(), "a table");
-  c.keys(study, "study", {"title", "t_end", "sample_every", "check_every", "cpu_repeats", "max_force_evaluations", "targets", "rank_by",
-                          "energy_blow_up", "max_penetration"});
+  c.keys(study, "study", {"title", "t_end", "sample_every", "check_every", "cpu_repeats", "max_force_evaluations", "targets",
+                          "rank_by", "energy_blow_up", "max_penetration", "integrators", "figures"});
   spec.title = c.string(c.require(study, "study", "title"), "study.title");
   spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
   if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
@@ -670,8 +764,15 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   if (const Json* v = c.find(study, "max_force_evaluations"))  // >= 1: no budget (0) would let a case run 2e8 steps
     spec.max_force_evaluations = c.integer(*v, "study.max_force_evaluations", 1, 1L << 50);
   if (const Json* v = c.find(study, "targets")) spec.targets = c.positive_list(*v, "study.targets");
-  if (const Json* v = c.find(study, "energy_blow_up")) spec.energy_blow_up = c.positive(*v, "study.energy_blow_up");
+  if (const Json* v = c.find(study, "energy_blow_up")) {  // inf (TOML): no such status
+    c.expect(*v, "study.energy_blow_up", v->is_number(), "a number");
+    spec.energy_blow_up = v->get<double>();
+    if (!(spec.energy_blow_up > 0.0))
+      c.fail("study.energy_blow_up", fmt::format("{} is not positive", spec.energy_blow_up), "(0, inf]; inf: no energy blow-up status");
+  }
   if (const Json* v = c.find(study, "max_penetration")) spec.max_penetration = c.positive(*v, "study.max_penetration");
+  const bool all_integrators = c.find(study, "integrators") && c.choice(study["integrators"], "study.integrators", {"all"}) == "all";
+  if (const Json* v = c.find(study, "figures")) spec.declared_figures_only = c.choice(*v, "study.figures", {"all", "declared"}) == "declared";
 
   const auto list = [&](const char* key) -> const Json& {
     const Json& a = c.require(root, "", key);
@@ -680,13 +781,12 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     return a;
   };
   std::vector<std::unique_ptr<Problem>> instances;
-  std::map<std::string, FileSweep> problem_steps;  // by label: a problem's own steps
   const Json& problems = list("problem");
   for (std::size_t i = 0; i < problems.size(); ++i) {
     const Json& j = problems[i];
     const std::string path = element("problem", i);
-    c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations", "steps", "stable_steps",
-                     "energy_blow_up", "max_penetration", "energy_scale", "full_only"});
+    c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations", "steps", "full_steps", "stable_steps",
+                     "reference", "energy_blow_up", "max_penetration", "energy_scale", "full_only"});
     FileProblem p;
     p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
     p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
@@ -696,7 +796,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     if (const Json* v = c.find(j, "max_force_evaluations"))
       p.max_force_evaluations = c.integer(*v, child(path, "max_force_evaluations"), 1, 1L << 50);
     read_problem_outcome(c, j, path, p);
-    const std::optional<FileSweep> own_steps = read_problem_steps(c, j, path);
+    read_problem_steps(c, j, path, spec, p);
+    const std::size_t first = spec.problems.size();
     for (const FileProblem& q : grid_points(c, j, path, p, entry.parameters())) {
       for (const auto& r : spec.problems)
         if (r.label == q.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", q.label), "distinct labels");
@@ -705,24 +806,33 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       } catch (const InputError& e) {
         c.fail(child(path, c.find(j, "grid") ? "grid" : "parameters"), e.what());
       }
+      FileSweep own_steps;  // its stable steps against its end time
+      own_steps.stable_fractions = q.stable_fractions;
+      check_steps(c, own_steps, path, spec, q, instances.back()->stable_step());
       spec.problems.push_back(q);
-      if (own_steps) problem_steps[q.label] = *own_steps;
+    }
+    if (const Json* r = c.find(j, "reference")) {
+      std::vector<std::size_t> points(spec.problems.size() - first);
+      std::iota(points.begin(), points.end(), first);
+      const FileReference own = read_reference(c, *r, child(path, "reference"), spec, points, instances);
+      for (const std::size_t q : points) spec.problems[q].reference = own;
     }
   }
 
-  const Json& integrators = list("integrator");
-  const std::vector<std::string> sweep_keys{"parameters", "steps", "stable_steps", "tolerances", "tolerance_parameter", "dt"};
+  if (all_integrators) {  // study.integrators = "all": each registered one, with the problems' steps
+    if (c.find(root, "integrator"))
+      c.fail("integrator", "study.integrators = \"all\" lists the integrators", "no [[integrator]] tables with integrators = \"all\"");
+    for (const auto& entry : integrator_registry()) {
+      FileIntegrator it{entry.name, entry.name, {}, {}};
+      sweep_from_problems(c, it, "study.integrators", spec.problems);
+      spec.integrators.push_back(it);
+    }
+  }
+  const Json& integrators = all_integrators ? Json::array() : list("integrator");
+  const std::vector<std::string> sweep_keys{"parameters", "steps", "full_steps", "stable_steps", "tolerances", "tolerance_parameter", "dt"};
   for (std::size_t i = 0; i < integrators.size(); ++i) {
     const Json& j = integrators[i];
     const std::string path = element("integrator", i);
-    if (c.find(j, "every")) {
-      for (FileIntegrator& it : every_integrator(c, j, path, spec, problem_steps)) {
-        for (std::size_t p = 0; p < spec.problems.size(); ++p)
-          check_steps(c, it.sweep_for(spec.problems[p].label), path, spec, spec.problems[p], instances[p]->stable_step());
-        add_integrator(c, spec, std::move(it), path);
-      }
-      continue;
-    }
     auto keys = sweep_keys;
     keys.insert(keys.end(), {"name", "label", "per_problem"});
     c.keys(j, path, keys);
@@ -730,7 +840,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     it.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(integrator_registry()), "integrator");
     it.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : it.name;
     const auto& entry = find_integrator(it.name);
-    it.sweep = read_sweep(c, j, path, entry, nullptr, !problem_steps.empty());
+    it.sweep = read_sweep(c, j, path, entry, nullptr);
     if (const Json* pp = c.find(j, "per_problem")) {
       const std::string pp_path = child(path, "per_problem");
       c.expect(*pp, pp_path, pp->is_object(), "a table keyed by problem label");
@@ -743,7 +853,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         it.per_problem[label] = read_sweep(c, o, child(pp_path, label), entry, &it.sweep);
       }
     }
-    take_problem_steps(c, it, path, spec, problem_steps);
+    sweep_from_problems(c, it, path, spec.problems);
     for (std::size_t p = 0; p < spec.problems.size(); ++p) {
       const std::string& label = spec.problems[p].label;
       const bool own = it.per_problem.count(label) > 0;
@@ -754,43 +864,11 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   }
 
   if (const Json* r = c.find(root, "reference")) {
-    c.expect(*r, "reference", r->is_object(), "a table");
-    c.keys(*r, "reference", {"solution", "integrator", "parameters", "dt", "sample_every", "floor", "lockstep"});
+    std::vector<std::size_t> served;  // the problems without a reference of their own
+    for (std::size_t p = 0; p < spec.problems.size(); ++p)
+      if (!spec.problems[p].reference) served.push_back(p);
+    spec.reference = read_reference(c, *r, "reference", spec, served, instances);
     spec.has_reference = true;
-    FileReference& ref = spec.reference;
-    if (!c.find(*r, "solution") == !c.find(*r, "integrator"))
-      c.fail("reference", "give one of solution = \"exact\" or integrator = NAME");
-    if (const Json* v = c.find(*r, "solution")) {
-      c.choice(*v, "reference.solution", {"exact"});
-      for (std::size_t i = 0; i < instances.size(); ++i)
-        if (!instances[i]->exact_state(0.0))
-          c.fail("reference.solution", fmt::format("problem '{}' ({}) has no exact solution", spec.problems[i].label, spec.problems[i].name),
-                 "integrator = a reference integrator");
-    } else {
-      ref.exact = false;
-      ref.integrator = c.registered((*r)["integrator"], "reference.integrator", names_of(integrator_registry()), "integrator");
-      if (const Json* v = c.find(*r, "parameters"))
-        ref.parameters = c.parameters(*v, "reference.parameters", find_integrator(ref.integrator).parameters());
-      if (const Json* v = c.find(*r, "lockstep")) ref.lockstep = c.boolean(*v, "reference.lockstep");
-    }
-    if (ref.exact && c.find(*r, "lockstep"))
-      c.fail("reference.lockstep", "only a reference integrator steps with the runs", "integrator = NAME with lockstep = true");
-    if (ref.lockstep) {
-      for (const char* key : {"dt", "sample_every"})
-        if (c.find(*r, key)) c.fail(child("reference", key), "a lockstep reference steps with each run, at its steps", "no dt or sample_every with lockstep = true");
-    } else if (!ref.exact) {
-      ref.dt = c.positive(c.require(*r, "reference", "dt"), "reference.dt");
-      for (const auto& p : spec.problems)
-        check_step(c, ref.dt, "reference.dt", spec.t_end_of(p), p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end");
-      if (const Json* v = c.find(*r, "sample_every")) ref.sample_every = c.integer(*v, "reference.sample_every", 1, 1L << 40);
-      check_held_samples(c, ref.dt, ref.sample_every, longest_t_end(spec), "reference.dt", "the reference run", "reference.sample_every");
-    }
-    if (const Json* v = c.find(*r, "floor")) {
-      c.expect(*v, "reference.floor", v->is_number(), "a number");
-      ref.floor = v->get<double>();
-      if (!(ref.floor >= 0.0) || !std::isfinite(ref.floor))
-        c.fail("reference.floor", fmt::format("{} is not a finite number >= 0", ref.floor), "[0, inf)");
-    }
   }
 
   // A study of declared tables may show its runs' own figures alone (outcome, steps, histories).
@@ -830,21 +908,25 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         if (const Json* v = c.find(j, "relative_to"))
           m.scale_over_run = c.choice(*v, child(path, "relative_to"), {"window", "run"}) == "run";
       }
-      if (hausdorff && spec.reference.lockstep)
-        c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",
-               "[reference] solution = \"exact\" or a cached integrator (lockstep = false)");
-      if (!spec.has_reference) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
-                                      "[reference] solution = \"exact\" or integrator = NAME");
+      for (const std::size_t p : on) {
+        const FileReference* ref = spec.reference_of(spec.problems[p]);
+        if (!ref) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
+                         "[reference] solution = \"exact\" or integrator = NAME (or the problem's own reference = { ... })");
+        if (hausdorff && ref->lockstep)
+          c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",
+                 "[reference] solution = \"exact\" or a cached integrator (lockstep = false)");
+      }
       if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2"});
       if (const Json* v = c.find(j, "observable")) m.observable = c.string(*v, child(path, "observable"));
       for (const std::size_t p : on) {
+        const FileReference& ref = *spec.reference_of(spec.problems[p]);
         std::vector<std::string> valid = instances[p]->observable_names();
         valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
         if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
-        if ((spec.reference.exact || spec.reference.lockstep) && !hausdorff) valid.insert(valid.begin(), "u");
+        if ((ref.exact || ref.lockstep) && !hausdorff) valid.insert(valid.begin(), "u");
         if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
           c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'{}", m.observable, spec.problems[p].label,
-                                                        spec.reference.exact ? "" : " recorded by its reference run"),
+                                                        ref.exact ? "" : " recorded by its reference run"),
                  fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
       }
       m.label = hausdorff ? fmt::format("hausdorff {}", m.observable) : fmt::format("err {} {}", m.observable, m.norm);
@@ -879,17 +961,18 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     }
     if (const Json* v = c.find(j, "window")) {
       const std::string at = child(path, "window");
-      c.expect(*v, at, v->is_array() && v->size() == 2 && (*v)[0].is_number() && (*v)[1].is_number(), "an array [t0, t1] of two numbers");
-      m.window_start = (*v)[0].get<double>();
-      m.window_end = (*v)[1].get<double>();
-      if (!(m.window_start >= 0.0 && m.window_start < m.window_end && std::isfinite(m.window_end)))
-        c.fail(at, fmt::format("[{}, {}] is no time window", m.window_start, m.window_end), "0 <= t0 < t1, finite");
-      for (const std::size_t p : on)
-        if (!(m.window_start < spec.t_end_of(spec.problems[p])))
-          c.fail(at, fmt::format("the window starts at {} s, not before the end of problem '{}' ({} s)", m.window_start,
-                                 spec.problems[p].label, spec.t_end_of(spec.problems[p])),
-                 "t0 < t_end, or problems = [...]");
-      m.label += fmt::format(", t in [{:g}, {:g}]", m.window_start, m.window_end);
+      if (v->is_object()) {  // a window per problem, by label
+        c.keys(*v, at, problem_labels);
+        for (const auto& [label, w] : v->items()) {
+          if (!m.applies_to(label)) c.fail(child(at, label), fmt::format("the measure is not measured on problem '{}'", label), "the problems it is measured on");
+          const auto p = static_cast<std::size_t>(std::find(problem_labels.begin(), problem_labels.end(), label) - problem_labels.begin());
+          m.problem_windows[label] = read_window(c, w, child(at, label), spec, {p});
+        }
+        m.label += ", a window per problem";
+      } else {
+        std::tie(m.window_start, m.window_end) = read_window(c, *v, at, spec, on);
+        m.label += fmt::format(", t in [{:g}, {:g}]", m.window_start, m.window_end);
+      }
     }
     if (const Json* v = c.find(j, "label")) m.label = c.string(*v, child(path, "label"));
     for (const auto& q : spec.measures)
@@ -897,7 +980,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     spec.measures.push_back(m);
   }
   spec.ranked = ranked_measure(c, study, spec.measures);
-  spec.figures = read_figures(c, root, spec.measures);
+  spec.figures = read_figures(c, root, spec.measures, spec.declared_figures_only);
   spec.tables = read_tables(c, root, spec);
   if (std::any_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; }))
     for (std::size_t i = 0; i < spec.integrators.size(); ++i) {

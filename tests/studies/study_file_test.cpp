@@ -687,7 +687,11 @@ TEST_CASE("study file: per-problem end times and budgets, stable-step sweeps and
   CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 0.5]")),
              StartsWith("f.toml:11: integrator[0].stable_steps[1]: 0.5 repeats stable_steps[0]; valid: distinct values"));
   CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = 0")),
-             StartsWith("f.toml:4: study.energy_blow_up: 0 is not positive and finite; valid: (0, inf)"));
+             StartsWith("f.toml:4: study.energy_blow_up: 0 is not positive; valid: (0, inf]; inf: no energy blow-up status"));
+  CHECK(nsb::parse_study_text(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = inf"), "f.toml", false).energy_blow_up ==
+        std::numeric_limits<double>::infinity());  // never
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = -inf")),
+             StartsWith("f.toml:4: study.energy_blow_up: -inf is not positive; valid: (0, inf]"));
   CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_penetration = \"1e-3\"")),
              StartsWith("f.toml:4: study.max_penetration: expected a number, got a string"));
   // The bouncing mass has no stiffness: its stable step is no finite step.
@@ -1019,7 +1023,7 @@ log_x = false
 
 }  // namespace
 
-TEST_CASE("study file: a problem's own steps and thresholds, every integrator, run figures and history tables",
+TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, check_every, run figures and history tables",
           "[studies][study_file]") {
   // The driver checks the state every check_every steps: a run that overflows at step 139 is
   // found diverged there, or at the end (150) when checked every 1000 steps.
@@ -1054,20 +1058,18 @@ TEST_CASE("study file: a problem's own steps and thresholds, every integrator, r
   CHECK(history.figures[0].panels == std::vector<std::string>{"problem"});
   CHECK(table(tables, "runs").figures.empty());
 
-  // every = true: the registered integrators in their order, labelled by their names, each on
-  // the problem's own steps unless it gives its own; a full_only problem runs with --full only.
-  const std::string every = quick_study("0.6") + R"(
+  // A problem's own stable_steps serve every integrator without a sweep of its own; a full_only
+  // problem runs with --full only.
+  const std::string every = quick_study("0.6", "integrators = \"all\"\n") + R"(
 [[problem]]
 name = "bouncing-mass"
 label = "own"
 steps = [1e-2]
 [[problem]]
-name = "bouncing-mass"
+name = "signorini-bar"
 label = "long"
-steps = [2e-2]
+stable_steps = [0.5]
 full_only = true
-[[integrator]]
-every = true
 [[table]]
 id = "runs"
 title = "runs"
@@ -1076,18 +1078,18 @@ columns = ["problem", "integrator", "dt"]
   const nsb::StudySpec spec = nsb::parse_study_text(every, "f.toml", false);
   const auto& registry = nsb::integrator_registry();
   REQUIRE(spec.integrators.size() == registry.size());
-  for (std::size_t i = 0; i < registry.size(); ++i) {
-    CHECK(spec.integrators[i].label == registry[i].name);
-    CHECK(spec.integrators[i].sweep_for("own").steps == std::vector<double>{1e-2});
-  }
+  for (std::size_t i = 0; i < registry.size(); ++i)
+    CHECK(spec.integrators[i].sweep_for("long").stable_fractions == std::vector<double>{0.5});
   const nsb::StudyEntry entry = nsb::file_study(spec);
   CHECK(nsb::study_cases(entry, {false}).size() == registry.size());
-  CHECK(nsb::study_cases(entry, {true}).size() == 2 * registry.size());
-  const nsb::StudySpec own = nsb::parse_study_text(replaced(every, "every = true", "name = \"cd-lagrange\"\nsteps = [5e-3]"), "f.toml", false);
-  CHECK(own.integrators[0].sweep_for("own").steps == std::vector<double>{5e-3});
+  const auto full = nsb::study_cases(entry, {true});
+  REQUIRE(full.size() == 2 * registry.size());
+  const double stable = nsb::make_problem("signorini-bar", {})->stable_step();
+  CHECK(full.back()["dt"].get<double>() == 0.5 * stable);
+  CHECK(full.back()["stable_steps"].get<double>() == 0.5);
 }
 
-TEST_CASE("study file: a problem's own steps and thresholds, every integrator and history tables: bad input named",
+TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, check_every and history tables: bad input named",
           "[studies][study_file][bad-input]") {
   using Catch::StartsWith;
   const auto with_problem = [](const std::string& line) { return replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\n" + line); };
@@ -1101,18 +1103,9 @@ TEST_CASE("study file: a problem's own steps and thresholds, every integrator an
              StartsWith("f.toml:5: problem[0]: give one of steps or stable_steps; valid: one sweep per problem"));
   CHECK_THAT(error_of(with_problem("stable_steps = [2000]")),
              StartsWith("f.toml:8: problem[0].stable_steps[0]: 2000 stable steps is no step of a study; valid: (0, 1000]"));
-  // An integrator without a sweep needs the problem's steps.
-  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "")),
-             StartsWith("f.toml:9: integrator[0]: no sweep; valid: steps = [dt, ...]"));
-  const std::string two = replaced(with_problem("steps = [1e-2]"), "[[integrator]]", "[[problem]]\nname = \"spring-chain\"\n\n[[integrator]]");
-  CHECK_THAT(error_of(replaced(two, "steps = [1e-2, 5e-3]", "")),
-             StartsWith("f.toml:13: integrator[0]: no sweep for problem 'spring-chain', which gives no steps of its own"));
-  CHECK_THAT(error_of(replaced(kMinimal, "name = \"cd-lagrange\"", "every = false")),
-             StartsWith("f.toml:10: integrator[0].every: false names no integrator; valid: every = true, or name = an integrator"));
-  CHECK_THAT(error_of(replaced(kMinimal, "name = \"cd-lagrange\"", "every = true\nlabel = \"all\"")),
-             StartsWith("f.toml:11: integrator[0].label: unknown key (nearest valid key: every); valid: every, steps, stable_steps"));
-  CHECK_THAT(error_of(replaced(kMinimal, "[[integrator]]", "[[integrator]]\nevery = true\nsteps = [1e-2]\n[[integrator]]")),
-             StartsWith("f.toml:12: integrator[1].label: label 'cd-lagrange' used twice; valid: distinct labels"));
+  // A problem's stable steps against its end time, with its stable step named.
+  CHECK_THAT(error_of(with_problem("stable_steps = [900]\nt_end = 1e-3")),
+             StartsWith("f.toml:8: problem[0].stable_steps[0]: dt = ") && Catch::Contains("is larger than the t_end of problem"));
   // History tables: their problems and columns; a figure drawn from one names it.
   const std::string history = kMinimal + "[[table]]\nid = \"h\"\ntitle = \"h\"\nrows = \"history\"\ncolumns = [\"t\", \"penetration\"]\n";
   CHECK(nsb::parse_study_text(history, "f.toml", false).tables.at(0).rows == "history");
@@ -1129,4 +1122,188 @@ TEST_CASE("study file: a problem's own steps and thresholds, every integrator an
              StartsWith("f.toml:27: figure[0].y: 'energy deviation' is not a column of table 'h'; valid: t, penetration"));
   CHECK_THAT(error_of(history + replaced(figure, "\"energy deviation\"", "\"err\"") + "\"h\"\n"),
              StartsWith("f.toml:27: figure[0].y: 'err' is not valid (nearest: "));
+}
+
+TEST_CASE("study file: a problem's steps serve integrators without a sweep of their own, full_steps under --full; "
+          "integrators = \"all\" runs every registered one; bad ones named", "[studies][study_file]") {
+  using Catch::StartsWith;
+  const std::string all = R"([study]
+title = "t"
+t_end = 0.6
+integrators = "all"
+
+[[problem]]
+name = "bouncing-mass"
+steps = [1e-2, 5e-3]
+full_steps = [1e-2, 5e-3, 2e-3]
+
+[reference]
+solution = "exact"
+
+[[measure]]
+kind = "error"
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(all, "f.toml", false);
+  const auto& registry = nsb::integrator_registry();
+  REQUIRE(spec.integrators.size() == registry.size());
+  for (std::size_t i = 0; i < registry.size(); ++i) CHECK(spec.integrators[i].name == registry[i].name);
+  const nsb::StudyEntry entry = nsb::file_study(spec);
+  CHECK(nsb::study_cases(entry, {false}).size() == 2 * registry.size());
+  const auto full = nsb::study_cases(entry, {true});
+  REQUIRE(full.size() == 3 * registry.size());
+  CHECK(full[2]["dt"].get<double>() == 2e-3);
+  // An integrator's own sweep wins over the problem's; one without takes the problem's.
+  const std::string listed = replaced(all, "integrators = \"all\"\n", "") +
+                             "\n[[integrator]]\nname = \"cd-lagrange\"\n\n[[integrator]]\nname = \"moreau-jean\"\nsteps = [2e-2]\n";
+  const auto cases = nsb::study_cases(nsb::file_study(nsb::parse_study_text(listed, "f.toml", false)), {false});
+  REQUIRE(cases.size() == 3);
+  CHECK(cases[1]["dt"].get<double>() == 5e-3);
+  CHECK(cases[2]["dt"].get<double>() == 2e-2);
+  CHECK_THAT(error_of(replaced(listed, "steps = [1e-2, 5e-3]\nfull_steps = [1e-2, 5e-3, 2e-3]\n", "")),
+             StartsWith("f.toml:14: integrator[0]: no sweep on problem 'bouncing-mass'; valid: steps = [dt, ...]"));
+  CHECK_THAT(error_of(replaced(all, "steps = [1e-2, 5e-3]\n", "")),
+             StartsWith("f.toml:8: problem[0].full_steps: full_steps without steps; valid: steps = [dt, ...] beside it"));
+  CHECK_THAT(error_of(replaced(all, "steps = [1e-2, 5e-3]", "steps = [1e-2, 0.7]")),
+             StartsWith("f.toml:8: problem[0].steps[1]: dt = 0.7 is larger than study.t_end = 0.6; valid: dt <= t_end"));
+  CHECK_THAT(error_of(replaced(all, "\"all\"", "\"some\"")), StartsWith("f.toml:4: study.integrators: 'some' is not valid (nearest: "));
+  CHECK_THAT(error_of(all + "\n[[integrator]]\nname = \"cd-lagrange\"\n"),
+             StartsWith("f.toml:17: integrator: study.integrators = \"all\" lists the integrators; valid: no [[integrator]] tables"));
+  CHECK_THAT(error_of(replaced(listed, "steps = [2e-2]", "full_steps = [2e-2]")),
+             StartsWith("f.toml:21: integrator[1].full_steps: full_steps without steps; valid: steps = [dt, ...] beside it"));
+}
+
+TEST_CASE("study file: a problem's own reference, its floor and what it is against; a window per problem; bad ones named",
+          "[studies][study_file]") {
+  using Catch::Contains;
+  using Catch::StartsWith;
+  TempCache cache;
+  const std::string text = quick_study("0.3") + R"(
+[[problem]]
+name = "bouncing-mass"
+label = "mass"
+
+[[problem]]
+name = "spring-chain"
+label = "chain"
+parameters = { n = 3, wall = "left" }
+reference = { integrator = "modal-exact", lockstep = true, floor = 1e-13, against = "the chain solved exactly" }
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2, 5e-3]
+
+[[integrator]]
+name = "modal-exact"
+steps = [1e-2]
+
+[reference]
+solution = "exact"
+
+[[measure]]
+kind = "error"
+label = "windowed"
+window = { mass = [0.0, 0.1] }
+
+[[measure]]
+kind = "error"
+label = "mass only"
+window = [0.0, 0.1]
+problems = ["mass"]
+
+[[measure]]
+kind = "error"
+label = "whole"
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "f.toml", false);
+  REQUIRE(spec.problems[1].reference);
+  CHECK(spec.reference_of(spec.problems[0]) == &spec.reference);
+  CHECK(spec.reference_of(spec.problems[1])->lockstep);
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(spec, &results);
+  REQUIRE(results.size() == 6);
+  for (std::size_t k : {0, 1}) {  // the mass: the window's error, as the measure with that window
+    REQUIRE(results[k]["values"][0].is_number());
+    CHECK(results[k]["values"][0] == results[k]["values"][1]);
+    CHECK(results[k]["values"][0].get<double>() < results[k]["values"][2].get<double>());
+  }
+  for (std::size_t k : {3, 4}) {  // the chain: no window of its own, the whole run
+    REQUIRE(results[k]["values"][0].is_number());
+    CHECK(results[k]["values"][0] == results[k]["values"][2]);
+    CHECK(results[k]["values"][1].is_null());
+  }
+  CHECK(results[2]["status"] == "ok");  // modal-exact on the mass, against its exact solution
+  CHECK(results[5]["status"] == "n/a");  // modal-exact on the chain is its reference
+  CHECK(results[5]["message"] == "the reference of this problem");
+  const nsb::Table& rank = table(tables, "_ranking");
+  CHECK_THAT(rank.caption, Contains("mass: against the exact solution; chain: against the chain solved exactly (its own error 1.0e-13)"));
+  CHECK_THAT(table(tables, "_work_precision").caption,
+             Contains("Errors against mass: the exact solution; chain: the chain solved exactly;"));
+  CHECK_THAT(error_of(replaced(text, "reference = { integrator = \"modal-exact\", lockstep = true,", "reference = { solution = \"exact\",")),
+             StartsWith("f.toml:15: problem[1].reference.solution: problem 'chain' (spring-chain) has no exact solution"));
+  CHECK_THAT(error_of(replaced(text, "lockstep = true,", "lockstep = true, dt = 1e-3,")),
+             StartsWith("f.toml:15: problem[1].reference.dt: a lockstep reference steps with each run"));
+  CHECK_THAT(error_of(replaced(text, "against = \"the chain solved exactly\"", "against = 3")),
+             StartsWith("f.toml:15: problem[1].reference.against: expected a string, got an integer"));
+  CHECK_THAT(error_of(replaced(text, "window = { mass = [0.0, 0.1] }", "window = { mas = [0.0, 0.1] }")),
+             StartsWith("f.toml:31: measure[0].window.mas: unknown key (nearest valid key: mass); valid: mass, chain"));
+  CHECK_THAT(error_of(replaced(text, "window = { mass = [0.0, 0.1] }", "window = { mass = [0.0, 0.1] }\nproblems = [\"chain\"]")),
+             StartsWith("f.toml:31: measure[0].window.mass: the measure is not measured on problem 'mass'"));
+  CHECK_THAT(error_of(replaced(text, "window = { mass = [0.0, 0.1] }", "window = { mass = [0.4, 0.5] }")),
+             StartsWith("f.toml:31: measure[0].window.mass: the window starts at 0.4 s, not before the end of problem 'mass' (0.3 s)"));
+}
+
+TEST_CASE("study file: figures = \"declared\" draws the declared figures alone, ids as given; a ranking's error column and "
+          "runs' format; bad ones named", "[studies][study_file]") {
+  using Catch::StartsWith;
+  const std::string text = replaced(kMinimal, "t_end = 0.6\n", "t_end = 0.6\nfigures = \"declared\"\ntargets = [1]\n") + R"(
+[[figure]]
+id = "work_precision"
+title = "Error against CPU"
+x = "CPU"
+y = "err u max"
+
+[[table]]
+id = "runs"
+title = "Runs"
+columns = ["problem", "integrator", "dt", "err u max", "CPU", { of = "status", description = "" }]
+
+[[table]]
+id = "best"
+title = "Cheapest"
+rows = "ranking"
+error = { header = "err", format = "", description = "err u max of runs" }
+runs_format = "{:.1e}"
+)";
+  const auto tables = run_all(nsb::reduced_study(nsb::parse_study_text(text, "min.toml", false), 1.0, 2, 100000));
+  REQUIRE(tables.size() == 2);
+  REQUIRE(tables[0].figures.size() == 1);  // not the engine's work-precision and convergence figures
+  CHECK(tables[0].figures[0].id == "work_precision");
+  CHECK(tables[0].columns.back().description.empty());
+  const nsb::Table& rank = tables[1];
+  CHECK(rank.columns[1].name == "target err");
+  CHECK(rank.columns[1].description == "err u max of runs");
+  const std::string runs = std::get<std::string>(rank.rows[0][4]);
+  CHECK_THAT(runs, StartsWith("dt = 5.0e-03") || StartsWith("dt = 1.0e-02"));
+  CHECK_THAT(error_of(replaced(text, "figures = \"declared\"", "figures = \"mine\"")),
+             StartsWith("f.toml:4: study.figures: 'mine' is not valid (nearest: "));
+  CHECK_THAT(error_of(replaced(text, "runs_format = \"{:.1e}\"", "runs_format = \"{:q}\"")),
+             StartsWith("f.toml:37: table[1].runs_format: '{:q}' is no number format"));
+  CHECK_THAT(error_of(replaced(text, "runs_format = \"{:.1e}\"", "runs_format = \"\"")),
+             StartsWith("f.toml:37: table[1].runs_format: an empty format; valid: a fmt format of one number"));
+  CHECK_THAT(error_of(replaced(text, "header = \"err\"", "heder = \"err\"")),
+             StartsWith("f.toml:36: table[1].error.heder: unknown key (nearest valid key: header)"));
+  CHECK_THAT(error_of(replaced(text, "title = \"Runs\"", "title = \"Runs\"\nruns_format = \"{:.1e}\"")),
+             StartsWith("f.toml:30: table[0].runs_format: only a ranking has runs_format; valid: rows = \"ranking\""));
+  CHECK_THAT(error_of(text + "\n[[table]]\nid = \"again\"\ntitle = \"Again\"\nrows = \"ranking\"\nruns_format = \"{:.2e}\"\n"),
+             StartsWith("f.toml:43: table[2].runs_format: the first ranking table sets the runs' format of every ranking"));
+  // Without figures = "declared", the engine's figure ids stay reserved.
+  CHECK_THAT(error_of(replaced(text, "figures = \"declared\"\n", "")),
+             StartsWith("f.toml:21: figure[0].id: 'work_precision' is the id of a figure the study draws itself"));
+}
+
+TEST_CASE("study file: a run without an error (over budget) is not reached, not 'removed' by a rule", "[studies][study_file]") {
+  const std::string text = replaced(kMinimal, "t_end = 0.6\n", "t_end = 0.6\ncpu_repeats = 0\nmax_force_evaluations = 10\n");
+  const auto tables = run_all(nsb::parse_study_text(text, "f.toml", false));
+  const nsb::Table& rank = table(tables, "_ranking");
+  CHECK(std::get<std::string>(rank.rows[0][2]) == "none");
 }
