@@ -132,8 +132,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const auto& registry = nsb::study_registry();
     nsb::load_plugins(plugins);
+    const auto& registry = nsb::study_registry();  // after the plugins: a study of integrators = "all" runs theirs
     if (names == std::vector<std::string>{"list"}) {
       for (const auto& s : registry) fmt::print("{:<12} {} [{}]\n", s.name, s.description, s.source);
       return 0;

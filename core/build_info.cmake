@@ -22,11 +22,5 @@ const BuildInfo& build_info() {
 }
 }  // namespace nsb
 ")
-if(EXISTS ${OUTPUT})
-  file(READ ${OUTPUT} OLD)
-else()
-  set(OLD "")
-endif()
-if(NOT OLD STREQUAL CONTENT)
-  file(WRITE ${OUTPUT} "${CONTENT}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/../cmake/write_if_changed.cmake)
+write_if_changed(${OUTPUT} "${CONTENT}")

@@ -27,11 +27,5 @@ ${entries}  };
 
 }  // namespace nsb
 ")
-if(EXISTS ${OUTPUT})
-  file(READ ${OUTPUT} old)
-else()
-  set(old "")
-endif()
-if(NOT old STREQUAL content)
-  file(WRITE ${OUTPUT} "${content}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/../cmake/write_if_changed.cmake)
+write_if_changed(${OUTPUT} "${content}")

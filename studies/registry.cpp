@@ -8,7 +8,6 @@
 namespace nsb {
 
 extern const StudyEntry bouncing_study;
-extern const StudyEntry work_precision_study;
 extern const StudyEntry energy_study;
 extern const StudyEntry reference_study;
 extern const StudyEntry bar_study;
@@ -53,7 +52,8 @@ const std::vector<StudyEntry>& study_registry() {
                          "hard cases: Zeno, chattering, 10^4 impacts (--full), resting and grazing contact, steps around the "
                          "CFL limit (bar, block), stiffness ratio 1e6; ok / diverged / energy blow-up / penetration / over budget",
                          "studies/builtin/hard.toml"),
-      builtin_file_study("precision", work_precision_study.description, "studies/builtin/precision.toml"),
+      builtin_file_study("precision", "work-precision and convergence orders (smooth window and with impacts) against exact solutions",
+                         "studies/builtin/precision.toml"),
       cpp_study(energy_study, "studies/energy.cpp"),
       cpp_study(reference_study, "studies/reference.cpp"),
       cpp_study(bar_study, "studies/bar.cpp"),
