@@ -8,7 +8,6 @@
 namespace nsb {
 
 extern const StudyEntry bouncing_study;
-extern const StudyEntry hard_cases_study;
 extern const StudyEntry energy_study;
 extern const StudyEntry reference_study;
 extern const StudyEntry bar_study;
@@ -49,7 +48,10 @@ StudyEntry builtin_file_study(const std::string& name, const std::string& descri
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
       cpp_study(bouncing_study, "studies/bouncing.cpp"),
-      cpp_study(hard_cases_study, "studies/hard_cases.cpp"),
+      builtin_file_study("hard",
+                         "hard cases: Zeno, chattering, 10^4 impacts (--full), resting and grazing contact, steps around the "
+                         "CFL limit (bar, block), stiffness ratio 1e6; ok / diverged / energy blow-up / penetration / over budget",
+                         "studies/builtin/hard.toml"),
       builtin_file_study("precision", "work-precision and convergence orders (smooth window and with impacts) against exact solutions",
                          "studies/builtin/precision.toml"),
       cpp_study(energy_study, "studies/energy.cpp"),

@@ -87,7 +87,7 @@ bool cached(const FileReference* r) { return r && !r->exact && !r->lockstep; }
 std::vector<Json> file_cases(const StudySpec& spec, bool full) {
   std::vector<Json> cases;
   for (std::size_t p = 0; p < spec.problems.size(); ++p)
-    for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
+    for (std::size_t i = 0; i < spec.integrators.size() && (full || !spec.problems[p].full_only); ++i) {
       const FileSweep& s = spec.integrators[i].sweep_for(spec.problems[p].label);
       const bool tol = !s.tolerances.empty();
       for (double x : tol ? s.tolerances : full && !s.full_steps.empty() ? s.full_steps : s.steps)
@@ -96,12 +96,13 @@ std::vector<Json> file_cases(const StudySpec& spec, bool full) {
       if (!s.stable_fractions.empty()) {
         const double stable = make_problem(spec.problems[p].name, spec.problems[p].parameters)->stable_step();
         for (double f : s.stable_fractions)
-          cases.push_back({{"problem", p}, {"integrator", i}, {"dt", f * stable}, {"tol", nullptr}, {"file_hash", spec.hash}});
+          cases.push_back({{"problem", p}, {"integrator", i}, {"dt", f * stable}, {"tol", nullptr}, {"stable_steps", f},
+                           {"file_hash", spec.hash}});
       }
     }
   // A reference integrator runs once per problem, here, before the cases that read it.
   for (const auto& p : spec.problems)
-    if (cached(spec.reference_of(p))) try {
+    if (cached(spec.reference_of(p)) && (full || !p.full_only)) try {
         cached_reference(reference_cache_dir(), reference_request(spec, p));
       } catch (const InputError& e) {
         throw InputError(fmt::format("study {}, reference run on {}: {}", spec.name, p.label, e.what()));
@@ -217,6 +218,58 @@ class EnergyGrowth {
   Vec obstacle_speed_, u_prev_, f_ext_;
 };
 
+// What every run reports besides its measures (the run columns of a declared case table and
+// the rows of a history table): where it stopped, its contact phases and the mode switches a
+// scheme locates inside its steps, its largest energy rise and penetration against the
+// problem's limits; over each of kHistoryIntervals equal intervals of [0, t_end], the largest
+// |E - E0| / E scale and the largest penetration -min g (negative while every gap is open).
+class RunFigures {
+ public:
+  RunFigures(const Problem& problem, const StudySpec& spec, const FileProblem& fp, double e0, double e_scale)
+      : problem_(problem), e0_(e0), e_scale_(e_scale), history_(spec.t_end_of(fp), kHistoryIntervals, 2),
+        keeps_history_(std::any_of(spec.tables.begin(), spec.tables.end(), [&](const FileTable& t) {
+          return t.rows == "history" && t.applies_to(fp.label);
+        })) {}
+  void add(const Integrator& it) {
+    impacts_.add(it.state().t, it.impulses().sum() > 0.0);
+    if (!keeps_history_) return;
+    const double gap = problem_.ncontacts() ? (problem_.gap_offset() + problem_.gap_operator() * it.state().u).minCoeff() : kNaN;
+    history_.add(it.state().t, {std::abs(it.energy().total() - e0_) / e_scale_, -gap});
+  }
+  Json result(const RunResult& r, double energy_growth) {
+    const auto extra = [&](const char* key) {
+      const auto it = r.work.extra.find(key);
+      return it == r.work.extra.end() ? Json(nullptr) : real(it->second);
+    };
+    Json figures = {{"t_reached", r.t_final}, {"impacts", static_cast<long>(impacts_.starts().size())},
+                    {"switches", extra("switches")}, {"missed_switches", extra("missed_switches")},
+                    {"max_penetration", r.max_penetration}, {"energy_growth", real(energy_growth)},
+                    {"final_energy_error", real(std::abs(r.final_energy - r.initial_energy) / e_scale_)},
+                    {"energy_scale", e_scale_}, {"note", r.message}};
+    if (keeps_history_) {
+      history_.finish();
+      figures["intervals"] = {{"t", reals(history_.times())}, {"energy", reals(history_.largest(0))},
+                              {"penetration", reals(history_.largest(1))}};
+    }
+    return {{"run", figures}};
+  }
+
+ private:
+  const Problem& problem_;
+  double e0_, e_scale_;
+  ContactPhases impacts_;
+  IntervalMax history_;
+  bool keeps_history_;
+};
+
+// A run that never started: declined by the scheme (its reason), or the lockstep reference
+// itself; its figures those of the initial state (no step, no energy scale).
+Json not_run(const std::string& why) {
+  return {{"status", "n/a"}, {"message", why}, {"steps", 0}, {"force_evaluations", 0}, {"factorizations", 0}, {"lcp_iterations", 0},
+          {"run", {{"t_reached", 0.0}, {"impacts", 0}, {"switches", nullptr}, {"missed_switches", nullptr}, {"max_penetration", 0.0},
+                   {"energy_growth", 0.0}, {"final_energy_error", 0.0}, {"energy_scale", 0.0}, {"note", why}}}};
+}
+
 // One measure's running figures.
 struct Accumulator {
   double scale = 0.0, largest = 0.0, square = 0.0, last = kNaN, t_prev = 0.0;
@@ -237,15 +290,11 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   options.t_end = t_end;
   options.record_series = false;
   options.max_force_evaluations = spec.budget_of(fp);
+  options.sample_every = spec.check_every;  // the driver checks the state for NaN at its samples
   if (const FileReference* ref = spec.reference_of(fp); ref && ref->lockstep && fi.name == ref->integrator)  // its error is 0 by construction
-    return {{"status", "n/a"}, {"message", "the reference of this problem"}, {"steps", 0}, {"force_evaluations", 0},
-            {"factorizations", 0}, {"lcp_iterations", 0}};
+    return not_run("the reference of this problem");
   auto integrator = make_integrator(fi.name, params);
-  try {
-    integrator->init(*problem, problem->initial_state());
-  } catch (const InputError& e) {  // the scheme declines the problem
-    return {{"status", "n/a"}, {"message", e.what()}, {"steps", 0}, {"force_evaluations", 0}, {"factorizations", 0}, {"lcp_iterations", 0}};
-  }
+  if (const auto declined = init_or_decline(*integrator, *problem)) return not_run(*declined);
   const SpMat M = problem->mass_matrix();
   Reference reference(spec, *problem, M, fp);
   const std::size_t nobs = problem->observable_names().size();
@@ -270,7 +319,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       const State& s = integrator->state();
       acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0, spec.measures[m].observable, obs, &energy));
     }
-  const double e0 = integrator->energy().total(), e_scale = energy_error_scale(*problem, e0);
+  const double e0 = integrator->energy().total();
+  const double e_scale = fp.energy_scale > 0.0 ? fp.energy_scale : energy_error_scale(*problem, e0);
   double t_prev = 0.0;
   EnergyGrowth growth(*problem, integrator->state(), e0);
   std::optional<SlipStop> stop;
@@ -279,6 +329,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const auto history_measure = std::find_if(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) {
     return m.kind == MeasureKind::Energy && m.history;
   });
+  RunFigures figures(*problem, spec, fp, e0, e_scale);
 
   // The measures at a sample: every sample_every steps, and the last step.
   const auto sample = [&](const Integrator& it) {
@@ -330,20 +381,25 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     growth.add(it, info.dt);
     if (stop) stop->add(s);
     if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(it.energy().total() - e0) / e_scale});
+    figures.add(it);
     if (++step % spec.sample_every == 0) sample(it);
     t_prev = s.t;
   });
   Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps},
               {"force_evaluations", r.work.force_evaluations}, {"factorizations", r.work.factorizations},
               {"lcp_iterations", r.work.lcp_iterations}};
-  if (r.status != RunStatus::Ok) return out;
-  if (const double g = growth.largest() / e_scale; g > spec.energy_blow_up) {
+  out.update(figures.result(r, growth.largest() / e_scale));
+  if (spec.cpu_repeats == 0) out["cpu"] = r.step_cpu_seconds;  // the observed run's, whatever its end
+  // A blow-up or penetration seen before the budget ran out is reported as such.
+  if (r.status != RunStatus::Ok && r.status != RunStatus::OverBudget) return out;
+  if (const double g = growth.largest() / e_scale; g > spec.energy_blow_up_of(fp)) {
     out["status"] = "energy blow-up";
-    out["message"] = fmt::format("max (E - E0 - W) / E scale = {:.3g} > {}", g, spec.energy_blow_up);
-  } else if (r.max_penetration > spec.max_penetration) {
+    out["message"] = fmt::format("max (E - E0 - W) / E scale = {:.3g} > {}", g, spec.energy_blow_up_of(fp));
+  } else if (r.max_penetration > spec.max_penetration_of(fp)) {
     out["status"] = "penetration";
-    out["message"] = fmt::format("max penetration {:.3g} > {}", r.max_penetration, spec.max_penetration);
+    out["message"] = fmt::format("max penetration {:.3g} > {}", r.max_penetration, spec.max_penetration_of(fp));
   }
+  if (r.status != RunStatus::Ok) return out;
   if (step % spec.sample_every != 0) sample(*integrator);
   history.finish();
   Json values = Json::array();
@@ -392,13 +448,17 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     values.push_back(real(v));
   }
   out["values"] = values;
-  out["cpu"] = spec.cpu_repeats > 0 ? median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats) : r.step_cpu_seconds;
+  if (spec.cpu_repeats > 0) out["cpu"] = median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats);
   if (history_measure != spec.measures.end())
     out["history"] = {{"t", reals(history.times())}, {"e", reals(history.largest(0))}};
   return out;
 }
 
 }  // namespace
+
+bool FileTable::applies_to(const std::string& problem_label) const {
+  return problems.empty() || std::find(problems.begin(), problems.end(), problem_label) != problems.end();
+}
 
 bool is_event_time(MeasureKind kind) {
   return kind == MeasureKind::ImpactTime || kind == MeasureKind::StopTime || kind == MeasureKind::OnsetTime;
@@ -520,14 +580,86 @@ Table group_table(const FileTable& d, const Table& orders) {
   return out;
 }
 
+// The columns of a run's own figures (RunFigures) and their cells for one run.
+const std::vector<Column>& run_columns() {
+  static const std::vector<Column> columns = {
+      {"problem name", "", "", "the registered problem"},
+      {"stable steps", "", "{}", "dt / the problem's stable step, when the sweep sets it so"},
+      {"t_end", "s", "{}", ""},
+      {"outcome", "", "", "the status alone"},
+      {"t reached", "s", "{:.4g}", ""},
+      {"impacts", "", "", "contact phases started, as seen at the steps"},
+      {"switches", "", "{:.0f}", "contact mode switches located inside the steps"},
+      {"missed switches", "", "{:.0f}", "switches found only at a step's end, not by a root"},
+      {"budget", "", "", "F_int evaluations allowed"},
+      {"max penetration", "m", "{:.2e}", "max over the steps of max(0, -g)"},
+      {"penetration limit", "m", "{:.2g}", "status penetration above it"},
+      {"energy scale", "J", "{:.3g}", "|E0|, or the problem's energy scale when E0 = 0, or the problem's energy_scale"},
+      {"energy growth", "", "{:.2e}", "max (E - E0 - W) / E scale"},
+      {"energy blow-up limit", "", "{:.0e}", "status energy blow-up above it"},
+      {"final energy err", "", "{:.2e}", "|E_end - E0| / E scale"},
+      {"note", "", "", "the run driver's message: why a run diverged, stopped or is n/a"}};
+  return columns;
+}
+
+std::vector<Cell> run_cells(const StudySpec& spec, const Json& c, const Json& r) {
+  const FileProblem& p = spec.problems[c["problem"].get<std::size_t>()];
+  const Json& f = r.contains("run") ? r["run"] : Json::object();
+  const auto value = [&](const char* key) { return f.contains(key) ? number_cell(f[key]) : Cell{}; };
+  return {p.name, c.contains("stable_steps") ? Cell{c["stable_steps"].get<double>()} : Cell{}, spec.t_end_of(p),
+          r["status"].get<std::string>(), value("t_reached"), f.contains("impacts") ? Cell{f["impacts"].get<long>()} : Cell{},
+          value("switches"), value("missed_switches"), spec.budget_of(p), value("max_penetration"), spec.max_penetration_of(p),
+          value("energy_scale"), value("energy_growth"), spec.energy_blow_up_of(p), value("final_energy_error"),
+          f.contains("note") ? Cell{f["note"].get<std::string>()} : Cell{}};
+}
+
+const std::vector<Column>& history_columns() {
+  static const std::vector<Column> columns = {
+      {"problem", "", "", ""}, {"problem name", "", "", "the registered problem"}, {"integrator", "", "", ""}, {"run", "", "", ""},
+      {"t", "s", "", "end of the interval"},
+      {"energy deviation", "", "", "largest |E - E0| / E scale over the interval"},
+      {"penetration", "m", "", "largest -min g over the interval (negative: every gap open)"}};
+  return columns;
+}
+
+// A declared figure's id: <name>_<id>, or <id> with study.figures = "declared".
+std::string figure_id(const StudySpec& spec, const FileFigure& f) { return spec.declared_figures_only ? f.id : spec.name + "_" + f.id; }
+
+// rows = "history": a row per interval of each run on the table's problems, the columns picked;
+// its figures, the [[figure]]s that name it, under its headers.
+Table history_table(const StudySpec& spec, const FileTable& d, const std::vector<Json>& cases, const std::vector<Json>& results) {
+  Table all;
+  all.columns = history_columns();
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Json& r = results[k];
+    if (!r.contains("run") || !r["run"].contains("intervals")) continue;
+    const FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+    if (!d.applies_to(p.label)) continue;
+    const std::string integrator = shown_label(spec.integrators[cases[k]["integrator"].get<std::size_t>()], p.label);
+    const Json& h = r["run"]["intervals"];
+    for (std::size_t i = 0; i < h["t"].size(); ++i)
+      all.add_row({p.label, p.name, integrator, run_label(cases[k]), number_cell(h["t"][i]), number_cell(h["energy"][i]),
+                   number_cell(h["penetration"][i])});
+  }
+  for (const FileFigure& f : spec.figures)
+    if (f.table == d.id)
+      all.figures.push_back({figure_id(spec, f), f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
+  Table t = case_table(d, all, true);
+  t.csv_only = true;
+  return t;
+}
+
 // The tables the file declares, built from the engine's work-precision (`runs`), orders and
 // ranking tables.
-std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, const Table& orders, const std::optional<Table>& rank) {
+std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, const Table& orders, const std::optional<Table>& rank,
+                                   const std::function<Table(const FileTable&)>& history) {
   std::vector<Table> out;
   bool figures_placed = false;
   for (const FileTable& d : spec.tables) {
     Table t;
-    if (d.rows == "ranking") {
+    if (d.rows == "history") {
+      t = history(d);
+    } else if (d.rows == "ranking") {
       t = *rank;  // the reader refuses a ranking without a ranked measure
     } else if (d.rows == "case") {
       t = case_table(d, runs, !figures_placed);
@@ -622,7 +754,8 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                            "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
 
   for (const FileFigure& f : spec.figures)
-    t.figures.push_back({spec.declared_figures_only ? f.id : spec.name + "_" + f.id, f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
+    if (f.table.empty())  // else drawn from its history table
+      t.figures.push_back({figure_id(spec, f), f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
 
   // Event times are against the problem's exact solution whatever the reference.
   const bool exact_times = primary != spec.measures.end() && is_event_time(primary->kind);
@@ -640,6 +773,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   std::vector<Column> counters = {{"factorizations", "", "", ""}, {"LCP its", "", "", "LCP iterations"}};
   for (const auto& m : spec.measures)
     if (measure_converges(m.kind)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
+  counters.insert(counters.end(), run_columns().begin(), run_columns().end());
   std::vector<std::vector<Cell>> counter_rows;
   std::size_t k = 0;
   while (k < cases.size()) {
@@ -674,6 +808,8 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
         const auto e = [&](std::size_t j) { return is_event_time(spec.measures[m].kind) ? ys[m][j] : above_round_off(ys[m][j]); };
         more.push_back(i ? number_cell(observed_order(xs[i - 1], e(i - 1), xs[i], e(i))) : Cell{});
       }
+      const std::vector<Cell> run = run_cells(spec, cases[k], r);
+      more.insert(more.end(), run.begin(), run.end());
       counter_rows.push_back(std::move(more));
       // A declined run is no point; a run an outcome threshold removed (its values kept: energy
       // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
@@ -712,7 +848,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     runs_all.columns.insert(runs_all.columns.end(), counters.begin(), counters.end());
     for (std::size_t r = 0; r < runs_all.rows.size(); ++r)
       runs_all.rows[r].insert(runs_all.rows[r].end(), counter_rows[r].begin(), counter_rows[r].end());
-    tables = declared_tables(spec, runs_all, orders, rank);
+    tables = declared_tables(spec, runs_all, orders, rank, [&](const FileTable& d) { return history_table(spec, d, cases, results); });
   } else {
     tables.push_back(t);
     if (!orders.rows.empty()) tables.push_back(orders);
@@ -723,6 +859,26 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
 }
 
 }  // namespace
+
+namespace {
+
+std::vector<std::string> column_names(const std::vector<Column>& columns) {
+  std::vector<std::string> names;
+  for (const auto& c : columns) names.push_back(c.name);
+  return names;
+}
+
+}  // namespace
+
+const std::vector<std::string>& run_column_names() {
+  static const std::vector<std::string> names = column_names(run_columns());
+  return names;
+}
+
+const std::vector<std::string>& history_column_names() {
+  static const std::vector<std::string> names = column_names(history_columns());
+  return names;
+}
 
 StudyEntry file_study(const StudySpec& spec) {
   StudyEntry e;

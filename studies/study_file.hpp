@@ -40,9 +40,14 @@ struct FileProblem {
   Overrides parameters;
   double t_end = 0.0;              // its own end time (0: study.t_end)
   long max_force_evaluations = 0;  // its own F_int budget per run (0: study.max_force_evaluations)
+  // Its own outcome thresholds and energy scale (0: the study's; energy_scale 0: |E0|, or the
+  // problem's energy_scale() when E0 = 0), and whether only `--full` runs it.
+  double energy_blow_up = 0.0, max_penetration = 0.0, energy_scale = 0.0;
+  bool full_only = false;
   std::optional<FileReference> reference;  // its own reference (none: the study's [reference])
   // The sweep of every integrator that gives none of its own on this problem (and under --full).
   std::vector<double> steps, full_steps;
+  std::vector<double> stable_fractions;  // or its own stable_steps (dt = fraction x its stable step)
 };
 
 // What an integrator runs on one problem: its parameters and either a list of steps, a list
@@ -102,6 +107,7 @@ struct FileFigure {
   std::vector<std::string> panels{"problem"};
   bool log_x = true, log_y = true;
   std::vector<double> slopes;  // reference slopes drawn as triangles (log-log)
+  std::string table;           // a declared history table to draw it from (empty: the runs)
 };
 
 // A column of a declared table: the source column `of` (a work-precision column for rows =
@@ -115,13 +121,17 @@ struct FileColumn {
 
 // A table the file declares ([[table]]): its id (the file stem, exactly), title, caption and
 // rows: "case" (one per run, the work-precision rows), "group" (one per problem and integrator,
-// the fitted orders side by side) or "ranking" (the headline ranking, its columns fixed).
+// the fitted orders side by side), "ranking" (the headline ranking, its columns fixed) or
+// "history" (one per interval of each run on the `problems` it names, all by default: the
+// largest energy deviation and penetration over each of 200 equal intervals of [0, t_end]).
 // Declared tables replace the engine's work-precision, orders and ranking tables.
 struct FileTable {
   std::string id, title;
   std::optional<std::string> caption;
   std::string rows = "case";
   std::vector<FileColumn> columns;
+  std::vector<std::string> problems;  // history: the labels of the problems whose runs it shows
+  bool applies_to(const std::string& problem_label) const;
   // rows = "ranking" (the first such table): its error column's header, unit, format and
   // description (`of` unused), and the number format of dt or tol in its runs cells.
   std::optional<FileColumn> error;
@@ -136,6 +146,7 @@ struct StudySpec {
   std::string hash;   // FNV-1a 64 of text, hex
   double t_end = 0.0;
   long sample_every = 1;
+  long check_every = 1;  // the run driver checks the state for a non-finite value every k steps
   int cpu_repeats = 3;
   long max_force_evaluations = 10'000'000;
   // Outcome thresholds: "energy blow-up" past energy_blow_up E scale (study_file.cpp),
@@ -155,6 +166,8 @@ struct StudySpec {
   // label; default: the first error measure); measures.size(): none.
   std::size_t ranked = 0;
   double t_end_of(const FileProblem& p) const { return p.t_end > 0.0 ? p.t_end : t_end; }
+  double energy_blow_up_of(const FileProblem& p) const { return p.energy_blow_up > 0.0 ? p.energy_blow_up : energy_blow_up; }
+  double max_penetration_of(const FileProblem& p) const { return p.max_penetration > 0.0 ? p.max_penetration : max_penetration; }
   long budget_of(const FileProblem& p) const { return p.max_force_evaluations > 0 ? p.max_force_evaluations : max_force_evaluations; }
   // The problem's own reference, else the study's; nullptr: none.
   const FileReference* reference_of(const FileProblem& p) const {
@@ -166,6 +179,11 @@ struct StudySpec {
 bool is_event_time(MeasureKind kind);
 // An error that converges with dt: a convergence figure and fitted orders.
 bool measure_converges(MeasureKind kind);
+
+// The columns of a run's own figures a declared case table may show (besides the
+// work-precision ones), and the columns of a history table.
+const std::vector<std::string>& run_column_names();
+const std::vector<std::string>& history_column_names();
 
 // Reads and checks a study file (.json: JSON, anything else: TOML).
 StudySpec read_study_file(const std::filesystem::path& path);

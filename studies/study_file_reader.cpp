@@ -257,6 +257,20 @@ void check_steps(const Checker& c, const FileSweep& s, const std::string& path, 
   if (!s.tolerances.empty()) check_step(c, s.dt, child(path, "dt"), t_end, whose);
 }
 
+// A stiff part's stable step can be far below the step an implicit scheme takes (the hard
+// study's 900 x CFL): a multiple up to 1000.
+constexpr double kMaxStableFraction = 1000.0;
+
+// stable_steps: dt as a multiple of the problem's stable step, (0, 1000].
+std::vector<double> stable_fractions(const Checker& c, const Json& j, const std::string& path) {
+  std::vector<double> v = c.distinct_list(j, path);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (v[i] > kMaxStableFraction)
+      c.fail(element(path, i), fmt::format("{} stable steps is no step of a study", v[i]),
+             fmt::format("(0, {:g}]: dt as a multiple of the problem's stable step 2 / omega_max", kMaxStableFraction));
+  return v;
+}
+
 // An integrator's sweep (`base`: its own, under a per_problem table). Empty: the problems' steps
 // serve it (sweep_from_problems).
 FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, const IntegratorEntry& entry,
@@ -277,13 +291,7 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
     if (!given("steps")) c.fail(child(path, "full_steps"), "full_steps without steps", "steps = [dt, ...] beside it (full_steps: the sweep under --full)");
     s.full_steps = c.distinct_list(*v, child(path, "full_steps"));
   }
-  if (const Json* v = c.find(j, "stable_steps")) {
-    s.stable_fractions = c.distinct_list(*v, child(path, "stable_steps"));
-    for (std::size_t i = 0; i < s.stable_fractions.size(); ++i)
-      if (s.stable_fractions[i] > 100.0)
-        c.fail(element(child(path, "stable_steps"), i), fmt::format("{} stable steps is no step of a study", s.stable_fractions[i]),
-               "(0, 100]: dt as a multiple of the problem's stable step 2 / omega_max");
-  }
+  if (const Json* v = c.find(j, "stable_steps")) s.stable_fractions = stable_fractions(c, *v, child(path, "stable_steps"));
   if (const Json* v = c.find(j, "tolerances")) s.tolerances = c.distinct_list(*v, child(path, "tolerances"));
   if (const Json* v = c.find(j, "tolerance_parameter")) {
     std::vector<std::string> reals;
@@ -317,17 +325,19 @@ bool no_sweep(const FileSweep& s) { return s.steps.empty() && s.stable_fractions
 void sweep_from_problems(const Checker& c, FileIntegrator& it, const std::string& path, const std::vector<FileProblem>& problems) {
   for (const FileProblem& p : problems) {
     if (!no_sweep(it.sweep_for(p.label))) continue;
-    if (p.steps.empty())
+    if (p.steps.empty() && p.stable_fractions.empty())
       c.fail(path, fmt::format("no sweep on problem '{}'", p.label),
              "steps = [dt, ...], stable_steps = [fraction, ...] or tolerances = [tol, ...] with dt, here or as the problem's steps");
     FileSweep s = it.sweep_for(p.label);
     s.steps = p.steps;
     s.full_steps = p.full_steps;
+    s.stable_fractions = p.stable_fractions;
     it.per_problem[p.label] = s;
   }
 }
 
-// A problem's steps and full_steps: the sweep of every integrator that gives none of its own.
+// A problem's steps and full_steps, or stable_steps (checked against its stable step once it
+// exists): the sweep of every integrator that gives none of its own.
 void read_problem_steps(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileProblem& p) {
   const std::string whose = p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end";
   for (const char* key : {"steps", "full_steps"}) {
@@ -339,6 +349,10 @@ void read_problem_steps(const Checker& c, const Json& j, const std::string& path
   }
   if (!p.full_steps.empty() && p.steps.empty())
     c.fail(child(path, "full_steps"), "full_steps without steps", "steps = [dt, ...] beside it (full_steps: the sweep under --full)");
+  if (const Json* v = c.find(j, "stable_steps")) {
+    if (!p.steps.empty()) c.fail(path, "give one of steps or stable_steps", "one sweep per problem");
+    p.stable_fractions = stable_fractions(c, *v, child(path, "stable_steps"));
+  }
 }
 
 // A reference: the study's [reference] or a problem's own (`path`), checked against the problems
@@ -468,15 +482,17 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const s
   const Json* list = c.find(root, "figure");
   if (!list) return figures;
   c.expect(*list, "figure", list->is_array(), "one or more [[figure]] tables");
-  std::vector<std::string> columns{"problem", "integrator", "dt", "tol"};
-  for (const auto& m : measures) columns.push_back(m.label);
-  columns.insert(columns.end(), {"CPU", "steps", "F_int evals"});
+  std::vector<std::string> run_columns{"problem", "integrator", "dt", "tol"};
+  for (const auto& m : measures) run_columns.push_back(m.label);
+  run_columns.insert(run_columns.end(), {"CPU", "steps", "F_int evals"});
   for (std::size_t i = 0; i < list->size(); ++i) {
     const Json& j = (*list)[i];
     const std::string path = element("figure", i);
     c.expect(j, path, j.is_object(), "a table");
-    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes"});
+    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes", "table"});
     FileFigure f;
+    if (const Json* v = c.find(j, "table")) f.table = c.string(*v, child(path, "table"));
+    const std::vector<std::string>& columns = f.table.empty() ? run_columns : history_column_names();
     f.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(f.id))
       c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", f.id), "[a-z0-9_]+");
@@ -523,10 +539,14 @@ std::vector<std::string> table_sources(const std::string& rows, const std::vecto
     sources.insert(sources.end(), {"CPU", "steps", "F_int evals", "status", "factorizations", "LCP its"});
     for (const auto& m : measures)
       if (measure_converges(m.kind)) sources.push_back("pairwise order of " + m.label);
+    const auto& run = run_column_names();
+    sources.insert(sources.end(), run.begin(), run.end());
   } else if (rows == "group") {
     for (const auto& m : measures)
       if (measure_converges(m.kind))
         for (const char* what : {"order", "CI low", "CI high", "points"}) sources.push_back(fmt::format("{} of {}", what, m.label));
+  } else if (rows == "history") {
+    sources = history_column_names();
   }
   return sources;
 }
@@ -573,7 +593,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     const Json& j = (*list)[i];
     const std::string path = element("table", i);
     c.expect(j, path, j.is_object(), "a table");
-    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format"});
+    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
@@ -581,7 +601,15 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       if (u.id == t.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", t.id), "distinct ids");
     t.title = c.string(c.require(j, path, "title"), child(path, "title"));
     t.caption = optional_string(c, j, path, "caption");
-    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking"});
+    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history"});
+    if (const Json* v = c.find(j, "problems")) {
+      const std::string at = child(path, "problems");
+      if (t.rows != "history") c.fail(at, "only a history table picks its problems", "rows = \"history\"");
+      c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more problem labels");
+      std::vector<std::string> labels;
+      for (const auto& p : spec.problems) labels.push_back(p.label);
+      for (std::size_t k = 0; k < v->size(); ++k) t.problems.push_back(c.choice((*v)[k], element(at, k), labels));
+    }
     if (t.rows == "ranking") {
       if (c.find(j, "columns")) c.fail(child(path, "columns"), "a ranking's columns are fixed", "no columns key with rows = \"ranking\"");
       if (spec.ranked >= spec.measures.size()) c.fail(child(path, "rows"), "the study has no measure to rank by", "case, group");
@@ -617,10 +645,22 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     }
     tables.push_back(t);
   }
-  // The figures are drawn from the first table of one row per run: it shows their columns.
-  const auto runs = std::find_if(tables.begin(), tables.end(), [](const FileTable& t) { return t.rows == "case"; });
+  // The figures are drawn from the first table of one row per run (or the history table they
+  // name): it shows their columns.
+  const auto first_runs = std::find_if(tables.begin(), tables.end(), [](const FileTable& t) { return t.rows == "case"; });
   for (std::size_t i = 0; i < spec.figures.size(); ++i) {
     const std::string path = element("figure", i);
+    auto runs = first_runs;
+    if (!spec.figures[i].table.empty()) {
+      runs = std::find_if(tables.begin(), tables.end(), [&](const FileTable& t) { return t.id == spec.figures[i].table; });
+      if (runs == tables.end() || runs->rows != "history") {
+        std::vector<std::string> histories;
+        for (const auto& t : tables)
+          if (t.rows == "history") histories.push_back(t.id);
+        c.fail(child(path, "table"), fmt::format("'{}' is no declared history table", spec.figures[i].table),
+               histories.empty() ? "a [[table]] with rows = \"history\"" : fmt::format("{}", fmt::join(histories, ", ")));
+      }
+    }
     if (runs == tables.end()) c.fail(path, "declared tables hold no table of one row per run to draw it from", "a [[table]] with rows = \"case\"");
     std::vector<std::string> shown;
     for (const auto& col : runs->columns) shown.push_back(col.of);
@@ -633,6 +673,22 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
         c.fail(child(path, key), fmt::format("'{}' is not a column of table '{}'", name, runs->id), fmt::format("{}", fmt::join(shown, ", ")));
   }
   return tables;
+}
+
+// A problem's own outcome thresholds and energy scale (energy_blow_up, max_penetration,
+// energy_scale) and whether only --full runs it (full_only).
+void read_problem_outcome(const Checker& c, const Json& j, const std::string& path, FileProblem& p) {
+  if (const Json* v = c.find(j, "energy_blow_up")) p.energy_blow_up = c.positive(*v, child(path, "energy_blow_up"));
+  if (const Json* v = c.find(j, "max_penetration")) p.max_penetration = c.positive(*v, child(path, "max_penetration"));
+  if (const Json* v = c.find(j, "energy_scale")) p.energy_scale = c.positive(*v, child(path, "energy_scale"));
+  if (const Json* v = c.find(j, "full_only")) p.full_only = c.boolean(*v, child(path, "full_only"));
+}
+
+// An integrator joins the study under a label no other has.
+void add_integrator(const Checker& c, StudySpec& spec, FileIntegrator it, const std::string& path) {
+  for (const auto& q : spec.integrators)
+    if (q.label == it.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", it.label), "distinct labels");
+  spec.integrators.push_back(std::move(it));
 }
 
 // The end time of the longest run: the bound of the series held in memory.
@@ -698,11 +754,12 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 
   const Json& study = c.require(root, "", "study");
   c.expect(study, "study", study.is_object(), "a table");
-  c.keys(study, "study", {"title", "t_end", "sample_every", "cpu_repeats", "max_force_evaluations", "targets", "rank_by",
-                          "energy_blow_up", "max_penetration", "integrators", "figures"});
+  c.keys(study, "study", {"title", "t_end", "sample_every", "check_every", "cpu_repeats", "max_force_evaluations", "targets",
+                          "rank_by", "energy_blow_up", "max_penetration", "integrators", "figures"});
   spec.title = c.string(c.require(study, "study", "title"), "study.title");
   spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
   if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
+  if (const Json* v = c.find(study, "check_every")) spec.check_every = c.integer(*v, "study.check_every", 1, 1L << 40);
   if (const Json* v = c.find(study, "cpu_repeats")) spec.cpu_repeats = static_cast<int>(c.integer(*v, "study.cpu_repeats", 0, 100));
   if (const Json* v = c.find(study, "max_force_evaluations"))  // >= 1: no budget (0) would let a case run 2e8 steps
     spec.max_force_evaluations = c.integer(*v, "study.max_force_evaluations", 1, 1L << 50);
@@ -728,7 +785,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   for (std::size_t i = 0; i < problems.size(); ++i) {
     const Json& j = problems[i];
     const std::string path = element("problem", i);
-    c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations", "steps", "full_steps", "reference"});
+    c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations", "steps", "full_steps", "stable_steps",
+                     "reference", "energy_blow_up", "max_penetration", "energy_scale", "full_only"});
     FileProblem p;
     p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
     p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
@@ -737,6 +795,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     if (const Json* v = c.find(j, "t_end")) p.t_end = c.positive(*v, child(path, "t_end"));
     if (const Json* v = c.find(j, "max_force_evaluations"))
       p.max_force_evaluations = c.integer(*v, child(path, "max_force_evaluations"), 1, 1L << 50);
+    read_problem_outcome(c, j, path, p);
     read_problem_steps(c, j, path, spec, p);
     const std::size_t first = spec.problems.size();
     for (const FileProblem& q : grid_points(c, j, path, p, entry.parameters())) {
@@ -747,6 +806,9 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       } catch (const InputError& e) {
         c.fail(child(path, c.find(j, "grid") ? "grid" : "parameters"), e.what());
       }
+      FileSweep own_steps;  // its stable steps against its end time
+      own_steps.stable_fractions = q.stable_fractions;
+      check_steps(c, own_steps, path, spec, q, instances.back()->stable_step());
       spec.problems.push_back(q);
     }
     if (const Json* r = c.find(j, "reference")) {
@@ -777,8 +839,6 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     FileIntegrator it;
     it.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(integrator_registry()), "integrator");
     it.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : it.name;
-    for (const auto& q : spec.integrators)
-      if (q.label == it.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", it.label), "distinct labels");
     const auto& entry = find_integrator(it.name);
     it.sweep = read_sweep(c, j, path, entry, nullptr);
     if (const Json* pp = c.find(j, "per_problem")) {
@@ -800,7 +860,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       check_steps(c, it.sweep_for(label), own ? child(child(path, "per_problem"), label) : path, spec, spec.problems[p],
                   instances[p]->stable_step());
     }
-    spec.integrators.push_back(it);
+    add_integrator(c, spec, std::move(it), path);
   }
 
   if (const Json* r = c.find(root, "reference")) {
@@ -811,7 +871,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     spec.has_reference = true;
   }
 
-  const Json& measures = list("measure");
+  // A study of declared tables may show its runs' own figures alone (outcome, steps, histories).
+  const Json& measures = c.find(root, "measure") || !c.find(root, "table") ? list("measure") : Json::array();
   const std::vector<std::string> kinds{"error", "impact-time", "energy", "momentum", "penetration", "hausdorff", "stop-time", "onset-time"};
   std::vector<std::string> problem_labels;
   for (const auto& p : spec.problems) problem_labels.push_back(p.label);

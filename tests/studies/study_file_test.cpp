@@ -682,8 +682,8 @@ TEST_CASE("study file: per-problem end times and budgets, stable-step sweeps and
              StartsWith("f.toml:8: problem[0].max_force_evaluations: 0 is out of range; valid: [1, "));
   CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2]\nstable_steps = [0.5]")),
              StartsWith("f.toml:9: integrator[0]: give one of steps, stable_steps or tolerances; valid: one sweep per integrator"));
-  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 200]")),
-             StartsWith("f.toml:11: integrator[0].stable_steps[1]: 200 stable steps is no step of a study; valid: (0, 100]"));
+  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 2000]")),
+             StartsWith("f.toml:11: integrator[0].stable_steps[1]: 2000 stable steps is no step of a study; valid: (0, 1000]"));
   CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 0.5]")),
              StartsWith("f.toml:11: integrator[0].stable_steps[1]: 0.5 repeats stable_steps[0]; valid: distinct values"));
   CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = 0")),
@@ -981,6 +981,147 @@ TEST_CASE("study file: the ranking marks another code's integrator as a peer", "
     for (const auto& cell : row)
       if (const auto* s = std::get_if<std::string>(&cell)) marked = marked || s->find(peer->name + " (peer)") != std::string::npos;
   CHECK(marked);
+}
+
+namespace {
+
+// The signorini bar (N = 100, lumped) at twice its stable step: cd-lagrange's energy grows by
+// 1e220 within 100 steps and its state overflows at step 139.
+std::string unstable_bar(const std::string& check_every, const std::string& budget) {
+  return quick_study("3.0", "check_every = " + check_every + "\n") + R"(
+[[problem]]
+name = "signorini-bar"
+label = "bar"
+parameters = { N = 100, mass = "lumped" }
+stable_steps = [2.0]
+energy_blow_up = 0.1
+max_force_evaluations = )" + budget + R"(
+
+[[integrator]]
+name = "cd-lagrange"
+
+[[table]]
+id = "runs"
+title = "runs"
+columns = ["problem name", "stable steps", "outcome", "steps", "t reached", "energy growth", "energy blow-up limit", "budget", "note"]
+
+[[table]]
+id = "history"
+title = "history"
+rows = "history"
+columns = ["problem", "integrator", "t", "energy deviation", "penetration"]
+
+[[figure]]
+id = "deviation"
+title = "deviation"
+table = "history"
+x = "t"
+y = "energy deviation"
+log_x = false
+)";
+}
+
+}  // namespace
+
+TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, check_every, run figures and history tables",
+          "[studies][study_file]") {
+  // The driver checks the state every check_every steps: a run that overflows at step 139 is
+  // found diverged there, or at the end (150) when checked every 1000 steps.
+  for (const auto& [every, steps] : {std::pair{"1", 139L}, {"1000", 150L}}) {
+    const auto tables = run_all(nsb::parse_study_text(unstable_bar(every, "1000000"), "f.toml", false));
+    const nsb::Table& runs = table(tables, "runs");
+    REQUIRE(runs.rows.size() == 1);
+    const auto& row = runs.rows[0];
+    CHECK(std::get<std::string>(row[0]) == "signorini-bar");
+    CHECK(std::get<double>(row[1]) == 2.0);
+    CHECK(std::get<std::string>(row[2]) == "diverged");
+    CHECK(std::get<long>(row[3]) == steps);
+    CHECK(std::get<double>(row[6]) == 0.1);
+    CHECK(std::get<long>(row[7]) == 1000000);
+    CHECK_THAT(std::get<std::string>(row[8]), Catch::StartsWith("non-finite state"));
+  }
+  // A blow-up seen before the budget ran out is the outcome, the driver's message the note.
+  const auto tables = run_all(nsb::parse_study_text(unstable_bar("1", "100"), "f.toml", false));
+  const auto& row = table(tables, "runs").rows.at(0);
+  CHECK(std::get<std::string>(row[2]) == "energy blow-up");
+  CHECK(std::get<double>(row[5]) > 1e200);
+  CHECK_THAT(std::get<std::string>(row[8]), Catch::StartsWith("budget of 100 F_int evaluations exceeded"));
+  // The history: the largest deviation of each of 200 intervals of [0, 3] up to the stop at
+  // t = 2 (step 100), growing; its figure by the history table's columns.
+  const nsb::Table& history = table(tables, "history");
+  CHECK(history.csv_only);
+  REQUIRE(history.rows.size() == 100);  // a step (0.02 s) is longer than an interval (0.015 s): one row each
+  CHECK(std::get<double>(history.rows.back()[2]) == Approx(2.0));
+  CHECK(std::get<double>(history.rows.back()[3]) > std::get<double>(history.rows.front()[3]));
+  REQUIRE(history.figures.size() == 1);
+  CHECK(history.figures[0].id == "f_deviation");
+  CHECK(history.figures[0].panels == std::vector<std::string>{"problem"});
+  CHECK(table(tables, "runs").figures.empty());
+
+  // A problem's own stable_steps serve every integrator without a sweep of its own; a full_only
+  // problem runs with --full only.
+  const std::string every = quick_study("0.6", "integrators = \"all\"\n") + R"(
+[[problem]]
+name = "bouncing-mass"
+label = "own"
+steps = [1e-2]
+[[problem]]
+name = "signorini-bar"
+label = "long"
+stable_steps = [0.5]
+full_only = true
+[[table]]
+id = "runs"
+title = "runs"
+columns = ["problem", "integrator", "dt"]
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(every, "f.toml", false);
+  const auto& registry = nsb::integrator_registry();
+  REQUIRE(spec.integrators.size() == registry.size());
+  for (std::size_t i = 0; i < registry.size(); ++i)
+    CHECK(spec.integrators[i].sweep_for("long").stable_fractions == std::vector<double>{0.5});
+  const nsb::StudyEntry entry = nsb::file_study(spec);
+  CHECK(nsb::study_cases(entry, {false}).size() == registry.size());
+  const auto full = nsb::study_cases(entry, {true});
+  REQUIRE(full.size() == 2 * registry.size());
+  const double stable = nsb::make_problem("signorini-bar", {})->stable_step();
+  CHECK(full.back()["dt"].get<double>() == 0.5 * stable);
+  CHECK(full.back()["stable_steps"].get<double>() == 0.5);
+}
+
+TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, check_every and history tables: bad input named",
+          "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  const auto with_problem = [](const std::string& line) { return replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\n" + line); };
+  for (const char* key : {"energy_blow_up", "max_penetration", "energy_scale"})
+    CHECK_THAT(error_of(with_problem(std::string(key) + " = 0")),
+               StartsWith(fmt::format("f.toml:8: problem[0].{}: 0 is not positive and finite; valid: (0, inf)", key)));
+  CHECK_THAT(error_of(with_problem("full_only = 1")), StartsWith("f.toml:8: problem[0].full_only: expected a boolean, got an integer"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\ncheck_every = 0")),
+             StartsWith("f.toml:4: study.check_every: 0 is out of range; valid: [1, "));
+  CHECK_THAT(error_of(with_problem("steps = [1e-2]\nstable_steps = [0.5]")),
+             StartsWith("f.toml:5: problem[0]: give one of steps or stable_steps; valid: one sweep per problem"));
+  CHECK_THAT(error_of(with_problem("stable_steps = [2000]")),
+             StartsWith("f.toml:8: problem[0].stable_steps[0]: 2000 stable steps is no step of a study; valid: (0, 1000]"));
+  // A problem's stable steps against its end time, with its stable step named.
+  CHECK_THAT(error_of(with_problem("stable_steps = [900]\nt_end = 1e-3")),
+             StartsWith("f.toml:8: problem[0].stable_steps[0]: dt = ") && Catch::Contains("is larger than the t_end of problem"));
+  // History tables: their problems and columns; a figure drawn from one names it.
+  const std::string history = kMinimal + "[[table]]\nid = \"h\"\ntitle = \"h\"\nrows = \"history\"\ncolumns = [\"t\", \"penetration\"]\n";
+  CHECK(nsb::parse_study_text(history, "f.toml", false).tables.at(0).rows == "history");
+  CHECK_THAT(error_of(history + "problems = [\"nope\"]\n"),
+             StartsWith("f.toml:23: table[0].problems[0]: 'nope' is not valid (nearest: bouncing-mass); valid: bouncing-mass"));
+  CHECK_THAT(error_of(replaced(history, "rows = \"history\"", "rows = \"case\"\nproblems = [\"bouncing-mass\"]")),
+             StartsWith("f.toml:22: table[0].problems: only a history table picks its problems; valid: rows = \"history\""));
+  CHECK_THAT(error_of(replaced(history, "\"penetration\"]", "\"steps\"]")),
+             StartsWith("f.toml:22: table[0].columns[1]: 'steps' is not valid (nearest: "));
+  const std::string figure = "[[figure]]\nid = \"d\"\ntitle = \"d\"\nx = \"t\"\ny = \"energy deviation\"\ntable = ";
+  CHECK_THAT(error_of(history + figure + "\"runs\"\n"),
+             StartsWith("f.toml:28: figure[0].table: 'runs' is no declared history table; valid: h"));
+  CHECK_THAT(error_of(history + figure + "\"h\"\n"),
+             StartsWith("f.toml:27: figure[0].y: 'energy deviation' is not a column of table 'h'; valid: t, penetration"));
+  CHECK_THAT(error_of(history + replaced(figure, "\"energy deviation\"", "\"err\"") + "\"h\"\n"),
+             StartsWith("f.toml:27: figure[0].y: 'err' is not valid (nearest: "));
 }
 
 TEST_CASE("study file: a problem's steps serve integrators without a sweep of their own, full_steps under --full; "
