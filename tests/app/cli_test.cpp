@@ -374,7 +374,7 @@ TEST_CASE("cli: an unusable reference cache is a warning, the study runs and lea
   fs::remove_all(dir);
   const std::string file = quick_study(dir, "quick");
   std::ofstream(dir + "/plain_file") << "x";
-  for (const std::string cache : {std::string("/proc/x"), dir + "/plain_file"}) {
+  for (const std::string& cache : {std::string("/proc/x"), dir + "/plain_file"}) {
     const auto r = nsb::test::run_command(fmt::format("NSBENCH_REFERENCE_CACHE={} '{}' run {} --out {}", cache,
                                                       NSBENCH_STUDY_CLI, file, out));
     INFO(r.output);
