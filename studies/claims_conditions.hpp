@@ -6,7 +6,9 @@
 // dynamics", Comput. Mech. 2021) and beyond them (lumped and consistent masses, other
 // observables). Each function takes the integrator's name, so the properties matrix
 // (studies/properties.cpp) runs the same measurement for every scheme.
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrators/integrator.hpp"
@@ -47,6 +49,7 @@ struct ImpactEnergy {
   std::string note;         // "declined: ..." or a failed run's status, else empty
   WorkCounters work;
   long contact_steps = 0;
+  std::vector<std::pair<double, double>> history;  // (t, (E - E_0) / the impact's kinetic energy), every 10th step
 };
 ImpactEnergy bar_impact_energy(const std::string& integrator, const std::string& mass, double restitution);
 
@@ -62,6 +65,7 @@ struct SpinningBlock {
   long free_steps = 0, floor_steps = 0, contact_steps = 0;
   double free_linear = 0.0, free_angular = 0.0, floor_angular = 0.0;
   double impulse_moment = 0.0;  // sum of |the impulses' moments| on the floor, relative
+  std::vector<std::pair<double, double>> floor_history;  // (t, the step's relative J balance residual) on the floor
   std::string note;
   WorkCounters work;  // of the floor run
 };
@@ -107,6 +111,21 @@ struct AdaptiveSteps {
   std::string note;            // a declined or failed run
 };
 AdaptiveSteps adaptive_steps(const std::string& rule);
+
+// (7) Robustness: the bouncing mass, e = 1, h0 = 1 (period 0.903 s), dt = 0.02 s, stepped to
+// its `target`-th impact (the scheme's own impacts, whatever its phase error), at most 2x the
+// exact flights' steps, then to the end of that impact's contact phase: finite states, the
+// final (E - E_1) / E_1 (E_1 after the first step),
+// the largest penetration over one step of travel at the impact speed. history: (impacts,
+// (E - E_1) / E_1) at every target / 100 impacts (the figure of the claim).
+struct LongRun {
+  bool ok = false;
+  long impacts = 0, target = 0, steps = 0;
+  double energy = std::numeric_limits<double>::quiet_NaN(), penetration = std::numeric_limits<double>::quiet_NaN(), t_end = 0;
+  std::vector<std::pair<long, double>> history;
+  std::string note;  // a declined run
+};
+LongRun long_run(const std::string& integrator, long target);
 
 // (6) Contact between two deformable bodies (H = L M^{-1} L^T not diagonal): two-blocks as the
 // bodies study runs it (no gravity, the upper block at (0.5, -1) m/s, e = 0, mu = 0), dt 1e-4 s
