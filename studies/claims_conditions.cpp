@@ -156,6 +156,21 @@ struct PhaseTracker {
 
 }  // namespace
 
+namespace {
+
+std::string impact_remark(const SignoriniBar& bar, const WorkCounters& work, double dt, double node_speed) {
+  std::string remark;
+  const auto stable = work.extra.find("stable_step_with_contacts");
+  if (stable != work.extra.end() && stable->second < dt)
+    remark = fmt::format("dt {:.3g} s above the scheme's stable step with its contacts, {:.3g} s", dt, stable->second);
+  const double impact_speed = std::sqrt(2.0 * bar.parameters().real("g") * bar.parameters().real("g0"));
+  if (node_speed > 2.0 * impact_speed)
+    remark += fmt::format("{}contact node's speed up to {:.3g} x the impact speed", remark.empty() ? "" : "; ", node_speed / impact_speed);
+  return remark;
+}
+
+}  // namespace
+
 ImpactEnergy bar_impact_energy(const std::string& integrator, const std::string& mass, double restitution) {
   ImpactEnergy out;
   const auto bar = make_bar("bouncing-bar", {{"mass", mass}, {"e", fmt::format("{}", restitution)}});
@@ -170,6 +185,7 @@ ImpactEnergy bar_impact_energy(const std::string& integrator, const std::string&
   phases.before = it->energy().total();
   const double e0 = phases.before;
   long steps = 0;
+  double node_speed = 0.0;
   RunOptions o;
   o.dt = kBarStepFraction * bar->stable_step();
   o.t_end = exact.impact_time() + 3 * 16.0 * exact.wave_time();
@@ -177,7 +193,9 @@ ImpactEnergy bar_impact_energy(const std::string& integrator, const std::string&
   const RunResult r = run(*bar, *it, o, [&](const Integrator& in, const StepInfo&) {
     phases.step(in.state().t, in.energy().total(), in.impulses()[0] > 0.0);
     if (++steps % 10 == 0) out.history.emplace_back(in.state().t, (in.energy().total() - e0) / exact.impact_energy());
+    node_speed = std::max(node_speed, std::abs(in.state().v[0]));
   });
+  out.remark = impact_remark(*bar, it->work(), o.dt, node_speed);
   phases.close();
   out.work = it->work();
   if (r.status != RunStatus::Ok) out.note = std::string(status_name(r.status)) + ": " + r.message;
