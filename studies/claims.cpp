@@ -257,20 +257,28 @@ Table bar_hausdorff_table(const std::vector<BarGraphFit>& bars) {
   return t;
 }
 
+// A csv-only table behind one figure of the first page (a claim's figure).
+Table claim_figure_table(std::string id, std::string title, std::vector<Column> columns, Figure figure) {
+  Table t;
+  t.id = std::move(id);
+  t.csv_only = true;
+  t.lead_figures = true;
+  t.title = std::move(title);
+  t.columns = std::move(columns);
+  t.figures = {std::move(figure)};
+  return t;
+}
+
 // The adaptive steps of (5) against time, thinned to the rows where the step moved by more than
 // 1e-3 (relative), the contact flag changed, or 100 steps went by (the figure's line is the same).
 Table adaptive_steps_table(const std::vector<AdaptiveSteps>& runs) {
-  Table t;
-  t.id = "claims_adaptive_steps";
-  t.csv_only = true;
-  t.title = "Claim (5): the adaptive step against time through the bouncing bar's first impact";
-  t.columns = {{"rule", "", "", ""}, {"t", "s", "{:.6e}", ""}, {"dt", "s", "{:.6e}", ""}, {"contact", "", "", "impulse on the contact node"}};
   Figure f{"claims_adaptive_steps", "Claim (5): the adaptive step against time, the talk's update and the energy balance", "t", "dt",
            {"rule"}, {}, false, true};
   f.caption = "cd-lagrange-adaptive on the lumped bouncing bar (N 100, e 0), first step 0.9 h/c, to the first impact + one period; "
               "the rows of claims_adaptive_step say where the contact phases are and where the step collapsed.";
-  t.figures = {f};
-  t.lead_figures = true;
+  Table t = claim_figure_table("claims_adaptive_steps", "Claim (5): the adaptive step against time through the bouncing bar's first impact",
+                               {{"rule", "", "", ""}, {"t", "s", "{:.6e}", ""}, {"dt", "s", "{:.6e}", ""}, {"contact", "", "", "impulse on the contact node"}},
+                               f);
   for (const auto& r : runs) {
     std::size_t kept = 0;
     for (std::size_t k = 0; k < r.t.size(); ++k) {
@@ -286,34 +294,25 @@ Table adaptive_steps_table(const std::vector<AdaptiveSteps>& runs) {
 
 // Claim (3)'s figure: the spinning block's angular momentum balance residual per step on the floor.
 Table momentum_history_table(const SpinningBlock& b) {
-  Table t;
-  t.id = "claims_momentum_history";
-  t.csv_only = true;
-  t.lead_figures = true;
-  t.title = "Claim (3): the spinning block's angular momentum balance on the floor, per step";
-  t.columns = {{"t", "s", "{:.6e}", ""}, {"J residual", "", "{:.3e}", "relative"}};
   Figure f{"claims_momentum_history", "Claim (3): angular momentum balance residual of the spinning block on the floor", "t",
            "J residual", {}, {}};
   f.caption = "cd-lagrange, 2D SVK block spinning at 3 rad/s dropped on the frictionless floor: |J_k - J_{k-1} - the moments "
               "of the weight and of the impulses| per step, relative to the momentum scale (round-off: holds at <= 1e-10).";
-  t.figures = {f};
+  Table t = claim_figure_table("claims_momentum_history", "Claim (3): the spinning block's angular momentum balance on the floor, per step",
+                               {{"t", "s", "{:.6e}", ""}, {"J residual", "", "{:.3e}", "relative"}}, f);
   for (const auto& [time, residual] : b.floor_history) t.add_row({time, residual});
   return t;
 }
 
 // Claim (4)'s figure: the bouncing bar's total energy against time, per mass model and e.
 Table impact_history_table(const std::vector<std::pair<std::string, const ImpactEnergy*>>& runs) {
-  Table t;
-  t.id = "claims_impact_energy_history";
-  t.csv_only = true;
-  t.lead_figures = true;
-  t.title = "Claim (4) at impact: the bouncing bar's total energy against time";
-  t.columns = {{"run", "", "", ""}, {"t", "s", "{:.6e}", ""}, {"E - E_0", "", "{:.6e}", "over the impact's kinetic energy"}};
   Figure f{"claims_impact_energy_history", "Claim (4): total energy of the bouncing bar across its contact phases", "t", "E - E_0",
            {"run"}, {}};
   f.caption = "cd-lagrange on Doyen-Ern-Piperno's bouncing bar (N 100, dt 0.9 h/c), every 10th step; the jumps per contact "
               "phase are in claims_impact_energy.";
-  t.figures = {f};
+  Table t = claim_figure_table("claims_impact_energy_history", "Claim (4) at impact: the bouncing bar's total energy against time",
+                               {{"run", "", "", ""}, {"t", "s", "{:.6e}", ""}, {"E - E_0", "", "{:.6e}", "over the impact's kinetic energy"}},
+                               f);
   for (const auto& [name, r] : runs)
     for (const auto& [time, e] : r->history) t.add_row({name, time, e});
   return t;
@@ -321,16 +320,11 @@ Table impact_history_table(const std::vector<std::pair<std::string, const Impact
 
 // Claim (7)'s figure: the long run's energy error against the impact count.
 Table long_run_table(const LongRun& l) {
-  Table t;
-  t.id = "claims_long_run";
-  t.csv_only = true;
-  t.lead_figures = true;
-  t.title = "Claim (7): the bouncing mass's energy error against its impacts";
-  t.columns = {{"impacts", "", "", ""}, {"(E - E_1)/E_1", "", "{:.6e}", ""}};
   Figure f{"claims_long_run", "Claim (7): energy error of the bouncing mass over its impacts", "impacts", "(E - E_1)/E_1", {}, {}, true};
   f.caption = fmt::format("cd-lagrange, bouncing mass, e = 1, h0 = 1, dt = 0.02 s, to its {}th impact; every {}th impact.",
                           l.target, std::max(1L, l.target / 100));
-  t.figures = {f};
+  Table t = claim_figure_table("claims_long_run", "Claim (7): the bouncing mass's energy error against its impacts",
+                               {{"impacts", "", "", ""}, {"(E - E_1)/E_1", "", "{:.6e}", ""}}, f);
   for (const auto& [impacts, e] : l.history) t.add_row({impacts, e});
   return t;
 }

@@ -164,7 +164,7 @@ std::string impact_remark(const SignoriniBar& bar, const WorkCounters& work, dou
   if (stable != work.extra.end() && stable->second < dt)
     remark = fmt::format("dt {:.3g} s above the scheme's stable step with its contacts, {:.3g} s", dt, stable->second);
   const double impact_speed = std::sqrt(2.0 * bar.parameters().real("g") * bar.parameters().real("g0"));
-  if (node_speed > 2.0 * impact_speed)
+  if (node_speed > 100.0 * impact_speed)
     remark += fmt::format("{}contact node's speed up to {:.3g} x the impact speed", remark.empty() ? "" : "; ", node_speed / impact_speed);
   return remark;
 }
