@@ -19,7 +19,10 @@ ParamSpecs CdLagrangeAdaptive::parameters_spec() {
                         "momentum update: KMOW variable-step (variational) or the talk's (tau_k+tau_k+1)/(2 tau_k+1) weighting"),
       ParamSpec::choice("energy_target", "impact-law", {"impact-law", "no-work"},
                         "work of the impulses in the energy balance: Newton impact law, or none (the talk)"),
-      ParamSpec::real("energy_tol", 1e-12, 1e-15, 1e-2, "energy residual tolerance, relative to the energy terms"),
+      ParamSpec::choice("step_rule", "energy-balance", {"energy-balance", "talk"},
+                        "tau_{k+2}: the root of the discrete energy balance, or the talk's update (its equation for tau_{k+2}, iterated)"),
+      ParamSpec::real("energy_tol", 1e-12, 1e-15, 1e-2,
+                      "energy residual tolerance, relative to the energy terms (step_rule talk: relative change of tau_{k+2})"),
       ParamSpec::integer("max_iter", 100, 2, 100000, "energy residual evaluations per step"),
       ParamSpec::real("tau_min_ratio", 1e-3, 0.0, 1.0, "smallest step, times the first requested step", true),
       ParamSpec::real("tau_max_ratio", 10.0, 1.0, 1e308, "largest step (user cap), times the first requested step"),
@@ -35,6 +38,7 @@ CdLagrangeAdaptive::CdLagrangeAdaptive(const Params& params)
     : Integrator(params),
       talk_momentum_(params.choice("momentum") == "talk"),
       no_work_(params.choice("energy_target") == "no-work"),
+      talk_step_(params.choice("step_rule") == "talk"),
       energy_tol_(params.real("energy_tol")),
       tau_min_ratio_(params.real("tau_min_ratio")),
       tau_max_ratio_(params.real("tau_max_ratio")),
@@ -86,7 +90,7 @@ void CdLagrangeAdaptive::load_force(double t) {
 void CdLagrangeAdaptive::start(double dt) {
   tau_min_ = tau_min_ratio_ * dt;
   tau_max_ = tau_max_ratio_ * dt;
-  const double up = std::min(tau_max_, problem_->is_linear() ? cfl_ : cfl_fraction_ * problem_->stable_step_at(state_.u));
+  const double up = step_bound();
   tau_ = std::min(dt, up);
   if (dt > up) ++*capped_;
   tau_prev_ = tau_;  // w_{1/2} = 1: the talk's weights start as after constant steps
@@ -121,6 +125,7 @@ StepInfo CdLagrangeAdaptive::advance(double dt_requested) {
   gdot_prev_.noalias() = problem_->gap_operator() * state_.v;
   if (friction_) tdot_prev_.noalias() = T_ * state_.v;
   fext_u_prev_ = f_ext_.dot(u_prev_);
+  impulse_rate_prev_ = impulses_.dot(gdot_prev_);
 
   choose_next_step(info);
   std::swap(state_.v, v_next_);  // v = M^{-1} P_{k+3/2}
@@ -155,12 +160,57 @@ double CdLagrangeAdaptive::residual(double tau, StepInfo& info) {
   return kinetic + 0.5 * (pot_cur_ + pot_next_) - energy_ - w_ext - w_impulse;
 }
 
+// tau_up: the user cap or the CFL bound at U_{k+1}, whichever is smaller.
+double CdLagrangeAdaptive::step_bound() const {
+  return std::min(tau_max_, problem_->is_linear() ? cfl_ : cfl_fraction_ * problem_->stable_step_at(state_.u));
+}
+
+// The talk's update of tau_{k+2} (header) from the trial of the last residual() call.
+double CdLagrangeAdaptive::talk_update() const {
+  const Vec step = u_next_ - state_.u;
+  const double numerator = 0.5 * v_next_.dot(m_.cwiseProduct(step));
+  const double kinetic_next = 0.5 * v_next_.dot(m_.cwiseProduct(v_next_));
+  const double impulse_rate = impulses_.dot(problem_->gap_operator() * v_next_);
+  const double d = tau_prev_ / (2.0 * tau_ * tau_) * state_.v.dot(m_.cwiseProduct(state_.u - u_prev_)) + (pot_cur_ - load_cur_) +
+                   0.5 * (kinetic_next + kinetic_) - f_ext_.dot(state_.u) - 0.5 * (impulse_rate + impulse_rate_prev_);
+  return numerator / d;
+}
+
+void CdLagrangeAdaptive::choose_by_talk_update(StepInfo& info) {
+  const double up = step_bound(), lo = std::min(tau_min_, up);
+  double tau = std::clamp(tau_, lo, up);
+  long updates = 0;
+  bool settled = false;
+  while (!settled && updates < max_iter_) {
+    residual(tau, info);
+    ++updates;
+    const double next = talk_update();
+    const double clamped = std::isfinite(next) && next > lo ? std::min(next, up) : lo;
+    settled = std::abs(clamped - tau) <= energy_tol_ * tau;
+    tau = clamped;
+  }
+  const double r = residual(tau, info);  // the trial of the step taken
+  if (!settled) {
+    ++*unconverged_;
+    info.converged = false;
+  }
+  if (tau <= lo) ++*no_root_;
+  if (tau >= up) ++*capped_;
+  *max_residual_ = std::max(*max_residual_, std::abs(r) / (scale_ + std::numeric_limits<double>::min()));
+  info.iterations = updates + 1;
+  tau_next_ = tau;
+}
+
 void CdLagrangeAdaptive::choose_next_step(StepInfo& info) {
+  if (talk_step_) {
+    choose_by_talk_update(info);
+    return;
+  }
   struct Probe {
     double tau, r;
     double below, above;  // the probes next to it in the scan (its search interval)
   };
-  const double up = std::min(tau_max_, problem_->is_linear() ? cfl_ : cfl_fraction_ * problem_->stable_step_at(state_.u));
+  const double up = step_bound();
   const double lo = std::min(tau_min_, up);
   const double tol = energy_tol_ * scale_ + std::numeric_limits<double>::min();
   const double pred = std::clamp(tau_, lo, up);

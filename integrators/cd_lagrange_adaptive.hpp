@@ -40,6 +40,34 @@
 // which the step absorbs when a root exists. On the bouncing mass the root is tau_{k+1}
 // also at impacts (e = 1, or any e with impact-law), so there the scheme is the fixed one.
 //
+// step_rule = talk: tau_{k+2} by the talk's own update instead of the root above. A. Gravouil,
+// "CD-Lagrange" talk (GdR GDM 2022), the slides "Formulation variationnelle discrétisée en
+// espace et en temps pour l'élastodynamique non-régulière" with adaptive step: the
+// Euler-Lagrange equation of its variable-step action for the step, i.e. the derivative of the
+// action in tau_{k+1} set to 0, solved for the tau_{k+2} of the term P_{k+3/2}^T (U_{k+2} -
+// U_{k+1}) / (2 tau_{k+2}):
+//
+//   tau_{k+2} = [1/2 P_{k+3/2}^T (U_{k+2} - U_{k+1})] / D,
+//   D = tau_k / (2 tau_{k+1}^2) P_{k+1/2}^T (U_{k+1} - U_k) + F_int,k+1^T U_{k+1} - Psi*(F_int,k+1)
+//       + 1/2 (T(P_{k+3/2}) + T(P_{k+1/2})) - F_ext,k+1^T U_{k+1}
+//       + 1/2 (Lambda_{k+3/2}^T gN'_{k+3/2} + Lambda_{k+1/2}^T gN'_{k+1/2})
+//
+// P = M v, T(P) = 1/2 P^T M^{-1} P; Psi* is the complementary strain energy, so F_int^T U -
+// Psi*(F_int(U)) = Psi(U), the strain energy (Legendre); the talk's gap rate gN' = -L M^{-1} P
+// is -g' here, so its Lambda^T gN' is -Lambda^T g' with this suite's impulses (0 for a closed
+// contact with e = 0, complementarity). The update is implicit (U_{k+2} and P_{k+3/2} depend
+// on tau_{k+2}); the talk's algorithm iterates it: predictor tau_{k+2} = tau_{k+1}, then the
+// trial (P_free, Lambda, P_{k+3/2}, U_{k+2}) of that tau, the update, again until tau_{k+2}
+// stops changing (here: |change| <= energy_tol x tau, at most max_iter updates), each update
+// clamped to [tau_min, tau_up]. Note that U_{k+2} - U_{k+1} = tau_{k+2} M^{-1} P_{k+3/2} makes
+// the numerator tau_{k+2} T(P_{k+3/2}): a fixed point is a step where T(P_{k+3/2}) = D, which
+// the momentum update reaches only through P_{k+3/2}'s dependence on tau_{k+2}; and D holds
+// F_ext^T U and Psi at U_{k+1}, not differences, so the rule depends on where U = 0 is. The
+// energy-balance root r(tau) above is still evaluated for the step taken (max_rel_residual):
+// how far the talk's step is from the discrete energy balance. Counters with this rule:
+// no_root_steps counts the steps the update drove to tau_min (collapse), cfl_capped_steps those
+// held at tau_up, unconverged_steps those still moving after max_iter updates.
+//
 // Momentum: the variational update gives sum_i P_{k+3/2} - P_{1/2} = sum_j (tau_j +
 // tau_{j+1})/2 F_j + L^T Lambda_j, so with zero net force the linear momentum changes only
 // by the impulses, for any step sequence. The talk's update conserves w P instead: P is
@@ -93,9 +121,12 @@ class CdLagrangeAdaptive final : public Integrator {
   void start(double dt);
   void load_force(double t);
   double residual(double tau, StepInfo& info);
+  double step_bound() const;
   void choose_next_step(StepInfo& info);
+  void choose_by_talk_update(StepInfo& info);
+  double talk_update() const;
 
-  bool talk_momentum_, no_work_;
+  bool talk_momentum_, no_work_, talk_step_;
   double energy_tol_, tau_min_ratio_, tau_max_ratio_, cfl_fraction_;
   long max_iter_;
   LcpOptions lcp_;
@@ -112,6 +143,7 @@ class CdLagrangeAdaptive final : public Integrator {
   double kinetic_ = 0, pot_prev_ = 0, pot_cur_ = 0, pot_next_ = 0;  // T_{k+1/2}, V(U_k), V(U_{k+1}), V(trial)
   double load_prev_ = 0, load_cur_ = 0, load_next_ = 0;            // V_load of the same
   double energy_ = 0, scale_ = 0, fext_u_prev_ = 0;                // E_{k+1/2}, S, F_ext^T U_k
+  double impulse_rate_prev_ = 0;                                   // Lambda_{k+1/2}^T g'_{k+1/2}
   bool started_ = false;
   // Counters in work_.extra (map nodes are stable; set in init()).
   double *iterations_ = nullptr, *no_root_ = nullptr, *capped_ = nullptr, *unconverged_ = nullptr,

@@ -6,7 +6,9 @@
 // dynamics", Comput. Mech. 2021) and beyond them (lumped and consistent masses, other
 // observables). Each function takes the integrator's name, so the properties matrix
 // (studies/properties.cpp) runs the same measurement for every scheme.
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrators/integrator.hpp"
@@ -47,6 +49,13 @@ struct ImpactEnergy {
   std::string note;         // "declined: ..." or a failed run's status, else empty
   WorkCounters work;
   long contact_steps = 0;
+  std::vector<std::pair<double, double>> history;  // (t, (E - E_0) / the impact's kinetic energy), every 10th step
+  // What explains a large jump, measured: the step above the scheme's own stable step with its
+  // contacts (work().extra["stable_step_with_contacts"], cd-penalty's springs), or the contact
+  // node's speed above 100x the impact speed (the exact solution's is at most the impact speed;
+  // a lumped node's chatter reaches a few times it, up to 17x measured): a massless node's
+  // spurious velocity mode, which the velocity-level impact law then acts on.
+  std::string remark;
 };
 ImpactEnergy bar_impact_energy(const std::string& integrator, const std::string& mass, double restitution);
 
@@ -62,6 +71,7 @@ struct SpinningBlock {
   long free_steps = 0, floor_steps = 0, contact_steps = 0;
   double free_linear = 0.0, free_angular = 0.0, floor_angular = 0.0;
   double impulse_moment = 0.0;  // sum of |the impulses' moments| on the floor, relative
+  std::vector<std::pair<double, double>> floor_history;  // (t, the step's relative J balance residual) on the floor
   std::string note;
   WorkCounters work;  // of the floor run
 };
@@ -76,10 +86,52 @@ struct EnergyFigures {
   double first = 0, second = 0;          // fixed step
   double adaptive = 0, cfl = 0, dt_min = 1e300, dt_max = 0;  // adaptive: max error, largest step / stable step, steps
   double no_root = 0;  // adaptive steps whose energy equation had no root
+  long collapsed = 0;  // adaptive steps at the floor tau_min = tau_min_ratio x the requested dt
   bool adaptive_ok = true;
   std::string note;  // a declined or failed run
 };
 EnergyFigures energy_runs(const std::string& integrator);
+
+// (5) The adaptive step through impacts: cd-lagrange-adaptive on the bouncing bar (lumped mass,
+// N = 100, e = 0: the talk's LCP; cd-lagrange-adaptive declines the singular mass), first
+// requested step 0.9 h / c, to the first impact + one period 16 L / c, at most
+// kAdaptiveMaxSteps steps (about 50x the fixed step's count: a step collapsed to tau_min would
+// take 1e3x).
+//   talk            the talk's algorithm: step_rule talk, momentum talk, energy_target no-work
+//   energy-balance  the suite's variant: the defaults (energy-balance root, variational
+//                   momentum, impact-law work)
+// Per step: t, dt and whether the contact node took an impulse. Collapsed: steps at tau_min
+// (no_root_steps under the talk rule; dt <= tau_min under either rule).
+constexpr long kAdaptiveMaxSteps = 100'000;
+struct AdaptiveSteps {
+  std::string rule;
+  std::vector<double> t, dt;
+  std::vector<bool> contact;
+  long steps = 0, contact_steps = 0, collapsed = 0, capped = 0, unconverged = 0;
+  double dt_min = 0, dt_max = 0, stable_step = 0, tau_min = 0;
+  double energy_residual = 0;  // max |r| / S of the energy balance over the steps taken
+  double energy_error = 0;     // max |E - E_1| over the run / the kinetic energy at the first impact
+                               // (E the scheme's own; E_1 is about 0, the weight's datum at the start)
+  double t_reached = 0, t_end = 0, impact_time = 0;  // impact_time: the exact first impact
+  bool completed = false;      // reached t_end, finite, within kAdaptiveMaxSteps
+  std::string note;            // a declined or failed run
+};
+AdaptiveSteps adaptive_steps(const std::string& rule);
+
+// (7) Robustness: the bouncing mass, e = 1, h0 = 1 (period 0.903 s), dt = 0.02 s, stepped to
+// its `target`-th impact (the scheme's own impacts, whatever its phase error), at most 2x the
+// exact flights' steps, then to the end of that impact's contact phase: finite states, the
+// final (E - E_1) / E_1 (E_1 after the first step),
+// the largest penetration over one step of travel at the impact speed. history: (impacts,
+// (E - E_1) / E_1) at every target / 100 impacts (the figure of the claim).
+struct LongRun {
+  bool ok = false;
+  long impacts = 0, target = 0, steps = 0;
+  double energy = std::numeric_limits<double>::quiet_NaN(), penetration = std::numeric_limits<double>::quiet_NaN(), t_end = 0;
+  std::vector<std::pair<long, double>> history;
+  std::string note;  // a declined run
+};
+LongRun long_run(const std::string& integrator, long target);
 
 // (6) Contact between two deformable bodies (H = L M^{-1} L^T not diagonal): two-blocks as the
 // bodies study runs it (no gravity, the upper block at (0.5, -1) m/s, e = 0, mu = 0), dt 1e-4 s

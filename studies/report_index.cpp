@@ -41,6 +41,7 @@ IndexPart index_part(const StudyEntry& s, const std::vector<Table>& tables) {
     const std::string full = fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n{}", one_line(t.title), t.id, one_line(s.name),
                                          one_line(t.caption), markdown_grid(t), t.lead ? pictures : std::string());
     if (t.lead) part.lead += full;
+    if (t.lead_figures && !t.lead) part.lead += pictures;
     if (t.headline) part.headline += full;
   }
   part.section += "\n";

@@ -1,6 +1,7 @@
 #pragma once
 // The index.md of a report (nsbench-study, nsbench.run_study from Python): a header with the
-// build stamp, the lead tables (the claims) and the headline tables (the rankings) in full,
+// build stamp, the lead tables (the claims) in full with the lead figures (one per claim), and
+// the headline tables (the rankings) in full,
 // then a section per study listing its tables and figures, and the environment footer.
 // Each study's entries are kept in the report as .index/STUDY.json, so that a later run of
 // other studies into the same report lists them all, not only its own.

@@ -387,6 +387,7 @@ std::string table_to_json_text(const Table& t) {
   j["csv_only"] = t.csv_only;
   j["headline"] = t.headline;
   j["lead"] = t.lead;
+  j["lead_figures"] = t.lead_figures;
   j["figures"] = nlohmann::json::array();
   for (const auto& f : t.figures)
     j["figures"].push_back({{"id", f.id}, {"title", f.title}, {"x", f.x}, {"y", f.y}, {"series", f.series},
@@ -413,6 +414,7 @@ Table table_from_json_text(const std::string& text) {
   t.csv_only = j["csv_only"];
   t.headline = j["headline"];
   t.lead = j.value("lead", false);
+  t.lead_figures = j.value("lead_figures", false);
   for (const auto& f : j["figures"])
     t.figures.push_back({f["id"], f["title"], f["x"], f["y"], f["series"], f["panels"], f["log_x"], f["log_y"],
                          f["slopes"], f["small_multiples"], f["deviation"], f.value("overlay", ""),

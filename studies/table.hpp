@@ -73,6 +73,7 @@ struct Table {
   bool csv_only = false;  // raw data behind a figure (histories): no Markdown or LaTeX
   bool headline = false;  // also shown first in index.md, under "Headline ranking"
   bool lead = false;      // shown in full at the very top of index.md, before the headline ranking
+  bool lead_figures = false;  // its figures (not the table) shown at the top with the lead tables
 
   void add_row(std::vector<Cell> row);  // throws std::logic_error on a width mismatch
 };

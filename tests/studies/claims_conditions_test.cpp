@@ -7,6 +7,7 @@
 #include "studies/claims_conditions.hpp"
 
 using namespace nsb;
+using Catch::Detail::Approx;
 
 TEST_CASE("claims conditions: the spinning block's momenta under cd-lagrange: kept in free flight, changed only by the "
           "impulses' moments on the floor, to round-off",
@@ -44,4 +45,41 @@ TEST_CASE("claims conditions: cd-lagrange on the singular-mass bars: the contact
       CHECK_FALSE(hausdorff_converges(f.fit));
     }
   }
+}
+
+TEST_CASE("claims conditions: claim (5) on the bouncing bar: the talk's update falls to tau_min at the first contact, the "
+          "energy balance completes without",
+          "[claims][adaptive]") {
+  // Measured (reports/claims_adaptive_step.md): the talk's step at the CFL cap in flight, at
+  // tau_min from t = 1.005 s (the second contact step) for the rest of the 1e5 steps; the
+  // energy balance's smallest step 0.019 x stable, none at tau_min.
+  const AdaptiveSteps talk = adaptive_steps("talk"), balance = adaptive_steps("energy-balance");
+  REQUIRE(talk.note.rfind("declined", 0) == std::string::npos);
+  CHECK_FALSE(talk.completed);
+  CHECK(talk.collapsed > talk.steps / 2);
+  CHECK(talk.dt_max / talk.stable_step == Approx(0.9));
+  bool contact_before_collapse = false;
+  for (std::size_t k = 0; k < talk.t.size() && talk.dt[k] > talk.tau_min * (1 + 1e-12); ++k)
+    contact_before_collapse = contact_before_collapse || talk.contact[k];
+  CHECK(contact_before_collapse);  // in flight the step never collapsed
+  CHECK(adaptive_verdict(talk.completed, talk.dt_max / talk.stable_step, talk.dt_max, talk.dt_min, talk.collapsed) == Verdict::Fails);
+  REQUIRE(balance.note.empty());
+  CHECK(balance.completed);
+  CHECK(balance.collapsed == 0);
+  CHECK(adaptive_verdict(balance.completed, balance.dt_max / balance.stable_step, balance.dt_max, balance.dt_min, balance.collapsed) ==
+        Verdict::Holds);
+}
+
+TEST_CASE("claims conditions: what explains a large impact jump is named, and nothing for cd-lagrange", "[claims][impact]") {
+  // Measured: cd-penalty at 0.9 h/c is above its stable step with contacts (0.71 h/c), its
+  // energy grows 200x the impact's; moreau-jean (theta 1/2) on the singular mass: the massless
+  // node's speed grows to hundreds of times the impact speed before the second impact.
+  CHECK(bar_impact_energy("cd-lagrange", "lumped", 1.0).remark.empty());
+  CHECK(bar_impact_energy("cd-lagrange", "singular", 0.0).remark.empty());
+  const ImpactEnergy penalty = bar_impact_energy("cd-penalty", "lumped", 1.0);
+  CHECK(penalty.worst_jump > 1.0);
+  CHECK(penalty.remark.find("above the scheme's stable step") != std::string::npos);
+  const ImpactEnergy mj = bar_impact_energy("moreau-jean", "singular", 0.0);
+  CHECK(mj.worst_jump > 1.0);
+  CHECK(mj.remark.find("contact node's speed") != std::string::npos);
 }
