@@ -132,7 +132,7 @@ struct PhaseTracker {
   double merge, scale;
   double before = kNaN, last_energy = kNaN, last_contact = -1e300, start_energy = kNaN;
   bool open = false;
-  ImpactEnergy* out;
+  ImpactEnergy* out = nullptr;
   void close() {
     if (!open) return;
     const double jump = (last_energy - start_energy) / scale;
