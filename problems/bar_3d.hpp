@@ -55,7 +55,7 @@
 // sum of M's row sums times v_x) and its exact value.
 //
 // Bad input (InputError, one line, exit 2): nu outside [0, 0.5); a mesh whose memory (about
-// kBar3dBytesPerElement per element, the assembled tangent's share included) exceeds the
+// kBar3dBytesPerElementFree or ...Held per element, the assembled tangent included) exceeds the
 // machine's, refused before anything of its size is allocated; products of parameters beyond
 // the doubles (as signorini-bar).
 #include <Eigen/Core>
