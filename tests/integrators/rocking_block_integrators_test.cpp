@@ -128,3 +128,20 @@ TEST_CASE("cd-lagrange and moreau-jean on the rocking block: no allocation per s
     CHECK(allocations == 0);
   }
 }
+
+// What the rows at U_{k+1} buy: the same block with its contacts frozen at U0 (rows of
+// theta0 = 0.1, what every scheme ran before moving contacts) misses the law by far more than
+// the bound above.
+TEST_CASE("cd-lagrange on the rocking block with frozen contacts misses Housner's ratio", "[integrators][rocking_block]") {
+  struct Frozen final : nsb::RockingBlock {
+    using RockingBlock::RockingBlock;
+    bool contacts_move() const override { return false; }
+  };
+  const Frozen p(nsb::Params(nsb::RockingBlock::parameters_spec()));
+  const double law = nsb::housner_ratio(p.exact().alpha()), dt = 1e-4;
+  auto integ = nsb::testing::init_or_decline(nsb::find_integrator("cd-lagrange"), p);
+  REQUIRE(integ);
+  const FirstImpact im = first_impact(p, *integ, dt, 3);
+  INFO("frozen: omega- " << im.omega_minus << ", omega+ " << im.omega_plus << ", ratio " << im.ratio << " against " << law);
+  CHECK(std::abs(im.ratio - law) > 24.0 * dt);
+}
