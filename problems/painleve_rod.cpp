@@ -1,4 +1,5 @@
 #include "problems/painleve_rod.hpp"
+#include "problems/floor_contacts.hpp"
 #include "problems/registry.hpp"
 
 #include <cmath>
@@ -42,34 +43,11 @@ PainleveRod::PainleveRod(const Params& params) : params_(params), s_(params.real
   load_ = Vec::Zero(3);
   load_[1] = -m * params.real("g");
 
-  // The rows at U0, every entry stored (L on y and phi, T on x and phi).
   const Vec u0 = initial_state().u;
-  const PointContact a = end_contact(u0);
-  SpMat L(1, 3), T(1, 3);
-  L.insert(0, 1) = a.normal_row[1];
-  L.insert(0, 2) = a.normal_row[2];
-  T.insert(0, 0) = a.tangent_row[0];
-  T.insert(0, 2) = a.tangent_row[2];
-  L.makeCompressed();
-  contacts_.normal = L;
-  contacts_.gap_offset = Vec::Constant(1, a.gap - L.row(0).dot(u0));
-  contacts_.restitution = 0.0;
-  // Friction only when mu > 0, so that mu = 0 is described exactly like a frictionless problem.
-  if (const double mu = params.real("mu"); mu > 0.0) contacts_.set_friction(std::move(T), mu, 0.0);
+  contacts_ = floor_contacts({end_contact(u0)}, u0, 0.0, params.real("mu"));
 }
 
-void PainleveRod::evaluate_contacts(ConstVecRef u, ContactGeometry& out) const {
-  const PointContact a = end_contact(u);
-  out.gap[0] = a.gap;
-  double* normal = out.normal.valuePtr();  // one row, stored columns (y, phi)
-  normal[0] = a.normal_row[1];
-  normal[1] = a.normal_row[2];
-  if (out.tangent.rows() > 0) {
-    double* tangent = out.tangent.valuePtr();  // stored columns (x, phi)
-    tangent[0] = a.tangent_row[0];
-    tangent[1] = a.tangent_row[2];
-  }
-}
+void PainleveRod::evaluate_contacts(ConstVecRef u, ContactGeometry& out) const { write_floor_contact(0, end_contact(u), out); }
 
 void PainleveRod::contact_slide(ConstVecRef u, VecRef s) const { s[0] = u[0] + s_ * std::cos(u[2]); }
 

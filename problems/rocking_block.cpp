@@ -1,4 +1,5 @@
 #include "problems/rocking_block.hpp"
+#include "problems/floor_contacts.hpp"
 #include "problems/registry.hpp"
 
 #include <cmath>
@@ -21,13 +22,6 @@ RockingBlockSpec spec_of(const Params& p) {
   s.e = p.real("e");
   s.law = RockingImpactLaw::moreau;
   return s;
-}
-
-// Row `row` of a row-major matrix whose stored columns are (c0, c1), in that order.
-void set_row(RowSpMat& A, Index row, double v0, double v1) {
-  double* values = A.valuePtr() + A.outerIndexPtr()[row];
-  values[0] = v0;
-  values[1] = v1;
 }
 
 }  // namespace
@@ -55,38 +49,17 @@ RockingBlock::RockingBlock(const Params& params)
   load_ = Vec::Zero(3);
   load_[1] = -m * params.real("g");
 
-  // The rows at U0, every entry stored (L on y and theta, T on x and theta): the pattern of
-  // every configuration.
   const Vec u0 = initial_state().u;
   const BlockCorners c = corners(u0);
-  const PointContact* corner[2] = {&c.right, &c.left};
-  SpMat L(2, 3), T(2, 3);
-  for (Index i = 0; i < 2; ++i) {
-    L.insert(i, 1) = corner[i]->normal_row[1];
-    L.insert(i, 2) = corner[i]->normal_row[2];
-    T.insert(i, 0) = corner[i]->tangent_row[0];
-    T.insert(i, 2) = corner[i]->tangent_row[2];
-  }
-  L.makeCompressed();
-  contacts_.normal = L;
-  contacts_.gap_offset = Vec(2);
-  for (Index i = 0; i < 2; ++i) contacts_.gap_offset[i] = corner[i]->gap - L.row(i).dot(u0);
-  contacts_.restitution = params.real("e");
-  // Friction only when mu > 0, so that mu = 0 is described exactly like a frictionless problem.
-  if (const double mu = params.real("mu"); mu > 0.0) contacts_.set_friction(std::move(T), mu, 0.0);
+  contacts_ = floor_contacts({c.right, c.left}, u0, params.real("e"), params.real("mu"));
 }
 
 BlockCorners RockingBlock::corners(ConstVecRef u) const { return block_corners(b_, h_, Eigen::Vector3d(u[0], u[1], u[2])); }
 
 void RockingBlock::evaluate_contacts(ConstVecRef u, ContactGeometry& out) const {
   const BlockCorners c = corners(u);
-  const PointContact* corner[2] = {&c.right, &c.left};
-  const bool friction = out.tangent.rows() > 0;
-  for (Index i = 0; i < 2; ++i) {
-    out.gap[i] = corner[i]->gap;
-    set_row(out.normal, i, corner[i]->normal_row[1], corner[i]->normal_row[2]);
-    if (friction) set_row(out.tangent, i, corner[i]->tangent_row[0], corner[i]->tangent_row[2]);
-  }
+  write_floor_contact(0, c.right, out);
+  write_floor_contact(1, c.left, out);
 }
 
 void RockingBlock::contact_slide(ConstVecRef u, VecRef s) const {
