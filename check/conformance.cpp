@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "core/threads.hpp"
 #include "run/field_output.hpp"
@@ -380,6 +382,56 @@ void field_mesh(const Problem& p, const State& s0, std::vector<Verdict>& out) {
                                     "initial state", mesh->npoints(), mesh->nelements(), mesh->nbodies())));
 }
 
+// L(U) and T(U) against central differences of g(U) and of the slide s(U) (T = ds/dU) along
+// random directions, at the initial configuration and at random admissible ones (every gap
+// >= 0) near it. Error of a row: |FD - row . d| / (|row| |d|).
+void contact_rows(const Problem& p, const State& s0, std::vector<Verdict>& out) {
+  const Index n = p.ndof(), nc = p.ncontacts();
+  if (nc == 0) {
+    out.push_back({"contact rows", Outcome::Pass, "0 contacts: no rows to test"});
+    return;
+  }
+  ContactGeometry at = p.contact_geometry(), plus = p.contact_geometry(), minus = p.contact_geometry();
+  const bool friction = at.tangent.rows() > 0;
+  Vec s_plus = Vec::Zero(nc), s_minus = Vec::Zero(nc);
+  std::mt19937_64 rng(20261125);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const auto random_vector = [&] { return Vec(Vec::NullaryExpr(n, [&] { return uniform(rng); })); };
+  const double scale = 1.0 + s0.u.cwiseAbs().maxCoeff();
+  std::vector<Vec> configurations = {s0.u};
+  for (int tries = 0; tries < 400 && configurations.size() < 6; ++tries) {
+    const Vec u = s0.u + 0.05 * scale * random_vector();
+    p.evaluate_contacts(u, at);
+    if (at.gap.minCoeff() >= 0.0) configurations.push_back(u);
+  }
+  double worst_normal = 0.0, worst_tangent = 0.0;
+  for (const Vec& u : configurations) {
+    p.evaluate_contacts(u, at);
+    for (int k = 0; k < 3; ++k) {
+      const Vec d = random_vector();
+      const double eps = 1e-6 * scale;
+      p.evaluate_contacts(u + eps * d, plus);
+      p.evaluate_contacts(u - eps * d, minus);
+      const auto error = [&](double fd, const RowSpMat& rows, Index i) {
+        const double along = rows.row(i).dot(d), size = rows.row(i).norm() * d.norm();
+        return std::abs(fd - along) / std::max(size, 1e-300);
+      };
+      if (friction) {
+        p.contact_slide(u + eps * d, s_plus);
+        p.contact_slide(u - eps * d, s_minus);
+      }
+      for (Index i = 0; i < nc; ++i) {
+        worst_normal = std::max(worst_normal, error((plus.gap[i] - minus.gap[i]) / (2.0 * eps), at.normal, i));
+        if (friction) worst_tangent = std::max(worst_tangent, error((s_plus[i] - s_minus[i]) / (2.0 * eps), at.tangent, i));
+      }
+    }
+  }
+  out.push_back(verdict("contact rows", worst_normal <= 1e-5 && worst_tangent <= 1e-5,
+                        fmt::format("{} contacts {}, {} configurations: L against d g, worst {:.3g}; T against d s, {} (<= 1e-5)",
+                                    nc, p.contacts_move() ? "moving" : "constant", configurations.size(), worst_normal,
+                                    friction ? fmt::format("worst {:.3g}", worst_tangent) : std::string("frictionless"))));
+}
+
 }  // namespace
 
 std::vector<Verdict> check_integrator(const IntegratorEntry& entry) {
@@ -437,6 +489,11 @@ std::vector<Verdict> check_problem(const ProblemEntry& entry) {
                         fmt::format("d V_int / du . d = {:.6g}, F_int . d = {:.6g}, relative difference {:.3g} (<= 1e-5)", dv, fd, rel)));
   const double dt = p->stable_step();
   out.push_back(verdict("stable step", dt > 0.0, fmt::format("{:.4g} (> 0; inf: no stiffness, 2 / omega_max)", dt)));
+  try {
+    contact_rows(*p, s0, out);
+  } catch (const std::exception& err) {
+    out.push_back({"contact rows", Outcome::Fail, fmt::format("threw: {}", err.what())});
+  }
   field_mesh(*p, s0, out);
   out.push_back(refuses_bad_parameters(entry.parameters(), [&](const Params& q) { entry.make(q); }));
   return out;

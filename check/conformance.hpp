@@ -94,7 +94,9 @@ std::vector<Verdict> check_integrator(const IntegratorEntry& entry);
 // A problem's contract (problems/problem.hpp): built with its defaults; contacts whose shapes
 // agree, initially open or touching; a symmetric mass with a non-negative diagonal;
 // F_int = dV_int/du (central difference of strain_energy along a fixed direction);
-// a positive stable_step() (inf without stiffness); a field mesh `nsbench run --fields` can
+// a positive stable_step() (inf without stiffness); the contact rows L(U) and T(U) against
+// central differences of g(U) and of the slide s(U) at random admissible configurations (for
+// constant kinematics too, where they hold to round-off); a field mesh `nsbench run --fields` can
 // write (check_field_mesh), with finite stresses and body arrays at the initial state (not
 // measured without one); bad parameters refused.
 std::vector<Verdict> check_problem(const ProblemEntry& entry);

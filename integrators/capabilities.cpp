@@ -111,6 +111,10 @@ void check_capabilities(const DeclaredCapabilities& declared, const std::string&
   const Capabilities& can = declared.resolved(params);
   const Refusal refuse{integrator + declared.condition(params), problem};
   const Contacts& c = problem.contacts();
+  if (problem.contacts_move() && !can.moving_contacts)
+    refuse("contacts with constant kinematics (g = g0 + L U, L and T fixed)",
+           "contacts that move with the configuration (g(U), L(U), T(U))",
+           "a problem whose contact rows are constant, or an integrator `nsbench list` marks as treating moving contacts");
   if (c.has_friction() && !can.friction)
     refuse("mu = 0 (it does not treat Coulomb friction)", fmt::format("mu = {}", c.max_mu()),
            "a problem with mu = 0, or an integrator `nsbench list` marks as treating friction");

@@ -29,6 +29,10 @@ struct Capabilities {
   // Treats Coulomb friction (Contacts::mu > 0): fills tangential_impulses. Without it a
   // problem with mu > 0 is refused, so that no scheme ignores friction silently.
   bool friction = false;
+  // Treats contacts that move with the configuration (Problem::contacts_move: g(U), L(U),
+  // T(U)), as its header's formula block states. Without it such a problem is refused, so
+  // that no scheme runs frozen rows silently.
+  bool moving_contacts = false;
   // Explicit: only conditionally stable at a fixed step, dt below Problem::stable_step
   // (nsbench run warns above it). Not a refusal.
   bool explicit_step = false;

@@ -27,6 +27,7 @@ void CdLagrange::init(const Problem& problem, const State& initial) {
       throw InputError(fmt::format("integrator cd-lagrange: problem {} has massless dofs, which need {}", problem.name(), why));
     };
     if (!problem.is_linear()) fail("a linear problem");
+    if (problem.contacts_move()) fail("contacts with constant rows (the quasi-static solve uses g0 + l u_i)");
     if (problem.contacts().has_friction()) fail("mu = 0 (friction on a quasi-static dof is not treated)");
     SpMat K;
     problem.tangent_stiffness(state_.u, K);
@@ -99,6 +100,6 @@ Energy CdLagrange::energy() const {
 }
 
 NSBENCH_INTEGRATOR({"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>, false, false,
-                    {.friction = true, .explicit_step = true, .mass = MassNeed::Diagonal}});
+                    {.friction = true, .moving_contacts = true, .explicit_step = true, .mass = MassNeed::Diagonal}});
 
 }  // namespace nsb

@@ -19,6 +19,14 @@
 // per contact where no two contacts share a dof (impulse_contact.hpp); no tangential
 // restitution.
 //
+// Moving contacts (Problem::contacts_move; the talk's step 3): the gaps and rows are
+// evaluated at the new position, g(U_{k+1}), L(U_{k+1}), T(U_{k+1}), and every quantity of
+// the impulse law above uses them: the active set g_i(U_{k+1}) <= 0, g'_free = L(U_{k+1})
+// M^{-1} P_free, the restitution term e L(U_{k+1}) M^{-1} P_{k+1/2}, H = L M^{-1} L^T and
+// P_{k+3/2} = P_free + L(U_{k+1})^T Lambda_N + T(U_{k+1})^T Lambda_T. The update stays
+// explicit (one evaluation of the contacts per step). Not with massless dofs (their
+// quasi-static solve below uses g0 + l u_i): init() refuses that pairing.
+//
 // Start: P_{1/2} = M v0 + tau/2 (F_ext(0) - F_int(U_0)) (half kick, second order in
 // smooth phases). Needs a diagonal mass.
 //

@@ -100,6 +100,9 @@
 // Reported like the fixed scheme: after a step t = t_{k+1}, u = U_{k+1}, v = M^{-1} P_{k+3/2},
 // energy E_{k+1/2}, dt = tau_{k+1}; so with a constant step the two schemes report the same.
 // Needs a diagonal mass with positive entries.
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): its step control predicts the
+// impact time from the linear gap g0 + L U; a nonlinear prediction is not implemented.
 #include "integrators/impulse_contact.hpp"
 #include "integrators/integrator.hpp"
 

@@ -100,6 +100,9 @@
 // Start: the half kick of cd_lagrange.hpp. Declines (InputError): a non-diagonal mass or a
 // massless dof (M^{-1} in the update; CD-Lagrange's quasi-static treatment of massless dofs
 // is an impulse law, not a penalty).
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): the penalty force along L(U_{k+1})
+// with the gap g(U_{k+1}) would follow from CD-Lagrange's evaluation, but is not implemented.
 #include "integrators/central_difference.hpp"
 #include "integrators/integrator.hpp"
 

@@ -28,6 +28,9 @@
 // tangential impulse is summed like the normal one, so it stays in the cone.
 // Reported state: (U_{k+1}, V_{k+1}) at t_{k+1}; energy V^T M V / 2 + V(U).
 // Declines (InputError): a non-diagonal mass or a massless dof (M^{-1} in every stage).
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): Schindler and Acary evaluate the
+// rows at the midpoint and end positions of the step; not implemented here.
 #include "integrators/impulse_contact.hpp"
 #include "integrators/integrator.hpp"
 

@@ -4,9 +4,26 @@
 
 namespace nsb {
 
+namespace {
+
+// A with every stored entry 1: for moving contacts, which contacts share a dof depends on
+// the pattern, not on the values at one configuration (a product can vanish at U0 only).
+SpMat pattern_of(SpMat A) {
+  A.coeffs().setOnes();
+  return A;
+}
+
+}  // namespace
+
 ImpulseContact::ImpulseContact(const Problem& problem, const Vec& minv, LcpOptions lcp)
-    : problem_(&problem), minv_(minv), lcp_(lcp), L_(problem.gap_operator()), gap_(Vec::Zero(problem.ncontacts())) {
-  const SpMat H = SpMat(problem.gap_operator() * minv.asDiagonal() * problem.gap_operator().transpose());
+    : problem_(&problem),
+      minv_(minv),
+      lcp_(lcp),
+      moving_(problem.contacts_move()),
+      rows_(problem.contact_geometry()),
+      offset_(moving_ ? Vec::Zero(problem.ncontacts()) : problem.gap_offset()) {
+  const SpMat L = moving_ ? pattern_of(problem.gap_operator()) : problem.gap_operator();
+  const SpMat H = SpMat(L * minv.asDiagonal() * L.transpose());
   h_diag_ = H.diagonal();
   for (Index j = 0; j < H.outerSize(); ++j)
     for (SpMat::InnerIterator it(H, j); it; ++it)
@@ -17,7 +34,6 @@ ImpulseContact::ImpulseContact(const Problem& problem, const Vec& minv, LcpOptio
   const Contacts& c = problem.contacts();
   friction_ = c.has_friction();
   if (!friction_) return;
-  T_ = c.tangent;
   mu_ = c.mu;
   w_ = c.tangent_velocity;
   const Index p = c.size();
@@ -25,8 +41,8 @@ ImpulseContact::ImpulseContact(const Problem& problem, const Vec& minv, LcpOptio
   SpMat C(2 * p, problem.ndof());
   std::vector<Eigen::Triplet<double>> entries;
   for (Index i = 0; i < p; ++i) {
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) entries.emplace_back(2 * i, it.col(), it.value());
-    for (decltype(T_)::InnerIterator it(T_, i); it; ++it) entries.emplace_back(2 * i + 1, it.col(), it.value());
+    for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) entries.emplace_back(2 * i, it.col(), moving_ ? 1.0 : it.value());
+    for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) entries.emplace_back(2 * i + 1, it.col(), moving_ ? 1.0 : it.value());
   }
   C.setFromTriplets(entries.begin(), entries.end());
   const SpMat W = SpMat(C * minv.asDiagonal() * C.transpose());
@@ -46,35 +62,70 @@ ImpulseContact::ImpulseContact(const Problem& problem, const Vec& minv, LcpOptio
   mu_closed_ = Vec::Zero(p);
 }
 
-void ImpulseContact::add_impulse(Index i, double n, double t, VecRef v) const {
-  for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * n;
-  if (t != 0.0)
-    for (decltype(T_)::InnerIterator it(T_, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * t;
+double ImpulseContact::weighted_dot(const RowSpMat& A, Index i, const RowSpMat& B, Index j) const {
+  RowSpMat::InnerIterator a(A, i), b(B, j);
+  double sum = 0.0;
+  while (a && b) {
+    if (a.col() < b.col()) {
+      ++a;
+    } else if (b.col() < a.col()) {
+      ++b;
+    } else {
+      sum += a.value() * minv_[a.col()] * b.value();
+      ++a;
+      ++b;
+    }
+  }
+  return sum;
 }
 
-Index ImpulseContact::collect_closed(const Vec& g0) {
+void ImpulseContact::evaluate_at(ConstVecRef u) {
+  problem_->evaluate_contacts(u, rows_);
+  const RowSpMat &L = rows_.normal, &T = rows_.tangent;
+  const Index p = L.rows();
+  for (Index i = 0; i < p; ++i) h_diag_[i] = weighted_dot(L, i, L, i);
+  if (!h_is_diagonal_)
+    for (Index i = 0; i < p; ++i)
+      for (Index j = 0; j < p; ++j) h_full_(i, j) = weighted_dot(L, i, L, j);
+  if (!friction_) return;
+  for (Index i = 0; i < p; ++i) {
+    w_nt_[i] = weighted_dot(L, i, T, i);
+    w_tt_[i] = weighted_dot(T, i, T, i);
+  }
+  if (!friction_coupled_) return;
+  for (Index i = 0; i < 2 * p; ++i)
+    for (Index j = 0; j < 2 * p; ++j)
+      w_full_(i, j) = weighted_dot(i % 2 ? T : L, i / 2, j % 2 ? T : L, j / 2);
+}
+
+void ImpulseContact::add_impulse(Index i, double n, double t, VecRef v) const {
+  for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * n;
+  if (t != 0.0)
+    for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * t;
+}
+
+Index ImpulseContact::collect_closed() {
   closed_.clear();
-  for (Index i = 0; i < L_.rows(); ++i)
-    if (is_closed(i, g0)) closed_.push_back(i);
+  for (Index i = 0; i < rows_.normal.rows(); ++i)
+    if (is_closed(i)) closed_.push_back(i);
   return static_cast<Index>(closed_.size());
 }
 
 long ImpulseContact::apply_with_friction(ConstVecRef v_prev, VecRef v, VecRef impulses, VecRef tangential,
                                          StepInfo& info, WorkCounters& work, double e) {
-  const Vec& g0 = problem_->gap_offset();
   const auto normal_rate = [&](Index i, ConstVecRef x) {
     double r = 0.0;
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) r += it.value() * x[it.col()];
+    for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) r += it.value() * x[it.col()];
     return r;
   };
   const auto slip_rate = [&](Index i) {
     double r = -w_[i];
-    for (decltype(T_)::InnerIterator it(T_, i); it; ++it) r += it.value() * v[it.col()];
+    for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) r += it.value() * v[it.col()];
     return r;
   };
   if (!friction_coupled_) {
-    for (Index i = 0; i < L_.rows(); ++i) {
-      if (!is_closed(i, g0)) continue;
+    for (Index i = 0; i < rows_.normal.rows(); ++i) {
+      if (!is_closed(i)) continue;
       const CoulombImpulse r = solve_coulomb_local(h_diag_[i], w_nt_[i], w_tt_[i],
                                                    normal_rate(i, v) + e * normal_rate(i, v_prev), slip_rate(i), mu_[i]);
       if (r.normal == 0.0) continue;
@@ -84,7 +135,7 @@ long ImpulseContact::apply_with_friction(ConstVecRef v_prev, VecRef v, VecRef im
     }
     return 0;
   }
-  const Index a = collect_closed(g0);
+  const Index a = collect_closed();
   if (a == 0) return 0;
   auto& [D, q, x] = storage_.of_size(2 * a);
   for (Index r = 0; r < 2 * a; ++r)
@@ -115,34 +166,37 @@ long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef i
 
 long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef impulses, VecRef tangential,
                            StepInfo& info, WorkCounters& work, double e) {
-  const Vec& g0 = problem_->gap_offset();
-  gap_.noalias() = L_ * u;
+  if (moving_) {
+    evaluate_at(u);
+  } else {
+    rows_.gap.noalias() = rows_.normal * u;
+  }
   impulses.setZero();
   if (friction_) {
     tangential.setZero();
     return apply_with_friction(v_prev, v, impulses, tangential, info, work, e);
   }
   if (h_is_diagonal_) {
-    for (Index i = 0; i < L_.rows(); ++i) {
-      if (!is_closed(i, g0)) continue;
+    for (Index i = 0; i < rows_.normal.rows(); ++i) {
+      if (!is_closed(i)) continue;
       double gdot_free = 0.0, gdot_prev = 0.0;
-      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) {
+      for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) {
         gdot_free += it.value() * v[it.col()];
         gdot_prev += it.value() * v_prev[it.col()];
       }
       const double lambda = std::max(0.0, -(gdot_free + e * gdot_prev) / h_diag_[i]);
       if (lambda == 0.0) continue;
       impulses[i] = lambda;
-      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * lambda;
+      for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * lambda;
     }
     return 0;
   }
-  const Index a = collect_closed(g0);
+  const Index a = collect_closed();
   if (a == 0) return 0;
   auto& [D, q, x] = storage_.of_size(a);
   for (Index r = 0; r < a; ++r) {
     for (Index c = 0; c < a; ++c) D(r, c) = h_full_(closed_[r], closed_[c]);
-    q[r] = L_.row(closed_[r]).dot(v) + e * L_.row(closed_[r]).dot(v_prev);
+    q[r] = rows_.normal.row(closed_[r]).dot(v) + e * rows_.normal.row(closed_[r]).dot(v_prev);
   }
   const LcpResult res = solve_lcp(D, q, x, lcp_);
   if (!res.converged) {
@@ -151,7 +205,7 @@ long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef i
   }
   for (Index r = 0; r < a; ++r) {
     impulses[closed_[r]] = x[r];
-    for (decltype(L_)::InnerIterator it(L_, closed_[r]); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * x[r];
+    for (RowSpMat::InnerIterator it(rows_.normal, closed_[r]); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * x[r];
   }
   return res.iterations;
 }

@@ -18,6 +18,13 @@
 // Contacts that share no dof with another (W block diagonal): each in closed form, still
 // explicit and allocation-free; otherwise nonsmooth Gauss–Seidel over the closed contacts.
 // The frictionless path is the one above, untouched.
+//
+// Moving contacts (Problem::contacts_move): apply() evaluates the gaps and rows at the new
+// position u (g(u), L(u), T(u): CD-Lagrange's step 3, contacts at U_{k+1}) and H, W from
+// those rows (the entries between contacts that share a dof: p^2 products per step, on
+// storage sized once), then the same laws: g'_free, g'_prev, the slip and the impulses all
+// along the rows at u. Which contacts are coupled is decided from the rows' pattern.
+// Constant kinematics: the rows and H of the construction, as before.
 #include "solvers/coulomb.hpp"
 #include "integrators/integrator.hpp"
 #include "solvers/lcp.hpp"
@@ -47,15 +54,22 @@ class ImpulseContact {
   void add_impulse(Index i, double n, double t, VecRef v) const;
   // Contact i is closed at the new position and has a mass to act on (a contact on massless
   // dofs only carries no impulse: the quasi-static treatment holds it).
-  bool is_closed(Index i, const Vec& g0) const { return g0[i] + gap_[i] <= 0.0 && h_diag_[i] != 0.0; }
+  bool is_closed(Index i) const { return offset_[i] + rows_.gap[i] <= 0.0 && h_diag_[i] != 0.0; }
   // Fills closed_ with the closed contacts, in order; returns how many.
-  Index collect_closed(const Vec& g0);
+  Index collect_closed();
+  // Moving contacts: rows_ at u, and h_diag_ (h_full_), w_nt_, w_tt_ (w_full_) from them.
+  void evaluate_at(ConstVecRef u);
+  // A_i M^{-1} B_j^T.
+  double weighted_dot(const RowSpMat& A, Index i, const RowSpMat& B, Index j) const;
 
   const Problem* problem_ = nullptr;
   Vec minv_;
   LcpOptions lcp_;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
-  Vec gap_;
+  bool moving_ = false;
+  // L (normal), T (tangent) and the gap at the new position: L u (constant kinematics, the
+  // offset g0 apart) or g(u) (moving contacts, offset 0).
+  ContactGeometry rows_;
+  Vec offset_;
   Vec h_diag_;
   bool h_is_diagonal_ = true;
   Eigen::MatrixXd h_full_;  // H, when it is not diagonal
@@ -66,7 +80,6 @@ class ImpulseContact {
   // [L; T] M^{-1} [L; T]^T when contacts share dofs.
   bool friction_ = false;
   bool friction_coupled_ = false;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
   Vec mu_, w_, w_nt_, w_tt_;
   Eigen::MatrixXd w_full_;
   Vec mu_closed_;

@@ -31,22 +31,26 @@ void MoreauJean::init(const Problem& problem, const State& initial) {
   const Index n = problem.ndof();
   problem.tangent_stiffness(state_.u, K_);
   ++work_.tangent_evaluations;
-  L_ = problem.gap_operator();
-  responses_.bind(L_.rows());
+  moving_ = problem.contacts_move();
+  if (moving_ && project_positions_)
+    throw InputError(fmt::format("integrator moreau-jean: projection = position needs contacts with constant rows (it "
+                                 "projects onto g0 + L U >= 0); problem {} has moving contacts (valid: projection = none)",
+                                 problem.name()));
+  rows_ = problem.contact_geometry();
+  responses_.bind(rows_.normal.rows());
   friction_ = problem.contacts().has_friction();
   if (friction_) {
-    T_ = problem.contacts().tangent;
-    tangent_responses_.bind(L_.rows());
-    mu_active_ = Vec::Zero(L_.rows());
-    restitution_rate_ = Vec::Zero(L_.rows());
+    tangent_responses_.bind(rows_.normal.rows());
+    mu_active_ = Vec::Zero(rows_.normal.rows());
+    restitution_rate_ = Vec::Zero(rows_.normal.rows());
   }
   f_int_ = Vec::Zero(n);
   f_ext_now_ = Vec::Zero(n);
   f_ext_next_ = Vec::Zero(n);
   rhs_ = Vec::Zero(n);
   v_next_ = Vec::Zero(n);
-  gap_ = Vec::Zero(L_.rows());
-  gdot_ = Vec::Zero(L_.rows());
+  gap_ = Vec::Zero(rows_.normal.rows());
+  gdot_ = Vec::Zero(rows_.normal.rows());
   problem.external_force(state_.t, f_ext_now_);
   f_ext_next_ = f_ext_now_;
   lcp_max_residual_ = nullptr;
@@ -68,14 +72,14 @@ void MoreauJean::factorize(double h) {
 }
 
 const Vec& MoreauJean::contact_response(Index i) {
-  return responses_.get(L_, i, [this](Vec& r) {
+  return responses_.get(rows_.normal, i, [this](Vec& r) {
     chol_.solve(r, r);
     ++work_.linear_solves;
   });
 }
 
 const Vec& MoreauJean::tangent_response(Index i) {
-  return tangent_responses_.get(T_, i, [this](Vec& r) {
+  return tangent_responses_.get(rows_.tangent, i, [this](Vec& r) {
     chol_.solve(r, r);
     ++work_.linear_solves;
   });
@@ -85,10 +89,10 @@ LcpResult MoreauJean::solve_frictionless(Index a, double e) {
   auto& [D, q, x] = lcp_storage_.of_size(a);
   for (Index c = 0; c < a; ++c) {
     const Vec& r = contact_response(active_[c]);
-    for (Index row = 0; row < a; ++row) D(row, c) = L_.row(active_[row]).dot(r);
+    for (Index row = 0; row < a; ++row) D(row, c) = rows_.normal.row(active_[row]).dot(r);
   }
   for (Index row = 0; row < a; ++row)
-    q[row] = L_.row(active_[row]).dot(v_next_) + e * gdot_[active_[row]];
+    q[row] = rows_.normal.row(active_[row]).dot(v_next_) + e * gdot_[active_[row]];
   const LcpResult res = solve_lcp(D, q, x, lcp_);
   for (Index c = 0; c < a; ++c) {
     if (x[c] == 0.0) continue;
@@ -99,7 +103,7 @@ LcpResult MoreauJean::solve_frictionless(Index a, double e) {
 }
 
 LcpResult MoreauJean::solve_with_friction() {
-  const FrictionalCorrection c{L_, T_, problem_->contacts(), [this](Index i) -> const Vec& { return contact_response(i); },
+  const FrictionalCorrection c{rows_.normal, rows_.tangent, problem_->contacts(), [this](Index i) -> const Vec& { return contact_response(i); },
                                [this](Index i) -> const Vec& { return tangent_response(i); }};
   return frictional_correction(c, restitution_rate_, v_next_, impulses_, tangential_impulses_, active_, lcp_,
                                lcp_storage_, mu_active_);
@@ -129,11 +133,19 @@ StepInfo MoreauJean::advance(double h) {
   // Active set from the forecast gap.
   const Vec& g0 = problem_->gap_offset();
   const double e = problem_->restitution();
-  gap_.noalias() = L_ * state_.u;
-  gap_ += g0;
-  gdot_.noalias() = L_ * state_.v;
+  if (moving_) {
+    // The rows at U_k, as Siconos' LagrangianScleronomousR at the first Newton iterate.
+    problem_->evaluate_contacts(state_.u, rows_);
+    gap_ = rows_.gap;
+    responses_.invalidate();
+    tangent_responses_.invalidate();
+  } else {
+    gap_.noalias() = rows_.normal * state_.u;
+    gap_ += g0;
+  }
+  gdot_.noalias() = rows_.normal * state_.v;
   active_.clear();
-  for (Index i = 0; i < L_.rows(); ++i)
+  for (Index i = 0; i < rows_.normal.rows(); ++i)
     if (gap_[i] + h * gamma_ * gdot_[i] <= 0.0) active_.push_back(i);
 
   impulses_.setZero();
@@ -155,7 +167,7 @@ StepInfo MoreauJean::advance(double h) {
   }
   state_.u.noalias() += h * (theta_ * v_next_ + (1.0 - theta_) * state_.v);
   if (project_positions_) {
-    const LcpResult res = contact_correction(L_, g0, state_.u, nu_, {}, true,
+    const LcpResult res = contact_correction(rows_.normal, g0, state_.u, nu_, {}, true,
                                              [this](Index i) -> const Vec& { return contact_response(i); }, lcp_, work_,
                                              correction_);
     info.iterations += res.iterations;
@@ -166,6 +178,6 @@ StepInfo MoreauJean::advance(double h) {
   return info;
 }
 
-NSBENCH_INTEGRATOR({"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false, false, {.friction = true}});
+NSBENCH_INTEGRATOR({"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false, false, {.friction = true, .moving_contacts = true}});
 
 }  // namespace nsb

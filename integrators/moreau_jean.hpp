@@ -22,6 +22,15 @@
 // activate contacts a step apart; with the same gamma they agree to round-off
 // (tests/peers/siconos_test.cpp). gamma = 0: a contact acts only once g_k <= 0, i.e. once
 // penetrated; a larger gamma forecasts further ahead.
+// Moving contacts (Problem::contacts_move): the gaps and rows are evaluated once per step at
+// U_k, the state at the step's start: the forecast g(U_k) + gamma h L(U_k) V_k <= 0 selects
+// the active set, and L(U_k), T(U_k) carry g'_k, g'_{k+1} = L(U_k) V_{k+1}, the Delassus
+// matrix and the impulses (their responses W^{-1} L_i^T recomputed every step). These are the
+// rows Siconos' LagrangianScleronomousR uses: computeJach evaluates dh/dq at the interaction's
+// q, which MoreauJeanOSI::prepareNewtonIteration refreshes before the first Newton iterate,
+// i.e. at q_k (this scheme's one linearly implicit iterate; Siconos re-evaluates at each
+// further Newton iterate). projection = position is refused with moving contacts (it
+// projects onto the linear gap).
 // Coulomb friction (docs/method.md section 6; Jean 1999): on the active contacts the 2D
 // Moreau–Coulomb law with the local velocities U_N = g'_{k+1} + e g'_k, U_T = T V_{k+1} - w
 // and the Delassus matrix of the interleaved rows [L_i; T_i] W^{-1} [L_j; T_j]^T, solved by
@@ -95,10 +104,10 @@ class MoreauJean final : public Integrator {
   SparseSum W_;         // M + h^2 theta^2 K, refilled in place
   SparseCholesky chol_;  // its factorisation (sparse_cholesky.hpp)
   double h_factored_ = 0.0;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
+  bool moving_ = false;   // Problem::contacts_move
+  ContactGeometry rows_;  // L, T (and g(U_k) for moving contacts)
   ContactResponses responses_;  // W^{-1} L_i^T
   bool friction_ = false;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
   ContactResponses tangent_responses_;  // W^{-1} T_i^T
   Vec mu_active_, restitution_rate_;
   Vec f_int_, f_ext_now_, f_ext_next_, rhs_, v_next_, gap_, gdot_, nu_;

@@ -29,6 +29,9 @@
 // Declines (InputError): a restitution e > 0 on a contact acting on a massive dof (the
 // scheme has no velocity-level impact law: the rebound speed would depend on where in the
 // step the contact closes, anything in [-v, v]); a non-diagonal singular mass.
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): its multipliers hold the linear
+// constraint g0 + L U >= 0 at the step's end; not extended to g(U).
 #include "integrators/implicit_contact.hpp"
 
 namespace nsb {

@@ -53,6 +53,10 @@
 // impact loses m g_grav g_k (g_k in [0, h |g'_k|], the height at the start of the step): O(h)
 // per impact, a loss Moreau-Jean (which leaves U at g_k) does not have. The energy so lost on
 // the hard study's bouncing mass: docs/measurements.md.
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): Capobianco et al. evaluate g and its
+// rows at the stage's positions (their method handles a nonlinear g); that evaluation, with
+// its Newton iteration on the rows, is not implemented here.
 #include "integrators/implicit_contact.hpp"
 
 namespace nsb {

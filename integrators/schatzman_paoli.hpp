@@ -37,6 +37,11 @@
 // bar) are allowed for theta > 0: their rows of W are theta h^2 K, i.e. they follow the
 // equilibrium of the theta-weighted position theta U_{k+1} + (1 - 2 theta) U_k + theta U_{k-1},
 // which, like the trapezoidal rule (moreau_jean.hpp), leaves a (-1)^k mode undamped there.
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): its impact law is written on positions,
+// g(U_{k+1}) + e g(U_{k-1}) >= 0 with L constant, and Paoli and Schatzman's treatment of a
+// nonlinear g (a projection onto {g(U) >= 0} in the kinetic metric, a nonlinear problem per
+// step) is not implemented.
 #include "integrators/contact_responses.hpp"
 #include "integrators/integrator.hpp"
 #include "solvers/lcp.hpp"

@@ -74,6 +74,22 @@ void Contacts::set_friction(SpMat tangent_rows, double mu_all, double w_all) {
   tangent_velocity = Vec::Constant(tangent.rows(), w_all);
 }
 
+void Problem::evaluate_contacts(ConstVecRef u, ContactGeometry& out) const {
+  const Contacts& c = contacts();
+  out.gap.noalias() = c.normal * u;
+  out.gap += c.gap_offset;
+}
+
+void Problem::contact_slide(ConstVecRef u, VecRef s) const { s.noalias() = contacts().tangent * u; }
+
+ContactGeometry Problem::contact_geometry() const {
+  const Contacts& c = contacts();
+  ContactGeometry out{c.gap_offset, c.normal, c.tangent};
+  out.normal.makeCompressed();
+  out.tangent.makeCompressed();
+  return out;
+}
+
 void check_contacts(const Contacts& c, Index ndof, const std::string& problem) {
   const auto fail = [&](const std::string& why) { throw InputError(fmt::format("problem {}: contacts: {}", problem, why)); };
   const Index p = c.normal.rows();

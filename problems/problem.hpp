@@ -3,6 +3,7 @@
 //
 //     M U'' + F_int(U) = F_ext(t) + L^T lambda
 //     g(U) = g0 + L U                       (one row of L per contact; g >= 0 is open)
+//                                           (or g(U), L(U) = dg/dU: contacts_move() below)
 //     Signorini:  0 <= g  _|_  lambda >= 0
 //     Newton impact law on closing contacts:  0 <= Lambda  _|_  g'(+) + e g'(-) >= 0
 //
@@ -137,6 +138,22 @@ struct FieldMesh {
   void add_vertex(double x, double y, std::initializer_list<int> dofs, int body);
 };
 
+// Contacts whose geometry moves with the bodies (docs/contacts.md): the gaps g(U), normal
+// rows L(U) = dg/dU and tangent rows T(U) at one configuration, as a scheme reads them:
+//
+//     g'_i = L_i(U) M^{-1} P,   u_T,i = T_i(U) M^{-1} P - w_i   (velocities stay linear)
+//
+// Storage allocated once (Problem::contact_geometry) and refilled, values only, by
+// Problem::evaluate_contacts at every configuration a scheme evaluates: the rows keep the
+// sparsity pattern of contacts() (every entry that is nonzero at some configuration is
+// stored), so an evaluation allocates nothing. Row-major: schemes read contacts by row.
+using RowSpMat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+struct ContactGeometry {
+  Vec gap;          // g(U) (p)
+  RowSpMat normal;  // L(U) (p x n)
+  RowSpMat tangent; // T(U) (p x n), or 0 rows when frictionless
+};
+
 // Throws InputError naming `problem` when the operators' shapes disagree (rows of T, sizes of
 // g0, mu and w against L's rows, columns against ndof) or a value is outside its range.
 void check_contacts(const Contacts& c, Index ndof, const std::string& problem);
@@ -183,6 +200,25 @@ class Problem {
   const Vec& gap_offset() const { return contacts().gap_offset; }
   double restitution() const { return contacts().restitution; }
   Index ncontacts() const { return contacts().size(); }
+  // True when the contacts follow the configuration: g(U) is not g0 + L U with L and T fixed
+  // (a rigid body's corner turning with it). contacts() then holds the rows at the initial
+  // configuration U0 (L(U0), T(U0)) with the pattern of every configuration, and
+  // g0 = g(U0) - L(U0) U0 (g0 + L U is the gap linearised at U0); the schemes that treat
+  // moving contacts (capability "moving contacts", integrators/capabilities.hpp) read the
+  // contacts through evaluate_contacts instead, the others decline such a problem. False
+  // (constant kinematics): evaluate_contacts is never needed and nothing changes.
+  virtual bool contacts_move() const { return false; }
+  // Writes g(u), L(u) and T(u) into `out` (storage from contact_geometry()), values only,
+  // without allocating. The default, for constant kinematics: gap = g0 + L u, rows left as
+  // contact_geometry() set them. A problem whose contacts move overrides it.
+  virtual void evaluate_contacts(ConstVecRef u, ContactGeometry& out) const;
+  // Storage for evaluate_contacts: the rows of contacts() (row-major) and a gap of size p.
+  ContactGeometry contact_geometry() const;
+  // The contact points' tangential coordinates s(u) (size p) with T(u) = ds/du, written into s:
+  // what `nsbench check --problem` differentiates to test T(U) (no scheme needs it). The
+  // default, for constant kinematics: T u. A problem with moving contacts and friction
+  // overrides it.
+  virtual void contact_slide(ConstVecRef u, VecRef s) const;
 
   virtual State initial_state() const = 0;
   // Largest stable step of the explicit central-difference scheme, 2 / omega_max (an

@@ -47,6 +47,11 @@
 // Springer 2008, ch. 7 (event-driven schemes); F. Pfeiffer, C. Glocker, Multibody Dynamics
 // with Unilateral Contacts, Wiley 1996; SUNDIALS CVODE user guide v6.4.1 (root finding,
 // CVodeReInit). See reference/cvode.hpp.
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): it locates impacts and releases by
+// root finding on g0 + L U(t) and integrates the constrained phases with L constant; locating
+// on g(U(t)) is cheap, but the constrained phases would need L(U) in their index reduction,
+// which is not implemented, so the reference declines rather than integrate frozen rows.
 #include <memory>
 
 #include "integrators/integrator.hpp"

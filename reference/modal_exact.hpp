@@ -90,6 +90,9 @@
 // ch. 2 (modal superposition, static condensation); Khenous, Laborde, Renard, Eur. J. Mech.
 // A/Solids 27 (2008) (massless contact node); M. Dowell, P. Jarratt, BIT 11 (1971) 168-174
 // (Illinois method).
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): its modal solution holds for
+// linear kinematics only.
 #include <map>
 #include <vector>
 

@@ -66,6 +66,9 @@
 // for dynamic friction phenomena, CMAME 52 (1985) (velocity-threshold regularisation); K. H. Hunt, F. R. E. Crossley, J. Appl. Mech. 42 (1975) 440-445
 // and T. Schwager, T. Poeschel, Phys. Rev. E 75 (2007) (restitution of a clamped linear
 // spring-dashpot); SUNDIALS CVODE user guide v6.4.1 (BDF, SUNLinSol_KLU, root finding).
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): its penalty forces and switching
+// functions use the linear gap g0 + L U.
 #include <memory>
 #include <vector>
 

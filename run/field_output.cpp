@@ -132,6 +132,7 @@ FieldWriter::FieldWriter(const Problem& problem, const std::filesystem::path& di
   stress_.resize(mesh_.nelements(), static_cast<Index>(mesh_.stress_components.size()));
   body_.resize(mesh_.nbodies(), mesh_.body_columns());
   impulse_.resize(problem.ndof());
+  if (problem.contacts_move()) moving_ = problem.contact_geometry();
   // At most 25 characters a number (shortest round-trip form, and a separator): 9 per point
   // (three vectors) and the body arrays, one per cell and component. No write grows the
   // buffer again.
@@ -159,9 +160,17 @@ void FieldWriter::append_point_vector(const char* name, const Part& part, const 
 
 void FieldWriter::state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses) {
   const Contacts& c = problem_.contacts();
-  impulse_.noalias() = c.normal.transpose() * normal_impulses;
-  if (c.tangent.rows() > 0 && tangential_impulses.size() == c.tangent.rows())
-    impulse_.noalias() += c.tangent.transpose() * tangential_impulses;
+  if (problem_.contacts_move()) {
+    // The rows at s.u, along which the impulses acted (schemes state their configuration).
+    problem_.evaluate_contacts(s.u, moving_);
+    impulse_.noalias() = moving_.normal.transpose() * normal_impulses;
+    if (moving_.tangent.rows() > 0 && tangential_impulses.size() == moving_.tangent.rows())
+      impulse_.noalias() += moving_.tangent.transpose() * tangential_impulses;
+  } else {
+    impulse_.noalias() = c.normal.transpose() * normal_impulses;
+    if (c.tangent.rows() > 0 && tangential_impulses.size() == c.tangent.rows())
+      impulse_.noalias() += c.tangent.transpose() * tangential_impulses;
+  }
   if (stress_.rows() > 0) problem_.cell_stress(s.u, stress_);
   if (body_.size() > 0) problem_.body_data(s, body_);
 

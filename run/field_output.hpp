@@ -92,6 +92,7 @@ class FieldWriter final : public StateSink {
   std::string buffer_, prefix_, path_;
   Eigen::MatrixXd stress_, body_;  // cell_stress() and body_data() of the state written
   Vec impulse_;  // L^T Lambda_N + T^T Lambda_T, per dof
+  ContactGeometry moving_;  // moving contacts: the rows at the written state
   std::vector<double> times_;
 };
 

@@ -86,10 +86,17 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   const Vec& g0 = problem.gap_offset();
   Vec gap(L.rows());
   std::vector<double> row(kGenericColumns.size() + extra.size());
+  // Moving contacts: the gaps g(u) themselves (g0 + L u is their linearisation at U0).
+  ContactGeometry moving = problem.contacts_move() ? problem.contact_geometry() : ContactGeometry{};
 
   const auto min_gap = [&]() {
-    gap.noalias() = L * integrator.state().u;
-    gap += g0;
+    if (problem.contacts_move()) {
+      problem.evaluate_contacts(integrator.state().u, moving);
+      gap = moving.gap;
+    } else {
+      gap.noalias() = L * integrator.state().u;
+      gap += g0;
+    }
     return gap.size() ? gap.minCoeff() : std::numeric_limits<double>::infinity();
   };
   const auto sample = [&](double dt) {

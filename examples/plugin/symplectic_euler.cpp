@@ -15,6 +15,10 @@
 // closed or closing contacts. Needs a diagonal mass with positive entries (the impulse
 // law divides by H_ii): declared in its registry entry below, with its being explicit, so
 // that nsbench refuses other problems, and `nsbench list` shows it, without building it.
+// It does not declare `.moving_contacts`: a problem whose contacts move with the bodies
+// (Problem::contacts_move, docs/contacts.md) is refused before init() runs. ImpulseContact
+// would evaluate them at the position given to apply(); declaring it is the scheme's claim
+// that this is the configuration its formula wants.
 //
 // References: E. Hairer, C. Lubich, G. Wanner, Geometric Numerical Integration, 2nd ed.,
 // Springer 2006, section VI.3 (symplectic Euler); J.J. Moreau, Unilateral contact and dry

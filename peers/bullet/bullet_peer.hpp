@@ -41,6 +41,9 @@
 // Reference: E. Coumans, "Bullet 2.80 Physics SDK Manual", 2012 (split impulse, solver
 // settings); E. Catto, "Iterative dynamics with temporal coherence", GDC 2005 (sequential
 // impulses).
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): the scene is built from the
+// problem's constant rows (peers/engine_scene.hpp); not done for moving contacts.
 #include <memory>
 #include <string>
 

@@ -35,6 +35,9 @@
 //
 // Reference: R. Smith, "Open Dynamics Engine v0.5 User Guide", 2006 (ERP and CFM, contact
 // surface parameters, dWorldStep).
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): the scene is built from the
+// problem's constant rows (peers/engine_scene.hpp); not done for moving contacts.
 #include <memory>
 #include <string>
 

@@ -61,6 +61,10 @@
 // Siconos' time-dependent relation (LagrangianRheonomousR) takes h, its Jacobian and hDot
 // only as plugins loaded from a shared library by path. The step is fixed at the first call
 // of step() (Siconos' TimeDiscretisation); a later different step is refused.
+// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
+// (integrators/capabilities.hpp, one refusal wording): the model passes the constant
+// rows as a LagrangianLinearTIR; a LagrangianScleronomousR with g(U) and its Jacobian is not
+// built.
 #include <memory>
 
 #include "integrators/integrator.hpp"
