@@ -53,7 +53,7 @@ struct ImpactEnergy {
   // What explains a large jump, measured: the step above the scheme's own stable step with its
   // contacts (work().extra["stable_step_with_contacts"], cd-penalty's springs), or the contact
   // node's speed above 100x the impact speed (the exact solution's is at most the impact speed;
-  // a lumped node's chatter reaches a few times it, up to 17x measured): a massless node's
+  // a lumped node's chatter reaches a few times it: docs/measurements.md): a massless node's
   // spurious velocity mode, which the velocity-level impact law then acts on.
   std::string remark;
 };
