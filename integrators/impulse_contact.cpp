@@ -100,10 +100,7 @@ void ImpulseContact::gather(Index i) {
 
 ImpulseContact::Products ImpulseContact::products(Index i, Index j) const {
   Products s;
-  const RowEntry* a = entries_.data() + entries_begin_[static_cast<std::size_t>(i)];
-  const RowEntry* a_end = entries_.data() + entries_end_[static_cast<std::size_t>(i)];
-  const RowEntry* b = entries_.data() + entries_begin_[static_cast<std::size_t>(j)];
-  const RowEntry* b_end = entries_.data() + entries_end_[static_cast<std::size_t>(j)];
+  const RowEntry *a = gathered_begin(i), *a_end = gathered_end(i), *b = gathered_begin(j), *b_end = gathered_end(j);
   if (a == a_end || b == b_end || a->col > (b_end - 1)->col || b->col > (a_end - 1)->col) return s;  // no shared dof
   while (a != a_end && b != b_end) {
     if (a->col < b->col) {
@@ -154,6 +151,10 @@ void ImpulseContact::couple_closed() {
 }
 
 void ImpulseContact::add_impulse(Index i, double n, double t, VecRef v) const {
+  if (moving_) {  // the closed contact's gathered nonzeros, not its worst-case pattern
+    for (const RowEntry* e = gathered_begin(i); e != gathered_end(i); ++e) v[e->col] += minv_[e->col] * (e->l * n + e->t * t);
+    return;
+  }
   for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * n;
   if (t != 0.0)
     for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * t;
@@ -168,14 +169,21 @@ Index ImpulseContact::collect_closed() {
 
 long ImpulseContact::apply_with_friction(ConstVecRef v_prev, VecRef v, VecRef impulses, VecRef tangential,
                                          StepInfo& info, WorkCounters& work, double e) {
+  // Called for closed contacts only: with moving contacts their gathered nonzeros.
   const auto normal_rate = [&](Index i, ConstVecRef x) {
     double r = 0.0;
-    for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) r += it.value() * x[it.col()];
+    if (moving_)
+      for (const RowEntry* e = gathered_begin(i); e != gathered_end(i); ++e) r += e->l * x[e->col];
+    else
+      for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) r += it.value() * x[it.col()];
     return r;
   };
   const auto slip_rate = [&](Index i) {
     double r = -w_[i];
-    for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) r += it.value() * v[it.col()];
+    if (moving_)
+      for (const RowEntry* e = gathered_begin(i); e != gathered_end(i); ++e) r += e->t * v[e->col];
+    else
+      for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) r += it.value() * v[it.col()];
     return r;
   };
   if (!friction_coupled_) {

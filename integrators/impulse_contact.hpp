@@ -25,7 +25,8 @@
 // rows at u. Which contacts may be coupled is decided from the rows' pattern (the worst case
 // over configurations); the products are formed only where the step reads them: the diagonal
 // blocks of the contacts closed at u, and the pairs of closed contacts whose rows' nonzero
-// entries share a dof (each row's nonzeros gathered once per step, on storage sized once).
+// entries share a dof (each row's nonzeros gathered once per step, on storage sized once);
+// with friction the closed contacts' rates and impulses also run over those nonzeros.
 // Constant kinematics: the rows and H of the construction, as before.
 #include "solvers/coulomb.hpp"
 #include "integrators/integrator.hpp"
@@ -101,6 +102,8 @@ class ImpulseContact {
   };
   std::vector<RowEntry> entries_;
   std::vector<Index> entries_begin_, entries_end_;
+  const RowEntry* gathered_begin(Index i) const { return entries_.data() + entries_begin_[static_cast<std::size_t>(i)]; }
+  const RowEntry* gathered_end(Index i) const { return entries_.data() + entries_end_[static_cast<std::size_t>(i)]; }
 };
 
 }  // namespace nsb
