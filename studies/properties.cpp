@@ -49,8 +49,8 @@ namespace {
 constexpr long kFreeSteps = 10'000, kFloorSteps = 2000, kLongRunImpacts = 100'000;
 
 // A row's measurements in four parts, each a case of its own so that the cores share one
-// scheme's work (a whole row took up to 25 s of CPU, and the rows of the three Siconos peers,
-// run last, 60 s on one core: below). The case list starts with the long runs, the longest part.
+// scheme's work (one case per row left a core idle while the last rows ran: docs/measurements.md).
+// The case list starts with the long runs, the longest part.
 // Siconos models share one lock (peers/siconos/siconos_integrator.cpp: Debian's OpenBLAS is not
 // thread-safe), so two Siconos runs at once take as long as one after the other while a core
 // idles: the Siconos peers' long runs are one case, run one after the other while the other
