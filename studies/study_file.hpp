@@ -81,6 +81,9 @@ struct FileMeasure {
   std::string norm = "max";      // Error: final|max|l2; Energy: max|final|drift
   int count = 3;                 // ImpactTime: the first `count` impacts
   bool history = false;          // Energy: also a history table and figure
+  // Energy: > 0: sampled at the first step past each t_k = from + k every (k = 1, 2, ... while
+  // t_k <= t_end, to half a step), its norm count | first | final | drift (slope against k).
+  double every = 0.0, from = 0.0;
   double time_scale = 0.0;       // Hausdorff: T (0: t_end)
   double value_scale = 0.0;      // Hausdorff: V (0: the reference's largest |value|)
   std::vector<std::string> problems;  // the labels of the problems it is measured on (empty: all)
@@ -167,6 +170,8 @@ struct StudySpec {
   // study.case_order = "integrator": the runs integrator by integrator (each over the problems
   // in their order); by default problem by problem (each over the integrators).
   bool integrator_major = false;
+  // study.measure_over_budget: an over-budget run's measures up to its stop (default: none).
+  bool measure_over_budget = false;
   std::vector<FileExclusion> exclusions;
   // Outcome thresholds: "energy blow-up" past energy_blow_up E scale (study_file.cpp),
   // "penetration" when max(0, -g) exceeds max_penetration (infinite: never).

@@ -712,9 +712,34 @@ std::string stem_name(const std::string& file) {
 }
 
 
+// An energy measure's norm, history and sampling: every step, or with `every` (> 0) at the first
+// step past each from + k every (from >= 0; norms count, first, final, drift against k; no
+// window or history).
+void read_energy_sampling(const Checker& c, const Json& j, const std::string& path, FileMeasure& m) {
+  if (const Json* v = c.find(j, "every")) {
+    m.every = c.positive(*v, child(path, "every"));
+    for (const char* key : {"window", "history"})
+      if (c.find(j, key)) c.fail(child(path, key), "an energy sampled every period has no window or history", "one of every or window/history");
+    if (const Json* f = c.find(j, "from")) {
+      c.expect(*f, child(path, "from"), f->is_number(), "a number");
+      m.from = f->get<double>();
+      if (!(m.from >= 0.0) || !std::isfinite(m.from)) c.fail(child(path, "from"), fmt::format("{} is no start time", m.from), "[0, inf)");
+    }
+    m.norm = "final";
+    if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"count", "first", "final", "drift"});
+    m.label = fmt::format("energy err {}, every {:g} from {:g}", m.norm, m.every, m.from);
+    return;
+  }
+  if (c.find(j, "from")) c.fail(child(path, "from"), "from without every", "every = T beside it");
+  if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "final", "drift"});
+  if (const Json* v = c.find(j, "history")) m.history = c.boolean(*v, child(path, "history"));
+  m.label = fmt::format("energy err {}", m.norm);
+}
+
 // study.case_order and study.max_force_evaluations_per_step (a budget per nominal step: a run's
 // is floor(k t_end / dt); (0, 1e6], beside no max_force_evaluations).
 void read_study_order_and_budget(const Checker& c, const Json& study, StudySpec& spec) {
+  if (const Json* v = c.find(study, "measure_over_budget")) spec.measure_over_budget = c.boolean(*v, "study.measure_over_budget");
   if (const Json* v = c.find(study, "case_order"))
     spec.integrator_major = c.choice(*v, "study.case_order", {"problem", "integrator"}) == "integrator";
   if (const Json* v = c.find(study, "max_force_evaluations_per_step")) {
@@ -818,7 +843,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   c.expect(study, "study", study.is_object(), "a table");
   c.keys(study, "study", {"title", "t_end", "sample_every", "check_every", "cpu_repeats", "max_force_evaluations", "targets",
                           "rank_by", "energy_blow_up", "max_penetration", "integrators", "figures", "case_order",
-                          "max_force_evaluations_per_step"});
+                          "max_force_evaluations_per_step", "measure_over_budget"});
   spec.title = c.string(c.require(study, "study", "title"), "study.title");
   spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
   if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
@@ -1015,10 +1040,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       }
       m.label = onset ? "onset time err" : "stop time err";
     } else if (m.kind == MeasureKind::Energy) {
-      keys({"norm", "history", "window"});
-      if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "final", "drift"});
-      if (const Json* v = c.find(j, "history")) m.history = c.boolean(*v, child(path, "history"));
-      m.label = fmt::format("energy err {}", m.norm);
+      keys({"norm", "history", "window", "every", "from"});
+      read_energy_sampling(c, j, path, m);
     } else {
       keys(kind == "momentum" ? std::vector<std::string>{"window"} : std::vector<std::string>{});
       m.label = kind == "momentum" ? "momentum residual" : "penetration";

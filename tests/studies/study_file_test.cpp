@@ -1426,3 +1426,72 @@ TEST_CASE("study file: case_order, default_only, [[exclude]] and a budget per st
              StartsWith("f.toml:21: table[0].columns[0]: 'parameter N' is not valid (nearest: parameter "));
   CHECK_THAT(error_of(with_rule("below = { e = 0.5 }\n")), StartsWith("f.toml:20: exclude[0].below: unknown key (nearest valid key: above)"));
 }
+
+TEST_CASE("study file: an energy error sampled every period (count, first, final, drift per period); over-budget runs measured",
+          "[studies][study_file]") {
+  // The bouncing mass (e = 1) to t = 1 at dt = 1e-2, sampled at 0.1 + 0.25 k: 0.35, 0.6, 0.85
+  // (1.1 is past t_end). Three points at k = 1, 2, 3: the least-squares slope is (e3 - e1) / 2.
+  const std::string text = quick_study("1.0") + R"(
+[[problem]]
+name = "bouncing-mass"
+parameters = { e = 1 }
+[[integrator]]
+name = "moreau-jean"
+steps = [1e-2]
+[[measure]]
+kind = "energy"
+every = 0.25
+from = 0.1
+norm = "count"
+[[measure]]
+kind = "energy"
+every = 0.25
+from = 0.1
+norm = "first"
+[[measure]]
+kind = "energy"
+every = 0.25
+from = 0.1
+[[measure]]
+kind = "energy"
+every = 0.25
+from = 0.1
+norm = "drift"
+label = "drift"
+)";
+  std::vector<nsb::Json> results;
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "f.toml", false);
+  CHECK(spec.measures[2].label == "energy err final, every 0.25 from 0.1");
+  run_all(spec, &results);
+  REQUIRE(results.size() == 1);
+  const nsb::Json& v = results[0]["values"];
+  CHECK(v[0].get<double>() == 3.0);
+  const double first = v[1], last = v[2];
+  CHECK(first != last);  // moreau-jean's energy changes at the impact near t = 0.45
+  CHECK(v[3].get<double>() == Approx((last - first) / 2.0).epsilon(1e-12));
+  // Over budget: no measures, unless study.measure_over_budget (then those up to the stop: one
+  // sample of three).
+  for (const bool measured : {false, true}) {
+    const std::string more = fmt::format("max_force_evaluations = 45\nmeasure_over_budget = {}\n", measured);
+    std::vector<nsb::Json> stopped;
+    run_all(nsb::parse_study_text(replaced(text, "targets = [1e-2]\n", "targets = [1e-2]\n" + more), "f.toml", false), &stopped);
+    CHECK(stopped[0]["status"] == "over budget");
+    CHECK(stopped[0].contains("values") == measured);
+    if (measured) CHECK(stopped[0]["values"][0].get<double>() == 1.0);
+  }
+}
+
+TEST_CASE("study file: an energy error sampled every period: bad input named", "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  const std::string energy = replaced(kMinimal, "kind = \"error\"", "kind = \"energy\"");
+  const auto with = [&](const std::string& lines) { return energy + lines; };
+  CHECK_THAT(error_of(with("every = 0\n")), StartsWith("f.toml:18: measure[0].every: 0 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(error_of(with("every = 0.1\nfrom = -1\n")), StartsWith("f.toml:19: measure[0].from: -1 is no start time; valid: [0, inf)"));
+  CHECK_THAT(error_of(with("from = 0.1\n")), StartsWith("f.toml:18: measure[0].from: from without every; valid: every = T beside it"));
+  CHECK_THAT(error_of(with("every = 0.1\nnorm = \"max\"\n")),
+             StartsWith("f.toml:19: measure[0].norm: 'max' is not valid (nearest: "));
+  CHECK_THAT(error_of(with("every = 0.1\nhistory = true\n")),
+             StartsWith("f.toml:19: measure[0].history: an energy sampled every period has no window or history; valid: one of every or window/history"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmeasure_over_budget = 1")),
+             StartsWith("f.toml:4: study.measure_over_budget: expected a boolean, got an integer"));
+}
