@@ -476,6 +476,16 @@ bool is_file_stem(const std::string& id) {
   });
 }
 
+// An optional array of tables [[key]], each checked to be a table; empty when absent.
+const Json& optional_tables(const Checker& c, const Json& root, const char* key) {
+  static const Json none = Json::array();
+  const Json* list = c.find(root, key);
+  if (!list) return none;
+  c.expect(*list, key, list->is_array(), fmt::format("one or more [[{}]] tables", key));
+  for (std::size_t i = 0; i < list->size(); ++i) c.expect((*list)[i], element(key, i), (*list)[i].is_object(), "a table");
+  return *list;
+}
+
 // [[figure]]: drawn from the work-precision table, its columns named by their headers.
 std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const std::vector<FileMeasure>& measures, bool declared_only) {
   std::vector<FileFigure> figures;
@@ -589,13 +599,11 @@ FileColumn read_column(const Checker& c, const Json& j, const std::string& path,
 // [[table]]: the tables the study writes instead of the engine's own.
 std::vector<FileTable> read_tables(const Checker& c, const Json& root, const StudySpec& spec) {
   std::vector<FileTable> tables;
-  const Json* list = c.find(root, "table");
-  if (!list) return tables;
-  c.expect(*list, "table", list->is_array(), "one or more [[table]] tables");
-  for (std::size_t i = 0; i < list->size(); ++i) {
-    const Json& j = (*list)[i];
+  if (!c.find(root, "table")) return tables;  // the engine's own tables, their figures unchecked here
+  const Json& list = optional_tables(c, root, "table");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Json& j = list[i];
     const std::string path = element("table", i);
-    c.expect(j, path, j.is_object(), "a table");
     c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
@@ -755,13 +763,10 @@ void read_study_order_and_budget(const Checker& c, const Json& study, StudySpec&
 // names a numeric parameter of one or more of them, stable_steps_except a sweep of stable steps.
 std::vector<FileExclusion> read_exclusions(const Checker& c, const Json& root, const StudySpec& spec) {
   std::vector<FileExclusion> rules;
-  const Json* list = c.find(root, "exclude");
-  if (!list) return rules;
-  c.expect(*list, "exclude", list->is_array(), "one or more [[exclude]] tables");
-  for (std::size_t i = 0; i < list->size(); ++i) {
-    const Json& j = (*list)[i];
+  const Json& list = optional_tables(c, root, "exclude");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Json& j = list[i];
     const std::string path = element("exclude", i);
-    c.expect(j, path, j.is_object(), "a table");
     c.keys(j, path, {"integrators", "above", "stable_steps_except", "default_only", "full_only"});
     FileExclusion x;
     x.integrators = c.choice(c.require(j, path, "integrators"), child(path, "integrators"), {"schemes", "peers", "references"});
