@@ -9,7 +9,9 @@
 //   impact-time  max over the first `count` impacts of |t_i (scheme) - t_i (exact)|, t_i the
 //                end of the first step with an impulse after a step without one [s].
 //   energy       (E - E0)/|E0| (E0 = 0: the problem's energy_scale(), run/run.hpp), E the scheme's own energy: max |.|, final, or drift (its
-//                least-squares slope in time, 1/s).
+//                least-squares slope in time, 1/s); with `every` T, at the first step past each
+//                from + k T (k = 1, 2, ... up to t_end, to half a step): count, first, final, or
+//                drift (the slope against k, per T).
 //   momentum     max over the samples of |P - P0 - sum_k (1^T F_ext(t_k) dt_k + 1^T L^T Lambda_k)|
 //                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
 //                balances momentum exactly when the internal forces sum to zero.
