@@ -63,6 +63,10 @@ ImpulseContact::ImpulseContact(const Problem& problem, const Vec& minv, LcpOptio
 }
 
 double ImpulseContact::weighted_dot(const RowSpMat& A, Index i, const RowSpMat& B, Index j) const {
+  return weighted_row_dot(A, i, B, j, minv_);
+}
+
+double weighted_row_dot(const RowSpMat& A, Index i, const RowSpMat& B, Index j, const Vec& minv) {
   RowSpMat::InnerIterator a(A, i), b(B, j);
   double sum = 0.0;
   while (a && b) {
@@ -71,7 +75,7 @@ double ImpulseContact::weighted_dot(const RowSpMat& A, Index i, const RowSpMat& 
     } else if (b.col() < a.col()) {
       ++b;
     } else {
-      sum += a.value() * minv_[a.col()] * b.value();
+      sum += a.value() * minv[a.col()] * b.value();
       ++a;
       ++b;
     }
