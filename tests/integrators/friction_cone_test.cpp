@@ -4,6 +4,7 @@
 // zero), slip on its boundary opposite to the slip velocity, no energy gain; the sphere's
 // roll-onset time against its exact value; every other scheme declines the cone in one line.
 #include <catch2/catch.hpp>
+#include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -53,7 +54,8 @@ struct ConeChecks {
   double worst_residual = 0.0;     // the cone law's residual (coulomb_cone.hpp), relative
   double worst_stick_slip = 0.0;   // |U_T| / |q| after a sticking step
   double worst_alignment = 0.0;    // 1 + cos(Lambda_T, U_T) on slipping steps (0: opposite)
-  double worst_energy_gain = 0.0;  // max(0, E_{k+1} - E_k) / E scale
+  double worst_impulse_work = 0.0;  // Lambda . (q + U) / 2 per contact, relative to W-energy of q
+  double worst_energy_gain = 0.0;   // max(0, E_{k+1} - E_k) / E scale
   long stick_steps = 0, slip_steps = 0;
 };
 
@@ -64,6 +66,7 @@ ConeChecks check_cone(const nsb::Problem& p, nsb::Integrator& integ, double dt, 
   const nsb::Contacts& k = p.contacts();
   const Vec minv = p.mass_matrix().diagonal().cwiseInverse();
   double energy = std::numeric_limits<double>::quiet_NaN(), scale = 0.0;
+  integ.init(p, p.initial_state());
   nsb::run(p, integ, {dt, t_end, 1, false}, [&](const nsb::Integrator& it, const nsb::StepInfo&) {
     const Vec& v = it.state().v;
     for (Index i = 0; i < k.size(); ++i) {
@@ -78,6 +81,9 @@ ConeChecks check_cone(const nsb::Problem& p, nsb::Integrator& integ, double dt, 
       const Eigen::Vector3d U = C * v, q = U - W * lambda;
       const nsb::ConeImpulse impulse{n, lambda.tail<2>()};
       c.worst_residual = std::max(c.worst_residual, nsb::cone_law_residual(W, q, k.mu[i], impulse));
+      // The impulse's kinetic energy change in local terms (e = 0: q before, U after).
+      const double scale_q = q.dot(W.ldlt().solve(q));
+      c.worst_impulse_work = std::max(c.worst_impulse_work, 0.5 * lambda.dot(q + U) / scale_q);
       const double bound = k.mu[i] * n, length = lambda.tail<2>().norm();
       if (length < bound * (1.0 - 1e-9)) {
         ++c.stick_steps;
@@ -111,7 +117,7 @@ TEST_CASE("friction cone: a full Delassus block (local solve), stick and slip, f
     CHECK(s.slip_steps > 150);
     CHECK(s.worst_residual < 1e-12);
     CHECK(s.worst_alignment < 1e-12);
-    CHECK(s.worst_energy_gain <= 1e-14);
+    CHECK(s.worst_impulse_work <= 1e-14);
     // ... and held (mu 2: it stops, then sticks under the load).
     const SkewContact held(2.0, {0.2, -0.1, 0.0});
     auto b = nsb::make_integrator(name, {});
@@ -119,7 +125,9 @@ TEST_CASE("friction cone: a full Delassus block (local solve), stick and slip, f
     CHECK(h.stick_steps > 150);
     CHECK(h.worst_residual < 1e-12);
     CHECK(h.worst_stick_slip < 1e-12);
-    CHECK(h.worst_energy_gain <= 1e-14);
+    CHECK(h.worst_impulse_work <= 1e-14);
+    // No step-to-step energy statement here: with W_NT != 0 the balance of the step (for
+    // moreau-jean Lambda . C (v_k + v_{k+1}) / 2 at theta 1/2) is not the impulse's alone.
   }
 }
 
@@ -135,6 +143,7 @@ TEST_CASE("friction cone: the sphere's contact (closed form), slip then rolling,
     CHECK(c.worst_residual < 1e-12);
     CHECK(c.worst_alignment < 1e-12);
     CHECK(c.worst_stick_slip < 1e-12);
+    CHECK(c.worst_impulse_work <= 1e-14);
     CHECK(c.worst_energy_gain <= 1e-14);
   }
 }
@@ -147,6 +156,7 @@ double measured_roll_time(const nsb::Problem& sphere, const char* scheme, double
   auto integ = nsb::make_integrator(scheme, {});
   const nsb::Contacts& c = sphere.contacts();
   double onset = std::numeric_limits<double>::quiet_NaN();
+  integ->init(sphere, sphere.initial_state());
   nsb::run(sphere, *integ, {dt, t_end, 1, false}, [&](const nsb::Integrator& it, const nsb::StepInfo&) {
     const double slip = std::hypot((c.tangent * it.state().v)(0), (c.tangent2 * it.state().v)(0));
     if (slip > kStopped) onset = std::numeric_limits<double>::quiet_NaN();
@@ -162,11 +172,13 @@ TEST_CASE("friction cone: the sphere's roll onset within O(dt) of the exact time
   const double exact = dynamic_cast<const nsb::Sphere&>(*problem).roll_time();
   for (const char* name : kConeSchemes) {
     INFO(name);
-    const double coarse = measured_roll_time(*problem, name, 2e-3, 0.4) - exact;
-    const double fine = measured_roll_time(*problem, name, 1e-3, 0.4) - exact;
-    std::printf("%s: roll-onset error %.3e s at dt 2e-3, %.3e s at dt 1e-3 (exact %.6f s)\n", name, coarse, fine, exact);
-    CHECK(std::abs(coarse) <= 2e-3);
-    CHECK(std::abs(fine) <= 1e-3);
+    // Measured (printed below): the onset falls within one step of the exact time at each dt,
+    // quantised to the step grid, so the error is O(dt) without a clean ratio between two dt.
+    for (const double dt : {2e-3, 1e-3, 5e-4}) {
+      const double error = measured_roll_time(*problem, name, dt, 0.4) - exact;
+      std::printf("%s: roll-onset error %.3e s at dt %.0e (exact %.6f s)\n", name, error, dt, exact);
+      CHECK(std::abs(error) <= dt);
+    }
   }
 }
 
@@ -182,9 +194,9 @@ TEST_CASE("friction cone: every scheme without the capability declines the cone 
     } catch (const nsb::InputError& e) {
       what = e.what();
     }
-    CHECK(what == "integrator " + entry.name +
-                      " needs 2D contacts (one tangent row: the Coulomb interval) or mu = 0; problem sphere has 3D contacts "
+    CHECK_THAT(what, Catch::StartsWith("integrator " + entry.name));  // " with theta = 0" may follow
+    CHECK_THAT(what, Catch::Contains(" needs 2D contacts (one tangent row: the Coulomb interval) or mu = 0; problem sphere has 3D contacts "
                       "with friction (two tangent rows: the Coulomb cone, mu = 0.3) (valid: a problem with 2D contacts or "
-                      "mu = 0, or an integrator `nsbench list` marks as treating the 3D friction cone)");
+                      "mu = 0, or an integrator `nsbench list` marks as treating the 3D friction cone)"));
   }
 }

@@ -1,6 +1,7 @@
 // The sphere problem (problems/sphere.hpp): its 3D contact rows against the contact point's
 // velocity, its exact state against its own equations (u' = v, energy), bad input.
 #include <catch2/catch.hpp>
+#include <Eigen/Dense>
 #include <cmath>
 #include <map>
 #include <string>
