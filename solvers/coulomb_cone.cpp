@@ -1,4 +1,5 @@
 #include "solvers/coulomb_cone.hpp"
+#include "solvers/coulomb.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -59,13 +60,7 @@ LcpResult solve_coulomb_cone(const Eigen::MatrixXd& D, const Eigen::VectorXd& q,
                              Eigen::VectorXd& x, const LcpOptions& options) {
   const Eigen::Index a = mu.size();
   if (x.size() != 3 * a) x = Eigen::VectorXd::Zero(3 * a);
-  bool coupled = false;  // any entry outside the contacts' own 3x3 blocks
-  for (Eigen::Index c = 0; c < 3 * a && !coupled; ++c)
-    for (Eigen::Index r = 0; r < 3 * a; ++r)
-      if (r / 3 != c / 3 && D(r, c) != 0.0) {
-        coupled = true;
-        break;
-      }
+  const bool coupled = couples_blocks(D, 3);
   const double scale = std::max(q.cwiseAbs().maxCoeff(), 1e-300);
   LcpResult result;
   const long cap = coupled ? options.max_iterations : 1;
