@@ -120,6 +120,23 @@ ImpulseContact::Products ImpulseContact::products(Index i, Index j) const {
   return s;
 }
 
+double weighted_row_dot(const RowSpMat& A, Index i, const RowSpMat& B, Index j, const Vec& minv) {
+  RowSpMat::InnerIterator a(A, i), b(B, j);
+  double sum = 0.0;
+  while (a && b) {
+    if (a.col() < b.col()) {
+      ++a;
+    } else if (b.col() < a.col()) {
+      ++b;
+    } else {
+      sum += a.value() * minv[a.col()] * b.value();
+      ++a;
+      ++b;
+    }
+  }
+  return sum;
+}
+
 void ImpulseContact::evaluate_at(ConstVecRef u) {
   problem_->evaluate_contacts(u, rows_);
   for (Index i = 0; i < rows_.normal.rows(); ++i) {

@@ -34,6 +34,9 @@
 
 namespace nsb {
 
+// A_i M^{-1} B_j^T for rows i of A and j of B (row-major, sorted columns), M^{-1} = diag(minv).
+double weighted_row_dot(const RowSpMat& A, Index i, const RowSpMat& B, Index j, const Vec& minv);
+
 class ImpulseContact {
  public:
   ImpulseContact() = default;

@@ -197,13 +197,13 @@ TEST_CASE("fields: writing a state allocates nothing; a problem that describes n
     nsb::State s = problem->initial_state();
     s.u = nsb::Vec::LinSpaced(problem->ndof(), -1e-3, 1e-3);
     const nsb::Vec normal = nsb::Vec::Ones(problem->ncontacts()), tangential = 0.5 * normal;
-    writer.state(s, normal, tangential);
+    writer.state(s, normal, tangential, tangential);
     long allocations = 0;
     {
       nsb::test::CountAllocations count;
-      writer.state(s, normal, tangential);
+      writer.state(s, normal, tangential, tangential);
       s.t = 1.0;
-      writer.state(s, normal, tangential);
+      writer.state(s, normal, tangential, tangential);
       allocations = count.count();
     }
     CHECK(allocations == 0);
