@@ -257,9 +257,9 @@ TEST_CASE("fields: a bar and a striker are two parts, elements with stress and t
   {
     nsb::FieldWriter writer(*problem, dir, "--fields", 2);
     const nsb::Vec lambda = nsb::Vec::Constant(1, 2.0);
-    writer.state(s, lambda, nsb::Vec());
+    writer.state(s, lambda, nsb::Vec(), nsb::Vec());
     s.t = 0.25;
-    writer.state(s, lambda, nsb::Vec());
+    writer.state(s, lambda, nsb::Vec(), nsb::Vec());
     writer.commit();
   }
   std::vector<std::string> elements, bodies;
@@ -292,7 +292,7 @@ TEST_CASE("fields: a bar and a striker are two parts, elements with stress and t
   d.v << -1.0, 0.5, 3.0;
   {
     nsb::FieldWriter writer(*disk, dir, "--fields", 1);
-    writer.state(d, nsb::Vec::Zero(1), nsb::Vec::Zero(1));
+    writer.state(d, nsb::Vec::Zero(1), nsb::Vec::Zero(1), nsb::Vec());
     writer.commit();
   }
   std::vector<std::string> files;
