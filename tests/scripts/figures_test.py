@@ -30,7 +30,7 @@ def check(condition, what):
 def registered(nsbench):
     """(name, kind) of every integrator `nsbench list` names; kind from its description."""
     out = subprocess.run([nsbench, "list"], check=True, capture_output=True, text=True).stdout
-    lines = out.split("\nintegrators")[1].splitlines()[1:]
+    lines = out.split("\nintegrators (")[1].splitlines()[1:]  # the section title, not a wrapped line of it
     found = []
     for line in lines:
         if line.startswith("  ") and not line.startswith("    ") and line.strip():
