@@ -184,12 +184,12 @@ int run_case(const RunArgs& a) {
   return 0;
 }
 
-int print_verdicts(const std::string& what, const std::vector<nsb::Verdict>& verdicts) {
+int print_verdicts(const std::string& what, const std::vector<nsb::CheckVerdict>& verdicts) {
   fmt::print("nsbench check: {}\n", what);
   int failed = 0;
   for (const auto& v : verdicts) {
     fmt::print("  {:<16} {:<13} {}\n", v.property, nsb::outcome_name(v.outcome), v.figure);
-    failed += v.outcome == nsb::Verdict::Outcome::Fail;
+    failed += v.outcome == nsb::CheckVerdict::Outcome::Fail;
   }
   fmt::print("{}: {}\n", what, failed ? fmt::format("{} properties failed", failed) : "every measured property holds");
   return failed;

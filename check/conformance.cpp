@@ -151,20 +151,20 @@ std::optional<SmoothOrder> smooth_order(const IntegratorEntry& entry) {
   return s;
 }
 
-const char* outcome_name(Verdict::Outcome o) {
+const char* outcome_name(CheckVerdict::Outcome o) {
   switch (o) {
-    case Verdict::Outcome::Pass: return "pass";
-    case Verdict::Outcome::Fail: return "FAIL";
-    case Verdict::Outcome::NotMeasured: return "not measured";
+    case CheckVerdict::Outcome::Pass: return "pass";
+    case CheckVerdict::Outcome::Fail: return "FAIL";
+    case CheckVerdict::Outcome::NotMeasured: return "not measured";
   }
   return "?";
 }
 
 namespace {
 
-using Outcome = Verdict::Outcome;
+using Outcome = CheckVerdict::Outcome;
 
-Verdict verdict(std::string property, bool pass, std::string figure) {
+CheckVerdict verdict(std::string property, bool pass, std::string figure) {
   return {std::move(property), pass ? Outcome::Pass : Outcome::Fail, std::move(figure)};
 }
 
@@ -172,7 +172,7 @@ std::unique_ptr<BouncingMass> bouncing_mass(double e) {
   return std::make_unique<BouncingMass>(Params(BouncingMass::parameters_spec(), {{"e", fmt::format("{}", e)}}));
 }
 
-void contact_law(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+void contact_law(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
   const double dt = 1e-4;
   int impacts = 5;
   double e = 0.9;
@@ -217,7 +217,7 @@ void contact_law(const IntegratorEntry& entry, std::vector<Verdict>& out) {
                           fmt::format("worst |E_i / (E0 e^2i) - 1| / bound = {:.3g} (<= 1)", r.flight_energy)));
 }
 
-void step_counters(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+void step_counters(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
   if (entry.reference) {
     out.push_back({"step counters", Outcome::NotMeasured, "a reference counts its ODE solver's own steps and right-hand sides"});
     return;
@@ -244,7 +244,7 @@ void step_counters(const IntegratorEntry& entry, std::vector<Verdict>& out) {
                                     "worst |t - (t0 + dt)| {:.3g}", steps, bad_steps, bad_forces, worst_t)));
 }
 
-void momentum(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+void momentum(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
   const auto drift = free_flight_momentum_drift(entry, 1000);
   if (!drift)
     out.push_back({"momentum", Outcome::NotMeasured, "declines block-2d"});
@@ -253,7 +253,7 @@ void momentum(const IntegratorEntry& entry, std::vector<Verdict>& out) {
                           fmt::format("block-2d free flight, 1000 steps: |P - P0| / sum m|v| = {:.3g} (<= 1e-10)", *drift)));
 }
 
-void order(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+void order(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
   if (entry.reference) {
     out.push_back({"order", Outcome::NotMeasured, "a reference: its error is set by its tolerance, not by dt"});
     return;
@@ -279,7 +279,7 @@ std::string outside(const ParamSpec& s) {
 // Every value outside a declared range, and a non-finite value for every real parameter,
 // must be refused (InputError) by `make`.
 template <class Make>
-Verdict refuses_bad_parameters(const ParamSpecs& specs, Make make) {
+CheckVerdict refuses_bad_parameters(const ParamSpecs& specs, Make make) {
   int tried = 0, accepted = 0;
   std::string first;
   auto attempt = [&](const ParamSpec& s, const std::string& value) {
@@ -297,11 +297,11 @@ Verdict refuses_bad_parameters(const ParamSpecs& specs, Make make) {
   return verdict("bad parameters", accepted == 0, fmt::format("{} of {} out-of-range values rejected{}", tried - accepted, tried, first));
 }
 
-void bad_parameters(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+void bad_parameters(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
   out.push_back(refuses_bad_parameters(entry.parameters(), [&](const Params& p) { entry.make(p); }));
 }
 
-void determinism(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+void determinism(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
   const auto b = block({{"height", "0.01"}, {"nx", "6"}, {"ny", "3"}, {"vx", "0.5"}, {"spin", "1"}});
   std::vector<State> finals;
   std::vector<Vec> impulses;
@@ -326,7 +326,7 @@ void determinism(const IntegratorEntry& entry, std::vector<Verdict>& out) {
                                                                                             .lpNorm<Eigen::Infinity>()))));
 }
 
-void friction(const IntegratorEntry& entry, std::vector<Verdict>& out) {
+void friction(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
   const SlidingMass p(Params(SlidingMass::parameters_spec(), {{"alpha", "30"}, {"mu", "0.8"}, {"v0", "2"}}));
   auto integ = entry.make(Params(entry.parameters()));
   if (!integ->treats_friction()) {
@@ -359,7 +359,7 @@ void friction(const IntegratorEntry& entry, std::vector<Verdict>& out) {
 
 // What `nsbench run --fields` needs: a mesh the writer accepts, and finite stresses and body
 // arrays at the initial state.
-void field_mesh(const Problem& p, const State& s0, std::vector<Verdict>& out) {
+void field_mesh(const Problem& p, const State& s0, std::vector<CheckVerdict>& out) {
   const auto mesh = p.field_mesh();
   if (!mesh) {
     out.push_back({"field mesh", Outcome::NotMeasured, "none: nsbench run --fields refuses this problem"});
@@ -384,7 +384,7 @@ void field_mesh(const Problem& p, const State& s0, std::vector<Verdict>& out) {
 
 }  // namespace
 
-Verdict check_contact_rows(const Problem& p, const Vec& u0) {
+CheckVerdict check_contact_rows(const Problem& p, const Vec& u0) {
   const Index n = p.ndof(), nc = p.ncontacts();
   if (nc == 0) return {"contact rows", Outcome::Pass, "0 contacts: no rows to test"};
   ContactGeometry at = p.contact_geometry(), plus = p.contact_geometry(), minus = p.contact_geometry();
@@ -428,9 +428,9 @@ Verdict check_contact_rows(const Problem& p, const Vec& u0) {
                              friction ? fmt::format("worst {:.3g}", worst_tangent) : std::string("frictionless")));
 }
 
-std::vector<Verdict> check_integrator(const IntegratorEntry& entry) {
-  std::vector<Verdict> out;
-  using Property = void (*)(const IntegratorEntry&, std::vector<Verdict>&);
+std::vector<CheckVerdict> check_integrator(const IntegratorEntry& entry) {
+  std::vector<CheckVerdict> out;
+  using Property = void (*)(const IntegratorEntry&, std::vector<CheckVerdict>&);
   const std::vector<std::pair<const char*, Property>> properties = {
       {"contact law", contact_law}, {"step counters", step_counters}, {"momentum", momentum}, {"order", order},
       {"bad parameters", bad_parameters}, {"determinism", determinism}, {"friction", friction}};
@@ -446,8 +446,8 @@ std::vector<Verdict> check_integrator(const IntegratorEntry& entry) {
   return out;
 }
 
-std::vector<Verdict> check_problem(const ProblemEntry& entry) {
-  std::vector<Verdict> out;
+std::vector<CheckVerdict> check_problem(const ProblemEntry& entry) {
+  std::vector<CheckVerdict> out;
   std::unique_ptr<Problem> p;
   try {
     p = entry.make(Params(entry.parameters()));

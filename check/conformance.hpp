@@ -79,17 +79,17 @@ struct SmoothOrder {
 std::optional<SmoothOrder> smooth_order(const IntegratorEntry& entry);
 
 // One line of `nsbench check`.
-struct Verdict {
+struct CheckVerdict {
   enum class Outcome { Pass, Fail, NotMeasured };
   std::string property;
   Outcome outcome = Outcome::Pass;
   std::string figure;  // the measured figure against its bound, or why not measured
 };
-const char* outcome_name(Verdict::Outcome o);
+const char* outcome_name(CheckVerdict::Outcome o);
 
 // Every property above for `entry`. An exception from the integrator (other than a declined
 // problem, which some properties expect) is a failed property, not an abort.
-std::vector<Verdict> check_integrator(const IntegratorEntry& entry);
+std::vector<CheckVerdict> check_integrator(const IntegratorEntry& entry);
 
 // A problem's contract (problems/problem.hpp): built with its defaults; contacts whose shapes
 // agree, initially open or touching; a symmetric mass with a non-negative diagonal;
@@ -99,13 +99,13 @@ std::vector<Verdict> check_integrator(const IntegratorEntry& entry);
 // constant kinematics too, where they hold to round-off); a field mesh `nsbench run --fields` can
 // write (check_field_mesh), with finite stresses and body arrays at the initial state (not
 // measured without one); bad parameters refused.
-std::vector<Verdict> check_problem(const ProblemEntry& entry);
+std::vector<CheckVerdict> check_problem(const ProblemEntry& entry);
 
 // The contact rows' part of check_problem for one problem around configuration u0: L(U) and
 // T(U) against central differences of g(U) and of the slide s(U) (T = ds/dU) along three
 // random directions d each, at u0 and at up to five random admissible configurations (every
 // gap >= 0) within 0.05 (1 + max|u0|) of it. Error of a row: |FD - row . d| / (|row| |d|),
 // <= 1e-5 to pass. The figure says how many configurations were admissible.
-Verdict check_contact_rows(const Problem& p, const Vec& u0);
+CheckVerdict check_contact_rows(const Problem& p, const Vec& u0);
 
 }  // namespace nsb

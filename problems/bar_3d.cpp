@@ -18,14 +18,14 @@ namespace nsb {
 namespace {
 
 // Elements per thread below which one thread is faster (as block-2d's).
-constexpr Index kMinElementsPerThread = 2048;
+constexpr Index kMinLayerElementsPerThread = 2048;
 
 // The parameters bar-3d shares with signorini-bar, which its exact 1D bar is built from.
 constexpr const char* kSignoriniNames[] = {"L", "E", "rho", "A", "v0", "g0", "g", "N", "mass", "e"};
 
 // Corner c of the hex8 element in the unit cube (hex8 order: (-,-,-), (+,-,-), (+,+,-), (-,+,-),
 // then the same at zeta = +1), 0 or 1 along each axis.
-constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+constexpr int kBoxCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
 
 }  // namespace
 
@@ -84,7 +84,7 @@ Bar3d::Bar3d(const Params& p)
   lambda_ = material.lambda;
   mu_ = material.mu;
   Hex8Nodes X;
-  for (int c = 0; c < 8; ++c) X.col(c) << kCorner[c][0] * h_, kCorner[c][1] * a_, kCorner[c][2] * a_;
+  for (int c = 0; c < 8; ++c) X.col(c) << kBoxCorner[c][0] * h_, kBoxCorner[c][1] * a_, kBoxCorner[c][2] * a_;
   const Hex8Element element(X);
   element.tangent(X, material, Ke_);  // at F = I: the linear elastic stiffness
   for (int r = 0; r < 8; ++r)
@@ -183,7 +183,7 @@ void Bar3d::internal_force(ConstVecRef u, VecRef f) const {
   f.setZero();
   const double* pu = u.data();
   double* pf = f.data();
-  const int threads = threads_for(elements(), kMinElementsPerThread);
+  const int threads = threads_for(elements(), kMinLayerElementsPerThread);
   // Even element layers, then odd ones: layers of one parity share no node.
   for (Index parity = 0; parity < 2; ++parity)
     strided_for(parity, n_, 2, threads, [&](Index i) {
@@ -300,8 +300,8 @@ void Bar3d::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const {
   for_each_element([&](Index e, const Index* nodes_e) {
     Eigen::Matrix3d H = Eigen::Matrix3d::Zero();  // grad u, row: displacement component
     for (int c = 0; c < 8; ++c) {
-      const Eigen::Vector3d grad((2 * kCorner[c][0] - 1) / (4.0 * h_), (2 * kCorner[c][1] - 1) / (4.0 * a_),
-                                 (2 * kCorner[c][2] - 1) / (4.0 * a_));
+      const Eigen::Vector3d grad((2 * kBoxCorner[c][0] - 1) / (4.0 * h_), (2 * kBoxCorner[c][1] - 1) / (4.0 * a_),
+                                 (2 * kBoxCorner[c][2] - 1) / (4.0 * a_));
       for (int d = 0; d < D; ++d) H.row(d) += u[D * nodes_e[c] + d] * grad.transpose();
     }
     const Eigen::Matrix3d eps = 0.5 * (H + H.transpose());

@@ -13,8 +13,8 @@ namespace {
 constexpr int kCorner[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
                                {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
 // Voigt order of the symmetric index pairs (engineering shear).
-constexpr int kI[6] = {0, 1, 2, 1, 0, 0};
-constexpr int kJ[6] = {0, 1, 2, 2, 2, 1};
+constexpr int kVoigtI[6] = {0, 1, 2, 1, 0, 0};
+constexpr int kVoigtJ[6] = {0, 1, 2, 2, 2, 1};
 
 // Second Piola–Kirchhoff stress S and energy density W at F; D = dS/dE (Voigt) when asked.
 double material_response(const Eigen::Matrix3d& F, const Hex8Material& mat, Eigen::Matrix3d& S,
@@ -41,8 +41,8 @@ double material_response(const Eigen::Matrix3d& F, const Hex8Material& mat, Eige
   if (D)
     for (int p = 0; p < 6; ++p)
       for (int q = 0; q < 6; ++q)
-        (*D)(p, q) = mat.lambda * A(kI[p], kJ[p]) * A(kI[q], kJ[q]) +
-                     m * (A(kI[p], kI[q]) * A(kJ[p], kJ[q]) + A(kI[p], kJ[q]) * A(kJ[p], kI[q]));
+        (*D)(p, q) = mat.lambda * A(kVoigtI[p], kVoigtJ[p]) * A(kVoigtI[q], kVoigtJ[q]) +
+                     m * (A(kVoigtI[p], kVoigtI[q]) * A(kVoigtJ[p], kVoigtJ[q]) + A(kVoigtI[p], kVoigtJ[q]) * A(kVoigtJ[p], kVoigtI[q]));
   return W;
 }
 
@@ -111,7 +111,7 @@ void Hex8Element::tangent(const Hex8Nodes& x, const Hex8Material& material, Hex8
     for (int b = 0; b < 8; ++b)
       for (int i = 0; i < 3; ++i)
         for (int p = 0; p < 6; ++p) {
-          const int I = kI[p], J = kJ[p];
+          const int I = kVoigtI[p], J = kVoigtJ[p];
           B(p, 3 * b + i) = I == J ? F(i, I) * G.dN(b, I) : F(i, I) * G.dN(b, J) + F(i, J) * G.dN(b, I);
         }
     K.noalias() += G.wj * B.transpose() * D * B;

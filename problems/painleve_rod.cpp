@@ -10,7 +10,7 @@ namespace nsb {
 
 namespace {
 
-PainleveRodSpec spec_of(const Params& p) {
+PainleveRodSpec painleve_spec(const Params& p) {
   PainleveRodSpec s;
   s.s = p.real("s");
   s.m = p.real("m");
@@ -36,7 +36,7 @@ ParamSpecs PainleveRod::parameters_spec() {
   };
 }
 
-PainleveRod::PainleveRod(const Params& params) : params_(params), s_(params.real("s")), exact_(spec_of(params)) {
+PainleveRod::PainleveRod(const Params& params) : params_(params), s_(params.real("s")), exact_(painleve_spec(params)) {
   const double m = params.real("m");
   mass_ = Vec(3);
   mass_ << m, m, m * s_ * s_ / 3.0;

@@ -10,7 +10,7 @@ namespace nsb {
 
 namespace {
 
-RockingBlockSpec spec_of(const Params& p) {
+RockingBlockSpec rocking_spec(const Params& p) {
   RockingBlockSpec s;
   s.b = p.real("b");
   s.h = p.real("h");
@@ -42,7 +42,7 @@ ParamSpecs RockingBlock::parameters_spec() {
 }
 
 RockingBlock::RockingBlock(const Params& params)
-    : params_(params), b_(params.real("b")), h_(params.real("h")), exact_(spec_of(params)) {
+    : params_(params), b_(params.real("b")), h_(params.real("h")), exact_(rocking_spec(params)) {
   const double m = params.real("m"), R = exact_.R();
   mass_ = Vec(3);
   mass_ << m, m, m * R * R / 3.0;

@@ -14,8 +14,8 @@ namespace nsb {
 
 namespace {
 
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr std::size_t max_impacts = 200000;        // march cap (a very slender block)
+constexpr double kForever = std::numeric_limits<double>::infinity();
+constexpr std::size_t kMaxImpactsMarched = 200000;        // march cap (a very slender block)
 constexpr std::size_t max_periodic_impacts = 10000;  // |ratio| = 1: marched this far
 constexpr double horizon_periods = 1e4;             // first-phase search horizon, in 1 / p
 
@@ -125,7 +125,7 @@ CornerImpact moreau_impact(double b, double h, double m, double e, double mu, in
 
 RockingBlockExact::RockingBlockExact(const RockingBlockSpec& spec)
     : b_(spec.b), h_(spec.h), m_(spec.m), g_(spec.g), theta0_(spec.theta0), omega0_(spec.omega0),
-      mu_(spec.mu), e_(spec.e), law_(spec.law), t_rest_(inf), t_end_(inf) {
+      mu_(spec.mu), e_(spec.e), law_(spec.law), t_rest_(kForever), t_end_(kForever) {
   const std::string alpha_range = "(0, inf): the slenderness alpha = atan(b / h) must lie in (0, 90) degrees";
   require_input(b_ > 0.0 && std::isfinite(b_), "rocking-block", "b", b_, alpha_range);
   require_input(h_ > 0.0 && std::isfinite(h_), "rocking-block", "h", h_, alpha_range);
@@ -143,7 +143,7 @@ RockingBlockExact::RockingBlockExact(const RockingBlockSpec& spec)
 }
 
 double RockingBlockExact::rise_time(double w) const {
-  if (topples_from_upright(w)) return inf;
+  if (topples_from_upright(w)) return kForever;
   const double half = std::sin(0.5 * alpha_);
   const double sin_half_m = std::sqrt(half * half - w * w / (4.0 * p_ * p_));
   const double k = std::sqrt(1.0 - sin_half_m * sin_half_m);
@@ -152,7 +152,7 @@ double RockingBlockExact::rise_time(double w) const {
 }
 
 double RockingBlockExact::amplitude(double w) const {
-  if (topples_from_upright(w)) return inf;
+  if (topples_from_upright(w)) return kForever;
   // alpha - psi_m = 2 (asin A - asin B), A = sin(alpha / 2), B = sin(psi_m / 2) = sqrt(A^2 - q),
   // q = w^2 / (4 p^2), written without the cancellation: asin A - asin B = asin(q / (A cos(psi_m / 2)
   // + B cos(alpha / 2))).
@@ -214,7 +214,7 @@ double RockingBlockExact::impact_law_ratio(int sigma, double omega_minus) {
 void RockingBlockExact::march_impacts(double t, int sigma, double omega_minus) {
   ratio_ = impact_law_ratio(sigma, omega_minus);
   if (std::isnan(ratio_)) {  // flight or slip: the rocking solution ends at this impact
-    impacts_.push_back({t, omega_minus, first_outcome_->velocity_after(2), inf});
+    impacts_.push_back({t, omega_minus, first_outcome_->velocity_after(2), kForever});
     ending_ = Ending::leaves_rocking;
     t_end_ = t;
     return;
@@ -251,9 +251,9 @@ void RockingBlockExact::march_impacts(double t, int sigma, double omega_minus) {
     if (decay < 1.0) {
       // Stop once the phases no longer advance t: what remains is below its rounding.
       const double tail = 2.0 * w / (p_ * p_ * std::sin(alpha_) * (1.0 - decay));
-      if (t_next == t || t + (tail + lost) == t || impacts_.size() >= max_impacts) {
+      if (t_next == t || t + (tail + lost) == t || impacts_.size() >= kMaxImpactsMarched) {
         t_rest_ = t + (tail + lost);
-        if (impacts_.size() >= max_impacts) t_end_ = t_next;  // nothing marched beyond it
+        if (impacts_.size() >= kMaxImpactsMarched) t_end_ = t_next;  // nothing marched beyond it
         return;
       }
     }

@@ -103,7 +103,7 @@ py::tuple run_case(const py::object& problem, const std::string& integrator, con
 
 py::list check(const std::optional<std::string>& integrator, const std::optional<std::string>& problem) {
   if (!integrator && !problem) throw InputError("check: give integrator=NAME or problem=NAME (or both)");
-  std::vector<std::pair<std::string, std::vector<Verdict>>> checked;
+  std::vector<std::pair<std::string, std::vector<CheckVerdict>>> checked;
   {
     py::gil_scoped_release free;
     if (integrator) checked.emplace_back("integrator " + *integrator, check_integrator(find_integrator(*integrator)));

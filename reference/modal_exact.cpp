@@ -17,7 +17,7 @@ namespace {
 
 // Events at one instant beyond this mean the event logic cycles (a bug, not physics: a
 // Zeno sequence is cut by zeno_velocity long before).
-constexpr long kMaxEventsPerStep = 100000;
+constexpr long kMaxModalEventsPerStep = 100000;
 // A signal (or one of its derivatives) is zero when within this of its round-off scale.
 constexpr double kRoundoff = 1e-12;
 // Rigid modes: w^2 <= kRigid max w^2. The eigenvalues carry an absolute error of about
@@ -590,8 +590,8 @@ long ModalExact::advance_through_events(double target) {
     reconstruct();
     handle_events(event.contact, event.forced);
     ++events_;
-    if (++events > kMaxEventsPerStep)
-      throw std::runtime_error(fmt::format("modal-exact: more than {} events in one step at t = {}", kMaxEventsPerStep, state_.t));
+    if (++events > kMaxModalEventsPerStep)
+      throw std::runtime_error(fmt::format("modal-exact: more than {} events in one step at t = {}", kMaxModalEventsPerStep, state_.t));
   }
   state_.t = target;
   return events;

@@ -14,10 +14,10 @@
 
 namespace {
 
+using nsb::test::nsbench_command;
 using nsb::test::run_command;
+using nsb::test::test_plugin;
 
-std::string nsbench(const std::string& args) { return std::string(NSBENCH_CLI) + " " + args; }
-std::string test_plugin(const std::string& name) { return std::string(NSBENCH_TEST_PLUGIN_DIR) + "/" + name + ".so"; }
 
 // The line of `property` in check's output.
 std::string line_of(const std::string& output, const std::string& property) {
@@ -36,7 +36,7 @@ TEST_CASE("check: every built-in integrator holds every measured property", "[ap
       if (nsb::testing::is_engine_peer(entry.name)) continue;
       for (const auto& v : nsb::check_integrator(entry)) {
         INFO(entry.name << ": " << v.property << " " << nsb::outcome_name(v.outcome) << " " << v.figure);
-        CHECK(v.outcome != nsb::Verdict::Outcome::Fail);
+        CHECK(v.outcome != nsb::CheckVerdict::Outcome::Fail);
       }
     }
   }
@@ -47,18 +47,18 @@ TEST_CASE("check: every built-in problem holds its contract; the command checks 
     DYNAMIC_SECTION(entry.name) {
       for (const auto& v : nsb::check_problem(entry)) {
         INFO(entry.name << ": " << v.property << " " << nsb::outcome_name(v.outcome) << " " << v.figure);
-        CHECK(v.outcome == nsb::Verdict::Outcome::Pass);
+        CHECK(v.outcome == nsb::CheckVerdict::Outcome::Pass);
       }
     }
   }
-  const auto r = run_command(nsbench("check --problem block-2d"));
+  const auto r = run_command(nsbench_command("check --problem block-2d"));
   INFO(r.output);
   CHECK(r.code == 0);
   CHECK_THAT(line_of(r.output, "force = dV/du"), Catch::Contains(" pass "));
 }
 
 TEST_CASE("check: the example plugin passes, one line per property with its figure", "[app][check][plugin]") {
-  const auto r = run_command(nsbench("check --plugin " + std::string(NSBENCH_EXAMPLE_PLUGIN) + " --integrator symplectic-euler"));
+  const auto r = run_command(nsbench_command("check --plugin " + std::string(NSBENCH_EXAMPLE_PLUGIN) + " --integrator symplectic-euler"));
   INFO(r.output);
   CHECK(r.code == 0);
   for (const char* p : {"impulse sign", "open contacts", "impact times", "flight energies", "step counters", "momentum",
@@ -69,7 +69,7 @@ TEST_CASE("check: the example plugin passes, one line per property with its figu
 }
 
 TEST_CASE("check: the broken plugin fails, naming the impulse sign and the step counters", "[app][check][plugin]") {
-  const auto r = run_command(nsbench("--plugin " + test_plugin("broken") + " check --integrator broken"));
+  const auto r = run_command(nsbench_command("--plugin " + test_plugin("broken") + " check --integrator broken"));
   INFO(r.output);
   CHECK(r.code == 1);
   CHECK_THAT(line_of(r.output, "impulse sign"), Catch::Contains("FAIL"));
@@ -78,12 +78,12 @@ TEST_CASE("check: the broken plugin fails, naming the impulse sign and the step 
 }
 
 TEST_CASE("check: the broken plugin's problem fails on its field mesh, naming the dof", "[app][check][plugin]") {
-  const auto r = run_command(nsbench("--plugin " + test_plugin("broken") + " check --problem broken-mesh"));
+  const auto r = run_command(nsbench_command("--plugin " + test_plugin("broken") + " check --problem broken-mesh"));
   INFO(r.output);
   CHECK(r.code == 1);
   CHECK_THAT(line_of(r.output, "field mesh"), Catch::Contains("FAIL") && Catch::Contains("a point dof outside [-1, ndof = 1)"));
   CHECK_THAT(line_of(r.output, "mass"), Catch::Contains(" pass "));  // the rest of it is sound
-  const auto fields = run_command(nsbench("--plugin " + test_plugin("broken") +
+  const auto fields = run_command(nsbench_command("--plugin " + test_plugin("broken") +
                                           " run --problem broken-mesh --integrator cd-lagrange --dt 0.1 --t-end 0.2"
                                           " --out /tmp/nsbench_check_test_broken_mesh --fields /tmp/nsbench_check_test_broken_mesh_fields"));
   CHECK(fields.code == 2);  // and --fields refuses it with the same line
@@ -93,8 +93,8 @@ TEST_CASE("check: the broken plugin's problem fails on its field mesh, naming th
 }
 
 TEST_CASE("check: an unknown integrator names the nearest, exit 2", "[app][check][bad-input]") {
-  const auto r = run_command(nsbench("check --integrator cd-lagrang"));
+  const auto r = run_command(nsbench_command("check --integrator cd-lagrang"));
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Contains("--integrator 'cd-lagrang': unknown integrator (nearest: cd-lagrange;"));
-  CHECK(run_command(nsbench("check")).code == 2);
+  CHECK(run_command(nsbench_command("check")).code == 2);
 }

@@ -351,7 +351,7 @@ TEST_CASE("cli: a run's files are swapped in together or not at all", "[app][rel
 namespace {
 
 // A study file of a second or less: the bouncing mass against a cached event-driven reference.
-std::string quick_study(const std::string& dir, const std::string& name) {
+std::string write_quick_study(const std::string& dir, const std::string& name) {
   std::filesystem::create_directories(dir);
   const std::string path = dir + "/" + name + ".toml";
   std::ofstream(path) << "[study]\ntitle = \"" << name << "\"\nt_end = 0.6\ncpu_repeats = 0\n\n"
@@ -372,7 +372,7 @@ TEST_CASE("cli: an unusable reference cache is a warning, the study runs and lea
   namespace fs = std::filesystem;
   const std::string dir = tmpdir("cache"), out = dir + "/out";
   fs::remove_all(dir);
-  const std::string file = quick_study(dir, "quick");
+  const std::string file = write_quick_study(dir, "quick");
   std::ofstream(dir + "/plain_file") << "x";
   for (const std::string& cache : {std::string("/proc/x"), dir + "/plain_file"}) {
     const auto r = nsb::test::run_command(fmt::format("NSBENCH_REFERENCE_CACHE={} '{}' run {} --out {}", cache,
@@ -391,13 +391,13 @@ TEST_CASE("cli: index.md lists every study of the --out, not only the last run's
   namespace fs = std::filesystem;
   const std::string dir = tmpdir("index"), out = dir + "/out";
   fs::remove_all(dir);
-  REQUIRE(study("run " + quick_study(dir, "first") + " --out " + out).code == 0);
-  REQUIRE(study("run " + quick_study(dir, "second") + " --out " + out).code == 0);
+  REQUIRE(study("run " + write_quick_study(dir, "first") + " --out " + out).code == 0);
+  REQUIRE(study("run " + write_quick_study(dir, "second") + " --out " + out).code == 0);
   std::ifstream in(out + "/index.md");
   const std::string index((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK_THAT(index, Catch::Contains("\n## first\n") && Catch::Contains("\n## second\n") &&
                         Catch::Contains("(first_work_precision.md)") && Catch::Contains("(second_work_precision.md)"));
-  REQUIRE(study("run " + quick_study(dir, "first") + " --out " + out).code == 0);  // rerun: listed once
+  REQUIRE(study("run " + write_quick_study(dir, "first") + " --out " + out).code == 0);  // rerun: listed once
   std::ifstream again(out + "/index.md");
   const std::string rerun((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
   CHECK(rerun.find("\n## first\n") == rerun.rfind("\n## first\n"));

@@ -13,13 +13,12 @@
 
 namespace {
 
+using nsb::test::nsbench_command;
 using nsb::test::run_command;
+using nsb::test::test_plugin;
 namespace fs = std::filesystem;
 
 const std::string kPlugin = NSBENCH_EXAMPLE_PLUGIN;
-std::string test_plugin(const std::string& name) { return std::string(NSBENCH_TEST_PLUGIN_DIR) + "/" + name + ".so"; }
-
-std::string nsbench(const std::string& args) { return std::string(NSBENCH_CLI) + " " + args; }
 
 long lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
 
@@ -27,15 +26,15 @@ long lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); 
 
 TEST_CASE("plugin: the example's integrator is listed, runs, and summary.json names the plugin file and hash",
           "[app][plugin]") {
-  const auto listed = run_command(nsbench("--plugin " + kPlugin + " list"));
+  const auto listed = run_command(nsbench_command("--plugin " + kPlugin + " list"));
   CHECK(listed.code == 0);
   CHECK_THAT(listed.output, Catch::Contains("symplectic-euler") && Catch::Contains("cd-lagrange"));
   // Without the plugin it is unknown.
-  CHECK_THAT(run_command(nsbench("list")).output, !Catch::Contains("symplectic-euler"));
+  CHECK_THAT(run_command(nsbench_command("list")).output, !Catch::Contains("symplectic-euler"));
 
   const fs::path out = fs::temp_directory_path() / "nsbench_plugin_test_run";
   fs::remove_all(out);
-  const auto ran = run_command(nsbench("run --plugin " + kPlugin +
+  const auto ran = run_command(nsbench_command("run --plugin " + kPlugin +
                                        " --problem bouncing-mass --integrator symplectic-euler --dt 1e-3 --t-end 1 --out " +
                                        out.string()));
   REQUIRE(ran.code == 0);
@@ -47,11 +46,11 @@ TEST_CASE("plugin: the example's integrator is listed, runs, and summary.json na
   CHECK_THAT(summary["build"]["plugins"][0]["hash"].get<std::string>(), Catch::StartsWith("fnv1a64:"));
   CHECK(summary["build"]["plugins"][0]["hash"].get<std::string>().size() == 8 + 16);
 
-  const auto by_env = run_command("NSBENCH_PLUGINS=" + kPlugin + ": " + nsbench("list"));
+  const auto by_env = run_command("NSBENCH_PLUGINS=" + kPlugin + ": " + nsbench_command("list"));
   CHECK(by_env.code == 0);
   CHECK_THAT(by_env.output, Catch::Contains("symplectic-euler"));
   // Named twice (environment and flag): loaded once, no clash with itself.
-  CHECK(run_command("NSBENCH_PLUGINS=" + kPlugin + " " + nsbench("--plugin " + kPlugin + " list")).code == 0);
+  CHECK(run_command("NSBENCH_PLUGINS=" + kPlugin + " " + nsbench_command("--plugin " + kPlugin + " list")).code == 0);
 }
 
 TEST_CASE("plugin: each plugin's own build is stamped in summary.json and the tables; an unoptimised one is warned about",
@@ -66,7 +65,7 @@ TEST_CASE("plugin: each plugin's own build is stamped in summary.json and the ta
   };
   // Built as nsbench_add_plugin builds it (here nsbench's Release): optimised, no warning.
   fs::remove_all(out);
-  const auto optimised = run_command(nsbench("--plugin " + kPlugin + run));
+  const auto optimised = run_command(nsbench_command("--plugin " + kPlugin + run));
   REQUIRE(optimised.code == 0);
   CHECK_THAT(optimised.output, !Catch::Contains("warning"));
   const auto release = plugin_build();
@@ -78,7 +77,7 @@ TEST_CASE("plugin: each plugin's own build is stamped in summary.json and the ta
   // The same source at -O0 (tests/CMakeLists.txt): stamped so, one warning line naming it.
   const std::string slow = test_plugin("symplectic_euler_O0");
   fs::remove_all(out);
-  const auto unoptimised = run_command(nsbench("--plugin " + slow + run));
+  const auto unoptimised = run_command(nsbench_command("--plugin " + slow + run));
   REQUIRE(unoptimised.code == 0);
   CHECK_THAT(unoptimised.output, Catch::Contains("warning: plugin symplectic_euler_O0.so (Release, UNOPTIMISED (-O0), flags "));
   CHECK(lines(unoptimised.output) - lines(optimised.output) == 1);
@@ -124,7 +123,7 @@ TEST_CASE("plugin: a bad plugin gives one line naming the file and the reason, e
       CHECK_THAT(r.output, Catch::Contains(message));
     }
   }
-  const auto r = run_command("NSBENCH_PLUGINS=" + test_plugin("wrong_abi") + " " + nsbench("list"));
+  const auto r = run_command("NSBENCH_PLUGINS=" + test_plugin("wrong_abi") + " " + nsbench_command("list"));
   CHECK(r.code == 2);
   CHECK_THAT(r.output, Catch::Contains("wrong_abi.so: built for plugin ABI 999"));
 }
@@ -134,7 +133,7 @@ TEST_CASE("plugin: --plugin (and --plugin=FILE) works before and after the subco
   const std::string study = NSBENCH_STUDY_CLI;
   for (const std::string& args : {"--plugin " + kPlugin + " list", "list --plugin " + kPlugin, "--plugin=" + kPlugin + " list",
                                   "list --plugin=" + kPlugin}) {
-    const auto r = run_command(nsbench(args));
+    const auto r = run_command(nsbench_command(args));
     INFO(args << "\n" << r.output);
     CHECK(r.code == 0);
     CHECK_THAT(r.output, Catch::Contains("symplectic-euler"));
@@ -142,7 +141,7 @@ TEST_CASE("plugin: --plugin (and --plugin=FILE) works before and after the subco
   const fs::path out = fs::temp_directory_path() / "nsbench_plugin_test_order";
   const std::string run = "run --problem bouncing-mass --integrator symplectic-euler --dt 1e-3 --t-end 0.1 --out " + out.string();
   for (const std::string& args : {"--plugin " + kPlugin + " " + run, run + " --plugin " + kPlugin, "--plugin=" + kPlugin + " " + run}) {
-    const auto r = run_command(nsbench(args));
+    const auto r = run_command(nsbench_command(args));
     INFO(args << "\n" << r.output);
     CHECK(r.code == 0);
   }
@@ -174,7 +173,7 @@ TEST_CASE("plugin: a truncated plugin file is refused before dlopen, exit 2", "[
   for (const std::size_t size : {std::size_t{3}, std::size_t{63}, std::size_t{200}, std::size_t{4096}, whole.size() / 2,
                                  whole.size() - 1}) {
     std::ofstream(cut, std::ios::binary | std::ios::trunc) << whole.substr(0, size);
-    const auto r = run_command(nsbench("--plugin " + cut + " list"));
+    const auto r = run_command(nsbench_command("--plugin " + cut + " list"));
     INFO(size << " bytes: " << r.output);
     CHECK(r.code == 2);
     CHECK(lines(r.output) == 1);

@@ -24,4 +24,10 @@ inline Outcome run_command(const std::string& command) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
+// The test build's `nsbench` program with these arguments, as a command line.
+inline std::string nsbench_command(const std::string& args) { return std::string(NSBENCH_CLI) + " " + args; }
+
+// The path of one of the test plugins (tests/plugins/NAME.cpp, built beside not_a_plugin).
+inline std::string test_plugin(const std::string& name) { return std::string(NSBENCH_TEST_PLUGIN_DIR) + "/" + name + ".so"; }
+
 }  // namespace nsb::test

@@ -13,23 +13,11 @@
 #include <sstream>
 
 #include "core/parameters.hpp"
+#include "tests/support/files.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("nsbench_output_test_" + std::to_string(::getpid()));
-  TempDir() { fs::remove_all(path); fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-};
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::vector<std::string> names(const fs::path& dir) {
   std::vector<std::string> v;
@@ -49,7 +37,7 @@ constexpr const char* kDeadPid = "4194305";
 }  // namespace
 
 TEST_CASE("report directory: staged beside, swapped in whole, others' files kept", "[core][output]") {
-  TempDir tmp;
+  const nsb::test::TempDir tmp("output_test", true);
   const fs::path out = tmp.path / "report";
   fs::create_directories(out / "figures");
   mark_own(out);
@@ -62,19 +50,19 @@ TEST_CASE("report directory: staged beside, swapped in whole, others' files kept
     nsb::write_file_atomic(report.path() / "index.md", "index");
     // Before the swap nothing of the new report is visible, and the old files are untouched
     // (the staging holds links to them, replaced, not written through).
-    CHECK(read(out / "table.md") == "old");
+    CHECK(nsb::test::read_text(out / "table.md") == "old");
     CHECK_FALSE(fs::exists(out / "index.md"));
     report.commit();
-    CHECK(read(out / "table.md") == "new");
-    CHECK(read(out / "index.md") == "index");
-    CHECK(read(out / "other_study.md") == "kept");
-    CHECK(read(out / "figures" / "f.png") == "png");
+    CHECK(nsb::test::read_text(out / "table.md") == "new");
+    CHECK(nsb::test::read_text(out / "index.md") == "index");
+    CHECK(nsb::test::read_text(out / "other_study.md") == "kept");
+    CHECK(nsb::test::read_text(out / "figures" / "f.png") == "png");
   }
   CHECK(names(tmp.path) == std::vector<std::string>{"report"});  // the old report removed
 }
 
 TEST_CASE("report directory: abandoned without commit, the old report stays; a killed run's staging goes", "[core][output]") {
-  TempDir tmp;
+  const nsb::test::TempDir tmp("output_test", true);
   const fs::path out = tmp.path / "report";
   fs::create_directories(out);
   mark_own(out);
@@ -85,7 +73,7 @@ TEST_CASE("report directory: abandoned without commit, the old report stays; a k
     nsb::write_file_atomic(report.path() / "table.md", "half");
     // an exception, a signal: no commit
   }
-  CHECK(read(out / "table.md") == "old");
+  CHECK(nsb::test::read_text(out / "table.md") == "old");
   CHECK(names(tmp.path) == std::vector<std::string>{"report"});
 }
 
@@ -93,7 +81,7 @@ TEST_CASE("report directory: only our own staging of a dead process goes; a live
   // A killed study (SIGKILL) leaves ".report.staging.PID"; the next ReportDirectory of
   // "report" removes it once kill(PID, 0) says ESRCH. The parent's (alive), another
   // report's, a name without the leading dot and a non-numeric pid are not ours to remove.
-  TempDir tmp;
+  const nsb::test::TempDir tmp("output_test", true);
   const fs::path out = tmp.path / "report";
   const std::string dead = std::string(".report.staging.") + kDeadPid, live = ".report.staging." + std::to_string(::getppid());
   const std::vector<std::string> kept = {std::string(".other.staging.") + kDeadPid, live,
@@ -111,7 +99,7 @@ TEST_CASE("report directory: only our own staging of a dead process goes; a live
 TEST_CASE("report directory: a directory the suite did not write is refused whole, untouched", "[core][output]") {
   // Issue 30, finding 1: a 1777 --out with a 0700 subdirectory, a FIFO and a dangling
   // symlink came back 0755 with the FIFO and the symlink deleted, exit 0.
-  TempDir tmp;
+  const nsb::test::TempDir tmp("output_test", true);
   const fs::path out = tmp.path / "d";
   fs::create_directories(out / "private");
   fs::permissions(out, fs::perms(01777));
@@ -130,7 +118,7 @@ TEST_CASE("report directory: a directory the suite did not write is refused whol
 TEST_CASE("report directory: in the suite's own output, an entry it never writes is refused by name", "[core][output]") {
   // A symlink to an absolute file made the staging write through "staging/../file"; a FIFO,
   // a socket or a symlink would be deleted by the swap. The suite writes none of them.
-  TempDir tmp;
+  const nsb::test::TempDir tmp("output_test", true);
   const fs::path out = tmp.path / "report", outside = tmp.path / "outside.md";
   std::ofstream(outside) << "someone else's";
   const auto refused = [&](const fs::path& entry, const std::string& kind) {
@@ -164,7 +152,7 @@ TEST_CASE("report directory: in the suite's own output, an entry it never writes
 }
 
 TEST_CASE("report directory: new, empty and own directories are written, their modes kept", "[core][output]") {
-  TempDir tmp;
+  const nsb::test::TempDir tmp("output_test", true);
   const fs::path fresh = tmp.path / "new" / "report", empty = tmp.path / "empty";
   fs::create_directories(empty);
   fs::permissions(empty, fs::perms(01777));
@@ -186,7 +174,7 @@ TEST_CASE("report directory: new, empty and own directories are written, their m
   }
   CHECK(mode(empty) == fs::perms(01777));
   CHECK(mode(empty / "private") == fs::perms(0700));
-  CHECK(read(empty / "private" / "table.md") == "newer");
+  CHECK(nsb::test::read_text(empty / "private" / "table.md") == "newer");
   // A shard run claims its --out the same way (the merge later replaces it whole).
   const fs::path shards = tmp.path / "shards";
   nsb::claim_output_directory(shards, "--out");
@@ -195,7 +183,7 @@ TEST_CASE("report directory: new, empty and own directories are written, their m
 }
 
 TEST_CASE("stale temporaries of dead processes are removed, live ones kept", "[core][output]") {
-  TempDir tmp;
+  const nsb::test::TempDir tmp("output_test", true);
   const std::string mine = ".series.csv.tmp." + std::to_string(::getpid());
   std::ofstream(tmp.path / (std::string(".series.csv.tmp.") + kDeadPid)) << "x";
   std::ofstream(tmp.path / mine) << "x";
@@ -210,7 +198,7 @@ TEST_CASE("an --out that takes no files is an input error before any work", "[co
 }
 
 TEST_CASE("bounded reads: a regular file in full, else one clear error", "[core][output]") {
-  TempDir tmp;
+  const nsb::test::TempDir tmp("output_test", true);
   std::ofstream(tmp.path / "a.toml") << "12345";
   CHECK(nsb::read_file_bounded(tmp.path / "a.toml", 5, "study file") == "12345");
   CHECK_THROWS_WITH(nsb::read_file_bounded(tmp.path / "a.toml", 4, "study file"),

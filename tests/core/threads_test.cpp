@@ -11,7 +11,7 @@
 
 namespace {
 
-nsb::Block2d block(const std::string& material) {
+nsb::Block2d make_threaded_block(const std::string& material) {
   // Large enough for the loops to go parallel (block_2d.cpp: 2048 elements, threads.hpp:
   // 4096 dofs per thread); an odd row count, so the two parities hold different numbers of rows.
   return nsb::Block2d(nsb::Params(nsb::Block2d::parameters_spec(),
@@ -54,7 +54,7 @@ Evaluations evaluate(const nsb::Block2d& b, int threads) {
 TEST_CASE("threads: block-2d forces, tangent, energy and a CD-Lagrange run are bit-identical for 1, 2, 3 threads",
           "[core][threads]") {
   for (const std::string material : {"svk", "neo-hookean"}) {
-    const auto b = block(material);
+    const auto b = make_threaded_block(material);
     const auto one = evaluate(b, 1);
     REQUIRE(one.final.u.cwiseAbs().maxCoeff() > 1e-3);  // the run moved
     REQUIRE(one.final.u.size() >= 3 * 4096);            // and its vector update was split

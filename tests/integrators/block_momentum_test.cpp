@@ -24,7 +24,7 @@
 
 namespace {
 
-nsb::Block2d block(std::map<std::string, std::string> overrides) {
+nsb::Block2d momentum_block(std::map<std::string, std::string> overrides) {
   return nsb::Block2d(nsb::Params(nsb::Block2d::parameters_spec(), overrides));
 }
 
@@ -42,7 +42,7 @@ std::pair<double, double> momentum_scales(const nsb::Block2d& b, const nsb::Stat
 // Free flight: no gravity, far above the floor, translating and spinning (the spin loads
 // the block, so the internal forces are not zero).
 nsb::Block2d flying_block() {
-  return block({{"g", "0"}, {"height", "10"}, {"vx", "0.3"}, {"vy", "0.2"}, {"spin", "3"}, {"nx", "6"}, {"ny", "3"}});
+  return momentum_block({{"g", "0"}, {"height", "10"}, {"vx", "0.3"}, {"vy", "0.2"}, {"spin", "3"}, {"nx", "6"}, {"ny", "3"}});
 }
 
 constexpr int kFlightSteps = 4000;
@@ -96,7 +96,7 @@ TEST_CASE("every integrator on block-2d in free flight: linear momentum kept to 
 TEST_CASE("every integrator on block-2d with the floor: horizontal momentum kept, impulses >= 0, "
           "penetration O(dt v)",
           "[integrators][block-2d][contact]") {
-  const auto b = block({{"vx", "0.5"}, {"spin", "1"}});
+  const auto b = momentum_block({{"vx", "0.5"}, {"spin", "1"}});
   const double dt = 1e-4;
   for (const auto& entry : nsb::integrator_registry()) {
     SECTION(entry.name) {
@@ -135,7 +135,7 @@ TEST_CASE("every integrator on block-2d with the floor: horizontal momentum kept
 TEST_CASE("cd-lagrange on block-2d: the discrete angular momentum balance holds to round-off, "
           "explicitly and matrix-free",
           "[integrators][cd-lagrange][block-2d][contact]") {
-  const auto b = block({{"vx", "0.5"}, {"spin", "1"}});
+  const auto b = momentum_block({{"vx", "0.5"}, {"spin", "1"}});
   auto integ = nsb::make_integrator("cd-lagrange");
   integ->init(b, b.initial_state());
   const double tau = 1e-4, g = 9.81;

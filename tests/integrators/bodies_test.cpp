@@ -14,11 +14,11 @@
 
 namespace {
 
-nsb::BallChain chain(std::map<std::string, std::string> overrides) {
+nsb::BallChain ball_chain(std::map<std::string, std::string> overrides) {
   return nsb::BallChain(nsb::Params(nsb::BallChain::parameters_spec(), overrides));
 }
 
-nsb::TwoBlocks blocks(std::map<std::string, std::string> overrides) {
+nsb::TwoBlocks two_blocks(std::map<std::string, std::string> overrides) {
   return nsb::TwoBlocks(nsb::Params(nsb::TwoBlocks::parameters_spec(), overrides));
 }
 
@@ -53,7 +53,7 @@ nsb::Vec run_chain(const nsb::BallChain& c, nsb::Integrator& integ, double dt, d
 TEST_CASE("every integrator on the ball chain with gaps: the sequential outcome within O(dt v0 / gap)",
           "[integrators][bodies][ball-chain]") {
   for (const char* e : {"1", "0.5"}) {
-    const auto c = chain({{"n", "3"}, {"gap", "0.1"}, {"e", e}, {"v0", "1"}});
+    const auto c = ball_chain({{"n", "3"}, {"gap", "0.1"}, {"e", e}, {"v0", "1"}});
     for (const auto& entry : nsb::integrator_registry()) {
       SECTION(std::string(entry.name) + ", e = " + e) {
         for (const double ratio : {0.1, 0.01}) {  // dt v0 / gap
@@ -86,7 +86,7 @@ TEST_CASE("every integrator on the touching ball chain: momentum to round-off; t
           "Moreau's simultaneous outcome",
           "[integrators][bodies][ball-chain]") {
   for (const char* e : {"1", "0.5"}) {
-    const auto c = chain({{"n", "3"}, {"gap", "0"}, {"e", e}, {"v0", "1"}});
+    const auto c = ball_chain({{"n", "3"}, {"gap", "0"}, {"e", e}, {"v0", "1"}});
     for (const auto& entry : nsb::integrator_registry()) {
       SECTION(std::string(entry.name) + ", e = " + e) {
         auto integ = nsb::testing::init_or_decline(entry, c);
@@ -112,7 +112,7 @@ TEST_CASE("every integrator on two blocks: momentum changes by the floor's impul
   for (const char* mu : {"0", "0.3"}) {
     // No gravity: the total momentum then changes by the floor's impulses alone (the
     // node-to-segment rows' weights sum to zero).
-    const auto b = blocks({{"g", "0"}, {"mu", mu}, {"upper_vx", "0.5"}, {"upper_vy", "-1"}, {"e", "0"}});
+    const auto b = two_blocks({{"g", "0"}, {"mu", mu}, {"upper_vx", "0.5"}, {"upper_vy", "-1"}, {"e", "0"}});
     const double dt = 1e-4, t_end = 0.15;
     for (const auto& entry : nsb::integrator_registry()) {
       SECTION(std::string(entry.name) + ", mu = " + mu) {
@@ -157,7 +157,7 @@ TEST_CASE("two blocks, large sliding, launched sideways: momentum changes by the
           "[integrators][bodies][two-blocks][large-sliding]") {
   // No gravity, e = 0, mu = 0.3; the upper block at 1.5 m/s sideways: its bottom nodes cross
   // the lower block's top-edge nodes (0.2 m apart) while it lands and slides.
-  const auto b = blocks({{"g", "0"}, {"mu", "0.3"}, {"upper_vx", "1.5"}, {"upper_vy", "-1"}, {"e", "0"}, {"sliding", "large"}});
+  const auto b = two_blocks({{"g", "0"}, {"mu", "0.3"}, {"upper_vx", "1.5"}, {"upper_vy", "-1"}, {"e", "0"}, {"sliding", "large"}});
   REQUIRE(b.contacts_move());
   const nsb::Index pf = b.floor_contacts(), slaves = b.ncontacts() - pf;
   const double dt = 1e-4, t_end = 0.15;
@@ -205,7 +205,7 @@ TEST_CASE("impulse-contact: the LCP path (H not diagonal) agrees with the closed
   SECTION("closed contacts that share no dof: the per-contact closed form") {
     // Balls 1-2 and 3-4 touching and closing, 2-3 apart: H is tridiagonal, but the closed
     // contacts' block is diagonal.
-    const auto c = chain({{"n", "4"}, {"gap", "0"}, {"e", "0.5"}});
+    const auto c = ball_chain({{"n", "4"}, {"gap", "0"}, {"e", "0.5"}});
     const nsb::Vec minv = nsb::Vec::Ones(4);
     nsb::ImpulseContact impulses(c, minv, options);
     nsb::Vec u(4), v_prev(4), v(4), lambda(3), tangential(3);
@@ -228,7 +228,7 @@ TEST_CASE("impulse-contact: the LCP path (H not diagonal) agrees with the closed
   SECTION("the touching chain: projected Gauss-Seidel reaches Moreau's exact impulses") {
     for (int n = 3; n <= 6; ++n) {
       INFO("n = " << n);
-      const auto c = chain({{"n", std::to_string(n)}, {"gap", "0"}, {"e", "1"}, {"v0", "2"}});
+      const auto c = ball_chain({{"n", std::to_string(n)}, {"gap", "0"}, {"e", "1"}, {"v0", "2"}});
       nsb::ImpulseContact impulses(c, nsb::Vec::Ones(n), options);
       const nsb::Vec v_prev = c.initial_state().v;
       nsb::Vec u = nsb::Vec::Zero(n), v = v_prev, lambda(n - 1), tangential(n - 1);

@@ -15,13 +15,13 @@ using Catch::Detail::Approx;
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr double kMachineEps = std::numeric_limits<double>::epsilon();
 
 nsb::CdLagrangeAdaptive adaptive(const std::map<std::string, std::string>& p = {}) {
   return nsb::CdLagrangeAdaptive(nsb::Params(nsb::CdLagrangeAdaptive::parameters_spec(), p));
 }
 
-nsb::SpringChain chain(const std::map<std::string, std::string>& p = {}) {
+nsb::SpringChain adaptive_chain(const std::map<std::string, std::string>& p = {}) {
   return nsb::SpringChain(nsb::Params(nsb::SpringChain::parameters_spec(), p));
 }
 
@@ -57,7 +57,7 @@ TEST_CASE("cd-lagrange-adaptive: zero net force keeps linear momentum for any st
   // each step adds (tau_{k+1} + tau_{k+2})/2 sum F_int = 0 up to a few eps of
   // tau |F_int|_1, and rounds P at a few eps of |P|_1; summed over the steps.
   for (const std::string wall : {"none", "left"}) {
-    const auto problem = chain({{"wall", wall}, {"gap", "0.05"}});
+    const auto problem = adaptive_chain({{"wall", wall}, {"gap", "0.05"}});
     auto integ = adaptive();
     integ.init(problem, problem.initial_state());
     const nsb::Vec m = problem.mass_matrix().diagonal();
@@ -70,7 +70,7 @@ TEST_CASE("cd-lagrange-adaptive: zero net force keeps linear momentum for any st
       dt_max = std::max(dt_max, info.dt);
       impulses += integ.impulses().sum();
       problem.internal_force(integ.state().u, f);
-      bound += 8 * kEps * (m.cwiseProduct(integ.state().v).cwiseAbs().sum() + 2 * dt_max * f.cwiseAbs().sum() + impulses);
+      bound += 8 * kMachineEps * (m.cwiseProduct(integ.state().v).cwiseAbs().sum() + 2 * dt_max * f.cwiseAbs().sum() + impulses);
       CAPTURE(wall, k, bound);
       REQUIRE(problem.momentum(integ.state().v) - p0 - impulses == Approx(0.0).margin(bound));
     }
@@ -84,7 +84,7 @@ TEST_CASE("cd-lagrange-adaptive: the talk's momentum weighting does not keep mom
   // The talk's update conserves w P, w_{k+1/2} = (tau_k + tau_{k+1}) / (2 tau_{k+1}), not P:
   // on the free chain, whose steps vary, P moves by far more than round-off. Pins the
   // measured behaviour of the variant (the energy study reports the numbers).
-  const auto problem = chain();
+  const auto problem = adaptive_chain();
   auto integ = adaptive({{"momentum", "talk"}});
   integ.init(problem, problem.initial_state());
   const double p0 = problem.momentum(problem.initial_state().v);
@@ -108,7 +108,7 @@ TEST_CASE("cd-lagrange-adaptive: discrete energy balance to the root-finder tole
   // by the energy study; here they must be a minority, or the check would be vacuous.
   const double tol = 1e-12;
   for (const std::string e : {"1", "0.5"}) {
-    const auto problem = chain({{"wall", "left"}, {"gap", "0.05"}, {"e", e}});
+    const auto problem = adaptive_chain({{"wall", "left"}, {"gap", "0.05"}, {"e", e}});
     auto integ = adaptive({{"energy_tol", "1e-12"}});
     integ.init(problem, problem.initial_state());
     integ.step(0.02);
@@ -122,7 +122,7 @@ TEST_CASE("cd-lagrange-adaptive: discrete energy balance to the root-finder tole
       const double E = integ.energy().total();
       if (pending) {
         CAPTURE(e, j, lambda_prev);
-        CHECK(E - E_prev - W_prev == Approx(0.0).margin((tol + 8 * kEps) * E_prev));
+        CHECK(E - E_prev - W_prev == Approx(0.0).margin((tol + 8 * kMachineEps) * E_prev));
         ++checked;
         if (lambda_prev > 0.0) ++impacts_checked;
       }
@@ -141,7 +141,7 @@ TEST_CASE("cd-lagrange-adaptive: discrete energy balance to the root-finder tole
 TEST_CASE("cd-lagrange-adaptive: a step is never above the CFL bound", "[integrators][adaptive][cfl]") {
   // Requested step twice the stable step: the first step is capped, and no later step goes
   // above cfl_fraction * stable_step whatever the energy equation asks.
-  const auto problem = chain({{"wall", "left"}, {"gap", "0.05"}});
+  const auto problem = adaptive_chain({{"wall", "left"}, {"gap", "0.05"}});
   const double cfl_fraction = 0.9, bound = cfl_fraction * problem.stable_step();
   auto integ = adaptive({{"cfl_fraction", "0.9"}, {"tau_max_ratio", "1e6"}});
   integ.init(problem, problem.initial_state());

@@ -40,7 +40,7 @@ Counted count_allocations(const std::string& integrator, const std::map<std::str
   return c;
 }
 
-nsb::SignoriniBar bar(const std::string& mass) {
+nsb::SignoriniBar alloc_bar(const std::string& mass) {
   return nsb::SignoriniBar(nsb::Params(nsb::SignoriniBar::parameters_spec(), {{"N", "40"}, {"mass", mass}}));
 }
 
@@ -73,7 +73,7 @@ TEST_CASE("implicit schemes: no heap allocation per step on the Signorini bar, t
                                    {"schatzman-paoli", {{"theta", "0.25"}}}};
   for (const std::string mass : {"lumped", "singular"})
     for (const auto& c : cases) {
-      const auto problem = bar(mass);
+      const auto problem = alloc_bar(mass);
       const Counted n = count_allocations(c.integrator, c.params, problem, 0.9 * problem.stable_step(), 200);
       INFO(c.integrator << (c.params.empty() ? "" : " theta = " + c.params.begin()->second) << ", " << mass << " mass");
       CHECK(n.contact_steps > 0);

@@ -11,7 +11,7 @@
 using Catch::Detail::Approx;
 
 namespace {
-nsb::BouncingMass mass_with(double e, double h0 = 1.0) {
+nsb::BouncingMass mj_mass_with(double e, double h0 = 1.0) {
   return nsb::BouncingMass(nsb::Params(nsb::BouncingMass::parameters_spec(),
                                        {{"e", std::to_string(e)}, {"h0", std::to_string(h0)}}));
 }
@@ -22,7 +22,7 @@ nsb::MoreauJean mj(double theta) {
 
 TEST_CASE("moreau-jean: free flight under gravity, theta = 1/2 exact, theta = 1 first order",
           "[integrators][moreau-jean]") {
-  const auto problem = mass_with(1.0, 100.0);
+  const auto problem = mj_mass_with(1.0, 100.0);
   const double h = 1e-2;
   for (double theta : {0.5, 1.0}) {
     auto integ = mj(theta);
@@ -41,7 +41,7 @@ TEST_CASE("moreau-jean: impulse only on the predicted-active set, Newton restitu
           "[integrators][moreau-jean][contact]") {
   for (double theta : {0.5, 0.75, 1.0}) {
     for (double e : {1.0, 0.6, 0.0}) {
-      const auto problem = mass_with(e);
+      const auto problem = mj_mass_with(e);
       auto integ = mj(theta);
       integ.init(problem, problem.initial_state());
       const double h = 1e-3;
@@ -82,7 +82,7 @@ TEST_CASE("moreau-jean: the contact activates where g_k + gamma h g'_k <= 0 firs
   // k* = 46 for gamma = 0 (k*^2 >= 2 h0 / (h^2 g) = 2038.7), 45 for gamma = 1/2 (k* (k* + 1)
   // >= 2038.7) and for gamma = 1.
   const double m = 1.0, g = 9.81, h0 = 1.0, e = 0.6, h = 1e-2;
-  const auto problem = mass_with(e, h0);
+  const auto problem = mj_mass_with(e, h0);
   for (const char* theta : {"0.5", "1"}) {
     std::map<std::string, int> first;
     for (const char* gamma : {"0", "0.5", "1"}) {
@@ -115,7 +115,7 @@ TEST_CASE("moreau-jean: the contact activates where g_k + gamma h g'_k <= 0 firs
 }
 
 TEST_CASE("moreau-jean: gamma unset is gamma = 1 - theta, to the bit", "[integrators][moreau-jean][contact]") {
-  const auto problem = mass_with(0.9);
+  const auto problem = mj_mass_with(0.9);
   for (const auto& [theta, gamma] : std::vector<std::pair<std::string, std::string>>{{"0.5", "0.5"}, {"0.75", "0.25"}, {"1", "0"}}) {
     CAPTURE(theta);
     auto unset = nsb::MoreauJean(nsb::Params(nsb::MoreauJean::parameters_spec(), {{"theta", theta}}));

@@ -20,17 +20,17 @@ void advance(nsb::Integrator& integ, double t_end, double dt) {
   while (integ.state().t < t_end - 1e-12) integ.step(std::min(dt, t_end - integ.state().t));
 }
 
-nsb::SpringChain chain(const std::map<std::string, std::string>& p) {
+nsb::SpringChain chain_of(const std::map<std::string, std::string>& p) {
   return nsb::SpringChain(Params(nsb::SpringChain::parameters_spec(), p));
 }
 
-nsb::SignoriniBar bar(const std::string& mass, int N) {
+nsb::SignoriniBar bar_of(const std::string& mass, int N) {
   return nsb::SignoriniBar(Params(nsb::SignoriniBar::parameters_spec(), {{"mass", mass}, {"N", std::to_string(N)}}));
 }
 
 // Max-norm error of (u, v) at t_end against modal-exact.
 double chain_error(const std::string& name, const std::map<std::string, std::string>& overrides, double dt) {
-  const auto p = chain({{"n", "5"}, {"wall", "none"}});
+  const auto p = chain_of({{"n", "5"}, {"wall", "none"}});
   const double t_end = 1.0;
   auto integ = nsb::make_integrator(name, overrides);
   integ->init(p, p.initial_state());
@@ -83,7 +83,7 @@ TEST_CASE("nsga, newmark-lm, projected moreau-jean: order in a smooth window (wa
 
 TEST_CASE("position-level schemes: no penetration at the step's end", "[integrators][contact]") {
   const nsb::BouncingMass mass(Params(nsb::BouncingMass::parameters_spec(), {{"e", "0.8"}}));
-  const auto lumped = bar("lumped", 50), singular = bar("singular", 50);
+  const auto lumped = bar_of("lumped", 50), singular = bar_of("singular", 50);
   const double h_bar = 1.0 / 50;  // L = c = 1
   const std::map<std::string, std::string> projected = {{"projection", "position"}};
   const double tiny = -1e-14;
@@ -104,7 +104,7 @@ TEST_CASE("newmark-lm: energy over one contact of the bar, singular mass kept, l
           "[integrators][energy]") {
   // N = 100, dt = h / 2c, to t = 2.5 (contact lasts 2L/c = 2).
   auto max_energy_error = [](const std::string& mass) {
-    const auto p = bar(mass, 100);
+    const auto p = bar_of(mass, 100);
     auto integ = nsb::make_integrator("newmark-lm");
     integ->init(p, p.initial_state());
     const double e0 = integ->energy().total();
@@ -127,7 +127,7 @@ TEST_CASE("newmark-lm: the lumped bar's energy jumps are the multipliers' work, 
   // (g_{k+1} - g_k) (lambda_k + lambda_{k+1}) / 2, and impulses() = h (lambda_k + lambda_{k+1}) / 2.
   // With complementarity this is (lambda_k g_{k+1} - lambda_{k+1} g_k) / 2: work done at
   // releases and closures of the chattering contact node, which the scheme cannot avoid.
-  const auto p = bar("lumped", 100);
+  const auto p = bar_of("lumped", 100);
   const double dt = 0.5 / 100;
   auto integ = nsb::make_integrator("newmark-lm");
   integ->init(p, p.initial_state());
@@ -152,7 +152,7 @@ TEST_CASE("newmark-lm declines an impact law it cannot honour", "[integrators][i
 TEST_CASE("nsga: rho_inf = 1 keeps the free chain's energy, rho_inf < 1 damps the high modes only",
           "[integrators][energy]") {
   const int n = 40;
-  const auto p = chain({{"n", std::to_string(n)}, {"wall", "none"}, {"mass_ratio", "1"}});
+  const auto p = chain_of({{"n", std::to_string(n)}, {"wall", "none"}, {"mass_ratio", "1"}});
   Eigen::MatrixXd K, M;
   nsb::SpMat Ks;
   p.tangent_stiffness(nsb::Vec::Zero(n), Ks);

@@ -17,7 +17,7 @@
 
 namespace {
 
-nsb::RockingBlock block(const std::map<std::string, std::string>& set = {}) {
+nsb::RockingBlock make_rocking(const std::map<std::string, std::string>& set = {}) {
   return nsb::RockingBlock(nsb::Params(nsb::RockingBlock::parameters_spec(), set));
 }
 
@@ -59,7 +59,7 @@ FirstImpact first_impact(const nsb::RockingBlock& p, nsb::Integrator& integ, dou
 // against the exact omega within 3 dt / s for both.
 TEST_CASE("cd-lagrange and moreau-jean on the rocking block: first impact ratio within O(dt) of Housner's law",
           "[integrators][rocking_block]") {
-  const auto p = block();
+  const auto p = make_rocking();
   const double law = nsb::housner_ratio(p.exact().alpha());
   REQUIRE(p.exact().impact_ratio() == Catch::Detail::Approx(law).epsilon(1e-14));  // Moreau's = Housner's here
   for (const char* name : {"cd-lagrange", "moreau-jean"}) {
@@ -77,7 +77,7 @@ TEST_CASE("cd-lagrange and moreau-jean on the rocking block: first impact ratio 
 }
 
 TEST_CASE("every other integrator declines the rocking block with the moving-contacts wording", "[integrators][rocking_block]") {
-  const auto p = block();
+  const auto p = make_rocking();
   for (const auto& entry : nsb::integrator_registry()) {
     const auto can = entry.declared().resolved(nsb::Params(entry.parameters()));
     if (can.moving_contacts) continue;
@@ -93,7 +93,7 @@ TEST_CASE("every other integrator declines the rocking block with the moving-con
 // The figures of docs/contacts.md (hidden: prints, asserts nothing; the test above asserts):
 //     build/tests/nsbench_tests "[rocking_numbers]"
 TEST_CASE("rocking block: first impact ratio per scheme and step (prints)", "[.][rocking_numbers]") {
-  const auto p = block();
+  const auto p = make_rocking();
   const double law = nsb::housner_ratio(p.exact().alpha());
   for (const char* name : {"cd-lagrange", "moreau-jean"})
     for (const double dt : {1e-3, 4e-4, 1e-4, 2.5e-5}) {
@@ -111,7 +111,7 @@ TEST_CASE("rocking block: first impact ratio per scheme and step (prints)", "[.]
 // storage of two closed contacts built), 2000 steps through the rocking and the next impacts
 // allocate nothing.
 TEST_CASE("cd-lagrange and moreau-jean on the rocking block: no allocation per step", "[integrators][rocking_block][allocation]") {
-  const auto p = block();
+  const auto p = make_rocking();
   for (const char* name : {"cd-lagrange", "moreau-jean"}) {
     auto integ = nsb::testing::init_or_decline(nsb::find_integrator(name), p);
     REQUIRE(integ);

@@ -11,7 +11,7 @@
 
 namespace {
 
-nsb::SignoriniBar bar(const std::string& mass) {
+nsb::SignoriniBar sp_bar(const std::string& mass) {
   return nsb::SignoriniBar(nsb::Params(nsb::SignoriniBar::parameters_spec(), {{"mass", mass}, {"N", "50"}, {"g", "0.25"}}));
 }
 
@@ -35,19 +35,19 @@ TEST_CASE("schatzman-paoli, e = 0: no penetration beyond round-off at the end of
   // The bar with gravity towards the wall: it hits, leaves and comes back (many contacts).
   for (const std::string theta : {"0", "0.25", "0.5"}) {
     DYNAMIC_SECTION("lumped bar, theta = " << theta) {
-      const auto p = bar("lumped");
+      const auto p = sp_bar("lumped");
       CHECK(max_penetration(p, theta, 0.9 * p.stable_step(), 6.0) <= 1e-14);
     }
   }
   SECTION("singular bar (massless contact node), theta = 1/4, a step 4x the CFL step") {
-    const auto p = bar("singular");
+    const auto p = sp_bar("singular");
     CHECK(max_penetration(p, "0.25", 4.0 * p.stable_step(), 6.0) <= 1e-14);
   }
 }
 
 TEST_CASE("schatzman-paoli declines what it cannot do, naming theta", "[integrators][schatzman-paoli]") {
-  const auto singular = bar("singular");
-  const auto consistent = bar("consistent");
+  const auto singular = sp_bar("singular");
+  const auto consistent = sp_bar("consistent");
   const nsb::Block2d block(nsb::Params(nsb::Block2d::parameters_spec()));
   auto explicit_sp = nsb::make_integrator("schatzman-paoli");
   CHECK_THROWS_AS(explicit_sp->init(singular, singular.initial_state()), nsb::InputError);

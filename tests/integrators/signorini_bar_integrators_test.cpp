@@ -14,7 +14,7 @@ using Catch::Detail::Approx;
 
 namespace {
 
-nsb::SignoriniBar bar(const std::string& mass, int N, double g0 = 0.0) {
+nsb::SignoriniBar signorini(const std::string& mass, int N, double g0 = 0.0) {
   return nsb::SignoriniBar(nsb::Params(nsb::SignoriniBar::parameters_spec(),
                                        {{"mass", mass}, {"N", std::to_string(N)}, {"g0", std::to_string(g0)}}));
 }
@@ -56,7 +56,7 @@ TEST_CASE("cd-lagrange, singular mass: energy error O(alpha^2 / N), bounded, no 
   const int N = 100;
   for (double alpha : {0.5, 0.9}) {
     CAPTURE(alpha);
-    const auto p = bar("singular", N);
+    const auto p = signorini("singular", N);
     // Three contact durations: the contact, then free flight with the bar vibrating.
     const BarRun r = run_bar("cd-lagrange", p, alpha, 3 * p.contact_duration());
     REQUIRE(r.result.status == nsb::RunStatus::Ok);
@@ -78,7 +78,7 @@ TEST_CASE("cd-lagrange, lumped mass: the contact node's inelastic impact loses i
   // of that at alpha = 0.25.
   const int N = 100;
   const double alpha = 0.25;
-  const auto p = bar("lumped", N);
+  const auto p = signorini("lumped", N);
   const BarRun r = run_bar("cd-lagrange", p, alpha, 1.5 * p.contact_duration());
   REQUIRE(r.result.status == nsb::RunStatus::Ok);
   const double loss = (p.exact_energy() - r.result.final_energy) / p.exact_energy();
@@ -91,7 +91,7 @@ TEST_CASE("cd-lagrange, singular mass: contact starts at g0/v0 and lasts 2L/c wi
   for (double alpha : {0.9, 1.0}) {
     for (double g0 : {0.0, 0.1234}) {
       CAPTURE(alpha, g0);
-      const auto p = bar("singular", N, g0);
+      const auto p = signorini("singular", N, g0);
       const BarRun r = run_bar("cd-lagrange", p, alpha, p.contact_start() + 1.5 * p.contact_duration());
       REQUIRE(r.result.status == nsb::RunStatus::Ok);
       REQUIRE(!std::isnan(r.first_contact));
@@ -120,7 +120,7 @@ TEST_CASE("momentum identity on the Signorini bar: P_end - P_start = sum of impu
       {"moreau-jean", "lumped"}, {"moreau-jean", "consistent"}, {"moreau-jean", "singular"}};
   for (const auto& [integrator, mass] : cases) {
     CAPTURE(integrator, mass);
-    const auto p = bar(mass, 50);
+    const auto p = signorini(mass, 50);
     const BarRun r = run_bar(integrator, p, 0.9, 1.3 * p.contact_duration());
     REQUIRE(r.result.status == nsb::RunStatus::Ok);
     REQUIRE(r.impulse_sum > p.total_mass());  // the contact acted (exact: 2 M v0)
@@ -131,7 +131,7 @@ TEST_CASE("momentum identity on the Signorini bar: P_end - P_start = sum of impu
 }
 
 TEST_CASE("cd-lagrange declines the consistent mass with an InputError", "[integrators][cd-lagrange][signorini-bar]") {
-  const auto p = bar("consistent", 10);
+  const auto p = signorini("consistent", 10);
   auto integ = nsb::make_integrator("cd-lagrange");  // its entry declares the mass it needs
   CHECK_THROWS_AS(integ->init(p, p.initial_state()), nsb::InputError);
 }
@@ -141,7 +141,7 @@ TEST_CASE("every integrator runs every mass model of the bar, or declines it wit
   for (const auto& entry : nsb::integrator_registry()) {
     for (std::string mass : {"lumped", "consistent", "singular"}) {
       DYNAMIC_SECTION(entry.name << " " << mass) {
-        const auto p = bar(mass, 20);
+        const auto p = signorini(mass, 20);
         auto integ = nsb::testing::init_or_decline(entry, p);
         if (!integ) {
           SUCCEED("declined");

@@ -11,7 +11,7 @@
 
 namespace {
 
-nsb::TwoBars bars(const std::string& mass) {
+nsb::TwoBars make_two_bars(const std::string& mass) {
   return nsb::TwoBars(nsb::Params(nsb::TwoBars::parameters_spec(),
                                   {{"L1", "1"}, {"L2", "2"}, {"N1", "50"}, {"N2", "100"}, {"mass", mass}}));
 }
@@ -21,7 +21,7 @@ nsb::TwoBars bars(const std::string& mass) {
 TEST_CASE("every integrator on two bars: contact duration 2 L1/c within 3 h/c, bar 1 left at rest within "
           "2 v0 c dt / L1, momentum conserved; or an InputError",
           "[integrators][two-bars]") {
-  const auto p = bars("lumped");
+  const auto p = make_two_bars("lumped");
   const double h = p.element_size(1), c = p.wave_speed(), v0 = 1.0, L1 = 1.0;
   const double dt = 0.9 * h / c, level = p.contact_force_level();
   for (const auto& entry : nsb::integrator_registry()) {
@@ -65,7 +65,7 @@ TEST_CASE("every integrator on two bars: contact duration 2 L1/c within 3 h/c, b
 
 TEST_CASE("singular mass on both bars: cd-lagrange declines (a contact on massless dofs of two bodies)",
           "[integrators][cd-lagrange][two-bars]") {
-  const auto p = bars("singular");
+  const auto p = make_two_bars("singular");
   auto integ = nsb::make_integrator("cd-lagrange");
   try {
     integ->init(p, p.initial_state());
@@ -79,7 +79,7 @@ TEST_CASE("singular mass on both bars: the schemes that accept it keep the momen
           "[integrators][two-bars]") {
   // Measured: moreau-jean, newmark-lm and nsga accept it (W or the iteration matrix stays
   // regular for massless dofs); the explicit schemes need M^{-1} and decline.
-  const auto p = bars("singular");
+  const auto p = make_two_bars("singular");
   const double dt = 0.9 * p.stable_step(), v0 = 1.0, c = p.wave_speed();
   for (const auto& entry : nsb::integrator_registry()) {
     DYNAMIC_SECTION(entry.name) {

@@ -19,7 +19,7 @@ const char* const kPeers[] = {"siconos-moreau-jean", "siconos-schatzman-paoli", 
 
 // Moving at 30 degrees down a slope; mu 0.3 < tan 30 slides on, mu 0.8 stops (at t = 1.06
 // from v0 = 2) and sticks.
-std::unique_ptr<nsb::Problem> sliding_mass(const std::string& mu, const std::string& v0) {
+std::unique_ptr<nsb::Problem> siconos_sliding_mass(const std::string& mu, const std::string& v0) {
   return nsb::make_problem("sliding-mass", {{"alpha", "30"}, {"mu", mu}, {"v0", v0}});
 }
 
@@ -221,7 +221,7 @@ TEST_CASE("siconos peers: siconos-moreau-jean agrees with moreau-jean under Coul
 
 TEST_CASE("siconos peers: a stuck body stays stuck in both", "[peers][siconos][friction]") {
   for (const char* v0 : {"2", "0"}) {
-    auto problem = sliding_mass("0.8", v0);
+    auto problem = siconos_sliding_mass("0.8", v0);
     auto peer = nsb::make_integrator("siconos-moreau-jean");
     peer->init(*problem, problem->initial_state());
     for (int k = 0; k < 2000; ++k) peer->step(1e-3);
@@ -244,15 +244,15 @@ TEST_CASE("siconos peers: friction declined where Siconos cannot treat it, with 
   for (const char* name : {"siconos-schatzman-paoli", "siconos-d1-minus-linear"}) {
     auto integrator = nsb::make_integrator(name);
     CHECK_FALSE(integrator->treats_friction());
-    CHECK_THAT(input_error(*integrator, *sliding_mass("0.3", "2")), Catch::Contains("mu = 0.3"));
+    CHECK_THAT(input_error(*integrator, *siconos_sliding_mass("0.3", "2")), Catch::Contains("mu = 0.3"));
     CHECK_THAT(input_error(*integrator, *nsb::make_problem("rolling-disk")), Catch::Contains("mu = 0.3"));
   }
   // A moving floor: LagrangianLinearTIR has no velocity offset.
   auto peer = nsb::make_integrator("siconos-moreau-jean");
   CHECK(peer->treats_friction());
-  CHECK_THAT(input_error(*peer, OnBelt(sliding_mass("0.3", "2"), 1.0)), Catch::Contains("floor_velocity") && Catch::Contains("tangent_velocity"));
+  CHECK_THAT(input_error(*peer, OnBelt(siconos_sliding_mass("0.3", "2"), 1.0)), Catch::Contains("floor_velocity") && Catch::Contains("tangent_velocity"));
   // Without friction the obstacle's tangential velocity plays no part.
-  CHECK(input_error(*peer, OnBelt(sliding_mass("0", "2"), 1.0)) == "no InputError");
+  CHECK(input_error(*peer, OnBelt(siconos_sliding_mass("0", "2"), 1.0)) == "no InputError");
 }
 
 // The activation forecast g_k + gamma h g'_k <= 0: gamma unset is 1 - theta in ours, 1/2 in

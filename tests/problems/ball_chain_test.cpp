@@ -13,7 +13,7 @@ using Catch::Detail::Approx;
 
 namespace {
 
-nsb::BallChain chain(std::map<std::string, std::string> overrides) {
+nsb::BallChain make_balls(std::map<std::string, std::string> overrides) {
   return nsb::BallChain(nsb::Params(nsb::BallChain::parameters_spec(), overrides));
 }
 
@@ -54,7 +54,7 @@ std::vector<nsb::Vec> enumerate_lcp(const Eigen::MatrixXd& D, const nsb::Vec& q)
 }  // namespace
 
 TEST_CASE("ball-chain: contact rows are node-to-node, H = L M^-1 L^T tridiagonal", "[problems][ball-chain]") {
-  const auto c = chain({{"n", "4"}, {"gap", "0.1"}, {"m", "2"}});
+  const auto c = make_balls({{"n", "4"}, {"gap", "0.1"}, {"m", "2"}});
   REQUIRE(c.ncontacts() == 3);
   const Eigen::MatrixXd L(c.gap_operator());
   Eigen::MatrixXd expected(3, 4);
@@ -72,7 +72,7 @@ TEST_CASE("ball-chain: the simultaneous outcome is the unique solution of Moreau
   for (const double e : {0.0, 0.4, 1.0})
     for (int n = 2; n <= 7; ++n) {
       INFO("n = " << n << ", e = " << e);
-      const auto c = chain({{"n", std::to_string(n)}, {"gap", "0"}, {"e", std::to_string(e)}, {"v0", "1.5"}, {"m", "0.7"}});
+      const auto c = make_balls({{"n", std::to_string(n)}, {"gap", "0"}, {"e", std::to_string(e)}, {"v0", "1.5"}, {"m", "0.7"}});
       const Eigen::MatrixXd L(c.gap_operator());
       const Eigen::MatrixXd H = L * Eigen::MatrixXd(c.mass_matrix()).inverse() * L.transpose();
       const nsb::Vec q = (1.0 + e) * L * c.initial_state().v;
@@ -88,7 +88,7 @@ TEST_CASE("ball-chain: the simultaneous outcome is the unique solution of Moreau
 }
 
 TEST_CASE("ball-chain: n = 3, e = 1 simultaneous outcome is (-1/3, 2/3, 2/3) v0", "[problems][ball-chain]") {
-  const auto c = chain({{"n", "3"}, {"gap", "0"}, {"e", "1"}, {"v0", "3"}});
+  const auto c = make_balls({{"n", "3"}, {"gap", "0"}, {"e", "1"}, {"v0", "3"}});
   CHECK(c.simultaneous_outcome()[0] == Approx(-1.0).margin(kEps));
   CHECK(c.simultaneous_outcome()[1] == Approx(2.0).margin(kEps));
   CHECK(c.simultaneous_outcome()[2] == Approx(2.0).margin(kEps));
@@ -101,7 +101,7 @@ TEST_CASE("ball-chain: both outcomes conserve momentum, and kinetic energy at e 
   for (const double e : {0.0, 0.3, 0.8, 1.0})
     for (int n : {2, 3, 5, 8}) {
       INFO("n = " << n << ", e = " << e);
-      const auto c = chain({{"n", std::to_string(n)}, {"gap", "0.02"}, {"e", std::to_string(e)}, {"v0", "2"}});
+      const auto c = make_balls({{"n", std::to_string(n)}, {"gap", "0.02"}, {"e", std::to_string(e)}, {"v0", "2"}});
       const double p0 = c.momentum(c.initial_state().v), k0 = c.kinetic_energy(c.initial_state().v);
       for (const nsb::Vec& v : {c.sequential_outcome(), c.simultaneous_outcome()}) {
         CHECK(c.momentum(v) == Approx(p0).epsilon(1e-13));
@@ -114,7 +114,7 @@ TEST_CASE("ball-chain: both outcomes conserve momentum, and kinetic energy at e 
 
 TEST_CASE("ball-chain: e = 1 sequential march is n - 1 collisions at k gap / v0 ending in (0, ..., 0, v0)",
           "[problems][ball-chain]") {
-  const auto c = chain({{"n", "5"}, {"gap", "0.1"}, {"e", "1"}, {"v0", "2"}});
+  const auto c = make_balls({{"n", "5"}, {"gap", "0.1"}, {"e", "1"}, {"v0", "2"}});
   const auto times = c.impact_times(1e9);
   REQUIRE(times.size() == 4);
   for (int k = 0; k < 4; ++k) CHECK(times[k] == Approx((k + 1) * 0.05).epsilon(1e-14));
@@ -132,12 +132,12 @@ TEST_CASE("ball-chain: e < 1 sequential march: n = 2 and n = 3 by hand, later co
           "[problems][ball-chain]") {
   const double e = 0.5, v0 = 1.0;
   {
-    const auto c = chain({{"n", "2"}, {"gap", "0.1"}, {"e", "0.5"}});
+    const auto c = make_balls({{"n", "2"}, {"gap", "0.1"}, {"e", "0.5"}});
     CHECK(c.sequential_outcome()[0] == Approx((1 - e) / 2 * v0).epsilon(1e-15));
     CHECK(c.sequential_outcome()[1] == Approx((1 + e) / 2 * v0).epsilon(1e-15));
     CHECK(c.impact_times(1e9).size() == 1);
   }
-  const auto c = chain({{"n", "3"}, {"gap", "0.1"}, {"e", "0.5"}});
+  const auto c = make_balls({{"n", "3"}, {"gap", "0.1"}, {"e", "0.5"}});
   // First pass 1-2, 2-3, then 1 (at (1-e)/2) catches 2 (at (1-e^2)/4): a third collision.
   const auto times = c.impact_times(1e9);
   REQUIRE(times.size() == 3);
@@ -154,7 +154,7 @@ TEST_CASE("ball-chain: e < 1 sequential march: n = 2 and n = 3 by hand, later co
   CHECK(c.sequential_outcome()[2] == Approx(v3).epsilon(1e-15));
   CHECK(c.sequential_outcome()[0] == Approx(0.203125));  // e = 1/2 in numbers
   // The outcome does not depend on the gap (the march scales with it).
-  const auto wide = chain({{"n", "3"}, {"gap", "7"}, {"e", "0.5"}});
+  const auto wide = make_balls({{"n", "3"}, {"gap", "7"}, {"e", "0.5"}});
   CHECK((wide.sequential_outcome() - c.sequential_outcome()).cwiseAbs().maxCoeff() <= kEps);
   // Exact state is continuous in position across the collisions.
   for (const double t : times) {
@@ -165,7 +165,7 @@ TEST_CASE("ball-chain: e < 1 sequential march: n = 2 and n = 3 by hand, later co
 
 TEST_CASE("ball-chain: e = 0 touching cascade of the sequential law tends to the plastic v0 / n",
           "[problems][ball-chain]") {
-  const auto c = chain({{"n", "4"}, {"gap", "0"}, {"e", "0"}, {"v0", "1"}});
+  const auto c = make_balls({{"n", "4"}, {"gap", "0"}, {"e", "0"}, {"v0", "1"}});
   for (nsb::Index i = 0; i < 4; ++i) CHECK(c.sequential_outcome()[i] == Approx(0.25).margin(1e-13));
   CHECK(!c.exact_state(0.5).has_value());
   CHECK(c.impact_times(1.0) == std::vector<double>{0.0});
@@ -186,7 +186,7 @@ TEST_CASE("ball-chain: observables and bad input", "[problems][ball-chain]") {
 }
 
 TEST_CASE("ball chain: field mesh, a vertex per ball at (i - 1) gap, one body each", "[problems][field-mesh]") {
-  const auto p = chain({{"n", "3"}, {"gap", "0.25"}});
+  const auto p = make_balls({{"n", "3"}, {"gap", "0.25"}});
   const auto mesh = p.field_mesh();
   REQUIRE(mesh.has_value());
   CHECK(mesh->dimension == 1);

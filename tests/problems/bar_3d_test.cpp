@@ -15,7 +15,7 @@
 
 namespace {
 
-nsb::Bar3d bar(std::map<std::string, std::string> overrides) { return nsb::Bar3d(nsb::Params(nsb::Bar3d::parameters_spec(), overrides)); }
+nsb::Bar3d make_bar3d(std::map<std::string, std::string> overrides) { return nsb::Bar3d(nsb::Params(nsb::Bar3d::parameters_spec(), overrides)); }
 
 nsb::Vec wavy(nsb::Index n, double scale) {
   nsb::Vec u(n);
@@ -42,7 +42,7 @@ DofPlace place(const nsb::Bar3d& p, const nsb::FieldMesh& mesh, nsb::Index q) {
 TEST_CASE("bar-3d: F_int = dV/du and K = dF_int/du by central differences; F_int = K u", "[problems][bar-3d]") {
   for (const char* lateral : {"held", "free"}) {
     CAPTURE(lateral);
-    const auto p = bar({{"N", "3"}, {"N_side", "2"}, {"lateral", lateral}, {"nu", "0.27"}, {"L", "2"}, {"A", "0.3"}});
+    const auto p = make_bar3d({{"N", "3"}, {"N_side", "2"}, {"lateral", lateral}, {"nu", "0.27"}, {"L", "2"}, {"A", "0.3"}});
     const nsb::Index n = p.ndof();
     const nsb::Vec u = wavy(n, 1e-2);
     nsb::Vec f(n), fp(n), fm(n);
@@ -76,7 +76,7 @@ TEST_CASE("bar-3d: F_int = dV/du and K = dF_int/du by central differences; F_int
 
 TEST_CASE("bar-3d: patch test, a uniform strain leaves the interior nodes unloaded; rigid translation none at all",
           "[problems][bar-3d]") {
-  const auto p = bar({{"N", "4"}, {"N_side", "3"}, {"lateral", "free"}, {"L", "1.5"}, {"A", "0.8"}});
+  const auto p = make_bar3d({{"N", "4"}, {"N_side", "3"}, {"lateral", "free"}, {"L", "1.5"}, {"A", "0.8"}});
   const auto mesh = p.field_mesh();
   REQUIRE(mesh);
   Eigen::Matrix3d G;
@@ -105,7 +105,7 @@ TEST_CASE("bar-3d: patch test, a uniform strain leaves the interior nodes unload
 TEST_CASE("bar-3d: a uniform axial stretch, held sides: sigma_xx = M eps, sigma_yy = sigma_zz = lambda eps",
           "[problems][bar-3d]") {
   const double E = 3.0, nu = 0.25, eps = 1e-3;
-  const auto p = bar({{"N", "5"}, {"N_side", "2"}, {"E", "3"}, {"nu", "0.25"}});
+  const auto p = make_bar3d({{"N", "5"}, {"N_side", "2"}, {"E", "3"}, {"nu", "0.25"}});
   const auto mesh = p.field_mesh();
   nsb::Vec u(p.ndof());
   for (nsb::Index a = 0; a < mesh->npoints(); ++a) u[mesh->point_dofs(a, 0)] = eps * mesh->points(a, 0);
@@ -125,7 +125,7 @@ TEST_CASE("bar-3d: a uniform axial stretch, held sides: sigma_xx = M eps, sigma_
 TEST_CASE("bar-3d, held, lumped: CD-Lagrange's run is the 1D oedometric bar's, node for node", "[problems][bar-3d]") {
   for (const char* side : {"1", "2"}) {
     CAPTURE(side);
-    const auto p = bar({{"N", "20"}, {"N_side", side}, {"g0", "0.05"}});
+    const auto p = make_bar3d({{"N", "20"}, {"N_side", side}, {"g0", "0.05"}});
     const auto& line = p.exact_bar();  // the 1D bar with E -> M: its own semi-discrete system
     const double dt = 0.8 * 0.05 / p.p_wave_speed();  // 0.8 h / c_p
     auto a = nsb::make_integrator("cd-lagrange"), b = nsb::make_integrator("cd-lagrange");
@@ -159,7 +159,7 @@ struct HeldRun {
 
 // CD-Lagrange on the held bar of N elements at dt = 0.5 h / c_p, to 1.5 contact durations.
 HeldRun run_held(int N, const std::string& mass = "lumped") {
-  const auto p = bar({{"N", std::to_string(N)}, {"mass", mass}, {"g0", "0.1"}, {"nu", "0.3"}});
+  const auto p = make_bar3d({{"N", std::to_string(N)}, {"mass", mass}, {"g0", "0.1"}, {"nu", "0.3"}});
   const double c = p.p_wave_speed(), T = nsb::bar3d_contact_duration(1.0, 1.0, 0.3, 1.0);
   const double dt = 0.5 / (N * c);
   auto integ = nsb::make_integrator("cd-lagrange");
@@ -209,12 +209,12 @@ TEST_CASE("bar-3d, held: CD-Lagrange against the exact solution, contact 2 L / c
 }
 
 TEST_CASE("bar-3d: exact state at 0 is the initial one; free sides: no exact solution", "[problems][bar-3d]") {
-  const auto held = bar({{"N", "6"}, {"N_side", "2"}});
+  const auto held = make_bar3d({{"N", "6"}, {"N_side", "2"}});
   const auto s0 = held.exact_state(0.0);
   REQUIRE(s0);
   CHECK(s0->u == held.initial_state().u);
   CHECK(s0->v == held.initial_state().v);
-  const auto free = bar({{"N", "6"}, {"lateral", "free"}});
+  const auto free = make_bar3d({{"N", "6"}, {"lateral", "free"}});
   CHECK_FALSE(free.exact_state(0.1));
   std::vector<double> out(free.observable_names().size());
   free.observe(free.initial_state(), out);
@@ -227,7 +227,7 @@ TEST_CASE("bar-3d: every mass model keeps the total x mass; singular moves the w
           "[problems][bar-3d]") {
   for (const char* mass : {"lumped", "consistent", "singular"}) {
     CAPTURE(mass);
-    const auto p = bar({{"N", "4"}, {"N_side", "2"}, {"mass", mass}, {"lateral", "free"}, {"A", "0.5"}});
+    const auto p = make_bar3d({{"N", "4"}, {"N_side", "2"}, {"mass", mass}, {"lateral", "free"}, {"A", "0.5"}});
     const nsb::SpMat M = p.mass_matrix();
     const nsb::Vec rows = M * nsb::Vec::Ones(p.ndof());
     double x_mass = 0.0;
@@ -240,7 +240,7 @@ TEST_CASE("bar-3d: every mass model keeps the total x mass; singular moves the w
 TEST_CASE("bar-3d: bad input, one line naming the parameter and its range", "[problems][bar-3d][bad-input]") {
   for (const char* nu : {"0.5", "-0.1", "0.7"}) {
     CAPTURE(nu);
-    CHECK_THROWS_MATCHES(bar({{"nu", nu}}), nsb::InputError,
+    CHECK_THROWS_MATCHES(make_bar3d({{"nu", nu}}), nsb::InputError,
                          Catch::Matchers::Predicate<nsb::InputError>([](const nsb::InputError& e) {
                            const std::string w = e.what();
                            return w.find("nu") != std::string::npos && w.find("[0, 0.5)") != std::string::npos &&
@@ -248,12 +248,12 @@ TEST_CASE("bar-3d: bad input, one line naming the parameter and its range", "[pr
                          }));
   }
   // 1e8 x 1024^2 elements: far beyond any machine's memory, refused before allocating.
-  CHECK_THROWS_MATCHES(bar({{"N", "100000000"}, {"N_side", "1024"}}), nsb::InputError,
+  CHECK_THROWS_MATCHES(make_bar3d({{"N", "100000000"}, {"N_side", "1024"}}), nsb::InputError,
                        Catch::Matchers::Predicate<nsb::InputError>([](const nsb::InputError& e) {
                          const std::string w = e.what();
                          return w.find("bar-3d: N = 100000000, N_side = 1024") != std::string::npos &&
                                 w.find("GiB") != std::string::npos && w.find("valid: N * N_side^2 <= ") != std::string::npos;
                        }));
-  CHECK_THROWS_AS(bar({{"lateral", "sideways"}}), nsb::InputError);
-  CHECK_THROWS_AS(bar({{"N_side", "0"}}), nsb::InputError);
+  CHECK_THROWS_AS(make_bar3d({{"lateral", "sideways"}}), nsb::InputError);
+  CHECK_THROWS_AS(make_bar3d({{"N_side", "0"}}), nsb::InputError);
 }

@@ -32,7 +32,7 @@ Hex8Nodes brick(double a, double b, double c, double shake, std::mt19937& rng) {
   return X;
 }
 
-Hex8Nodes deformed(const Hex8Nodes& X, double amount, std::mt19937& rng) {
+Hex8Nodes deformed_hex(const Hex8Nodes& X, double amount, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-amount, amount);
   Hex8Nodes x = X;
   for (int i = 0; i < 24; ++i) x.data()[i] += u(rng);
@@ -55,7 +55,7 @@ TEST_CASE("hex8: the force is the energy's gradient and the tangent the force's"
     const Hex8Material mat = Hex8Material::from_young(law, 200.0, 0.3);
     const Hex8Nodes X = brick(1.0, 0.7, 1.3, 0.1, rng);
     const Hex8Element element(X);
-    const Hex8Nodes x = deformed(X, 0.15, rng);
+    const Hex8Nodes x = deformed_hex(X, 0.15, rng);
     nsb::Hex8Vector f, fp, fm;
     nsb::Hex8Matrix K;
     element.internal_force(x, mat, f);

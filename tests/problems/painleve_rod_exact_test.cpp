@@ -14,7 +14,7 @@ using nsb::PainleveRodSpec;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+constexpr double kPi = std::numbers::pi;
 const PainleveRodSpec cardillo{1.0, 1.0, 31.0, 30.0, 5.0 / 3.0, 10.0};
 
 // The test's own integration of the sliding phase, for the jam time: classical RK4 with a
@@ -28,7 +28,7 @@ double rk4_jam_time(double dtau) {
     const double N = m * (g - s * z(2) * z(2) * std::sin(z(1)));
     return Eigen::Vector3d(D(z(1)), D(z(1)) * z(2), -s * N * (std::cos(z(1)) - mu * std::sin(z(1))) / J);
   };
-  Eigen::Vector3d z(0.0, 31.0 * pi / 180.0, 0.0);
+  Eigen::Vector3d z(0.0, 31.0 * kPi / 180.0, 0.0);
   while (D(z(1)) > 1e-8) {
     const Eigen::Vector3d k1 = f(z), k2 = f(z + 0.5 * dtau * k1), k3 = f(z + 0.5 * dtau * k2), k4 = f(z + dtau * k3);
     z += dtau / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
@@ -113,10 +113,10 @@ TEST_CASE("painleve rod: the cardillo data jam at phi = 45 degrees", "[painleve_
   REQUIRE(rod.ending() == PainleveRodExact::Ending::jam);
   // D(phi) = 1 + 3 cos(phi) (cos(phi) - (5/3) sin(phi)) vanishes at 45 degrees exactly, where
   // the numerator vanishes too: s phi'^2 sin(phi) = g.
-  CHECK(rod.denominator(pi / 4) == Approx(0.0).margin(1e-15));
+  CHECK(rod.denominator(kPi / 4) == Approx(0.0).margin(1e-15));
   const auto& end = rod.end_state();
-  CHECK(end.phi == Approx(pi / 4).epsilon(1e-9));
-  CHECK(end.vphi == Approx(std::sqrt(10.0 / std::sin(pi / 4))).epsilon(1e-5));
+  CHECK(end.phi == Approx(kPi / 4).epsilon(1e-9));
+  CHECK(end.vphi == Approx(std::sqrt(10.0 / std::sin(kPi / 4))).epsilon(1e-5));
   CHECK(rod.normal_force(end.phi, end.vphi) > 1e4);
   // The jam time: measured 0.81454965867007 (it moves by 4e-15 when the threshold on D goes
   // from 1e-10 to 1e-8, by 5e-13 when the extrapolation's tolerance is loosened from 1e-15 to
@@ -127,7 +127,7 @@ TEST_CASE("painleve rod: the cardillo data jam at phi = 45 degrees", "[painleve_
   // log(lambda) against log(u) between u ~ 4e-7 and 4e-9 is -1/3 up to the O(u^(1/3)) term.
   const auto s1 = *rod.state(rod.end_time() - 1e-7), s2 = *rod.state(rod.end_time() - 1e-9);
   const double slope = std::log(rod.normal_force(s2.phi, s2.vphi) / rod.normal_force(s1.phi, s1.vphi)) /
-                       std::log((pi / 4 - s2.phi) / (pi / 4 - s1.phi));
+                       std::log((kPi / 4 - s2.phi) / (kPi / 4 - s1.phi));
   CHECK(slope == Approx(-1.0 / 3.0).margin(0.01));
   // cardillo's marker (t = 0.83) lies after it: the sliding phase has ended there.
   CHECK_FALSE(rod.state(0.83).has_value());
@@ -176,11 +176,11 @@ TEST_CASE("painleve rod: the numbers of docs/rigid_bodies.md", "[.][rigid_number
   std::printf("painleve rod, cardillo data: jam at t* = %.15f s, phi -> %.12f deg, phi' -> %.9f rad/s "
               "(sqrt(g / (s sin 45 deg)) = %.9f), lambda = %.6g at D = %.1e; x' = %.9f m/s; "
               "RK4 (dtau 2e-4) %.15f s\n",
-              rod.end_time(), end.phi * 180.0 / pi, end.vphi, std::sqrt(10.0 / std::sin(pi / 4)),
+              rod.end_time(), end.phi * 180.0 / kPi, end.vphi, std::sqrt(10.0 / std::sin(kPi / 4)),
               rod.normal_force(end.phi, end.vphi), rod.denominator(end.phi), end.vx, rk4_jam_time(2e-4));
   for (const double t : {0.2, 0.4, 0.6, 0.8}) {
     const auto s = *rod.state(t);
-    std::printf("  t %.1f: phi %.12f deg, x_end %.12f m, normal_force %.12f N\n", t, s.phi * 180.0 / pi, rod.x_end(s),
+    std::printf("  t %.1f: phi %.12f deg, x_end %.12f m, normal_force %.12f N\n", t, s.phi * 180.0 / kPi, rod.x_end(s),
                 rod.normal_force(s.phi, s.vphi));
   }
 }

@@ -31,9 +31,9 @@ TEST_CASE("painleve-rod: g, L and T against central differences at random config
   // enough (y = 1.5) that every random configuration near it is admissible.
   for (const double phi : {-1.5, -0.6, 0.0, 0.54, 1.2, 1.5}) {
     const nsb::Vec u0 = (nsb::Vec(3) << -0.3, 1.5, phi).finished();
-    const nsb::Verdict v = nsb::check_contact_rows(p, u0);
+    const nsb::CheckVerdict v = nsb::check_contact_rows(p, u0);
     INFO("phi " << phi << ": " << v.figure);
-    CHECK(v.outcome == nsb::Verdict::Outcome::Pass);
+    CHECK(v.outcome == nsb::CheckVerdict::Outcome::Pass);
     CHECK_THAT(v.figure, Catch::Contains("moving, 6 configurations"));
   }
   const nsb::Vec u = nsb::Vec::Constant(3, 0.3);

@@ -18,13 +18,13 @@ using nsb::RockingImpactLaw;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+constexpr double kPiRad = std::numbers::pi;
 
 // Gauss–Legendre nodes and weights on [-1, 1] (Newton on P_n from Chebyshev guesses).
 void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
   x.assign(n, 0.0), w.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
-    double z = std::cos(pi * (i + 0.75) / (n + 0.5)), dp = 0.0;
+    double z = std::cos(kPiRad * (i + 0.75) / (n + 0.5)), dp = 0.0;
     for (int it = 0; it < 100; ++it) {
       double p0 = 1.0, p1 = z;
       for (int k = 2; k <= n; ++k) {
@@ -58,7 +58,7 @@ double quadrature_time(double p, double psi_m, double psi) {
   return 0.5 * top * sum;
 }
 
-RockingBlockExact block(double b, double h, double theta0, double omega0,
+RockingBlockExact make_exact_block(double b, double h, double theta0, double omega0,
                         RockingImpactLaw law = RockingImpactLaw::housner, double e = 0.0, double mu = 1e308) {
   RockingBlockSpec spec;
   spec.b = b, spec.h = h, spec.theta0 = theta0, spec.omega0 = omega0, spec.law = law, spec.e = e, spec.mu = mu;
@@ -105,7 +105,7 @@ TEST_CASE("rocking block: corner gaps, normal and tangent rows against finite di
 TEST_CASE("rocking block: energy constant between impacts, contact held, impact times against the quadrature",
           "[rocking_block_exact]") {
   for (const double b : {0.1, 0.2, 0.45}) {
-    const auto ex = block(b, 1.0, 0.6 * std::atan(b), 0.0);
+    const auto ex = make_exact_block(b, 1.0, 0.6 * std::atan(b), 0.0);
     REQUIRE(ex.impacts().size() > 5);
     const double p = ex.p(), alpha = ex.alpha();
     // The first impact, located on the integrated solution, and the closed-form phases, both
@@ -150,7 +150,7 @@ TEST_CASE("rocking block: energy constant between impacts, contact held, impact 
 TEST_CASE("rocking block: Housner's impacts keep the angular momentum about the new corner", "[rocking_block_exact]") {
   for (const double b : {0.1, 0.3, 0.6}) {
     const double h = 1.0;
-    const auto ex = block(b, h, -0.5 * std::atan(b), 0.05);
+    const auto ex = make_exact_block(b, h, -0.5 * std::atan(b), 0.05);
     CHECK(ex.impact_ratio() == Approx(1.0 - 1.5 * std::pow(std::sin(std::atan(b / h)), 2)).epsilon(1e-15));
     for (std::size_t k = 0; k < 4; ++k) {
       const auto& im = ex.impacts()[k];
@@ -187,7 +187,7 @@ TEST_CASE("rocking block: Housner's impacts keep the angular momentum about the 
 
 TEST_CASE("rocking block: Moreau's law with e = 0 and enough friction is Housner's", "[rocking_block_exact]") {
   for (const double alpha_deg : {5.0, 15.0, 30.0, 45.0, 54.0}) {
-    const double alpha = alpha_deg * pi / 180.0, b = std::sin(alpha), h = std::cos(alpha);
+    const double alpha = alpha_deg * kPiRad / 180.0, b = std::sin(alpha), h = std::cos(alpha);
     const double mu_H = 3.0 * b * h / (1.0 + 3.0 * h * h);
     for (const int pivot : {1, -1}) {
       const auto out = nsb::moreau_impact(b, h, 1.0, 0.0, mu_H * 1.0001, pivot, -pivot * 0.7);
@@ -218,7 +218,7 @@ TEST_CASE("rocking block: Moreau's law with e = 0 and enough friction is Housner
 
 TEST_CASE("rocking block: Moreau's impulses satisfy the complementarity and Coulomb's law", "[rocking_block_exact]") {
   for (const double alpha_deg : {10.0, 40.0, 60.0, 80.0}) {
-    const double alpha = alpha_deg * pi / 180.0, b = std::sin(alpha), h = std::cos(alpha);
+    const double alpha = alpha_deg * kPiRad / 180.0, b = std::sin(alpha), h = std::cos(alpha);
     for (const double e : {0.0, 0.3, 1.0}) {
       for (const double mu : {0.0, 0.05, 0.3, 1.0, 10.0}) {
         const auto out = nsb::moreau_impact(b, h, 2.0, e, mu, 1, -1.3);
@@ -255,30 +255,30 @@ TEST_CASE("rocking block: Moreau's impulses satisfy the complementarity and Coul
 
 TEST_CASE("rocking block: the impact laws in a sequence", "[rocking_block_exact]") {
   // Moreau, e = 0, no slip: the same sequence as Housner's.
-  const auto housner = block(0.25, 1.0, 0.15, 0.0);
-  const auto moreau = block(0.25, 1.0, 0.15, 0.0, RockingImpactLaw::moreau, 0.0, 1.0);
+  const auto housner = make_exact_block(0.25, 1.0, 0.15, 0.0);
+  const auto moreau = make_exact_block(0.25, 1.0, 0.15, 0.0, RockingImpactLaw::moreau, 0.0, 1.0);
   REQUIRE(housner.impacts().size() == moreau.impacts().size());
   CHECK(moreau.impact_ratio() == Approx(housner.impact_ratio()).epsilon(1e-14));
   CHECK(moreau.rest_time() == Approx(housner.rest_time()).epsilon(1e-13));
   // Moreau with e > 0 on a slender block: flight; the exact solution stops at the impact.
-  const auto bounce = block(0.25, 1.0, 0.15, 0.0, RockingImpactLaw::moreau, 0.5, 1.0);
+  const auto bounce = make_exact_block(0.25, 1.0, 0.15, 0.0, RockingImpactLaw::moreau, 0.5, 1.0);
   CHECK(bounce.ending() == RockingBlockExact::Ending::leaves_rocking);
   CHECK(bounce.first_impact_outcome()->kind == CornerImpact::Kind::flight);
   CHECK(bounce.end_time() == bounce.impacts()[0].t);
   CHECK_FALSE(bounce.state(bounce.end_time() + 1e-9).has_value());
   // A wide block under Housner's law stops at the first impact (r <= 0).
-  const auto wide = block(2.0, 1.0, 0.3, 0.0);
+  const auto wide = make_exact_block(2.0, 1.0, 0.3, 0.0);
   CHECK(wide.impacts().size() == 1);
   CHECK(wide.rest_time() == wide.impacts()[0].t);
   // Launched hard enough, or tilted beyond alpha, it topples: ends on its side.
-  for (const auto& topple : {block(0.2, 1.0, 0.0, 3.0), block(0.2, 1.0, -0.25, 0.0)}) {
+  for (const auto& topple : {make_exact_block(0.2, 1.0, 0.0, 3.0), make_exact_block(0.2, 1.0, -0.25, 0.0)}) {
     CHECK(topple.ending() == RockingBlockExact::Ending::topples);
     CHECK(topple.impacts().empty());
-    CHECK(std::abs(topple.state(topple.end_time())->theta) == Approx(pi / 2).epsilon(1e-13));
+    CHECK(std::abs(topple.state(topple.end_time())->theta) == Approx(kPiRad / 2).epsilon(1e-13));
   }
   // A wide block with e > 0 under Moreau's law rebounds about the same corner: theta keeps its
   // sign, the speed falls by e at each impact, the energy above rest by e^2.
-  const auto rebound = block(2.0, 1.0, -0.3, 0.0, RockingImpactLaw::moreau, 0.5, 1.0);
+  const auto rebound = make_exact_block(2.0, 1.0, -0.3, 0.0, RockingImpactLaw::moreau, 0.5, 1.0);
   CHECK(rebound.impact_ratio() == Approx(-0.5).epsilon(1e-14));
   REQUIRE(rebound.impacts().size() > 3);
   CHECK(rebound.ending() == RockingBlockExact::Ending::rest);
@@ -321,7 +321,7 @@ TEST_CASE("rocking block: bad input is one line naming the parameter and its ran
 TEST_CASE("rocking block: the numbers of docs/rigid_bodies.md", "[.][rigid_numbers]") {
   std::printf("alpha_deg  housner_ratio  mu_H  moreau_e0_mu_inf  moreau_e0_mu_H/2 (kind)  moreau_e0.5_mu_inf (kind)\n");
   for (const double alpha_deg : {5.0, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0}) {
-    const double alpha = alpha_deg * pi / 180.0, b = std::sin(alpha), h = std::cos(alpha);
+    const double alpha = alpha_deg * kPiRad / 180.0, b = std::sin(alpha), h = std::cos(alpha);
     const double mu_H = 3.0 * b * h / (1.0 + 3.0 * h * h);
     const auto stick = nsb::moreau_impact(b, h, 1.0, 0.0, 1e308, 1, -1.0);
     const auto slip = nsb::moreau_impact(b, h, 1.0, 0.0, 0.5 * mu_H, 1, -1.0);
@@ -329,7 +329,7 @@ TEST_CASE("rocking block: the numbers of docs/rigid_bodies.md", "[.][rigid_numbe
     std::printf("%4.0f  %.16f  %.6f  %.16f  %.6f (%d)  %.6f (%d)\n", alpha_deg, nsb::housner_ratio(alpha), mu_H,
                 stick.ratio, slip.ratio, static_cast<int>(slip.kind), bounce.ratio, static_cast<int>(bounce.kind));
   }
-  const auto ex = block(0.2, 1.0, 0.1, 0.0);
+  const auto ex = make_exact_block(0.2, 1.0, 0.1, 0.0);
   std::printf("block b 0.2 h 1 m 1 g 9.81 theta0 0.1 (Housner): first impact %.15f s, %zu impacts, rest at %.15f s, "
               "amplitude after impacts 1..3: %.12f %.12f %.12f rad\n",
               ex.impacts()[0].t, ex.impacts().size(), ex.rest_time(), ex.impacts()[0].amplitude_after,

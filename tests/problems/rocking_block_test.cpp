@@ -19,14 +19,14 @@ using nsb::RockingBlock;
 
 namespace {
 
-RockingBlock make(const std::map<std::string, std::string>& set = {}) {
+RockingBlock make_rocking_block(const std::map<std::string, std::string>& set = {}) {
   return RockingBlock(Params(RockingBlock::parameters_spec(), set));
 }
 
 }  // namespace
 
 TEST_CASE("rocking-block: g, L and T against central differences at random configurations", "[problems][rocking_block]") {
-  const RockingBlock p = make();
+  const RockingBlock p = make_rocking_block();
   REQUIRE(p.contacts_move());
   nsb::ContactGeometry at = p.contact_geometry();
   std::mt19937_64 rng(7);
@@ -43,15 +43,15 @@ TEST_CASE("rocking-block: g, L and T against central differences at random confi
   // enough (y = 2) that every random configuration near it is admissible.
   for (const double theta : {-1.4, -0.7, 0.0, 0.3, 1.1, 1.4}) {
     const nsb::Vec u0 = (nsb::Vec(3) << 0.4, 2.0, theta).finished();
-    const nsb::Verdict v = nsb::check_contact_rows(p, u0);
+    const nsb::CheckVerdict v = nsb::check_contact_rows(p, u0);
     INFO("theta " << theta << ": " << v.figure);
-    CHECK(v.outcome == nsb::Verdict::Outcome::Pass);
+    CHECK(v.outcome == nsb::CheckVerdict::Outcome::Pass);
     CHECK_THAT(v.figure, Catch::Contains("moving, 6 configurations"));
   }
 }
 
 TEST_CASE("rocking-block: contacts evaluated without allocating, in the pattern of contacts()", "[problems][rocking_block][allocation]") {
-  const RockingBlock p = make();
+  const RockingBlock p = make_rocking_block();
   nsb::ContactGeometry at = p.contact_geometry();
   const nsb::Vec u = nsb::Vec::LinSpaced(3, 0.1, 0.4);
   const auto nonzeros = at.normal.nonZeros() + at.tangent.nonZeros();
@@ -67,7 +67,7 @@ TEST_CASE("rocking-block: contacts evaluated without allocating, in the pattern 
 
 TEST_CASE("rocking-block: starts on its pivot, the linearised gap at U0 is g(U0), the exact solution starts there", "[problems][rocking_block]") {
   for (const char* theta0 : {"0.1", "-0.1"}) {
-    const RockingBlock p = make({{"theta0", theta0}});
+    const RockingBlock p = make_rocking_block({{"theta0", theta0}});
     const nsb::State s0 = p.initial_state();
     nsb::ContactGeometry at = p.contact_geometry();
     p.evaluate_contacts(s0.u, at);
@@ -86,7 +86,7 @@ TEST_CASE("rocking-block: starts on its pivot, the linearised gap at U0 is g(U0)
 }
 
 TEST_CASE("rocking-block: observables theta, omega, omega_exact", "[problems][rocking_block]") {
-  const RockingBlock p = make();
+  const RockingBlock p = make_rocking_block();
   REQUIRE(p.observable_names() == std::vector<std::string>{"theta", "omega", "omega_exact"});
   const nsb::State s = *p.exact_state(0.3);
   double out[3];

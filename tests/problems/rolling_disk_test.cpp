@@ -15,9 +15,9 @@ using nsb::RollingDisk;
 
 namespace {
 
-const double g = 9.81;
+const double kG = 9.81;
 
-RollingDisk make(std::map<std::string, std::string> set) { return RollingDisk(Params(RollingDisk::parameters_spec(), set)); }
+RollingDisk make_disk(std::map<std::string, std::string> set) { return RollingDisk(Params(RollingDisk::parameters_spec(), set)); }
 
 std::string str(double v) {
   char buf[32];
@@ -28,7 +28,7 @@ std::string str(double v) {
 struct Disk {
   double m = 1.0, R = 0.1, kappa = 0.5, mu = 0.3, v0 = 1.0, omega0 = 0.0, h0 = 0.0, e = 0.5;
   RollingDisk make() const {
-    return ::make({{"m", str(m)}, {"R", str(R)}, {"kappa", str(kappa)}, {"mu", str(mu)}, {"v0", str(v0)},
+    return make_disk({{"m", str(m)}, {"R", str(R)}, {"kappa", str(kappa)}, {"mu", str(mu)}, {"v0", str(v0)},
                    {"omega0", str(omega0)}, {"h0", str(h0)}, {"e", str(e)}});
   }
   double slip0() const { return v0 + R * omega0; }
@@ -46,7 +46,7 @@ double slip(const RollingDisk& p, double t) {
 
 // Trapezoid rule: exact (to round-off) for an integrand linear on [a, b].
 template <class F>
-double trapezoid(F f, double a, double b, int n = 1000) {
+double trapezoid_rule(F f, double a, double b, int n = 1000) {
   const double h = (b - a) / n;
   double sum = 0.5 * (f(a) + f(b));
   for (int i = 1; i < n; ++i) sum += f(a + i * h);
@@ -79,7 +79,7 @@ TEST_CASE("rolling disk exact, on the floor: slip falls at mu g (1 + 1/kappa), t
   for (const auto& d : floor_cases()) {
     CAPTURE(d.kappa, d.mu, d.v0, d.omega0);
     const auto p = d.make();
-    const double s0 = d.slip0(), rate = d.mu * g * (1 + 1 / d.kappa), t_star = std::abs(s0) / rate;
+    const double s0 = d.slip0(), rate = d.mu * kG * (1 + 1 / d.kappa), t_star = std::abs(s0) / rate;
     CHECK(p.slip_decay_rate() == Approx(rate).epsilon(1e-15));
     CHECK(p.rest_time() == 0.0);
     CHECK(p.impacts().empty());
@@ -98,7 +98,7 @@ TEST_CASE("rolling disk exact, on the floor: slip falls at mu g (1 + 1/kappa), t
     }
     // Sliding direction: the friction force -sign(s) mu m g decelerates x' at mu g.
     const double dt = 0.3 * t_star;
-    CHECK(p.exact_state(dt)->v[0] - d.v0 == Approx(-std::copysign(d.mu * g, s0) * dt).epsilon(1e-12));
+    CHECK(p.exact_state(dt)->v[0] - d.v0 == Approx(-std::copysign(d.mu * kG, s0) * dt).epsilon(1e-12));
   }
 }
 
@@ -111,8 +111,8 @@ TEST_CASE("rolling disk exact, on the floor: x, theta integrate v, omega; angula
     const auto w = [&](double t) { return p.exact_state(t)->v[2]; };
     const auto end = *p.exact_state(t_end);
     // Split at the onset: v and omega are linear on each side.
-    CHECK(trapezoid(v, 0, ts) + trapezoid(v, ts, t_end) == Approx(end.u[0]).epsilon(1e-12).margin(1e-13));
-    CHECK(trapezoid(w, 0, ts) + trapezoid(w, ts, t_end) == Approx(end.u[2]).epsilon(1e-12).margin(1e-12));
+    CHECK(trapezoid_rule(v, 0, ts) + trapezoid_rule(v, ts, t_end) == Approx(end.u[0]).epsilon(1e-12).margin(1e-13));
+    CHECK(trapezoid_rule(w, 0, ts) + trapezoid_rule(w, ts, t_end) == Approx(end.u[2]).epsilon(1e-12).margin(1e-12));
     const double L0 = d.contact_momentum(*p.exact_state(0.0));
     CHECK(L0 == Approx(d.kappa * d.m * d.R * d.R * d.omega0 - d.m * d.R * d.v0).epsilon(1e-15));
     for (double f : {0.1, 0.5, 0.99, 1.5, 4.0})
@@ -128,7 +128,7 @@ TEST_CASE("rolling disk exact, on the floor: energy lost m kappa s0^2 / (2 (1 + 
     const double lost = d.energy(p, *p.exact_state(0.0)) - d.energy(p, *p.exact_state(ts + 2.0));
     CHECK(lost == Approx(d.m * d.kappa * s0 * s0 / (2 * (1 + d.kappa))).epsilon(1e-12));
     // Friction work: mu m g int |s| dt (|s| linear until the onset, 0 after).
-    CHECK(lost == Approx(d.mu * d.m * g * trapezoid([&](double t) { return std::abs(slip(p, t)); }, 0.0, ts)).epsilon(1e-12));
+    CHECK(lost == Approx(d.mu * d.m * kG * trapezoid_rule([&](double t) { return std::abs(slip(p, t)); }, 0.0, ts)).epsilon(1e-12));
     // Energy only decreases.
     double previous = d.energy(p, *p.exact_state(0.0));
     for (double t = 0.01; t < ts + 0.5; t += 0.01) {
@@ -152,7 +152,7 @@ TEST_CASE("rolling disk exact, dropped: every impact obeys Newton and Coulomb", 
     const auto& d = cases[n];
     CAPTURE(d.e, d.mu, d.omega0);
     const auto p = d.make();
-    const double V = std::sqrt(2 * g * d.h0), t1 = std::sqrt(2 * d.h0 / g), s0 = d.slip0();
+    const double V = std::sqrt(2 * kG * d.h0), t1 = std::sqrt(2 * d.h0 / kG), s0 = d.slip0();
     const double J = d.v0 - d.kappa * d.R * d.omega0;
     REQUIRE(!p.impacts().empty());
     CHECK(p.impacts()[0].t == Approx(t1).epsilon(1e-15));
@@ -163,9 +163,9 @@ TEST_CASE("rolling disk exact, dropped: every impact obeys Newton and Coulomb", 
       CAPTURE(k);
       const double Vk = std::pow(d.e, k) * V;
       if (d.e < 1.0) {
-        CHECK(im.t == Approx(t1 + 2 * V / g * d.e * (1 - std::pow(d.e, k)) / (1 - d.e)).epsilon(1e-14));
+        CHECK(im.t == Approx(t1 + 2 * V / kG * d.e * (1 - std::pow(d.e, k)) / (1 - d.e)).epsilon(1e-14));
       } else {
-        CHECK(im.t == Approx(t1 + 2 * V / g * k).epsilon(1e-14));
+        CHECK(im.t == Approx(t1 + 2 * V / kG * k).epsilon(1e-14));
       }
       CHECK(im.V == Approx(Vk).epsilon(1e-14));
       CHECK(im.Lambda_N == Approx(d.m * (1 + d.e) * Vk).epsilon(1e-14));
@@ -187,7 +187,7 @@ TEST_CASE("rolling disk exact, dropped: every impact obeys Newton and Coulomb", 
       }
       stuck_before = stuck_before || im.stuck;
       // The exact state jumps by the impulses: M dv = L^T Lambda_N + T^T Lambda_T.
-      const double eps = 1e-10 * Vk / g;
+      const double eps = 1e-10 * Vk / kG;
       const auto before = *p.exact_state(im.t - eps), after = *p.exact_state(im.t + eps);
       if (eps > 1e-13) {
         CHECK(after.v[0] - before.v[0] == Approx(im.Lambda_T / d.m).margin(1e-12));
@@ -206,7 +206,7 @@ TEST_CASE("rolling disk exact, dropped: every impact obeys Newton and Coulomb", 
     const double left = std::abs(p.impacts().back().slip_after);
     const double slide = left / p.slip_decay_rate();
     if (d.e < 1.0) {
-      CHECK(p.rest_time() == Approx(d.e == 0 ? t1 : t1 + 2 * d.e * V / (g * (1 - d.e))).epsilon(1e-14));
+      CHECK(p.rest_time() == Approx(d.e == 0 ? t1 : t1 + 2 * d.e * V / (kG * (1 - d.e))).epsilon(1e-14));
       CHECK(p.rolling_onset_time() == Approx(p.rest_time() + slide).epsilon(1e-13));
       CHECK(p.final_velocity() == Approx(J / (1 + d.kappa)).epsilon(1e-12));
     } else {
@@ -261,7 +261,7 @@ TEST_CASE("rolling disk exact: the rotating bouncing ball of Capobianco, Harsch,
   Disk d;
   d.kappa = 0.4, d.mu = 0.2, d.e = 0.5, d.v0 = 1.0, d.omega0 = 50.0, d.h0 = 0.9;
   const auto p = d.make();
-  const double V = std::sqrt(2 * g * 0.9), c = 0.2 * 3.5 * 1.5 * V;  // slip reduction of a full slip at impact 1
+  const double V = std::sqrt(2 * kG * 0.9), c = 0.2 * 3.5 * 1.5 * V;  // slip reduction of a full slip at impact 1
   REQUIRE(p.impacts().size() > 3);
   const auto& i1 = p.impacts()[0];
   const auto& i2 = p.impacts()[1];
@@ -282,18 +282,18 @@ TEST_CASE("rolling disk exact: the rotating bouncing ball of Capobianco, Harsch,
   CHECK(p.final_velocity() == Approx(-1.0 / 1.4).epsilon(1e-13));
   CHECK(p.final_spin() == Approx(1.0 / 1.4 / 0.1).epsilon(1e-13));
   CHECK(p.rolling_onset_time() == Approx(p.rest_time()).epsilon(1e-14));
-  CHECK(p.rest_time() == Approx(std::sqrt(2 * 0.9 / g) + 2 * V / g).epsilon(1e-14));
+  CHECK(p.rest_time() == Approx(std::sqrt(2 * 0.9 / kG) + 2 * V / kG).epsilon(1e-14));
   // Their plastic cases (e = 0): omega 50 slides on after the impact, omega 10 sticks at once.
   d.e = 0.0, d.v0 = 0.0;
   const auto slides = d.make();
   REQUIRE(slides.impacts().size() == 1);
   CHECK_FALSE(slides.impacts()[0].stuck);
-  CHECK(slides.rolling_onset_time() == Approx(std::sqrt(2 * 0.9 / g) + (5.0 - 0.2 * 3.5 * V) / (0.2 * g * 3.5)).epsilon(1e-13));
+  CHECK(slides.rolling_onset_time() == Approx(std::sqrt(2 * 0.9 / kG) + (5.0 - 0.2 * 3.5 * V) / (0.2 * kG * 3.5)).epsilon(1e-13));
   d.omega0 = 10.0;
   const auto sticks = d.make();
   REQUIRE(sticks.impacts().size() == 1);
   CHECK(sticks.impacts()[0].stuck);
-  CHECK(sticks.rolling_onset_time() == Approx(std::sqrt(2 * 0.9 / g)).epsilon(1e-14));
+  CHECK(sticks.rolling_onset_time() == Approx(std::sqrt(2 * 0.9 / kG)).epsilon(1e-14));
   CHECK(sticks.final_velocity() == Approx(-0.4 * 0.1 * 10.0 / 1.4).epsilon(1e-13));
 }
 
@@ -320,7 +320,7 @@ TEST_CASE("rolling disk exact: limits mu = 0, tiny kappa, e = 1", "[problems][ex
     Disk d;
     d.kappa = 1e-9, d.v0 = 2.0, d.omega0 = 5.0;
     const auto p = d.make();
-    CHECK(p.rolling_onset_time() == Approx(2.5 / (0.3 * g * (1 + 1e9))).epsilon(1e-13));
+    CHECK(p.rolling_onset_time() == Approx(2.5 / (0.3 * kG * (1 + 1e9))).epsilon(1e-13));
     CHECK(p.final_velocity() == Approx(2.0).epsilon(1e-8));
     CHECK(p.final_spin() == Approx(-20.0).epsilon(1e-8));
     const double lost = d.energy(p, *p.exact_state(0.0)) - d.energy(p, *p.exact_state(1.0));
@@ -330,7 +330,7 @@ TEST_CASE("rolling disk exact: limits mu = 0, tiny kappa, e = 1", "[problems][ex
     Disk d;
     d.e = 1.0, d.h0 = 0.2, d.omega0 = 30.0;
     const auto p = d.make();
-    const double period = 2 * std::sqrt(2 * g * 0.2) / g;
+    const double period = 2 * std::sqrt(2 * kG * 0.2) / kG;
     CHECK(p.impacts().size() == 1000);
     CHECK(p.impact_times(1e9).size() == 1000);
     const auto a = *p.exact_state(0.3 + 5000 * period), b = *p.exact_state(0.3 + 5001 * period);
@@ -374,11 +374,11 @@ TEST_CASE("rolling disk: model data and contacts", "[problems][exact][friction]"
     CHECK(Eigen::MatrixXd(p.mass_matrix()).diagonal() == Eigen::Vector3d(1, 1, 0.5 * 0.25 * 0.25));
     nsb::Vec f(3);
     p.external_force(0.0, f);
-    CHECK(f == Eigen::Vector3d(0, -g, 0));
+    CHECK(f == Eigen::Vector3d(0, -kG, 0));
     const auto s = p.initial_state();
     CHECK(s.u == Eigen::Vector3d(0, 0.2, 0));
     CHECK(s.v == Eigen::Vector3d(1, 0, 0));
-    CHECK(p.load_potential(s.u) == Approx(g * 0.2));
+    CHECK(p.load_potential(s.u) == Approx(kG * 0.2));
   }
 }
 
@@ -388,13 +388,13 @@ TEST_CASE("rolling disk: bad parameters are rejected", "[problems][exact][fricti
       {{"R", "-0.1"}}, {{"e", "1.1"}},  {{"e", "-0.1"}}, {{"h0", "-1"}},   {{"m", "0"}},        {{"g", "0"}}};
   for (const auto& b : bad) {
     CAPTURE(b.begin()->first, b.begin()->second);
-    CHECK_THROWS_AS(make(b), nsb::InputError);
+    CHECK_THROWS_AS(make_disk(b), nsb::InputError);
   }
 }
 
 TEST_CASE("rolling disk: field mesh, the centre as a vertex; the rotation in body arrays, exactly",
           "[problems][field-mesh][friction]") {
-  const RollingDisk p = make({{"R", "0.2"}});
+  const RollingDisk p = make_disk({{"R", "0.2"}});
   const auto mesh = p.field_mesh();
   REQUIRE(mesh.has_value());
   CHECK(mesh->dimension == 2);

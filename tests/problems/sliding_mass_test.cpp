@@ -16,7 +16,7 @@ namespace {
 
 const double g = 9.81;
 
-SlidingMass make(double alpha, double mu, double v0, double m = 1.0) {
+SlidingMass make_slider(double alpha, double mu, double v0, double m = 1.0) {
   return SlidingMass(Params(SlidingMass::parameters_spec(), {{"alpha", std::to_string(alpha)},
                                                             {"mu", std::to_string(mu)},
                                                             {"v0", std::to_string(v0)},
@@ -30,7 +30,7 @@ double v_at(const SlidingMass& p, double t) { return p.exact_state(t)->v[0]; }
 
 // Trapezoid rule on [a, b] with n panels: exact (to round-off) for a linear integrand.
 template <class F>
-double trapezoid(F f, double a, double b, int n = 1000) {
+double trapezoid_sum(F f, double a, double b, int n = 1000) {
   const double h = (b - a) / n;
   double sum = 0.5 * (f(a) + f(b));
   for (int i = 1; i < n; ++i) sum += f(a + i * h);
@@ -42,8 +42,8 @@ double trapezoid(F f, double a, double b, int n = 1000) {
 template <class F>
 double integral(const SlidingMass& p, F f, double t_end) {
   const double ts = p.stop_time();
-  if (ts <= 0.0 || ts >= t_end) return trapezoid(f, 0.0, t_end);
-  return trapezoid(f, 0.0, ts) + trapezoid(f, ts, t_end);
+  if (ts <= 0.0 || ts >= t_end) return trapezoid_sum(f, 0.0, t_end);
+  return trapezoid_sum(f, 0.0, ts) + trapezoid_sum(f, ts, t_end);
 }
 
 // alpha, mu, v0, covering every branch: stop and stick down the slope, accelerate, stop going
@@ -59,7 +59,7 @@ const std::vector<Case> cases = {{20, 0.5, 2},  {30, 0.2, 2}, {30, 0.2, -3}, {10
 TEST_CASE("sliding mass exact: x is the integral of v, v is continuous", "[problems][exact][friction]") {
   for (const auto& c : cases) {
     CAPTURE(c.alpha, c.mu, c.v0);
-    const auto p = make(c.alpha, c.mu, c.v0);
+    const auto p = make_slider(c.alpha, c.mu, c.v0);
     const double t_end = 3.0;
     const double x_end = x_at(p, t_end);
     CHECK(integral(p, [&](double t) { return v_at(p, t); }, t_end) == Approx(x_end).epsilon(1e-12).margin(1e-12));
@@ -82,7 +82,7 @@ TEST_CASE("sliding mass exact: x is the integral of v, v is continuous", "[probl
 TEST_CASE("sliding mass exact: stop time and distance", "[problems][exact][friction]") {
   SECTION("down the slope, friction wins: stops at v0 / (-a) after v0^2 / (-2a), then sticks") {
     for (const auto& [alpha, mu, v0] : std::vector<Case>{{20, 0.5, 2}, {0, 0.5, 5}, {45, 1.5, 0.3}}) {
-      const auto p = make(alpha, mu, v0);
+      const auto p = make_slider(alpha, mu, v0);
       const double a = g * (std::sin(rad(alpha)) - mu * std::cos(rad(alpha)));
       REQUIRE(a < 0.0);
       CHECK(p.sliding_acceleration() == Approx(a).epsilon(1e-14));
@@ -97,12 +97,12 @@ TEST_CASE("sliding mass exact: stop time and distance", "[problems][exact][frict
       }
     }
     // Flat floor, mu = 0.5, v0 = 5: the textbook 2.548 m in 1.019 s.
-    const auto flat = make(0, 0.5, 5);
+    const auto flat = make_slider(0, 0.5, 5);
     CHECK(flat.stop_distance() == Approx(25.0 / (2 * 0.5 * g)).epsilon(1e-15));
     CHECK(flat.stop_time() == Approx(5.0 / (0.5 * g)).epsilon(1e-15));
   }
   SECTION("up the slope: stops at |v0| / a_up, then sticks or slides back down") {
-    const auto back = make(30, 0.2, -3), stay = make(10, 0.5, -3);
+    const auto back = make_slider(30, 0.2, -3), stay = make_slider(10, 0.5, -3);
     for (const auto* p : {&back, &stay}) {
       const double alpha = p->parameters().real("alpha"), mu = p->parameters().real("mu");
       const double a_up = g * (std::sin(rad(alpha)) + mu * std::cos(rad(alpha)));
@@ -118,14 +118,14 @@ TEST_CASE("sliding mass exact: stop time and distance", "[problems][exact][frict
     CHECK(x_at(stay, stay.stop_time() + 5.0) == Approx(-stay.stop_distance()).epsilon(1e-14));
   }
   SECTION("never stops when gravity wins going down") {
-    const auto p = make(30, 0.2, 2);
+    const auto p = make_slider(30, 0.2, 2);
     CHECK(std::isinf(p.stop_time()));
     CHECK(std::isinf(p.stop_distance()));
     const double a = g * (std::sin(rad(30)) - 0.2 * std::cos(rad(30)));
     CHECK(x_at(p, 2.0) == Approx(2 * 2.0 + 0.5 * a * 4.0).epsilon(1e-14));
   }
   SECTION("from rest: stays when tan(alpha) <= mu, else slides down with a_down") {
-    const auto stays = make(20, 0.5, 0), slides = make(30, 0.2, 0);
+    const auto stays = make_slider(20, 0.5, 0), slides = make_slider(30, 0.2, 0);
     CHECK(stays.stop_time() == 0.0);
     CHECK(stays.sticks());
     CHECK(x_at(stays, 10.0) == 0.0);
@@ -152,7 +152,7 @@ TEST_CASE("sliding mass exact: the energy falls by the friction work mu m g cos(
   for (const auto& c : cases) {
     CAPTURE(c.alpha, c.mu, c.v0);
     const double m = 2.5;
-    const auto p = make(c.alpha, c.mu, c.v0, m);
+    const auto p = make_slider(c.alpha, c.mu, c.v0, m);
     const auto energy = [&](double t) {
       const auto s = *p.exact_state(t);
       return 0.5 * m * s.v.squaredNorm() + p.load_potential(s.u);
@@ -169,7 +169,7 @@ TEST_CASE("sliding mass exact: the energy falls by the friction work mu m g cos(
 TEST_CASE("sliding mass exact: the friction force stays in the cone and opposes sliding", "[problems][exact][friction]") {
   for (const auto& c : cases) {
     CAPTURE(c.alpha, c.mu, c.v0);
-    const auto p = make(c.alpha, c.mu, c.v0);
+    const auto p = make_slider(c.alpha, c.mu, c.v0);
     const double a = rad(c.alpha), bound = c.mu * g * std::cos(a);  // per unit mass
     for (double t = 0.05; t < 3.0; t += 0.05) {
       if (std::abs(t - p.stop_time()) < 1e-3) continue;  // the difference quotient straddles the kink
@@ -188,7 +188,7 @@ TEST_CASE("sliding mass exact: the friction force stays in the cone and opposes 
 TEST_CASE("sliding mass exact: mu = 0 is free sliding x = v0 t + g sin(alpha) t^2 / 2", "[problems][exact][friction]") {
   for (double v0 : {-2.0, 0.0, 1.5})
     for (double alpha : {0.0, 25.0, 80.0}) {
-      const auto p = make(alpha, 0.0, v0);
+      const auto p = make_slider(alpha, 0.0, v0);
       CHECK_FALSE(p.contacts().has_friction());
       CHECK(p.contacts().tangent.rows() == 0);
       // Going up it stops (unless the plane is flat) and comes back without sticking.
@@ -205,7 +205,7 @@ TEST_CASE("sliding mass exact: mu = 0 is free sliding x = v0 t + g sin(alpha) t^
 
 TEST_CASE("sliding mass: model data and contacts", "[problems][exact][friction]") {
   for (double mu : {0.0, 0.5}) {
-    const auto p = make(20, mu, 2);
+    const auto p = make_slider(20, mu, 2);
     CHECK_NOTHROW(nsb::check_contacts(p.contacts(), p.ndof(), p.name()));
     CHECK(p.contacts().has_friction() == (mu > 0.0));
     CHECK(Eigen::MatrixXd(p.gap_operator()) == Eigen::RowVector2d(0, 1));
@@ -242,7 +242,7 @@ TEST_CASE("sliding mass: bad parameters are rejected", "[problems][exact][fricti
 }
 
 TEST_CASE("sliding mass: field mesh, a vertex in the plane's frame (x down the slope, y normal)", "[problems][field-mesh]") {
-  const SlidingMass p = make(30.0, 0.2, 1.0);
+  const SlidingMass p = make_slider(30.0, 0.2, 1.0);
   const auto mesh = p.field_mesh();
   REQUIRE(mesh.has_value());
   CHECK(mesh->dimension == 2);

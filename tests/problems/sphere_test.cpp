@@ -15,13 +15,13 @@ using nsb::Sphere;
 
 namespace {
 
-Sphere make(const std::map<std::string, std::string>& set = {}) { return Sphere(Params(Sphere::parameters_spec(), set)); }
+Sphere make_sphere(const std::map<std::string, std::string>& set = {}) { return Sphere(Params(Sphere::parameters_spec(), set)); }
 
 }  // namespace
 
 TEST_CASE("sphere: the tangent rows are the contact point's velocity, the Delassus block diag(1, 7/2, 7/2) / m",
           "[sphere]") {
-  const Sphere s = make({{"m", "2"}, {"R", "0.25"}});
+  const Sphere s = make_sphere({{"m", "2"}, {"R", "0.25"}});
   const nsb::Contacts& c = s.contacts();
   REQUIRE(c.has_cone());
   Eigen::VectorXd v(6);
@@ -37,11 +37,11 @@ TEST_CASE("sphere: the tangent rows are the contact point's velocity, the Delass
   C.row(2) = Eigen::MatrixXd(c.tangent2);
   const Eigen::MatrixXd W = C * Eigen::MatrixXd(s.mass_matrix()).inverse() * C.transpose();
   CHECK(W.isApprox(Eigen::Vector3d(0.5, 1.75, 1.75).asDiagonal().toDenseMatrix(), 1e-14));
-  CHECK_FALSE(make({{"mu", "0"}}).contacts().has_cone());  // mu = 0: frictionless, no rows
+  CHECK_FALSE(make_sphere({{"mu", "0"}}).contacts().has_cone());  // mu = 0: frictionless, no rows
 }
 
 TEST_CASE("sphere: the exact state solves u' = v and keeps the energy balance", "[sphere]") {
-  const Sphere s = make();
+  const Sphere s = make_sphere();
   const double t_roll = s.roll_time();
   REQUIRE(t_roll == Approx(0.238575312993057).epsilon(1e-12));  // docs/three_d.md
   for (const double t : {0.3 * t_roll, 0.9 * t_roll, 1.5 * t_roll}) {
@@ -65,16 +65,16 @@ TEST_CASE("sphere: the exact state solves u' = v and keeps the energy balance", 
   CHECK(figures[0].first == "t_roll_exact");
   CHECK(figures[0].second == t_roll);
   // Dropped: no exact solution here.
-  const Sphere dropped = make({{"h0", "0.1"}});
+  const Sphere dropped = make_sphere({{"h0", "0.1"}});
   CHECK_FALSE(dropped.exact_state(0.1));
   CHECK(std::isnan(dropped.roll_time()));
   // mu below (2/7) tan(alpha): it slides for ever.
-  CHECK(std::isinf(make({{"mu", "0.1"}}).roll_time()));
+  CHECK(std::isinf(make_sphere({{"mu", "0.1"}}).roll_time()));
 }
 
 TEST_CASE("sphere: bad input is one line naming the parameter and its range", "[sphere]") {
   const auto text = [](const std::map<std::string, std::string>& set) {
-    return nsb::test::input_error_text_of([&] { make(set); });
+    return nsb::test::input_error_text_of([&] { make_sphere(set); });
   };
   for (const auto& [name, value] : std::map<std::string, std::string>{{"alpha", "90"}, {"alpha", "-1"}, {"mu", "-0.1"}, {"h0", "-0.01"}}) {
     const std::string t = text({{name, value}});
@@ -86,7 +86,7 @@ TEST_CASE("sphere: bad input is one line naming the parameter and its range", "[
 }
 
 TEST_CASE("sphere: the field mesh is one 3D vertex with the body arrays", "[sphere]") {
-  const Sphere s = make();
+  const Sphere s = make_sphere();
   const nsb::FieldMesh mesh = *s.field_mesh();
   CHECK(mesh.dimension == 3);
   CHECK(mesh.nbodies() == 1);

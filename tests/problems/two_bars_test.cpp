@@ -16,14 +16,14 @@ TwoBars bars(const std::map<std::string, std::string>& set = {}) { return TwoBar
 
 // Energy and momentum of bar `bar`'s exact field, midpoint rule on `cells` cells: the fields
 // are piecewise constant with at most 4 jumps, so the error is below 4 jumps x one cell.
-struct Integrals {
+struct TwoBarsIntegrals {
   double energy = 0.0, momentum = 0.0;
 };
-Integrals integrate_exact(const TwoBars& p, int bar, double t, int cells = 20000) {
+TwoBarsIntegrals integrate_two_bars_exact(const TwoBars& p, int bar, double t, int cells = 20000) {
   const auto& prm = p.parameters();
   const double len = prm.real(bar == 1 ? "L1" : "L2"), E = prm.real("E"), rho = prm.real("rho"), A = prm.real("A");
   const double dx = len / cells;
-  Integrals r;
+  TwoBarsIntegrals r;
   for (int i = 0; i < cells; ++i) {
     const double x = (i + 0.5) * dx, v = p.exact_velocity(bar, x, t), sig = p.exact_stress(bar, x, t);
     r.energy += dx * A * (0.5 * rho * v * v + 0.5 * sig * sig / E);
@@ -102,7 +102,7 @@ TEST_CASE("two bars exact: momentum and energy conserved, mean velocities, the g
     CHECK(end - tc == Approx(2.0));
     for (double t : {0.0, 0.1, 0.3, 0.9, 1.4, 1.9, 2.2, 2.5, 3.7, 4.6, 6.1, 9.3}) {
       CAPTURE(L2, t);
-      const Integrals b1 = integrate_exact(p, 1, t), b2 = integrate_exact(p, 2, t);
+      const TwoBarsIntegrals b1 = integrate_two_bars_exact(p, 1, t), b2 = integrate_two_bars_exact(p, 2, t);
       const double tol = 4.0 * 2.0 / 20000;  // 4 jumps x one cell, relative
       CHECK(b1.momentum + b2.momentum == Approx(m1 * v0).epsilon(tol));
       CHECK(b1.energy + b2.energy == Approx(p.exact_energy()).epsilon(tol));

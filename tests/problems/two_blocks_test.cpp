@@ -254,9 +254,9 @@ TEST_CASE("two-blocks, large sliding: g, L and T against central differences (ns
   // 0.3: the upper block's last bottom node (x = 0.55) past the lower block's end (x = 0.5).
   for (const double shift : {0.0, 0.13, 0.3}) {
     const nsb::Vec u0 = upper_moved(b, nsb::Vec::Zero(b.ndof()), shift, 0.0);
-    const nsb::Verdict v = nsb::check_contact_rows(b, u0);
+    const nsb::CheckVerdict v = nsb::check_contact_rows(b, u0);
     INFO("upper block shifted by " << shift << ": " << v.figure);
-    CHECK(v.outcome == nsb::Verdict::Outcome::Pass);
+    CHECK(v.outcome == nsb::CheckVerdict::Outcome::Pass);
     CHECK_THAT(v.figure, Catch::Contains("moving, 6 configurations"));
   }
   const nsb::Index last = b.upper().parameters().integer("nx");

@@ -1,4 +1,5 @@
 #include "reference/cache.hpp"
+#include "tests/support/files.hpp"
 
 #include <unistd.h>
 
@@ -8,12 +9,6 @@
 namespace fs = std::filesystem;
 
 namespace {
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("nsbench_cache_test_" + std::to_string(::getpid()));
-  TempDir() { fs::remove_all(path); }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 nsb::ReferenceRequest request() {
   nsb::ReferenceRequest r;
@@ -28,7 +23,7 @@ nsb::ReferenceRequest request() {
 }  // namespace
 
 TEST_CASE("reference cache: stored, reused, regenerated when missing, stale or corrupt", "[reference][cache]") {
-  TempDir dir;
+  const nsb::test::TempDir dir("cache_test");
   const auto first = nsb::cached_reference(dir.path, request());
   CHECK_FALSE(first.from_cache);
   REQUIRE(first.summary["status"] == "ok");
@@ -74,7 +69,7 @@ TEST_CASE("reference cache: unknown names and bad values are input errors", "[re
 // A series edited by hand or cut short at a row boundary still parses: only the hash in the
 // .json tells it from the run, and it is regenerated rather than used.
 TEST_CASE("reference cache: an edited or truncated series is regenerated, not used", "[reference][cache]") {
-  TempDir dir;
+  const nsb::test::TempDir dir("cache_test");
   const auto first = nsb::cached_reference(dir.path, request());
   const fs::path csv = dir.path / (nsb::reference_key(first.metadata) + ".csv");
   const auto read = [&] {
@@ -105,7 +100,7 @@ TEST_CASE("reference cache: an edited or truncated series is regenerated, not us
 // Issue 30, finding 2: "summary" renamed segfaulted, "ok" -> "nk" failed later, "[]" was
 // called an unreadable shard file. Every damaged entry is rebuilt (with a warning line).
 TEST_CASE("reference cache: a damaged entry is rebuilt, never used or fatal", "[reference][cache]") {
-  TempDir dir;
+  const nsb::test::TempDir dir("cache_test");
   const auto first = nsb::cached_reference(dir.path, request());
   const fs::path json = dir.path / (nsb::reference_key(first.metadata) + ".json");
   std::ifstream in(json, std::ios::binary);
@@ -133,7 +128,7 @@ TEST_CASE("reference cache: a damaged entry is rebuilt, never used or fatal", "[
 // Issue 30, finding 3: an unusable cache location threw out of the study (SIGABRT). The
 // cache only saves time, so the run is computed and not stored, with a warning.
 TEST_CASE("reference cache: an unusable location computes the run without storing it", "[reference][cache]") {
-  TempDir dir;
+  const nsb::test::TempDir dir("cache_test");
   fs::create_directories(dir.path);
   const auto expected = nsb::cached_reference(dir.path / "ok", request());
   const std::string key = nsb::reference_key(expected.metadata);

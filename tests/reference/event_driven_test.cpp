@@ -12,7 +12,7 @@ using nsb::Params;
 
 namespace {
 
-BouncingMass make(double e, double h0 = 1.0, double v0 = 0.0) {
+BouncingMass falling_mass(double e, double h0 = 1.0, double v0 = 0.0) {
   return BouncingMass(Params(BouncingMass::parameters_spec(),
                              {{"e", std::to_string(e)}, {"h0", std::to_string(h0)}, {"v0", std::to_string(v0)}}));
 }
@@ -21,7 +21,7 @@ EventDriven make_ed(const std::string& method, const std::string& zeno_velocity 
   return EventDriven(Params(EventDriven::parameters_spec(), {{"method", method}, {"zeno_velocity", zeno_velocity}}));
 }
 
-void advance(EventDriven& ed, double t_end, double dt) {
+void advance_events(EventDriven& ed, double t_end, double dt) {
   while (ed.state().t < t_end - 1e-12) ed.step(std::min(dt, t_end - ed.state().t));
 }
 
@@ -32,12 +32,12 @@ TEST_CASE("event-driven: bouncing-mass impact times and rebound speeds within 1e
   for (const char* method : {"bdf", "adams"}) {
     for (double e : {1.0, 0.9, 0.5}) {
       DYNAMIC_SECTION(method << " e=" << e) {
-        const BouncingMass p = make(e, 1.0, 0.7);
+        const BouncingMass p = falling_mass(e, 1.0, 0.7);
         const int impacts = 8;
         auto ed = make_ed(method);
         ed.init(p, p.initial_state());
         // A step that is no divisor of the flights: impacts fall inside steps.
-        advance(ed, 0.5 * (p.impact_time(impacts) + p.impact_time(impacts + 1)), 0.0137);
+        advance_events(ed, 0.5 * (p.impact_time(impacts) + p.impact_time(impacts + 1)), 0.0137);
         // Exactly the impacts of the exact solution: a restart at zero gap fires no root.
         REQUIRE(ed.events().size() == static_cast<std::size_t>(impacts));
         for (int i = 1; i <= impacts; ++i) {
@@ -66,10 +66,10 @@ TEST_CASE("event-driven: bouncing-mass impact times and rebound speeds within 1e
 TEST_CASE("event-driven: Zeno accumulation ends in closed contact near the accumulation time",
           "[reference][event-driven]") {
   const double e = 0.5, g = 9.81, v_zeno = 1e-4, atol = 1e-13;
-  const BouncingMass p = make(e);
+  const BouncingMass p = falling_mass(e);
   auto ed = make_ed("bdf", "1e-4");
   ed.init(p, p.initial_state());
-  advance(ed, p.zeno_time() + 0.5, 0.01);
+  advance_events(ed, p.zeno_time() + 0.5, 0.01);
   REQUIRE(ed.work().extra.at("zeno_stops") == 1);
   // The plastic impact comes at the first impact whose rebound would be slower than
   // v_zeno; the flights it cuts last 2 e v / (g (1 - e)) < 2 v_zeno / (g (1 - e)) together.
@@ -88,10 +88,10 @@ TEST_CASE("event-driven: Zeno accumulation ends in closed contact near the accum
 }
 
 TEST_CASE("event-driven: a mass resting on the floor stays closed from t = 0", "[reference][event-driven]") {
-  const BouncingMass p = make(0.5, 0.0, 0.0);
+  const BouncingMass p = falling_mass(0.5, 0.0, 0.0);
   auto ed = make_ed("bdf");
   ed.init(p, p.initial_state());
-  advance(ed, 2.0, 0.1);
+  advance_events(ed, 2.0, 0.1);
   CHECK(ed.state().u[0] == 0.0);
   CHECK(ed.state().v[0] == 0.0);
   // No impact; the floor holds the weight: the step's impulse is m g dt (the reaction
@@ -110,7 +110,7 @@ TEST_CASE("event-driven: zeno_velocity = 0 is refused; a missed impact stops the
   CHECK_THROWS_WITH(make_ed("bdf", "0"), Catch::Contains("zeno_velocity") && Catch::Contains("(0, inf)"));
   // A rebound threshold far below any speed the root finder can resolve: the impacts
   // accumulate until one is missed, and the run says so instead of falling through.
-  const BouncingMass p = make(0.5);
+  const BouncingMass p = falling_mass(0.5);
   auto ed = make_ed("bdf", "1e-300");
   ed.init(p, p.initial_state());
   nsb::RunOptions options;
@@ -124,7 +124,7 @@ TEST_CASE("event-driven: zeno_velocity = 0 is refused; a missed impact stops the
 }
 
 TEST_CASE("event-driven: an open initial gap within atol is refused, not started on the floor", "[reference][event-driven]") {
-  const BouncingMass p = make(0.9, 1.0);
+  const BouncingMass p = falling_mass(0.9, 1.0);
   auto ed = EventDriven(Params(EventDriven::parameters_spec(), {{"atol", "1"}}));
   CHECK_THROWS_WITH(ed.init(p, p.initial_state()),
                     "event-driven: contact 0 starts at gap 1, within atol = 1 of the obstacle, where it counts as "

@@ -22,15 +22,15 @@ using nsb::Params;
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
 ModalExact make_me() { return ModalExact(Params(ModalExact::parameters_spec())); }
 
-void advance(nsb::Integrator& integ, double t_end, double dt) {
+void advance_to(nsb::Integrator& integ, double t_end, double dt) {
   while (integ.state().t < t_end - 1e-12) integ.step(std::min(dt, t_end - integ.state().t));
 }
 
-nsb::SignoriniBar bar(const std::string& mass, int N, const std::map<std::string, std::string>& more = {}) {
+nsb::SignoriniBar modal_bar(const std::string& mass, int N, const std::map<std::string, std::string>& more = {}) {
   std::map<std::string, std::string> p = {{"mass", mass}, {"N", std::to_string(N)}};
   p.insert(more.begin(), more.end());
   return nsb::SignoriniBar(Params(nsb::SignoriniBar::parameters_spec(), p));
@@ -59,10 +59,10 @@ double contact_duration(const nsb::EventDriven& ed) {
 // Lumped bar, defaults (L = c = v0 = 1, g0 = 0): T_N from modal-exact, stepping to just past
 // the continuum release 2L/c with steps that are no divisor of it.
 double modal_contact_duration(int N) {
-  const auto p = bar("lumped", N);
+  const auto p = modal_bar("lumped", N);
   auto me = make_me();
   me.init(p, p.initial_state());
-  advance(me, 1.2 * p.contact_duration(), 0.0437);
+  advance_to(me, 1.2 * p.contact_duration(), 0.0437);
   return contact_duration(me);
 }
 
@@ -73,7 +73,7 @@ double modal_contact_duration(int N) {
 // The stable step is 2 / w_max for each mass model.
 double bar_roundoff(const nsb::SignoriniBar& p) {
   const double w_max = 2.0 / p.stable_step(), L_over_c = 0.5 * p.contact_duration();
-  return kEps * (w_max * L_over_c) * (w_max * L_over_c);
+  return kEpsilon * (w_max * L_over_c) * (w_max * L_over_c);
 }
 
 }  // namespace
@@ -87,7 +87,7 @@ TEST_CASE("modal-exact: bouncing-mass impact times and rebound speeds within 1e-
       me.init(p, p.initial_state());
       // e = 1: 30 impacts. e = 0.9: through the Zeno accumulation (about 100 impacts).
       const double t_end = e < 1.0 ? p.zeno_time() + 0.5 : 0.5 * (p.impact_time(30) + p.impact_time(31));
-      advance(me, t_end, 0.0137);  // no divisor of the flights: impacts fall inside steps
+      advance_to(me, t_end, 0.0137);  // no divisor of the flights: impacts fall inside steps
       int i = 0;
       for (const auto& ev : me.events()) {
         ++i;
@@ -132,14 +132,14 @@ TEST_CASE("modal-exact vs event-driven: lumped bar contact duration within 1e-6 
   // stops plastically at t = 0) and one release (its reaction back to zero near 2L/c).
   for (int N : {20, 100}) {
     DYNAMIC_SECTION("N=" << N) {
-      const auto p = bar("lumped", N);
+      const auto p = modal_bar("lumped", N);
       const double t_end = 1.2 * p.contact_duration();
       auto me = make_me();
       me.init(p, p.initial_state());
-      advance(me, t_end, 0.0437);
+      advance_to(me, t_end, 0.0437);
       nsb::EventDriven ed(Params(nsb::EventDriven::parameters_spec()));
       ed.init(p, p.initial_state());
-      advance(ed, t_end, 0.0437);
+      advance_to(ed, t_end, 0.0437);
       REQUIRE(me.events().size() == 2);
       CHECK(me.events()[0].t == 0.0);
       REQUIRE(nsb::events_of_kind(ed.events(), {nsb::ContactEventKind::Impact}).size() == 1);
@@ -196,7 +196,7 @@ TEST_CASE("modal-exact: consistent and singular bars keep energy (but for the im
     for (double g0 : {0.0, 0.1234}) {
       DYNAMIC_SECTION(mass << " g0=" << g0) {
         const int N = 50;
-        const auto p = bar(mass, N, {{"g0", std::to_string(g0)}});
+        const auto p = modal_bar(mass, N, {{"g0", std::to_string(g0)}});
         const double roundoff = bar_roundoff(p);
         auto me = make_me();
         me.init(p, p.initial_state());
@@ -241,7 +241,7 @@ TEST_CASE("modal-exact: singular bar bouncing under gravity keeps its energy ove
           "[reference][modal-exact][signorini-bar]") {
   // g = 0.25: contact about 2L/c = 2, flight about 2 v0 / g = 8; four contacts by t = 35. The
   // static parts of the modes (q_s = f / w^2) and the rigid mode's parabola are exercised.
-  const auto p = bar("singular", 30, {{"g", "0.25"}});
+  const auto p = modal_bar("singular", 30, {{"g", "0.25"}});
   auto me = make_me();
   me.init(p, p.initial_state());
   const double E0 = me.energy().total();
@@ -262,7 +262,7 @@ TEST_CASE("modal-exact: advance_to and displacement sample one dof as step() doe
   // Singular (a massless dof) and lumped (a held massive dof) bars under gravity, sampled at
   // times that are not the stepping ones, across arrivals, impacts and releases.
   for (const std::string mass : {"singular", "lumped"}) {
-    const auto p = bar(mass, 20, {{"g", "0.25"}});
+    const auto p = modal_bar(mass, 20, {{"g", "0.25"}});
     auto stepped = make_me(), sampled = make_me();
     stepped.init(p, p.initial_state());
     sampled.init(p, p.initial_state());
@@ -286,7 +286,7 @@ TEST_CASE("modal-exact: lumped bar bouncing under gravity: the contact node's ch
   // The energy study's case (N = 50, g = 0.25) to t = 100: dozens of plastic impacts of the
   // contact node and releases, among them (t = 88.28) a release from rest that the element
   // pushes back after 2.3 ms, shorter than one search sample (3.9 ms): found by halving.
-  const auto p = bar("lumped", 50, {{"g", "0.25"}});
+  const auto p = modal_bar("lumped", 50, {{"g", "0.25"}});
   auto me = make_me();
   me.init(p, p.initial_state());
   double E_prev = me.energy().total(), worst_gain = 0.0, min_gap = INFINITY, shortest_flight = INFINITY;
@@ -343,7 +343,7 @@ TEST_CASE("modal-exact: two contacts hitting together go through the impulse LCP
   auto me = make_me();
   me.init(p, p.initial_state());
   const double E0 = me.energy().total();
-  advance(me, 0.1, 0.0137);
+  advance_to(me, 0.1, 0.0137);
   REQUIRE(me.events().size() >= 2);
   const auto& left = me.events()[0];
   const auto& right = me.events()[1];
@@ -365,7 +365,7 @@ TEST_CASE("modal-exact: refuses what it cannot integrate exactly, saying why", "
   const nsb::Block2d block(Params(nsb::Block2d::parameters_spec()));
   auto me = nsb::make_integrator(ModalExact::kName);
   CHECK_THROWS_WITH(me->init(block, block.initial_state()), Catch::Contains("nonlinear"));
-  const auto big = bar("lumped", 3000);
+  const auto big = modal_bar("lumped", 3000);
   CHECK_THROWS_WITH(me->init(big, big.initial_state()), Catch::Contains("max_dofs"));
   CHECK_THROWS_AS(ModalExact(Params(ModalExact::parameters_spec(), {{"samples_per_period", "1"}})), nsb::InputError);
 }

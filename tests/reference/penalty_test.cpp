@@ -18,10 +18,10 @@ using nsb::PenaltyBdf;
 
 namespace {
 
-BouncingMass make(const std::map<std::string, std::string>& p) { return BouncingMass(Params(BouncingMass::parameters_spec(), p)); }
+BouncingMass mass_of(const std::map<std::string, std::string>& p) { return BouncingMass(Params(BouncingMass::parameters_spec(), p)); }
 
 template <class I>
-void advance(I& integrator, double t_end, double dt) {
+void advance_penalty(I& integrator, double t_end, double dt) {
   while (integrator.state().t < t_end - 1e-12) integrator.step(std::min(dt, t_end - integrator.state().t));
 }
 
@@ -42,7 +42,7 @@ TEST_CASE("penalty-bdf: an isolated contact rebounds with the problem's restitut
   // Gravity 1e-6 m/s^2: its effect on the rebound, g / (omega v) = 1e-11, is negligible.
   for (double e : {1.0, 0.7, 0.1}) {
     CAPTURE(e);
-    const BouncingMass p = make({{"e", std::to_string(e)}, {"g", "1e-6"}, {"h0", "1e-3"}, {"v0", "-1"}});
+    const BouncingMass p = mass_of({{"e", std::to_string(e)}, {"g", "1e-6"}, {"h0", "1e-3"}, {"v0", "-1"}});
     PenaltyBdf pen(Params(PenaltyBdf::parameters_spec(), {{"rtol", "1e-10"}}));
     pen.init(p, p.initial_state());
     // Contact from 1e-3 s for about 3e-5 s. The impulses (left out of CVODE's error test)
@@ -64,16 +64,16 @@ TEST_CASE("penalty-bdf converges to the event-driven reference as the penalty st
   // The contact lasts ~ pi sqrt(m / k) and shifts every later flight by about that much:
   // the state error after a few impacts is O(k^-1/2), the next term O(k^-1) (gravity during
   // the contact, g / (omega v) ~ 2e-3 at k = 1e6) bends the fitted slope by about that.
-  const BouncingMass p = make({{"e", "0.9"}});
+  const BouncingMass p = mass_of({{"e", "0.9"}});
   const double T = 0.5 * (p.impact_time(3) + p.impact_time(4));  // mid-flight after 3 impacts
   nsb::EventDriven ed(Params(nsb::EventDriven::parameters_spec(), {}));
   ed.init(p, p.initial_state());
-  advance(ed, T, 0.01);
+  advance_penalty(ed, T, 0.01);
   std::vector<double> ks = {1e6, 1e7, 1e8, 1e9}, errors;
   for (double k : ks) {
     PenaltyBdf pen(Params(PenaltyBdf::parameters_spec(), {{"stiffness", fmt::format("{}", k)}, {"rtol", "1e-11"}, {"atol", "1e-14"}}));
     pen.init(p, p.initial_state());
-    advance(pen, T, 0.01);
+    advance_penalty(pen, T, 0.01);
     errors.push_back(std::abs(pen.state().u[0] - ed.state().u[0]) + std::abs(pen.state().v[0] - ed.state().v[0]));
   }
   for (std::size_t i = 1; i < errors.size(); ++i) CHECK(errors[i] < errors[i - 1]);
@@ -121,7 +121,7 @@ TEST_CASE("penalty-bdf on the block: no contact is lost at a switch, so the ener
 namespace {
 
 // mu 0.5, m 1 kg, g 9.81 m/s^2.
-nsb::SlidingMass sliding_mass(const std::string& alpha, const std::string& v0) {
+nsb::SlidingMass penalty_sliding_mass(const std::string& alpha, const std::string& v0) {
   return nsb::SlidingMass(nsb::Params(nsb::SlidingMass::parameters_spec(), {{"alpha", alpha}, {"mu", "0.5"}, {"v0", v0}}));
 }
 
@@ -168,7 +168,7 @@ TEST_CASE("penalty-bdf friction: the stop time's error is the regularisation's, 
   // the linear slip exactly and the normal spring settles at a penetration of 1e-10 m: the
   // stop is measured at t_s - v_reg / |a| to 4e-16 s, every v_reg; asserted to 1e-10 s
   // (rtol 1e-9 of the slip's time scale v0 / |a|).
-  const nsb::SlidingMass p = sliding_mass("10", "1");
+  const nsb::SlidingMass p = penalty_sliding_mass("10", "1");
   const double a = p.sliding_acceleration();
   std::vector<double> v_regs = {4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4}, errors;
   for (double v_reg : v_regs) {
@@ -190,7 +190,7 @@ TEST_CASE("penalty-bdf friction: below the friction angle the mass creeps at v_r
           "[reference][penalty][friction]") {
   // alpha 20 deg from rest (Coulomb sticks): the regularised law's creep, measured over
   // [0.5 s, 1 s] to 1e-13 relative at v_reg = 1e-2 and round-off below; asserted: 1e-9 (rtol).
-  const nsb::SlidingMass p = sliding_mass("20", "0");
+  const nsb::SlidingMass p = penalty_sliding_mass("20", "0");
   for (double v_reg : {1e-2, 1e-3, 1e-4}) {
     CAPTURE(v_reg);
     const double creep = v_reg * std::tan(20.0 * std::numbers::pi / 180.0) / 0.5;

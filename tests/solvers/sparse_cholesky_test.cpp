@@ -17,7 +17,7 @@ struct MemoryLimit {
   ~MemoryLimit() { unsetenv("NSBENCH_MEMORY_LIMIT"); }
 };
 
-nsb::SignoriniBar bar(long n) {
+nsb::SignoriniBar bar_with(long n) {
   return nsb::SignoriniBar(nsb::Params(nsb::SignoriniBar::parameters_spec(), {{"N", std::to_string(n)}, {"mass", "singular"}}));
 }
 
@@ -53,7 +53,7 @@ TEST_CASE("NSBENCH_MEMORY_LIMIT: bytes or K/M/G (powers of 1024); anything else 
 }
 
 TEST_CASE("implicit schemes refuse at init a factorisation larger than the memory, with its estimated size", "[memory]") {
-  const auto problem = bar(2000);
+  const auto problem = bar_with(2000);
   nsb::SparseCholesky chol;
   const nsb::SpMat W = problem.mass_matrix() + problem.mass_matrix();  // any pattern with a positive diagonal
   chol.analyze(W, "test", "W");

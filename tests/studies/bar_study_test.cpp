@@ -10,21 +10,21 @@
 #include "tests/support/registered_study.hpp"
 
 namespace {
-const nsb::StudyEntry& study() { return nsb::test::registered_study("bar"); }
+const nsb::StudyEntry& bar_study() { return nsb::test::registered_study("bar"); }
 }  // namespace
 
 TEST_CASE("bar study: space-time stress of the exact solution and of a scheme from its initial state", "[studies][bar]") {
   // One block of the grid (the study's meshes for cd-lagrange, lumped, alpha = 0.9): the N = 50
   // case run, the others given as declined (their rows are not looked at).
   std::vector<nsb::Json> cases, results;
-  for (const auto& c : nsb::study_cases(study(), {}))
+  for (const auto& c : nsb::study_cases(bar_study(), {}))
     if (c["integrator"] == "cd-lagrange" && c["mass"] == "lumped" && c["alpha"] == 0.9) {
       cases.push_back(c);
-      results.push_back(c["N"] == 50 ? nsb::run_study_case(study(), c, {})
+      results.push_back(c["N"] == 50 ? nsb::run_study_case(bar_study(), c, {})
                                      : nsb::Json{{"status", "n/a"}, {"dt", 0.0}, {"message", "not run here"}});
     }
   REQUIRE(cases.size() >= 2);
-  const auto tables = nsb::study_tables(study(), cases, results, {});
+  const auto tables = nsb::study_tables(bar_study(), cases, results, {});
   const auto it = std::find_if(tables.begin(), tables.end(), [](const nsb::Table& t) { return t.id == "bar_space_time"; });
   REQUIRE(it != tables.end());
   const nsb::Table& t = *it;

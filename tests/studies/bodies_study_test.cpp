@@ -9,22 +9,22 @@
 #include "tests/support/registered_study.hpp"
 
 namespace {
-const nsb::StudyEntry& study() { return nsb::test::registered_study("bodies"); }
+const nsb::StudyEntry& bodies_study() { return nsb::test::registered_study("bodies"); }
 
 // The tables of the given cases, run.
 std::vector<nsb::Table> tables_of(const std::vector<nsb::Json>& cases) {
   std::vector<nsb::Json> results;
-  for (const auto& c : cases) results.push_back(nsb::run_study_case(study(), c, {}));
-  return nsb::study_tables(study(), cases, results, {});
+  for (const auto& c : cases) results.push_back(nsb::run_study_case(bodies_study(), c, {}));
+  return nsb::study_tables(bodies_study(), cases, results, {});
 }
 
-const nsb::Table& table(const std::vector<nsb::Table>& tables, const std::string& id) {
+const nsb::Table& table_with_id(const std::vector<nsb::Table>& tables, const std::string& id) {
   const auto t = std::find_if(tables.begin(), tables.end(), [&](const nsb::Table& x) { return x.id == id; });
   REQUIRE(t != tables.end());
   return *t;
 }
 
-std::size_t column(const nsb::Table& t, const std::string& name) {
+std::size_t column_named(const nsb::Table& t, const std::string& name) {
   for (std::size_t i = 0; i < t.columns.size(); ++i)
     if (t.columns[i].name == name) return i;
   FAIL("no column " << name);
@@ -38,9 +38,9 @@ TEST_CASE("bodies study: the touching cradle gives Moreau's outcome, the cradle 
     SECTION(integrator) {
       const auto tables = tables_of({{{"case", "cradle-touching-e1"}, {"integrator", integrator}, {"knob", 1e-3}},
                                      {{"case", "cradle-gap-e05"}, {"integrator", integrator}, {"knob", 0.1}}});
-      const nsb::Table& cradle = table(tables, "bodies_cradle");
+      const nsb::Table& cradle = table_with_id(tables, "bodies_cradle");
       REQUIRE(cradle.rows.size() == 2);
-      const std::size_t verdict = column(cradle, "verdict"), d_sim = column(cradle, "d simultaneous");
+      const std::size_t verdict = column_named(cradle, "verdict"), d_sim = column_named(cradle, "d simultaneous");
       CHECK(std::get<std::string>(cradle.rows[0][verdict]) == "simultaneous");
       CHECK(std::get<double>(cradle.rows[0][d_sim]) <= 1e-10);
       CHECK(std::get<std::string>(cradle.rows[1][verdict]) == "sequential");
@@ -50,11 +50,11 @@ TEST_CASE("bodies study: the touching cradle gives Moreau's outcome, the cradle 
 
 TEST_CASE("bodies study: a declining scheme is one n/a row with its reason", "[studies][bodies]") {
   std::vector<nsb::Json> cases;
-  for (const auto& c : nsb::study_cases(study(), {}))
+  for (const auto& c : nsb::study_cases(bodies_study(), {}))
     if (c["integrator"] == "event-driven" && c["case"].get<std::string>().rfind("cradle", 0) == 0) cases.push_back(c);
   REQUIRE(cases.size() == 10);
   const auto tables = tables_of(cases);
-  const nsb::Table& cradle = table(tables, "bodies_cradle");
+  const nsb::Table& cradle = table_with_id(tables, "bodies_cradle");
   REQUIRE(cradle.rows.size() == 1);
   const auto& row = cradle.rows[0];
   CHECK(std::get<std::string>(row[0]) == "event-driven");
@@ -64,7 +64,7 @@ TEST_CASE("bodies study: a declining scheme is one n/a row with its reason", "[s
 
 TEST_CASE("bodies study: cd-lagrange on two blocks keeps the momentum identity, iterates its LCP only together",
           "[studies][bodies]") {
-  const auto r = nsb::run_study_case(study(), {{"case", "blocks"}, {"integrator", "cd-lagrange"}, {"knob", 1e-4}}, {});
+  const auto r = nsb::run_study_case(bodies_study(), {{"case", "blocks"}, {"integrator", "cd-lagrange"}, {"knob", 1e-4}}, {});
   REQUIRE(r["status"] == "ok");
   CHECK(r["p_residual"].get<double>() <= 1e-14);
   CHECK(r["between"].get<double>() > 1.0);  // the upper block did land on the lower one

@@ -10,11 +10,11 @@
 #include "tests/support/registered_study.hpp"
 
 namespace {
-const nsb::StudyEntry& study() { return nsb::test::registered_study("bouncing-bar"); }
+const nsb::StudyEntry& bouncing_bar_study() { return nsb::test::registered_study("bouncing-bar"); }
 }  // namespace
 
 TEST_CASE("bouncing-bar study: every integrator x mass model; N 50..400 and 20 periods by default", "[studies][bouncing-bar]") {
-  const auto cases = nsb::study_cases(study(), {});
+  const auto cases = nsb::study_cases(bouncing_bar_study(), {});
   std::set<std::string> integrators, masses;
   std::set<long> meshes;
   for (const auto& c : cases) {
@@ -30,7 +30,7 @@ TEST_CASE("bouncing-bar study: every integrator x mass model; N 50..400 and 20 p
 
 TEST_CASE("bouncing-bar study: energy per period, exact semi-discrete singular bar vs lumped", "[studies][bouncing-bar]") {
   const auto run = [](const std::string& mass) {
-    return nsb::run_study_case(study(), {{"integrator", "modal-exact"}, {"mass", mass}, {"N", 25L}, {"alpha", 0.9}, {"periods", 2}}, {});
+    return nsb::run_study_case(bouncing_bar_study(), {{"integrator", "modal-exact"}, {"mass", mass}, {"N", 25L}, {"alpha", 0.9}, {"periods", 2}}, {});
   };
   const auto singular = run("singular"), lumped = run("lumped");
   REQUIRE(singular["status"] == "ok");

@@ -6,7 +6,7 @@
 using namespace nsb;
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kFailedFit = std::numeric_limits<double>::quiet_NaN();
 OrderFit fit(double order, double low) { return {order, low, 2 * order - low, 4}; }
 }  // namespace
 
@@ -28,13 +28,13 @@ TEST_CASE("claims: Hausdorff convergence holds on all, under conditions on some,
   CHECK(hausdorff_verdict({fit(1.0, 0.8), fit(0.0, -0.3)}) == Verdict::Conditional);
   CHECK(hausdorff_verdict({fit(0.1, -0.1), fit(0.0, -0.3)}) == Verdict::Fails);
   CHECK(hausdorff_verdict({fit(1.0, -0.5)}) == Verdict::Fails);  // the interval reaches 0
-  CHECK(hausdorff_verdict({fit(kNaN, kNaN)}) == Verdict::Fails);  // a failed fit is no convergence
+  CHECK(hausdorff_verdict({fit(kFailedFit, kFailedFit)}) == Verdict::Fails);  // a failed fit is no convergence
 }
 
 TEST_CASE("claims: momentum, energy, adaptive step and robustness rules", "[claims]") {
   CHECK(momentum_verdict(1e-15, 1e-14) == Verdict::Holds);
   CHECK(momentum_verdict(1e-15, 1e-3) == Verdict::Fails);
-  CHECK(momentum_verdict(kNaN, 0.0) == Verdict::Fails);
+  CHECK(momentum_verdict(kFailedFit, 0.0) == Verdict::Fails);
   CHECK(energy_verdict(1e-4, 1.2e-4, 1e-12) == Verdict::Holds);
   CHECK(energy_verdict(1e-4, 5e-4, 1e-12) == Verdict::Conditional);  // drifting fixed step
   CHECK(energy_verdict(1e-4, 1e-4, 1e-6) == Verdict::Conditional);   // inexact adaptive step
@@ -76,5 +76,5 @@ TEST_CASE("claims: energy at impact is kept within 1e-2 per contact phase, and o
   CHECK(impact_energy_kept(3, 0.99e-2));
   CHECK_FALSE(impact_energy_kept(3, 1.01e-2));
   CHECK_FALSE(impact_energy_kept(0, 0.0));  // no contact: nothing shown
-  CHECK_FALSE(impact_energy_kept(3, kNaN));
+  CHECK_FALSE(impact_energy_kept(3, kFailedFit));
 }

@@ -10,10 +10,10 @@
 #include "tests/support/registered_study.hpp"
 
 namespace {
-const nsb::StudyEntry& study() { return nsb::test::registered_study("friction"); }
+const nsb::StudyEntry& friction_study() { return nsb::test::registered_study("friction"); }
 
 nsb::Json run(const std::string& the_case, const std::string& integrator, double dt) {
-  return nsb::run_study_case(study(), {{"case", the_case}, {"integrator", integrator}, {"dt", dt}}, {});
+  return nsb::run_study_case(friction_study(), {{"case", the_case}, {"integrator", integrator}, {"dt", dt}}, {});
 }
 }  // namespace
 
@@ -44,14 +44,14 @@ TEST_CASE("friction study: the stop time within two steps, no creep while sticki
 
 TEST_CASE("friction study: a scheme without friction is one n/a row naming mu", "[studies][friction]") {
   std::vector<nsb::Json> cases, results;
-  for (const auto& c : nsb::study_cases(study(), {}))
+  for (const auto& c : nsb::study_cases(friction_study(), {}))
     if (c["integrator"] == "schatzman-paoli" && c["case"] == "slide-stop") {
       cases.push_back(c);
-      results.push_back(nsb::run_study_case(study(), c, {}));
+      results.push_back(nsb::run_study_case(friction_study(), c, {}));
       CHECK(results.back()["status"] == "n/a");
     }
   REQUIRE(cases.size() == 3);
-  const auto tables = nsb::study_tables(study(), cases, results, {});
+  const auto tables = nsb::study_tables(friction_study(), cases, results, {});
   const auto sliding = std::find_if(tables.begin(), tables.end(), [](const nsb::Table& t) { return t.id == "friction_sliding"; });
   REQUIRE(sliding != tables.end());
   REQUIRE(sliding->rows.size() == 1);

@@ -10,7 +10,7 @@ using namespace nsb;
 namespace {
 
 // A unit step at t_jump on [0, 1], the jump a vertical segment.
-Polyline step(double t_jump, double height) {
+Polyline step_polyline(double t_jump, double height) {
   Polyline p;
   p.add(0.0, 0.0);
   p.add(t_jump, 0.0);
@@ -37,7 +37,7 @@ double sampled_directed(const Polyline& a, const Polyline& b, double spacing) {
 
 TEST_CASE("Hausdorff: two steps offset by d in time are d apart when the jump exceeds d", "[hausdorff]") {
   for (double d : {1e-1, 1e-3, 1e-6}) {
-    const Polyline a = step(0.5, 1.0), b = step(0.5 + d, 1.0);
+    const Polyline a = step_polyline(0.5, 1.0), b = step_polyline(0.5 + d, 1.0);
     CHECK(directed_hausdorff(a, b) == Approx(d).epsilon(1e-9));
     CHECK(directed_hausdorff(b, a) == Approx(d).epsilon(1e-9));
     CHECK(hausdorff(a, b) == Approx(d).epsilon(1e-9));
@@ -46,7 +46,7 @@ TEST_CASE("Hausdorff: two steps offset by d in time are d apart when the jump ex
 
 TEST_CASE("Hausdorff: a jump smaller than the shift gives the jump's height, as the max norm would", "[hausdorff]") {
   const double d = 0.2, jump = 0.05;
-  CHECK(hausdorff(step(0.4, jump), step(0.4 + d, jump)) == Approx(jump).epsilon(1e-9));
+  CHECK(hausdorff(step_polyline(0.4, jump), step_polyline(0.4 + d, jump)) == Approx(jump).epsilon(1e-9));
 }
 
 TEST_CASE("Hausdorff: a graph is at distance 0 from itself", "[hausdorff]") {
@@ -69,7 +69,7 @@ TEST_CASE("Hausdorff: directed distances are asymmetric", "[hausdorff]") {
   ramp.add(0.4, 0.0);
   ramp.add(0.6, 1.0);
   ramp.add(1.0, 1.0);
-  const double there = directed_hausdorff(step(0.5, 1.0), ramp), back = directed_hausdorff(ramp, step(0.5, 1.0));
+  const double there = directed_hausdorff(step_polyline(0.5, 1.0), ramp), back = directed_hausdorff(ramp, step_polyline(0.5, 1.0));
   CHECK(there != Approx(back));
 }
 
@@ -105,7 +105,7 @@ TEST_CASE("Hausdorff: certified against dense sampling on random monotone polyli
 }
 
 TEST_CASE("Hausdorff: scales, and bad polylines are refused", "[hausdorff]") {
-  const Polyline a = scaled(step(5.0, 2.0), 10.0, 2.0);
+  const Polyline a = scaled(step_polyline(5.0, 2.0), 10.0, 2.0);
   CHECK(a.t[1] == 0.5);
   CHECK(a.x[3] == 1.0);
   CHECK_THROWS_AS(scaled(a, 0.0, 1.0), std::invalid_argument);

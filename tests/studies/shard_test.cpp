@@ -12,18 +12,13 @@
 #include <functional>
 
 #include "core/output.hpp"
+#include "tests/support/files.hpp"
 #include "../app/run_cli.hpp"
 
 namespace fs = std::filesystem;
 using nsb::Json;
 
 namespace {
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("nsbench_shard_test_" + std::to_string(::getpid()));
-  TempDir() { fs::remove_all(path); }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 const std::vector<Json> kCases = {{{"dt", 0.1}}, {{"dt", 0.05}}, {{"dt", 0.025}}};
 
@@ -56,7 +51,7 @@ TEST_CASE("shards: --shard I/N parsed without overflow", "[studies][shard]") {
 }
 
 TEST_CASE("shards: written and merged back whole", "[studies][shard]") {
-  TempDir dir;
+  const nsb::test::TempDir dir("shard_test");
   write_shards(dir.path);
   const auto merged = nsb::merge_shards("s", kCases, dir.path, false);
   REQUIRE(merged.size() == 3);
@@ -66,7 +61,7 @@ TEST_CASE("shards: written and merged back whole", "[studies][shard]") {
 }
 
 TEST_CASE("shards: a damaged shard is refused naming the file", "[studies][shard]") {
-  TempDir dir;
+  const nsb::test::TempDir dir("shard_test");
   write_shards(dir.path);
   const fs::path first = nsb::shard_path(dir.path, "s", 1, 2);
   Json j = read_json(first);
@@ -146,7 +141,7 @@ TEST_CASE("shards: a damaged shard is refused naming the file", "[studies][shard
 }
 
 TEST_CASE("shards: a missing case or an absurd shard count in a file name is an input error", "[studies][shard]") {
-  TempDir dir;
+  const nsb::test::TempDir dir("shard_test");
   write_shards(dir.path);
   fs::remove(nsb::shard_path(dir.path, "s", 2, 2));
   CHECK_THROWS_WITH(nsb::merge_shards("s", kCases, dir.path, false), Catch::Contains("shard 2 of 2 of study s is missing"));
@@ -177,7 +172,7 @@ TEST_CASE("nsbench-study: /dev/zero as a study file and a huge --shard are one l
 // recomputed) segfaulted in the tables; null values, a missing key, a bad history are refused
 // by the study's own schema (StudyEntry::check_result).
 TEST_CASE("nsbench-study --merge: a result against its study's schema, one line and exit 2", "[studies][shard][cli]") {
-  TempDir dir;
+  const nsb::test::TempDir dir("shard_test");
   const std::string study = fmt::format("{}/studies/examples/bouncing_quick.toml", NSBENCH_SOURCE_DIR);
   const auto cli = [&](const std::string& args) {
     return nsb::test::run_command(fmt::format("'{}' run {} --out {} {}", NSBENCH_STUDY_CLI, study, dir.path.string(), args));

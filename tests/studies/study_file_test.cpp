@@ -14,6 +14,7 @@
 #include "problems/registry.hpp"
 #include "studies/study.hpp"
 #include "studies/study_file.hpp"
+#include "tests/support/files.hpp"
 
 using Catch::Detail::Approx;
 namespace fs = std::filesystem;
@@ -45,20 +46,13 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text.replace(at, from.size(), to);
 }
 
-std::string error_of(const std::string& text, bool json = false) {
+std::string study_error_of(const std::string& text, bool json = false) {
   try {
     nsb::parse_study_text(text, "f.toml", json);
   } catch (const nsb::InputError& e) {
     return e.what();
   }
   return "(no error)";
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 const fs::path kExamples = fs::path(NSBENCH_SOURCE_DIR) / "studies" / "examples";
@@ -88,7 +82,7 @@ std::vector<nsb::Table> run_all(const nsb::StudySpec& spec, std::vector<nsb::Jso
   return nsb::study_tables(entry, cases, results, {});
 }
 
-const nsb::Table& table(const std::vector<nsb::Table>& tables, const std::string& suffix) {
+const nsb::Table& table_ending(const std::vector<nsb::Table>& tables, const std::string& suffix) {
   for (const auto& t : tables)
     if (t.id.size() >= suffix.size() && t.id.compare(t.id.size() - suffix.size(), suffix.size(), suffix) == 0) return t;
   FAIL("no table " << suffix);
@@ -139,9 +133,9 @@ TEST_CASE("fit_order: a repeated abscissa counts once; a study file refuses repe
   CHECK(same.order == Approx(2.0).epsilon(1e-12));
   CHECK(nsb::fit_order({1e-2, 1e-2}, {1e-2, 2e-2}).points == 1);
   CHECK(std::isnan(nsb::fit_order({1e-2, 1e-2}, {1e-2, 2e-2}).order));
-  CHECK(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 1e-2, 1e-3]")) ==
+  CHECK(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 1e-2, 1e-3]")) ==
         "f.toml:11: integrator[0].steps[1]: 0.01 repeats steps[0]; valid: distinct values");
-  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "tolerances = [1e-4, 1e-6, 1e-4]\ndt = 1e-2")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "tolerances = [1e-4, 1e-6, 1e-4]\ndt = 1e-2")),
              Catch::EndsWith("integrator[0].tolerances[2]: 0.0001 repeats tolerances[0]; valid: distinct values"));
 }
 
@@ -179,52 +173,52 @@ TEST_CASE("study file: a minimal TOML file reads and so does JSON with the same 
   const nsb::StudySpec j = nsb::parse_study_text(json, "min.json", true);
   CHECK(j.integrators[0].sweep.steps == s.integrators[0].sweep.steps);
   CHECK(j.problems[0].parameters == s.problems[0].parameters);
-  CHECK_THAT(error_of(replaced(json, "\"t_end\"", "\"t_ned\""), true),
+  CHECK_THAT(study_error_of(replaced(json, "\"t_end\"", "\"t_ned\""), true),
              Catch::StartsWith("f.toml:1: study.t_ned: unknown key (nearest valid key: t_end)"));
-  CHECK_THAT(error_of(replaced(json, "[0.01, 0.005]", "[]"), true), Catch::StartsWith("f.toml:3: integrator[0].steps: empty list"));
+  CHECK_THAT(study_error_of(replaced(json, "[0.01, 0.005]", "[]"), true), Catch::StartsWith("f.toml:3: integrator[0].steps: empty list"));
 }
 
 TEST_CASE("study file: errors name FILE:LINE and the key path and what is wrong and the valid choices", "[studies][study_file]") {
   using Catch::Contains;
   using Catch::StartsWith;
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end", "t_ned")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end", "t_ned")),
              StartsWith("f.toml:3: study.t_ned: unknown key (nearest valid key: t_end); valid: title, t_end,"));
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = \"0.6\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = \"0.6\"")),
              StartsWith("f.toml:3: study.t_end: expected a number, got a string"));
-  CHECK_THAT(error_of(replaced(kMinimal, "\"bouncing-mass\"", "\"bouncing-mas\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "\"bouncing-mass\"", "\"bouncing-mas\"")),
              StartsWith("f.toml:6: problem[0].name: 'bouncing-mas' is not valid (nearest: bouncing-mass); valid: ") &&
                  Contains("spring-chain"));
-  CHECK_THAT(error_of(replaced(kMinimal, "\"cd-lagrange\"", "\"cd-lagrang\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "\"cd-lagrange\"", "\"cd-lagrang\"")),
              StartsWith("f.toml:10: integrator[0].name: 'cd-lagrang' is not valid (nearest: cd-lagrange); valid: ") &&
                  Contains("moreau-jean"));
-  CHECK_THAT(error_of(replaced(kMinimal, "{ e = 0.5 }", "{ ee = 0.5 }")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "{ e = 0.5 }", "{ ee = 0.5 }")),
              StartsWith("f.toml:7: problem[0].parameters.ee: unknown parameter (nearest: e); valid: m, g, e, h0, v0"));
-  CHECK_THAT(error_of(replaced(kMinimal, "{ e = 0.5 }", "{ e = 1.5 }")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "{ e = 0.5 }", "{ e = 1.5 }")),
              StartsWith("f.toml:7: problem[0].parameters.e: ") && Contains("valid: [0, 1]"));
-  CHECK_THAT(error_of(replaced(kMinimal, "[1e-2, 5e-3]", "[]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "[1e-2, 5e-3]", "[]")),
              StartsWith("f.toml:11: integrator[0].steps: empty list; valid: one or more positive numbers"));
-  CHECK_THAT(error_of(replaced(kMinimal, "[1e-2, 5e-3]", "[1e-2, -5e-3]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "[1e-2, 5e-3]", "[1e-2, -5e-3]")),
              StartsWith("f.toml:11: integrator[0].steps[1]: -0.005 is not positive and finite; valid: (0, inf)"));
-  CHECK_THAT(error_of(replaced(kMinimal, "[1e-2, 5e-3]", "[1e-2, 0]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "[1e-2, 5e-3]", "[1e-2, 0]")),
              StartsWith("f.toml:11: integrator[0].steps[1]: 0 is not positive and finite"));
-  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"eror\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"eror\"")),
              StartsWith("f.toml:17: measure[0].kind: 'eror' is not valid (nearest: error); valid: error, impact-time, energy,"));
-  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nobservable = \"w\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nobservable = \"w\"")),
              StartsWith("f.toml:18: measure[0].observable: 'w' is not an observable of problem 'bouncing-mass'; valid: u, q, v,"));
-  CHECK_THAT(error_of(replaced(kMinimal, "solution = \"exact\"", "integrator = \"event-driven\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "solution = \"exact\"", "integrator = \"event-driven\"")),
              StartsWith("f.toml:13: reference: missing key 'dt'"));
-  CHECK_THAT(error_of(replaced(kMinimal, "name = \"bouncing-mass\"", "name = \"spring-chain\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "name = \"bouncing-mass\"", "name = \"spring-chain\"")),
              StartsWith("f.toml:14: reference.solution: problem 'spring-chain' (spring-chain) has no exact solution"));
-  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "tolerances = [1e-6]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "tolerances = [1e-6]")),
              StartsWith("f.toml:9: integrator[0]: a tolerance sweep needs its step: dt = ..."));
-  CHECK_THAT(error_of(replaced(kMinimal, "[study]", "[studdy]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "[study]", "[studdy]")),
              StartsWith("f.toml:1: studdy: unknown key (nearest valid key: study)"));
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = ")), StartsWith("f.toml:3: not valid TOML: "));
-  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2]\nper_problem = { chain = { steps = [1e-3] } }")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = ")), StartsWith("f.toml:3: not valid TOML: "));
+  CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2]\nper_problem = { chain = { steps = [1e-3] } }")),
              StartsWith("f.toml:12: integrator[0].per_problem.chain: unknown key (nearest valid key: bouncing-mass)"));
-  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"energy\"\nnorm = \"l2\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"energy\"\nnorm = \"l2\"")),
              StartsWith("f.toml:18: measure[0].norm: 'l2' is not valid") && Contains("valid: max, final, drift"));
-  CHECK_THAT(error_of("[study]\ntitle = 1\n"), StartsWith("f.toml:2: study.title: expected a string, got an integer"));
+  CHECK_THAT(study_error_of("[study]\ntitle = 1\n"), StartsWith("f.toml:2: study.title: expected a string, got an integer"));
 }
 
 TEST_CASE("study file: per-problem overrides replace the sweep and merge the parameters", "[studies][study_file]") {
@@ -275,14 +269,14 @@ observable = "kinetic"
 kind = "energy"
 )";
   const auto tables = run_all(nsb::parse_study_text(text, "o.toml", false));
-  const nsb::Table& wp = table(tables, "_work_precision");
+  const nsb::Table& wp = table_ending(tables, "_work_precision");
   const std::size_t status = column(wp, "status");
   REQUIRE(wp.rows.size() == 4);
   CHECK(std::get<std::string>(wp.rows[0][1]) == "moreau-jean [theta=1]");
   CHECK(std::get<std::string>(wp.rows[0][status]) == "ok");
   CHECK_THAT(std::get<std::string>(wp.rows[2][status]), Catch::StartsWith("energy blow-up: max (E - E0 - W) / E scale = "));
   CHECK(std::get<std::string>(wp.rows[3][status]) == "ok");
-  const nsb::Table& rank = table(tables, "_ranking");
+  const nsb::Table& rank = table_ending(tables, "_ranking");
   REQUIRE(rank.rows.size() == 2);
   for (const auto& row : rank.rows)  // the runs a cost is read between
     for (std::size_t col : {4, 7})
@@ -321,7 +315,7 @@ kind = "energy"
 norm = "final"
 )";
   const auto tables = run_all(nsb::parse_study_text(text, "e.toml", false));
-  const nsb::Table& wp = table(tables, "_work_precision");
+  const nsb::Table& wp = table_ending(tables, "_work_precision");
   const std::size_t status = column(wp, "status");
   REQUIRE(wp.rows.size() == 8);
   for (std::size_t i = 0; i < 8; ++i) {
@@ -375,7 +369,7 @@ problems = ["disk"]
   const nsb::StudySpec spec = nsb::parse_study_text(text, "m.toml", false);
   REQUIRE(spec.ranked == 1);
   const auto tables = run_all(spec);
-  const nsb::Table& wp = table(tables, "_work_precision");
+  const nsb::Table& wp = table_ending(tables, "_work_precision");
   REQUIRE(wp.rows.size() == 4);
   const std::size_t omega = column(wp, "err omega max"), stop = column(wp, "stop time err"), onset = column(wp, "onset time err");
   CHECK(wp.columns[stop].unit == "s");
@@ -398,7 +392,7 @@ problems = ["disk"]
   const nsb::Json built_in = nsb::run_study_case(friction, {{"case", "slide-stop"}, {"integrator", "moreau-jean"}, {"dt", 1e-3}}, {});
   CHECK(value(1, stop) == built_in["t_stop_err"].get<double>());
   // The ranking is by the stop time, on the problem it is measured on only.
-  const nsb::Table& rank = table(tables, "_ranking");
+  const nsb::Table& rank = table_ending(tables, "_ranking");
   REQUIRE(rank.rows.size() == 1);
   CHECK(std::get<std::string>(rank.rows[0][0]) == "slide");
   CHECK(rank.columns[1].name == "target stop time err");
@@ -410,29 +404,29 @@ TEST_CASE("study file: a measure's problems, rank_by and the new kinds are check
   using Catch::Contains;
   const std::string two = replaced(kMinimal, "[[integrator]]", "[[problem]]\nname = \"spring-chain\"\n\n[[integrator]]");
   // Without `problems`, an observable of one problem alone is refused naming the other.
-  CHECK_THAT(error_of(replaced(replaced(two, "solution = \"exact\"", "integrator = \"modal-exact\"\ndt = 1e-3"),
+  CHECK_THAT(study_error_of(replaced(replaced(two, "solution = \"exact\"", "integrator = \"modal-exact\"\ndt = 1e-3"),
                                "kind = \"error\"", "kind = \"error\"\nobservable = \"q\"")),
              Contains("'q' is not an observable of problem 'spring-chain' recorded by its reference run") &&
                  Contains("or name the problems it is measured on: problems = [...]"));
-  CHECK_THAT(error_of(kMinimal + "problems = [\"nope\"]\n"),
+  CHECK_THAT(study_error_of(kMinimal + "problems = [\"nope\"]\n"),
              Contains("measure[0].problems[0]: 'nope' is not valid (nearest: bouncing-mass); valid: bouncing-mass"));
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nrank_by = \"err u mx\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nrank_by = \"err u mx\"")),
              Contains("study.rank_by: 'err u mx' names no measure (nearest: err u max); valid: the label of a measure: err u max"));
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nrank_by = \"energy err drift\"") +
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nrank_by = \"energy err drift\"") +
                       "[[measure]]\nkind = \"energy\"\nnorm = \"drift\"\n"),
              Contains("study.rank_by: measure 'energy err drift' is signed"));
-  CHECK_THAT(error_of(kMinimal + "[[measure]]\nkind = \"stop-time\"\n"),
+  CHECK_THAT(study_error_of(kMinimal + "[[measure]]\nkind = \"stop-time\"\n"),
              Contains("measure[1].kind: problem 'bouncing-mass' has no exact stop time by t_end"));
-  CHECK_THAT(error_of(replaced(replaced(kMinimal, "name = \"bouncing-mass\"", "name = \"sliding-mass\""), "parameters = { e = 0.5 }",
+  CHECK_THAT(study_error_of(replaced(replaced(kMinimal, "name = \"bouncing-mass\"", "name = \"sliding-mass\""), "parameters = { e = 0.5 }",
                                "parameters = { mu = 0.3 }") + "[[measure]]\nkind = \"stop-time\"\n"),
              Contains("problem 'sliding-mass' has no exact stop time by t_end"));
-  CHECK_THAT(error_of(replaced(kMinimal, "name = \"cd-lagrange\"", "name = \"my-scheme\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "name = \"cd-lagrange\"", "name = \"my-scheme\"")),
              Contains("integrator[0].name: 'my-scheme' is not valid") &&
                  Contains("a plugin's integrator? load its file with --plugin FILE or NSBENCH_PLUGINS"));
 }
 
 TEST_CASE("study file: the example in README.md is a valid study file", "[studies][study_file]") {
-  const std::string readme = read(fs::path(NSBENCH_SOURCE_DIR) / "README.md");
+  const std::string readme = nsb::test::read_text(fs::path(NSBENCH_SOURCE_DIR) / "README.md");
   const auto begin = readme.find("```toml\n"), end = readme.find("```\n", begin + 8);
   REQUIRE(begin != std::string::npos);
   const nsb::StudySpec spec = nsb::parse_study_text(readme.substr(begin + 8, end - begin - 8), "README.md", false);
@@ -445,7 +439,7 @@ TEST_CASE("study file examples: the quick bouncing-mass comparison runs (reduced
   const nsb::StudySpec spec = nsb::reduced_study(nsb::read_study_file(kExamples / "bouncing_quick.toml"), 0.5, 3, 200000);
   std::vector<nsb::Json> results;
   const auto tables = run_all(spec, &results);
-  const nsb::Table& wp = table(tables, "_work_precision");
+  const nsb::Table& wp = table_ending(tables, "_work_precision");
   CHECK(wp.rows.size() == 3 * 3 + 3);
   const std::size_t err = column(wp, "err u max"), impact = column(wp, "impact time err"), pen = column(wp, "penetration");
   for (const auto& row : wp.rows) {
@@ -455,7 +449,7 @@ TEST_CASE("study file examples: the quick bouncing-mass comparison runs (reduced
     CHECK(std::get<double>(row[pen]) >= 0.0);
   }
   // Time-stepping: first order with impacts; the fitted interval holds the fit.
-  const nsb::Table& orders = table(tables, "_orders");
+  const nsb::Table& orders = table_ending(tables, "_orders");
   const std::size_t order = column(orders, "order"), low = column(orders, "CI low"), high = column(orders, "CI high");
   for (const auto& row : orders.rows)
     if (std::get<std::string>(row[1]) == "CD-Lagrange" && std::get<std::string>(row[2]) == "err u max") {
@@ -463,7 +457,7 @@ TEST_CASE("study file examples: the quick bouncing-mass comparison runs (reduced
       CHECK(std::get<double>(row[low]) <= std::get<double>(row[order]));
       CHECK(std::get<double>(row[order]) <= std::get<double>(row[high]));
     }
-  CHECK(table(tables, "_ranking").headline);
+  CHECK(table_ending(tables, "_ranking").headline);
   CHECK(wp.figures.size() == 2 + 3);  // work-precision (CPU, F_int), convergence of 2 errors and the impact time
 }
 
@@ -472,7 +466,7 @@ TEST_CASE("study file examples: spring-chain orders against the cached modal-exa
   // Up to t = 0.1: before the first impact (0.133), both chains are smooth: CD-Lagrange is of order 2.
   nsb::StudySpec spec = nsb::reduced_study(nsb::read_study_file(kExamples / "chain_orders.toml"), 0.1, 3, 200000);
   const auto tables = run_all(spec);
-  const nsb::Table& orders = table(tables, "_orders");
+  const nsb::Table& orders = table_ending(tables, "_orders");
   int checked = 0;
   for (const auto& row : orders.rows)
     if (std::get<std::string>(row[1]) == "CD-Lagrange" && std::get<std::string>(row[2]) == "err min_gap max") {
@@ -480,14 +474,14 @@ TEST_CASE("study file examples: spring-chain orders against the cached modal-exa
       ++checked;
     }
   CHECK(checked == 2);
-  const nsb::Table& wp = table(tables, "_work_precision");
+  const nsb::Table& wp = table_ending(tables, "_work_precision");
   for (const auto& row : wp.rows) CHECK(std::get<double>(row[column(wp, "momentum residual")]) < 1e-9);
 }
 
 TEST_CASE("study file examples: bar energy study runs (reduced) and an over-budget run is a row with its reason", "[studies][study_file]") {
   const nsb::StudySpec spec = nsb::reduced_study(nsb::read_study_file(kExamples / "bar_energy.toml"), 0.2, 1, 20000);
   const auto tables = run_all(spec);
-  const nsb::Table& wp = table(tables, "_work_precision");
+  const nsb::Table& wp = table_ending(tables, "_work_precision");
   CHECK(wp.rows.size() == 4);
   int over = 0;
   for (const auto& row : wp.rows) {
@@ -500,7 +494,7 @@ TEST_CASE("study file examples: bar energy study runs (reduced) and an over-budg
     }
   }
   CHECK(over == 1);
-  const nsb::Table& h = table(tables, "_energy_history");
+  const nsb::Table& h = table_ending(tables, "_energy_history");
   CHECK(h.csv_only);
   CHECK(h.rows.size() >= 3 * 100);
 }
@@ -508,7 +502,7 @@ TEST_CASE("study file examples: bar energy study runs (reduced) and an over-budg
 TEST_CASE("study file: fuzz over mutated example files: each reads and runs or fails as an InputError", "[studies][study_file]") {
   TempCache cache;
   std::vector<std::string> texts;
-  for (const char* f : {"bouncing_quick.toml", "chain_orders.toml", "bar_energy.toml"}) texts.push_back(read(kExamples / f));
+  for (const char* f : {"bouncing_quick.toml", "chain_orders.toml", "bar_energy.toml"}) texts.push_back(nsb::test::read_text(kExamples / f));
   const std::vector<std::string> values{"0", "-1", "1e-300", "1e300", "\"x\"", "nan", "inf", "true", "[]", "{}", "[1e-3, 0]", "\"exact\""};
   std::mt19937 rng(2026);
   int ran = 0, rejected = 0;
@@ -557,12 +551,12 @@ TEST_CASE("nsbench-study run writes the tables and the file and its hash and mer
                                    (dir / "out").string(), args, (dir / "stderr").string()).c_str());
   };
   REQUIRE(study("") == 0);
-  CHECK_THAT(read(dir / "out" / "mini_work_precision.md"), Catch::Contains("| bouncing-mass | cd-lagrange | 1.00e-02 |") &&
+  CHECK_THAT(nsb::test::read_text(dir / "out" / "mini_work_precision.md"), Catch::Contains("| bouncing-mass | cd-lagrange | 1.00e-02 |") &&
                                                                Catch::Contains("libraries = Eigen ") && Catch::Contains("command = "));
-  CHECK(read(dir / "out" / "mini.study.toml") == read(file));
-  CHECK_THAT(read(dir / "out" / "mini.study.hash"), Catch::StartsWith("FNV-1a 64 "));
-  CHECK_THAT(read(dir / "out" / "index.md"), Catch::Contains("Rerun: `") && Catch::Contains(" run "));
-  CHECK_THAT(read(dir / "stderr"), Catch::Contains("mini: case 2/2"));
+  CHECK(nsb::test::read_text(dir / "out" / "mini.study.toml") == nsb::test::read_text(file));
+  CHECK_THAT(nsb::test::read_text(dir / "out" / "mini.study.hash"), Catch::StartsWith("FNV-1a 64 "));
+  CHECK_THAT(nsb::test::read_text(dir / "out" / "index.md"), Catch::Contains("Rerun: `") && Catch::Contains(" run "));
+  CHECK_THAT(nsb::test::read_text(dir / "stderr"), Catch::Contains("mini: case 2/2"));
   fs::remove(dir / "out" / "mini_work_precision.md");
   REQUIRE(study("--shard 1/2") == 0);
   REQUIRE(study("--shard 2/2") == 0);
@@ -570,7 +564,7 @@ TEST_CASE("nsbench-study run writes the tables and the file and its hash and mer
   CHECK(fs::exists(dir / "out" / "mini_work_precision.md"));
   std::ofstream(file) << replaced(kMinimal, "t_end", "tend");
   CHECK(WEXITSTATUS(study("")) == 2);
-  CHECK_THAT(read(dir / "stderr"), Catch::Contains("mini.toml:3: study.tend: unknown key (nearest valid key: t_end)"));
+  CHECK_THAT(nsb::test::read_text(dir / "stderr"), Catch::Contains("mini.toml:3: study.tend: unknown key (nearest valid key: t_end)"));
 }
 
 // Issue 20's hostile study files: each refused at its line, before any run or file.
@@ -581,19 +575,19 @@ TEST_CASE("study file: duplicate JSON keys, overflowing numbers and impossible s
   "integrator": [{"name": "cd-lagrange", "steps": [0.01, 0.005]}],
   "reference": {"solution": "exact"},
   "measure": [{"kind": "error"}]})";
-  CHECK(error_of(replaced(json, "\"t_end\": 0.6}", "\"t_end\": 0.6,\n \"t_end\": 5}"), true) ==
+  CHECK(study_error_of(replaced(json, "\"t_end\": 0.6}", "\"t_end\": 0.6,\n \"t_end\": 5}"), true) ==
         "f.toml:2: key 't_end' given twice in one table; valid: each key once");
   // The same key in two tables is fine.
-  CHECK(error_of(replaced(json, "\"e\": 0.5}", "\"e\": 0.5, \"h0\": 1}"), true) == "(no error)");
+  CHECK(study_error_of(replaced(json, "\"e\": 0.5}", "\"e\": 0.5, \"h0\": 1}"), true) == "(no error)");
   const std::string digits(400, '7');
-  CHECK_THAT(error_of(replaced(json, "0.6}", digits + "}"), true),
+  CHECK_THAT(study_error_of(replaced(json, "0.6}", digits + "}"), true),
              Catch::StartsWith("f.toml: a number beyond the range of a double (1.8e308)"));
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 1e30")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 1e30")),
              Catch::StartsWith("f.toml:11: integrator[0].steps[0]: study.t_end / dt = 1e+30 / 0.01 = 1e+32 steps, more than a "
                                "run's limit of 200000000; valid: dt >= t_end / 200000000"));
-  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-300]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-300]")),
              Catch::StartsWith("f.toml:11: integrator[0].steps[0]: study.t_end / dt = 0.6 / 1e-300"));
-  CHECK(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 16]")) ==
+  CHECK(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 16]")) ==
         "f.toml:11: integrator[0].steps[1]: dt = 16 is larger than study.t_end = 0.6; valid: dt <= t_end");
 }
 
@@ -602,18 +596,18 @@ TEST_CASE("study file: a series held in memory whole is bounded before any work"
   // than 1e7 samples is refused at the file's line, with the sample_every that fits.
   const std::string reference = replaced(replaced(kMinimal, "solution = \"exact\"", "integrator = \"event-driven\"\ndt = 1e-8"),
                                          "kind = \"error\"\n", "kind = \"error\"\nobservable = \"q\"\n");
-  CHECK_THAT(error_of(reference),
+  CHECK_THAT(study_error_of(reference),
              Catch::StartsWith("f.toml:15: reference.dt: the reference run holds t_end / dt / sample_every = 0.6 / 1e-08 / 1 = 6e+07 "
                                "samples in memory, more than the limit of 1e+07; valid: reference.sample_every >= "));
-  const std::string least = error_of(reference).substr(error_of(reference).rfind(">= ") + 3);
+  const std::string least = study_error_of(reference).substr(study_error_of(reference).rfind(">= ") + 3);
   CHECK((least == "6" || least == "7"));  // 6e7 / 1e7, up to the rounding of t_end / dt
-  CHECK(error_of(replaced(reference, "dt = 1e-8", "dt = 1e-8\nsample_every = " + least)) == "(no error)");
+  CHECK(study_error_of(replaced(reference, "dt = 1e-8", "dt = 1e-8\nsample_every = " + least)) == "(no error)");
   const std::string hausdorff =
       replaced(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 1e-8]"), "kind = \"error\"\n",
                "kind = \"hausdorff\"\nobservable = \"v\"\n");
-  CHECK_THAT(error_of(hausdorff), Catch::StartsWith("f.toml:11: integrator[0].steps[1]: a run's graph for a Hausdorff distance holds"));
-  CHECK(error_of(replaced(hausdorff, "t_end = 0.6", "t_end = 0.6\nsample_every = 7")) == "(no error)");
-  CHECK(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 1e-8]")) == "(no error)");  // streamed measures
+  CHECK_THAT(study_error_of(hausdorff), Catch::StartsWith("f.toml:11: integrator[0].steps[1]: a run's graph for a Hausdorff distance holds"));
+  CHECK(study_error_of(replaced(hausdorff, "t_end = 0.6", "t_end = 0.6\nsample_every = 7")) == "(no error)");
+  CHECK(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 1e-8]")) == "(no error)");  // streamed measures
 }
 
 TEST_CASE("study file: a hausdorff measure converges where the max-norm velocity error does not", "[studies][study_file]") {
@@ -627,7 +621,7 @@ TEST_CASE("study file: a hausdorff measure converges where the max-norm velocity
   REQUIRE(spec.measures.size() == 2);
   CHECK(spec.measures[1].label == "hausdorff v");
   const auto tables = run_all(spec, nullptr);
-  const nsb::Table& orders = table(tables, "_orders");
+  const nsb::Table& orders = table_ending(tables, "_orders");
   const std::size_t order = column(orders, "order");
   double max_norm = NAN, hausdorff = NAN;
   for (const auto& row : orders.rows)
@@ -635,11 +629,11 @@ TEST_CASE("study file: a hausdorff measure converges where the max-norm velocity
   CHECK(std::abs(max_norm) < 0.3);
   CHECK(hausdorff == Approx(1.0).margin(0.45));
   // Errors in the definition: the observable is required, the scales positive.
-  CHECK_THAT(error_of(replaced(text, "kind = \"hausdorff\"\nobservable = \"v\"\n", "kind = \"hausdorff\"\n")),
+  CHECK_THAT(study_error_of(replaced(text, "kind = \"hausdorff\"\nobservable = \"v\"\n", "kind = \"hausdorff\"\n")),
              Catch::Contains("missing key 'observable'"));
-  CHECK_THAT(error_of(replaced(text, "kind = \"hausdorff\"\n", "kind = \"hausdorff\"\ntime_scale = -1\n")),
+  CHECK_THAT(study_error_of(replaced(text, "kind = \"hausdorff\"\n", "kind = \"hausdorff\"\ntime_scale = -1\n")),
              Catch::Contains("measure[1].time_scale"));
-  CHECK_THAT(error_of(replaced(text, "kind = \"hausdorff\"\nobservable = \"v\"\n", "kind = \"hausdorff\"\nobservable = \"u\"\n")),
+  CHECK_THAT(study_error_of(replaced(text, "kind = \"hausdorff\"\nobservable = \"v\"\n", "kind = \"hausdorff\"\nobservable = \"u\"\n")),
              Catch::Contains("not an observable"));
 }
 
@@ -663,39 +657,39 @@ TEST_CASE("study file: a name with a control character is refused in one line", 
 // Issue 30, finding 10: floor = inf was accepted, and max_force_evaluations = 0 (no budget)
 // let each case run up to 2e8 steps.
 TEST_CASE("study file: an infinite floor and a zero budget are refused", "[studies][study_file]") {
-  CHECK_THAT(error_of(replaced(kMinimal, "solution = \"exact\"", "solution = \"exact\"\nfloor = inf")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "solution = \"exact\"", "solution = \"exact\"\nfloor = inf")),
              Catch::EndsWith("reference.floor: inf is not a finite number >= 0; valid: [0, inf)"));
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 0")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 0")),
              Catch::EndsWith("study.max_force_evaluations: 0 is out of range; valid: [1, 1125899906842624]"));
-  CHECK(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 1")) == "(no error)");
+  CHECK(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_force_evaluations = 1")) == "(no error)");
 }
 
 TEST_CASE("study file: per-problem end times and budgets, stable-step sweeps and outcome thresholds: bad input named",
           "[studies][study_file]") {
   using Catch::StartsWith;
-  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nt_end = -1")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nt_end = -1")),
              StartsWith("f.toml:8: problem[0].t_end: -1 is not positive and finite; valid: (0, inf)"));
-  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nt_end = 0.005")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nt_end = 0.005")),
              StartsWith("f.toml:12: integrator[0].steps[0]: dt = 0.01 is larger than the t_end of problem 'bouncing-mass' = 0.005; "
                         "valid: dt <= t_end"));
-  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nmax_force_evaluations = 0")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\nmax_force_evaluations = 0")),
              StartsWith("f.toml:8: problem[0].max_force_evaluations: 0 is out of range; valid: [1, "));
-  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2]\nstable_steps = [0.5]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2]\nstable_steps = [0.5]")),
              StartsWith("f.toml:9: integrator[0]: give one of steps, stable_steps or tolerances; valid: one sweep per integrator"));
-  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 2000]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 2000]")),
              StartsWith("f.toml:11: integrator[0].stable_steps[1]: 2000 stable steps is no step of a study; valid: (0, 1000]"));
-  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 0.5]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5, 0.5]")),
              StartsWith("f.toml:11: integrator[0].stable_steps[1]: 0.5 repeats stable_steps[0]; valid: distinct values"));
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = 0")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = 0")),
              StartsWith("f.toml:4: study.energy_blow_up: 0 is not positive; valid: (0, inf]; inf: no energy blow-up status"));
   CHECK(nsb::parse_study_text(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = inf"), "f.toml", false).energy_blow_up ==
         std::numeric_limits<double>::infinity());  // never
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = -inf")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nenergy_blow_up = -inf")),
              StartsWith("f.toml:4: study.energy_blow_up: -inf is not positive; valid: (0, inf]"));
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_penetration = \"1e-3\"")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmax_penetration = \"1e-3\"")),
              StartsWith("f.toml:4: study.max_penetration: expected a number, got a string"));
   // The bouncing mass has no stiffness: its stable step is no finite step.
-  CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "stable_steps = [0.5]")),
              StartsWith("f.toml:11: integrator[0].stable_steps[0]: dt = inf is larger than study.t_end (problem 'bouncing-mass', "
                         "stable step inf) = 0.6"));
 }
@@ -762,11 +756,11 @@ TEST_CASE("study file: a grid of problem parameters and a measure's time window"
   CHECK(s.problems[3].label == "mass, e = 0.9, h0 = 2");
   CHECK(s.problems[3].parameters.at("e") == "0.9");
   CHECK(s.problems[3].parameters.at("h0") == "2");
-  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "grid = { e = [0.5, 1.5] }")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "grid = { e = [0.5, 1.5] }")),
              StartsWith("f.toml:7: problem[0].grid.e: ") && Catch::Contains("valid: [0, 1]"));
-  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\ngrid = { e = [0.9] }")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\ngrid = { e = [0.9] }")),
              StartsWith("f.toml:8: problem[0].grid.e: also given in parameters"));
-  CHECK_THAT(error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "grid = { e = [] }")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "grid = { e = [] }")),
              StartsWith("f.toml:7: problem[0].grid.e: expected an array of one or more values"));
 
   // Before the first impact (0.4515 s) Moreau-Jean and the exact solution are both free flight.
@@ -791,13 +785,13 @@ kind = "error"
   const double in_window = results[0]["values"][0], whole = results[0]["values"][1];
   CHECK(in_window < 0.2 * whole);  // the impact's error is outside the window
   CHECK(in_window > 0.0);
-  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = [0.5, 0.2]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = [0.5, 0.2]")),
              StartsWith("f.toml:18: measure[0].window: [0.5, 0.2] is no time window; valid: 0 <= t0 < t1, finite"));
-  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = [0.7, 0.9]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = [0.7, 0.9]")),
              StartsWith("f.toml:18: measure[0].window: the window starts at 0.7 s, not before the end of problem 'bouncing-mass'"));
-  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"penetration\"\nwindow = [0, 0.1]")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"penetration\"\nwindow = [0, 0.1]")),
              StartsWith("f.toml:18: measure[0].window: unknown key"));
-  CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = 0.4")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"error\"\nwindow = 0.4")),
              StartsWith("f.toml:18: measure[0].window: expected an array [t0, t1] of two numbers"));
 }
 
@@ -807,20 +801,20 @@ TEST_CASE("study file: figures declared in the file are drawn from the work-prec
   const std::string fig = kMinimal + "\n[[figure]]\nid = \"steps\"\ntitle = \"Steps\"\nx = \"dt\"\ny = \"steps\"\nslopes = [-1]\n";
   std::vector<nsb::Json> results;
   const auto tables = run_all(nsb::reduced_study(nsb::parse_study_text(fig, "min.toml", false), 1.0, 2, 100000), &results);
-  const nsb::Table& wp = table(tables, "_work_precision");
+  const nsb::Table& wp = table_ending(tables, "_work_precision");
   const auto f = std::find_if(wp.figures.begin(), wp.figures.end(), [](const nsb::Figure& g) { return g.id == "min_steps"; });
   REQUIRE(f != wp.figures.end());
   CHECK(f->x == "dt");
   CHECK(f->y == "steps");
   CHECK(f->series == std::vector<std::string>{"integrator"});
   CHECK(f->slopes == std::vector<double>{-1.0});
-  CHECK_THAT(error_of(replaced(fig, "y = \"steps\"", "y = \"stpes\"")),
+  CHECK_THAT(study_error_of(replaced(fig, "y = \"steps\"", "y = \"stpes\"")),
              StartsWith("f.toml:23: figure[0].y: 'stpes' is not valid (nearest: steps); valid: problem, integrator, dt, tol, err u max, CPU,"));
-  CHECK_THAT(error_of(replaced(fig, "id = \"steps\"", "id = \"Steps!\"")),
+  CHECK_THAT(study_error_of(replaced(fig, "id = \"steps\"", "id = \"Steps!\"")),
              StartsWith("f.toml:20: figure[0].id: 'Steps!' is not a file name of a-z, 0-9 and _; valid: [a-z0-9_]+"));
-  CHECK_THAT(error_of(replaced(fig, "id = \"steps\"", "id = \"work_precision\"")),
+  CHECK_THAT(study_error_of(replaced(fig, "id = \"steps\"", "id = \"work_precision\"")),
              StartsWith("f.toml:20: figure[0].id: 'work_precision' is the id of a figure the study draws itself"));
-  CHECK_THAT(error_of(replaced(fig, "title = \"Steps\"\n", "")), StartsWith("f.toml:19: figure[0]: missing key 'title'"));
+  CHECK_THAT(study_error_of(replaced(fig, "title = \"Steps\"\n", "")), StartsWith("f.toml:19: figure[0]: missing key 'title'"));
 }
 
 TEST_CASE("study file: declared tables pick, order and rename the columns of the runs and of the fitted orders; bad ones named",
@@ -904,8 +898,8 @@ rows = "ranking"
       {"title = \"Orders\"\n", "",
        "f.toml:26: table[1]: missing key 'title'"},
   };
-  for (const auto& [from, to, error] : bad) CHECK_THAT(error_of(replaced(declared, from, to)), StartsWith(error));
-  CHECK_THAT(error_of(declared + "\n[[figure]]\nid = \"cost\"\ntitle = \"Cost\"\nx = \"CPU\"\ny = \"err u max\"\n"),
+  for (const auto& [from, to, error] : bad) CHECK_THAT(study_error_of(replaced(declared, from, to)), StartsWith(error));
+  CHECK_THAT(study_error_of(declared + "\n[[figure]]\nid = \"cost\"\ntitle = \"Cost\"\nx = \"CPU\"\ny = \"err u max\"\n"),
              StartsWith("f.toml:40: figure[0].x: 'CPU' is not a column of table 'runs'; valid: problem, integrator, dt, err u max, "
                         "steps, factorizations, pairwise order of err u max"));
 }
@@ -955,15 +949,15 @@ label = "err over the run's scale"
   CHECK(over_run < 0.5 * coarse);
   CHECK(results[2]["status"] == "n/a");
   CHECK(results[2]["message"] == "the reference of this problem");
-  CHECK_THAT(table(tables, "_work_precision").caption, Contains("modal-exact stepped with each run (lockstep)"));
+  CHECK_THAT(table_ending(tables, "_work_precision").caption, Contains("modal-exact stepped with each run (lockstep)"));
 
-  CHECK_THAT(error_of(replaced(lockstep, "lockstep = true", "lockstep = true\ndt = 1e-3")),
+  CHECK_THAT(study_error_of(replaced(lockstep, "lockstep = true", "lockstep = true\ndt = 1e-3")),
              StartsWith("f.toml:22: reference.dt: a lockstep reference steps with each run, at its steps"));
-  CHECK_THAT(error_of(replaced(kMinimal, "solution = \"exact\"", "solution = \"exact\"\nlockstep = true")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "solution = \"exact\"", "solution = \"exact\"\nlockstep = true")),
              Contains("reference.lockstep: only a reference integrator steps with the runs"));
-  CHECK_THAT(error_of(replaced(lockstep, "relative_to = \"run\"", "relative_to = \"all\"")),
+  CHECK_THAT(study_error_of(replaced(lockstep, "relative_to = \"run\"", "relative_to = \"all\"")),
              Contains("measure[1].relative_to: 'all' is not valid (nearest: "));
-  CHECK_THAT(error_of(replaced(lockstep, "kind = \"error\"\nwindow = [0.0, 0.12]\n\n", "kind = \"hausdorff\"\nobservable = \"q\"\n\n")),
+  CHECK_THAT(study_error_of(replaced(lockstep, "kind = \"error\"\nwindow = [0.0, 0.12]\n\n", "kind = \"hausdorff\"\nobservable = \"q\"\n\n")),
              Contains("a Hausdorff distance needs the reference's whole graph"));
 }
 
@@ -977,7 +971,7 @@ TEST_CASE("study file: the ranking marks another code's integrator as a peer", "
   const std::string text = replaced(kMinimal, "name = \"cd-lagrange\"", "name = \"" + peer->name + "\"");
   const auto tables = run_all(nsb::reduced_study(nsb::parse_study_text(text, "peer.toml", false), 1.0, 2, 100000));
   bool marked = false;
-  for (const auto& row : table(tables, "_ranking").rows)
+  for (const auto& row : table_ending(tables, "_ranking").rows)
     for (const auto& cell : row)
       if (const auto* s = std::get_if<std::string>(&cell)) marked = marked || s->find(peer->name + " (peer)") != std::string::npos;
   CHECK(marked);
@@ -1029,7 +1023,7 @@ TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, c
   // found diverged there, or at the end (150) when checked every 1000 steps.
   for (const auto& [every, steps] : {std::pair{"1", 139L}, {"1000", 150L}}) {
     const auto tables = run_all(nsb::parse_study_text(unstable_bar(every, "1000000"), "f.toml", false));
-    const nsb::Table& runs = table(tables, "runs");
+    const nsb::Table& runs = table_ending(tables, "runs");
     REQUIRE(runs.rows.size() == 1);
     const auto& row = runs.rows[0];
     CHECK(std::get<std::string>(row[0]) == "signorini-bar");
@@ -1042,13 +1036,13 @@ TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, c
   }
   // A blow-up seen before the budget ran out is the outcome, the driver's message the note.
   const auto tables = run_all(nsb::parse_study_text(unstable_bar("1", "100"), "f.toml", false));
-  const auto& row = table(tables, "runs").rows.at(0);
+  const auto& row = table_ending(tables, "runs").rows.at(0);
   CHECK(std::get<std::string>(row[2]) == "energy blow-up");
   CHECK(std::get<double>(row[5]) > 1e200);
   CHECK_THAT(std::get<std::string>(row[8]), Catch::StartsWith("budget of 100 F_int evaluations exceeded"));
   // The history: the largest deviation of each of 200 intervals of [0, 3] up to the stop at
   // t = 2 (step 100), growing; its figure by the history table's columns.
-  const nsb::Table& history = table(tables, "history");
+  const nsb::Table& history = table_ending(tables, "history");
   CHECK(history.csv_only);
   REQUIRE(history.rows.size() == 100);  // a step (0.02 s) is longer than an interval (0.015 s): one row each
   CHECK(std::get<double>(history.rows.back()[2]) == Approx(2.0));
@@ -1056,7 +1050,7 @@ TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, c
   REQUIRE(history.figures.size() == 1);
   CHECK(history.figures[0].id == "f_deviation");
   CHECK(history.figures[0].panels == std::vector<std::string>{"problem"});
-  CHECK(table(tables, "runs").figures.empty());
+  CHECK(table_ending(tables, "runs").figures.empty());
 
   // A problem's own stable_steps serve every integrator without a sweep of its own; a full_only
   // problem runs with --full only.
@@ -1094,33 +1088,33 @@ TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, c
   using Catch::StartsWith;
   const auto with_problem = [](const std::string& line) { return replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\n" + line); };
   for (const char* key : {"energy_blow_up", "max_penetration", "energy_scale"})
-    CHECK_THAT(error_of(with_problem(std::string(key) + " = 0")),
+    CHECK_THAT(study_error_of(with_problem(std::string(key) + " = 0")),
                StartsWith(fmt::format("f.toml:8: problem[0].{}: 0 is not positive and finite; valid: (0, inf)", key)));
-  CHECK_THAT(error_of(with_problem("full_only = 1")), StartsWith("f.toml:8: problem[0].full_only: expected a boolean, got an integer"));
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\ncheck_every = 0")),
+  CHECK_THAT(study_error_of(with_problem("full_only = 1")), StartsWith("f.toml:8: problem[0].full_only: expected a boolean, got an integer"));
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\ncheck_every = 0")),
              StartsWith("f.toml:4: study.check_every: 0 is out of range; valid: [1, "));
-  CHECK_THAT(error_of(with_problem("steps = [1e-2]\nstable_steps = [0.5]")),
+  CHECK_THAT(study_error_of(with_problem("steps = [1e-2]\nstable_steps = [0.5]")),
              StartsWith("f.toml:5: problem[0]: give one of steps or stable_steps; valid: one sweep per problem"));
-  CHECK_THAT(error_of(with_problem("stable_steps = [2000]")),
+  CHECK_THAT(study_error_of(with_problem("stable_steps = [2000]")),
              StartsWith("f.toml:8: problem[0].stable_steps[0]: 2000 stable steps is no step of a study; valid: (0, 1000]"));
   // A problem's stable steps against its end time, with its stable step named.
-  CHECK_THAT(error_of(with_problem("stable_steps = [900]\nt_end = 1e-3")),
+  CHECK_THAT(study_error_of(with_problem("stable_steps = [900]\nt_end = 1e-3")),
              StartsWith("f.toml:8: problem[0].stable_steps[0]: dt = ") && Catch::Contains("is larger than the t_end of problem"));
   // History tables: their problems and columns; a figure drawn from one names it.
   const std::string history = kMinimal + "[[table]]\nid = \"h\"\ntitle = \"h\"\nrows = \"history\"\ncolumns = [\"t\", \"penetration\"]\n";
   CHECK(nsb::parse_study_text(history, "f.toml", false).tables.at(0).rows == "history");
-  CHECK_THAT(error_of(history + "problems = [\"nope\"]\n"),
+  CHECK_THAT(study_error_of(history + "problems = [\"nope\"]\n"),
              StartsWith("f.toml:23: table[0].problems[0]: 'nope' is not valid (nearest: bouncing-mass); valid: bouncing-mass"));
-  CHECK_THAT(error_of(replaced(history, "rows = \"history\"", "rows = \"case\"\nproblems = [\"bouncing-mass\"]")),
+  CHECK_THAT(study_error_of(replaced(history, "rows = \"history\"", "rows = \"case\"\nproblems = [\"bouncing-mass\"]")),
              StartsWith("f.toml:22: table[0].problems: only a history table picks its problems; valid: rows = \"history\""));
-  CHECK_THAT(error_of(replaced(history, "\"penetration\"]", "\"steps\"]")),
+  CHECK_THAT(study_error_of(replaced(history, "\"penetration\"]", "\"steps\"]")),
              StartsWith("f.toml:22: table[0].columns[1]: 'steps' is not valid (nearest: "));
   const std::string figure = "[[figure]]\nid = \"d\"\ntitle = \"d\"\nx = \"t\"\ny = \"energy deviation\"\ntable = ";
-  CHECK_THAT(error_of(history + figure + "\"runs\"\n"),
+  CHECK_THAT(study_error_of(history + figure + "\"runs\"\n"),
              StartsWith("f.toml:28: figure[0].table: 'runs' is no declared history table; valid: h"));
-  CHECK_THAT(error_of(history + figure + "\"h\"\n"),
+  CHECK_THAT(study_error_of(history + figure + "\"h\"\n"),
              StartsWith("f.toml:27: figure[0].y: 'energy deviation' is not a column of table 'h'; valid: t, penetration"));
-  CHECK_THAT(error_of(history + replaced(figure, "\"energy deviation\"", "\"err\"") + "\"h\"\n"),
+  CHECK_THAT(study_error_of(history + replaced(figure, "\"energy deviation\"", "\"err\"") + "\"h\"\n"),
              StartsWith("f.toml:27: figure[0].y: 'err' is not valid (nearest: "));
 }
 
@@ -1159,16 +1153,16 @@ kind = "error"
   REQUIRE(cases.size() == 3);
   CHECK(cases[1]["dt"].get<double>() == 5e-3);
   CHECK(cases[2]["dt"].get<double>() == 2e-2);
-  CHECK_THAT(error_of(replaced(listed, "steps = [1e-2, 5e-3]\nfull_steps = [1e-2, 5e-3, 2e-3]\n", "")),
+  CHECK_THAT(study_error_of(replaced(listed, "steps = [1e-2, 5e-3]\nfull_steps = [1e-2, 5e-3, 2e-3]\n", "")),
              StartsWith("f.toml:14: integrator[0]: no sweep on problem 'bouncing-mass'; valid: steps = [dt, ...]"));
-  CHECK_THAT(error_of(replaced(all, "steps = [1e-2, 5e-3]\n", "")),
+  CHECK_THAT(study_error_of(replaced(all, "steps = [1e-2, 5e-3]\n", "")),
              StartsWith("f.toml:8: problem[0].full_steps: full_steps without steps; valid: steps = [dt, ...] beside it"));
-  CHECK_THAT(error_of(replaced(all, "steps = [1e-2, 5e-3]", "steps = [1e-2, 0.7]")),
+  CHECK_THAT(study_error_of(replaced(all, "steps = [1e-2, 5e-3]", "steps = [1e-2, 0.7]")),
              StartsWith("f.toml:8: problem[0].steps[1]: dt = 0.7 is larger than study.t_end = 0.6; valid: dt <= t_end"));
-  CHECK_THAT(error_of(replaced(all, "\"all\"", "\"some\"")), StartsWith("f.toml:4: study.integrators: 'some' is not valid (nearest: "));
-  CHECK_THAT(error_of(all + "\n[[integrator]]\nname = \"cd-lagrange\"\n"),
+  CHECK_THAT(study_error_of(replaced(all, "\"all\"", "\"some\"")), StartsWith("f.toml:4: study.integrators: 'some' is not valid (nearest: "));
+  CHECK_THAT(study_error_of(all + "\n[[integrator]]\nname = \"cd-lagrange\"\n"),
              StartsWith("f.toml:17: integrator: study.integrators = \"all\" lists the integrators; valid: no [[integrator]] tables"));
-  CHECK_THAT(error_of(replaced(listed, "steps = [2e-2]", "full_steps = [2e-2]")),
+  CHECK_THAT(study_error_of(replaced(listed, "steps = [2e-2]", "full_steps = [2e-2]")),
              StartsWith("f.toml:21: integrator[1].full_steps: full_steps without steps; valid: steps = [dt, ...] beside it"));
 }
 
@@ -1234,21 +1228,21 @@ label = "whole"
   CHECK(results[2]["status"] == "ok");  // modal-exact on the mass, against its exact solution
   CHECK(results[5]["status"] == "n/a");  // modal-exact on the chain is its reference
   CHECK(results[5]["message"] == "the reference of this problem");
-  const nsb::Table& rank = table(tables, "_ranking");
+  const nsb::Table& rank = table_ending(tables, "_ranking");
   CHECK_THAT(rank.caption, Contains("mass: against the exact solution; chain: against the chain solved exactly (its own error 1.0e-13)"));
-  CHECK_THAT(table(tables, "_work_precision").caption,
+  CHECK_THAT(table_ending(tables, "_work_precision").caption,
              Contains("Errors against mass: the exact solution; chain: the chain solved exactly;"));
-  CHECK_THAT(error_of(replaced(text, "reference = { integrator = \"modal-exact\", lockstep = true,", "reference = { solution = \"exact\",")),
+  CHECK_THAT(study_error_of(replaced(text, "reference = { integrator = \"modal-exact\", lockstep = true,", "reference = { solution = \"exact\",")),
              StartsWith("f.toml:15: problem[1].reference.solution: problem 'chain' (spring-chain) has no exact solution"));
-  CHECK_THAT(error_of(replaced(text, "lockstep = true,", "lockstep = true, dt = 1e-3,")),
+  CHECK_THAT(study_error_of(replaced(text, "lockstep = true,", "lockstep = true, dt = 1e-3,")),
              StartsWith("f.toml:15: problem[1].reference.dt: a lockstep reference steps with each run"));
-  CHECK_THAT(error_of(replaced(text, "against = \"the chain solved exactly\"", "against = 3")),
+  CHECK_THAT(study_error_of(replaced(text, "against = \"the chain solved exactly\"", "against = 3")),
              StartsWith("f.toml:15: problem[1].reference.against: expected a string, got an integer"));
-  CHECK_THAT(error_of(replaced(text, "window = { mass = [0.0, 0.1] }", "window = { mas = [0.0, 0.1] }")),
+  CHECK_THAT(study_error_of(replaced(text, "window = { mass = [0.0, 0.1] }", "window = { mas = [0.0, 0.1] }")),
              StartsWith("f.toml:31: measure[0].window.mas: unknown key (nearest valid key: mass); valid: mass, chain"));
-  CHECK_THAT(error_of(replaced(text, "window = { mass = [0.0, 0.1] }", "window = { mass = [0.0, 0.1] }\nproblems = [\"chain\"]")),
+  CHECK_THAT(study_error_of(replaced(text, "window = { mass = [0.0, 0.1] }", "window = { mass = [0.0, 0.1] }\nproblems = [\"chain\"]")),
              StartsWith("f.toml:31: measure[0].window.mass: the measure is not measured on problem 'mass'"));
-  CHECK_THAT(error_of(replaced(text, "window = { mass = [0.0, 0.1] }", "window = { mass = [0.4, 0.5] }")),
+  CHECK_THAT(study_error_of(replaced(text, "window = { mass = [0.0, 0.1] }", "window = { mass = [0.4, 0.5] }")),
              StartsWith("f.toml:31: measure[0].window.mass: the window starts at 0.4 s, not before the end of problem 'mass' (0.3 s)"));
 }
 
@@ -1284,27 +1278,27 @@ runs_format = "{:.1e}"
   CHECK(rank.columns[1].description == "err u max of runs");
   const std::string runs = std::get<std::string>(rank.rows[0][4]);
   CHECK_THAT(runs, StartsWith("dt = 5.0e-03") || StartsWith("dt = 1.0e-02"));
-  CHECK_THAT(error_of(replaced(text, "figures = \"declared\"", "figures = \"mine\"")),
+  CHECK_THAT(study_error_of(replaced(text, "figures = \"declared\"", "figures = \"mine\"")),
              StartsWith("f.toml:4: study.figures: 'mine' is not valid (nearest: "));
-  CHECK_THAT(error_of(replaced(text, "runs_format = \"{:.1e}\"", "runs_format = \"{:q}\"")),
+  CHECK_THAT(study_error_of(replaced(text, "runs_format = \"{:.1e}\"", "runs_format = \"{:q}\"")),
              StartsWith("f.toml:37: table[1].runs_format: '{:q}' is no number format"));
-  CHECK_THAT(error_of(replaced(text, "runs_format = \"{:.1e}\"", "runs_format = \"\"")),
+  CHECK_THAT(study_error_of(replaced(text, "runs_format = \"{:.1e}\"", "runs_format = \"\"")),
              StartsWith("f.toml:37: table[1].runs_format: an empty format; valid: a fmt format of one number"));
-  CHECK_THAT(error_of(replaced(text, "header = \"err\"", "heder = \"err\"")),
+  CHECK_THAT(study_error_of(replaced(text, "header = \"err\"", "heder = \"err\"")),
              StartsWith("f.toml:36: table[1].error.heder: unknown key (nearest valid key: header)"));
-  CHECK_THAT(error_of(replaced(text, "title = \"Runs\"", "title = \"Runs\"\nruns_format = \"{:.1e}\"")),
+  CHECK_THAT(study_error_of(replaced(text, "title = \"Runs\"", "title = \"Runs\"\nruns_format = \"{:.1e}\"")),
              StartsWith("f.toml:30: table[0].runs_format: only a ranking has runs_format; valid: rows = \"ranking\""));
-  CHECK_THAT(error_of(text + "\n[[table]]\nid = \"again\"\ntitle = \"Again\"\nrows = \"ranking\"\nruns_format = \"{:.2e}\"\n"),
+  CHECK_THAT(study_error_of(text + "\n[[table]]\nid = \"again\"\ntitle = \"Again\"\nrows = \"ranking\"\nruns_format = \"{:.2e}\"\n"),
              StartsWith("f.toml:43: table[2].runs_format: the first ranking table sets the runs' format of every ranking"));
   // Without figures = "declared", the engine's figure ids stay reserved.
-  CHECK_THAT(error_of(replaced(text, "figures = \"declared\"\n", "")),
+  CHECK_THAT(study_error_of(replaced(text, "figures = \"declared\"\n", "")),
              StartsWith("f.toml:21: figure[0].id: 'work_precision' is the id of a figure the study draws itself"));
 }
 
 TEST_CASE("study file: a run without an error (over budget) is not reached, not 'removed' by a rule", "[studies][study_file]") {
   const std::string text = replaced(kMinimal, "t_end = 0.6\n", "t_end = 0.6\ncpu_repeats = 0\nmax_force_evaluations = 10\n");
   const auto tables = run_all(nsb::parse_study_text(text, "f.toml", false));
-  const nsb::Table& rank = table(tables, "_ranking");
+  const nsb::Table& rank = table_ending(tables, "_ranking");
   CHECK(std::get<std::string>(rank.rows[0][2]) == "none");
 }
 
@@ -1378,7 +1372,7 @@ title = "runs"
 columns = ["status", "budget", "F_int evals", "parameter h0", "parameter N", { of = "parameter mass", header = "mass" }]
 )";
   const auto tables = run_all(nsb::parse_study_text(short_budget, "f.toml", false));
-  const nsb::Table& runs = table(tables, "runs");
+  const nsb::Table& runs = table_ending(tables, "runs");
   REQUIRE(runs.rows.size() == 2);
   const auto& row = runs.rows[0];
   CHECK_THAT(std::get<std::string>(row[0]), Catch::StartsWith("over budget"));
@@ -1398,33 +1392,33 @@ columns = ["status", "budget", "F_int evals", "parameter h0", "parameter N", { o
 TEST_CASE("study file: case_order, default_only, [[exclude]] and a budget per step: bad input named", "[studies][study_file][bad-input]") {
   using Catch::StartsWith;
   const auto with_study = [](const std::string& line) { return replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\n" + line); };
-  CHECK_THAT(error_of(with_study("case_order = \"integrators\"")),
+  CHECK_THAT(study_error_of(with_study("case_order = \"integrators\"")),
              StartsWith("f.toml:4: study.case_order: 'integrators' is not valid (nearest: integrator); valid: problem, integrator"));
-  CHECK_THAT(error_of(with_study("max_force_evaluations_per_step = 0")),
+  CHECK_THAT(study_error_of(with_study("max_force_evaluations_per_step = 0")),
              StartsWith("f.toml:4: study.max_force_evaluations_per_step: 0 is not positive and finite; valid: (0, inf)"));
-  CHECK_THAT(error_of(with_study("max_force_evaluations_per_step = 2e6")),
+  CHECK_THAT(study_error_of(with_study("max_force_evaluations_per_step = 2e6")),
              StartsWith("f.toml:4: study.max_force_evaluations_per_step: 2000000 F_int evaluations per step is no budget; valid: (0, 1e6]"));
-  CHECK_THAT(error_of(with_study("max_force_evaluations = 10\nmax_force_evaluations_per_step = 4")),
+  CHECK_THAT(study_error_of(with_study("max_force_evaluations = 10\nmax_force_evaluations_per_step = 4")),
              StartsWith("f.toml:5: study.max_force_evaluations_per_step: given beside study.max_force_evaluations; valid: one of the two budgets"));
   const auto with_problem = [](const std::string& line) { return replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\n" + line); };
-  CHECK_THAT(error_of(with_problem("default_only = true\nfull_only = true")),
+  CHECK_THAT(study_error_of(with_problem("default_only = true\nfull_only = true")),
              StartsWith("f.toml:8: problem[0].default_only: full_only and default_only both: the problem would never run; valid: at most one of them true"));
   const auto with_rule = [](const std::string& lines) { return kMinimal + "[[exclude]]\nintegrators = \"peers\"\n" + lines; };
   CHECK(nsb::parse_study_text(with_rule("above = { e = 0.5 }\n"), "f.toml", false).exclusions.at(0).above.at("e") == 0.5);
-  CHECK_THAT(error_of(replaced(with_rule("above = { e = 0.5 }\n"), "\"peers\"", "\"peer\"")),
+  CHECK_THAT(study_error_of(replaced(with_rule("above = { e = 0.5 }\n"), "\"peers\"", "\"peer\"")),
              StartsWith("f.toml:19: exclude[0].integrators: 'peer' is not valid (nearest: peers); valid: schemes, peers, references"));
-  CHECK_THAT(error_of(with_rule("above = { N = 10 }\n")),
+  CHECK_THAT(study_error_of(with_rule("above = { N = 10 }\n")),
              StartsWith("f.toml:20: exclude[0].above.N: 'N' is no numeric parameter of the study's problems; valid: a real or integer parameter of one or more problems (the rule applies to those)"));
-  CHECK_THAT(error_of(with_rule("above = { e = \"0.5\" }\n")), StartsWith("f.toml:20: exclude[0].above.e: expected a number, got a string"));
-  CHECK_THAT(error_of(with_rule("stable_steps_except = [0]\n")),
+  CHECK_THAT(study_error_of(with_rule("above = { e = \"0.5\" }\n")), StartsWith("f.toml:20: exclude[0].above.e: expected a number, got a string"));
+  CHECK_THAT(study_error_of(with_rule("stable_steps_except = [0]\n")),
              StartsWith("f.toml:20: exclude[0].stable_steps_except[0]: 0 is not positive and finite; valid: (0, inf)"));
-  CHECK_THAT(error_of(with_rule("default_only = false\n")),
+  CHECK_THAT(study_error_of(with_rule("default_only = false\n")),
              StartsWith("f.toml:18: exclude[0]: no condition: the rule would exclude every run of its integrators; valid: above = "));
-  CHECK_THAT(error_of(with_rule("above = { e = 0.5 }\ndefault_only = true\nfull_only = true\n")),
+  CHECK_THAT(study_error_of(with_rule("above = { e = 0.5 }\ndefault_only = true\nfull_only = true\n")),
              StartsWith("f.toml:22: exclude[0].full_only: full_only and default_only both: the rule would never apply; valid: at most one of them true"));
-  CHECK_THAT(error_of(kMinimal + "[[table]]\nid = \"r\"\ntitle = \"r\"\ncolumns = [\"parameter N\"]\n"),
+  CHECK_THAT(study_error_of(kMinimal + "[[table]]\nid = \"r\"\ntitle = \"r\"\ncolumns = [\"parameter N\"]\n"),
              StartsWith("f.toml:21: table[0].columns[0]: 'parameter N' is not valid (nearest: parameter "));
-  CHECK_THAT(error_of(with_rule("below = { e = 0.5 }\n")), StartsWith("f.toml:20: exclude[0].below: unknown key (nearest valid key: above)"));
+  CHECK_THAT(study_error_of(with_rule("below = { e = 0.5 }\n")), StartsWith("f.toml:20: exclude[0].below: unknown key (nearest valid key: above)"));
 }
 
 TEST_CASE("study file: an energy error sampled every period (count, first, final, drift per period); over-budget runs measured",
@@ -1485,13 +1479,13 @@ TEST_CASE("study file: an energy error sampled every period: bad input named", "
   using Catch::StartsWith;
   const std::string energy = replaced(kMinimal, "kind = \"error\"", "kind = \"energy\"");
   const auto with = [&](const std::string& lines) { return energy + lines; };
-  CHECK_THAT(error_of(with("every = 0\n")), StartsWith("f.toml:18: measure[0].every: 0 is not positive and finite; valid: (0, inf)"));
-  CHECK_THAT(error_of(with("every = 0.1\nfrom = -1\n")), StartsWith("f.toml:19: measure[0].from: -1 is no start time; valid: [0, inf)"));
-  CHECK_THAT(error_of(with("from = 0.1\n")), StartsWith("f.toml:18: measure[0].from: from without every; valid: every = T beside it"));
-  CHECK_THAT(error_of(with("every = 0.1\nnorm = \"max\"\n")),
+  CHECK_THAT(study_error_of(with("every = 0\n")), StartsWith("f.toml:18: measure[0].every: 0 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(study_error_of(with("every = 0.1\nfrom = -1\n")), StartsWith("f.toml:19: measure[0].from: -1 is no start time; valid: [0, inf)"));
+  CHECK_THAT(study_error_of(with("from = 0.1\n")), StartsWith("f.toml:18: measure[0].from: from without every; valid: every = T beside it"));
+  CHECK_THAT(study_error_of(with("every = 0.1\nnorm = \"max\"\n")),
              StartsWith("f.toml:19: measure[0].norm: 'max' is not valid (nearest: "));
-  CHECK_THAT(error_of(with("every = 0.1\nhistory = true\n")),
+  CHECK_THAT(study_error_of(with("every = 0.1\nhistory = true\n")),
              StartsWith("f.toml:19: measure[0].history: an energy sampled every period has no window or history; valid: one of every or window/history"));
-  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmeasure_over_budget = 1")),
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmeasure_over_budget = 1")),
              StartsWith("f.toml:4: study.measure_over_budget: expected a boolean, got an integer"));
 }
