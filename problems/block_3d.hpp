@@ -47,7 +47,9 @@
 // the vertical through the centre], g [m/s^2], e, mu (>= 0).
 // Bad input (InputError, one line, exit 2): the ranges above; a mesh whose memory (about
 // kBlock3dBytesPerElement per element, the assembled tangent included) exceeds the machine's,
-// refused before anything of its size is allocated.
+// refused before anything of its size is allocated. The estimate covers the problem and the
+// explicit schemes' runs; an implicit scheme's sparse factorisation of K grows faster than
+// the mesh (fill-in of a 3D mesh: docs/three_d.md has measured figures), which it does not bound.
 //
 // Stable step: 2 / omega_max with omega_max^2 <= lambda_max(M_e^{-1} K_e) (the element
 // eigenvalue bound, Irons & Treharne 1971), K_e the tangent at U = 0: the undeformed block's.
