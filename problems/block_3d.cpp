@@ -14,6 +14,8 @@
 
 #include "core/threads.hpp"
 #include "problems/bar_memory.hpp"
+#include "problems/lumped_gravity.hpp"
+#include "problems/sparsity_pattern.hpp"
 
 namespace nsb {
 
@@ -101,10 +103,8 @@ Block3d::Block3d(const Params& p)
   Eigen::Matrix<double, 8, 1> me;
   element_.lumped_mass(p.real("rho"), me);
   m_ = Vec::Zero(ndof());
-  Index nodes_e[8];
   for (Index k = 0; k < nz_; ++k)
-    for_each_in_layer([&](Index i, Index j) {
-      element_nodes(i, j, k, nodes_e);
+    for_each_in_layer(k, [&](const Index* nodes_e) {
       for (int c = 0; c < 8; ++c) m_.segment<3>(3 * nodes_e[c]).array() += me[c];
     });
 
@@ -151,9 +151,13 @@ Hex8Nodes Block3d::positions(const Index nodes_e[8], ConstVecRef u) const {
 }
 
 template <class Visit>
-void Block3d::for_each_in_layer(Visit&& visit) const {
+void Block3d::for_each_in_layer(Index k, Visit&& visit) const {
+  Index nodes_e[8];
   for (Index j = 0; j < ny_; ++j)
-    for (Index i = 0; i < nx_; ++i) visit(i, j);
+    for (Index i = 0; i < nx_; ++i) {
+      element_nodes(i, j, k, nodes_e);
+      visit(nodes_e);
+    }
 }
 
 template <class Layer>
@@ -175,10 +179,8 @@ bool Block3d::for_layers_by_parity(Layer&& layer) const {
 void Block3d::internal_force(ConstVecRef u, VecRef f) const {
   f.setZero();
   const bool ok = for_layers_by_parity([&](Index k) {
-    Index nodes_e[8];
     Hex8Vector fe;
-    for_each_in_layer([&](Index i, Index j) {
-      element_nodes(i, j, k, nodes_e);
+    for_each_in_layer(k, [&](const Index* nodes_e) {
       element_.internal_force(positions(nodes_e, u), material_, fe);
       for (int c = 0; c < 8; ++c) f.segment<3>(3 * nodes_e[c]) += fe.segment<3>(3 * c);
     });
@@ -206,41 +208,15 @@ void Block3d::for_each_pattern_entry(Visit&& visit) const {
         }
 }
 
-void Block3d::prepare_pattern(SpMat& K) const {
-  Index nnz = 0;
-  for_each_pattern_entry([&](Index, Index) { ++nnz; });
-  bool same = K.rows() == ndof() && K.cols() == ndof() && K.isCompressed() && K.nonZeros() == nnz;
-  if (same) {
-    Index k = 0;
-    for_each_pattern_entry([&](Index col, Index row) {
-      same = same && K.innerIndexPtr()[k] == row && K.outerIndexPtr()[col] <= k && k < K.outerIndexPtr()[col + 1];
-      ++k;
-    });
-  }
-  if (!same) {
-    K.resize(ndof(), ndof());
-    K.resizeNonZeros(nnz);
-    Index k = 0;
-    for_each_pattern_entry([&](Index col, Index row) {
-      K.innerIndexPtr()[k] = row;
-      K.outerIndexPtr()[col + 1] = ++k;
-    });
-    K.outerIndexPtr()[0] = 0;
-  }
-  K.coeffs().setZero();
-}
-
 void Block3d::tangent_stiffness(ConstVecRef u, SpMat& K) const {
-  prepare_pattern(K);
+  prepare_sparsity_pattern(K, ndof(), [this](auto&& visit) { for_each_pattern_entry(visit); });
   double* values = K.valuePtr();
   const auto* inner = K.innerIndexPtr();
   const auto* outer = K.outerIndexPtr();
   // Element layers of one parity share no node, hence no entry of K.
   const bool ok = for_layers_by_parity([&](Index k) {
-    Index nodes_e[8];
     Hex8Matrix Ke;
-    for_each_in_layer([&](Index i, Index j) {
-      element_nodes(i, j, k, nodes_e);
+    for_each_in_layer(k, [&](const Index* nodes_e) {
       element_.tangent(positions(nodes_e, u), material_, Ke);
       for (int c = 0; c < 24; ++c) {
         const Index col = 3 * nodes_e[c / 3] + c % 3;
@@ -261,12 +237,8 @@ double Block3d::strain_energy(ConstVecRef u) const {
   // Per element layer, then summed in layer order: the same sum for any thread count.
   std::vector<double> layer(static_cast<std::size_t>(nz_), 0.0);
   const bool ok = for_layers_by_parity([&](Index k) {
-    Index nodes_e[8];
     double W = 0.0;
-    for_each_in_layer([&](Index i, Index j) {
-      element_nodes(i, j, k, nodes_e);
-      W += element_.energy(positions(nodes_e, u), material_);
-    });
+    for_each_in_layer(k, [&](const Index* nodes_e) { W += element_.energy(positions(nodes_e, u), material_); });
     layer[static_cast<std::size_t>(k)] = W;
   });
   if (!ok) throw std::runtime_error("block-3d: inverted element (det F <= 0) in the neo-Hookean law");
@@ -283,10 +255,9 @@ std::optional<FieldMesh> Block3d::field_mesh() const {
   for (Index a = 0; a < nodes(); ++a)
     for (int d = 0; d < 3; ++d) mesh.point_dofs(a, d) = static_cast<int>(3 * a + d);
   mesh.cells.resize(elements(), 8);
-  Index nodes_e[8], e = 0;
+  Index e = 0;
   for (Index k = 0; k < nz_; ++k)
-    for_each_in_layer([&](Index i, Index j) {
-      element_nodes(i, j, k, nodes_e);
+    for_each_in_layer(k, [&](const Index* nodes_e) {
       for (int c = 0; c < 8; ++c) mesh.cells(e, c) = static_cast<int>(nodes_e[c]);
       ++e;
     });
@@ -303,11 +274,10 @@ void Block3d::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const 
                                                (2 * kCorner[c][1] - 1) / (4.0 * element_size_.y()),
                                                (2 * kCorner[c][2] - 1) / (4.0 * element_size_.z())))
                       .transpose();
-  Index nodes_e[8], e = 0;
+  Index e = 0;
   Eigen::Matrix3d S;
   for (Index k = 0; k < nz_; ++k)
-    for_each_in_layer([&](Index i, Index j) {
-      element_nodes(i, j, k, nodes_e);
+    for_each_in_layer(k, [&](const Index* nodes_e) {
       const Eigen::Matrix3d F = positions(nodes_e, u) * grad;
       hex8_material_response(F, material_, S, nullptr);
       const Eigen::Matrix3d sigma = F * S * F.transpose() / F.determinant();
@@ -315,24 +285,11 @@ void Block3d::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const 
     });
 }
 
-SpMat Block3d::mass_matrix() const {
-  SpMat M(ndof(), ndof());
-  M.reserve(Eigen::VectorXi::Ones(ndof()));
-  for (Index i = 0; i < ndof(); ++i) M.insert(i, i) = m_[i];
-  M.makeCompressed();
-  return M;
-}
+SpMat Block3d::mass_matrix() const { return diagonal_mass_matrix(m_); }
 
-void Block3d::external_force(double, VecRef f) const {
-  f.setZero();
-  for (Index a = 0; a < nodes(); ++a) f[3 * a + 2] = -m_[3 * a + 2] * g_;
-}
+void Block3d::external_force(double, VecRef f) const { lumped_gravity_force(m_, 3, g_, f); }
 
-double Block3d::load_potential(ConstVecRef u) const {
-  double V = 0.0;
-  for (Index a = 0; a < nodes(); ++a) V += m_[3 * a + 2] * g_ * (X_(2, a) + u[3 * a + 2]);
-  return V;
-}
+double Block3d::load_potential(ConstVecRef u) const { return lumped_gravity_potential(m_, X_, u, g_); }
 
 State Block3d::initial_state() const {
   State s;

@@ -109,9 +109,9 @@ class Block3d final : public Problem {
   void element_nodes(Index i, Index j, Index k, Index out[8]) const;
   // The current positions X + U of the element's nodes.
   Hex8Nodes positions(const Index nodes_e[8], ConstVecRef u) const;
-  // visit(i, j) for every element (i, j) of an element layer (fixed k).
+  // visit(nodes) for every element of element layer k, its 8 nodes in hex8 order.
   template <class Visit>
-  void for_each_in_layer(Visit&& visit) const;
+  void for_each_in_layer(Index k, Visit&& visit) const;
   // Runs layer(k) over the element layers, one parity at a time; false when a layer threw
   // (an inverted element in the neo-Hookean law).
   template <class Layer>
@@ -119,7 +119,6 @@ class Block3d final : public Problem {
   // K's sparsity pattern: column c's rows, in increasing order, passed to visit(c, row).
   template <class Visit>
   void for_each_pattern_entry(Visit&& visit) const;
-  void prepare_pattern(SpMat& K) const;
 
   Params params_;
   Index nx_, ny_, nz_;
