@@ -11,6 +11,7 @@
 #include <string>
 
 #include "check/conformance.hpp"
+#include "core/threads.hpp"
 #include "integrators/registry.hpp"
 #include "problems/block_3d.hpp"
 #include "run/run.hpp"
@@ -66,6 +67,30 @@ TEST_CASE("block-3d: F_int = dV/du and K = dF_int/du on a random deformed config
     CHECK(K.valuePtr() == values);
     CHECK((K * d - Kd).norm() == 0.0);
   }
+}
+
+TEST_CASE("block-3d: force, tangent and energy are bitwise the same on 1 and 2 threads", "[problems][block-3d][threads]") {
+  // 16 x 8 x 8 = 1024 elements: enough for two threads (kMinElementsPerThread = 512).
+  const auto b = block({{"nx", "16"}, {"ny", "8"}, {"nz", "8"}});
+  std::mt19937_64 rng(5);
+  const nsb::Vec u = 0.001 * random_vector(b.ndof(), rng);
+  std::vector<nsb::Vec> forces;
+  std::vector<nsb::SpMat> tangents;
+  std::vector<double> energies;
+  for (int threads : {1, 2}) {
+    nsb::ThreadScope scope(threads);
+    nsb::Vec f(b.ndof());
+    b.internal_force(u, f);
+    forces.push_back(f);
+    tangents.emplace_back();
+    b.tangent_stiffness(u, tangents.back());
+    energies.push_back(b.strain_energy(u));
+  }
+  CHECK(forces[0] == forces[1]);
+  CHECK(tangents[0].nonZeros() == tangents[1].nonZeros());
+  CHECK(nsb::Vec(Eigen::Map<const nsb::Vec>(tangents[0].valuePtr(), tangents[0].nonZeros())) ==
+        nsb::Vec(Eigen::Map<const nsb::Vec>(tangents[1].valuePtr(), tangents[1].nonZeros())));
+  CHECK(energies[0] == energies[1]);
 }
 
 TEST_CASE("block-3d: a rigid motion has zero energy and zero internal force", "[problems][block-3d]") {
