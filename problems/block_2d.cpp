@@ -11,6 +11,8 @@
 #include <stdexcept>
 
 #include "core/threads.hpp"
+#include "problems/lumped_gravity.hpp"
+#include "problems/sparsity_pattern.hpp"
 
 namespace nsb {
 
@@ -306,30 +308,7 @@ void Block2d::for_each_pattern_entry(Visit&& visit) const {
 }
 
 void Block2d::tangent_stiffness(ConstVecRef u, SpMat& K) const {
-  Index nnz = 0;
-  for_each_pattern_entry([&](Index, Index) { ++nnz; });
-  bool same_pattern = K.rows() == ndof() && K.cols() == ndof() && K.isCompressed() && K.nonZeros() == nnz;
-  if (same_pattern) {
-    Index k = 0;
-    for_each_pattern_entry([&](Index col, Index row) {
-      same_pattern = same_pattern && K.innerIndexPtr()[k] == row && K.outerIndexPtr()[col] <= k &&
-                     k < K.outerIndexPtr()[col + 1];
-      ++k;
-    });
-  }
-  if (same_pattern) {
-    K.coeffs().setZero();
-  } else {
-    K.resize(ndof(), ndof());
-    K.resizeNonZeros(nnz);
-    Index k = 0;
-    for_each_pattern_entry([&](Index col, Index row) {
-      K.innerIndexPtr()[k] = row;
-      K.outerIndexPtr()[col + 1] = ++k;
-    });
-    K.outerIndexPtr()[0] = 0;
-    K.coeffs().setZero();
-  }
+  prepare_sparsity_pattern(K, ndof(), [this](auto&& visit) { for_each_pattern_entry(visit); });
   double* values = K.valuePtr();
   const auto* inner = K.innerIndexPtr();
   const auto* outer = K.outerIndexPtr();
@@ -410,24 +389,11 @@ void Block2d::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const 
   }
 }
 
-SpMat Block2d::mass_matrix() const {
-  SpMat M(ndof(), ndof());
-  M.reserve(Eigen::VectorXi::Ones(ndof()));
-  for (Index i = 0; i < ndof(); ++i) M.insert(i, i) = m_[i];
-  M.makeCompressed();
-  return M;
-}
+SpMat Block2d::mass_matrix() const { return diagonal_mass_matrix(m_); }
 
-void Block2d::external_force(double, VecRef f) const {
-  f.setZero();
-  for (Index a = 0; a < nodes(); ++a) f[2 * a + 1] = -m_[2 * a + 1] * g_;
-}
+void Block2d::external_force(double, VecRef f) const { lumped_gravity_force(m_, 2, g_, f); }
 
-double Block2d::load_potential(ConstVecRef u) const {
-  double V = 0.0;
-  for (Index a = 0; a < nodes(); ++a) V += m_[2 * a + 1] * g_ * (X_(1, a) + u[2 * a + 1]);
-  return V;
-}
+double Block2d::load_potential(ConstVecRef u) const { return lumped_gravity_potential(m_, X_, u, g_); }
 
 State Block2d::initial_state() const {
   State s;

@@ -16,8 +16,9 @@ constexpr int kCorner[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1
 constexpr int kVoigtI[6] = {0, 1, 2, 1, 0, 0};
 constexpr int kVoigtJ[6] = {0, 1, 2, 2, 2, 1};
 
-// Second Piola–Kirchhoff stress S and energy density W at F; D = dS/dE (Voigt) when asked.
-double material_response(const Eigen::Matrix3d& F, const Hex8Material& mat, Eigen::Matrix3d& S,
+}  // namespace
+
+double hex8_material_response(const Eigen::Matrix3d& F, const Hex8Material& mat, Eigen::Matrix3d& S,
                          Eigen::Matrix<double, 6, 6>* D) {
   const Eigen::Matrix3d C = F.transpose() * F;
   Eigen::Matrix3d A;
@@ -45,8 +46,6 @@ double material_response(const Eigen::Matrix3d& F, const Hex8Material& mat, Eige
                      m * (A(kVoigtI[p], kVoigtI[q]) * A(kVoigtJ[p], kVoigtJ[q]) + A(kVoigtI[p], kVoigtJ[q]) * A(kVoigtJ[p], kVoigtI[q]));
   return W;
 }
-
-}  // namespace
 
 Hex8Material Hex8Material::from_young(Hex8Law law, double E, double nu) {
   require_input(E > 0.0 && std::isfinite(E), "hex8", "E", E, "(0, inf)");
@@ -84,7 +83,7 @@ double Hex8Element::volume() const {
 double Hex8Element::energy(const Hex8Nodes& x, const Hex8Material& material) const {
   double total = 0.0;
   Eigen::Matrix3d S;
-  for (const Gauss& G : gauss_) total += G.wj * material_response(x * G.dN, material, S, nullptr);
+  for (const Gauss& G : gauss_) total += G.wj * hex8_material_response(x * G.dN, material, S, nullptr);
   return total;
 }
 
@@ -93,7 +92,7 @@ void Hex8Element::internal_force(const Hex8Nodes& x, const Hex8Material& materia
   Eigen::Matrix3d S;
   for (const Gauss& G : gauss_) {
     const Eigen::Matrix3d F = x * G.dN;
-    material_response(F, material, S, nullptr);
+    hex8_material_response(F, material, S, nullptr);
     const Eigen::Matrix<double, 3, 8> nodal = G.wj * (F * S) * G.dN.transpose();  // P grad N_a
     f += Eigen::Map<const Hex8Vector>(nodal.data());
   }
@@ -106,7 +105,7 @@ void Hex8Element::tangent(const Hex8Nodes& x, const Hex8Material& material, Hex8
   Eigen::Matrix<double, 6, 24> B;
   for (const Gauss& G : gauss_) {
     const Eigen::Matrix3d F = x * G.dN;
-    material_response(F, material, S, &D);
+    hex8_material_response(F, material, S, &D);
     // dE_IJ (Voigt) = sym(F^T dF)_IJ, dF = sum_b dx_b grad N_b^T.
     for (int b = 0; b < 8; ++b)
       for (int i = 0; i < 3; ++i)

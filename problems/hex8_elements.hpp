@@ -46,6 +46,11 @@ struct Hex8Material {
   static Hex8Material from_young(Hex8Law law, double E, double nu);
 };
 
+// Second Piola–Kirchhoff stress S and energy density W (returned) at the deformation gradient F;
+// D = dS/dE (Voigt) when D is not null. std::runtime_error for J <= 0 in the neo-Hookean law.
+double hex8_material_response(const Eigen::Matrix3d& F, const Hex8Material& material, Eigen::Matrix3d& S,
+                              Eigen::Matrix<double, 6, 6>* D);
+
 class Hex8Element {
  public:
   explicit Hex8Element(const Hex8Nodes& reference);  // std::invalid_argument if inverted
