@@ -23,10 +23,10 @@ namespace {
 
 // Elements per thread below which one thread is faster (a hex8 element's force takes about a
 // microsecond; starting a parallel loop a few).
-constexpr Index kMinElementsPerThread = 512;
+constexpr Index kMinBlockElementsPerThread = 512;
 
 // Corner c of the hex8 element in the unit cube (hex8 order), 0 or 1 along each axis.
-constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+constexpr int kBlockCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
 
 Eigen::Matrix3d tilt_rotation(double degrees) {
   // About -y, so that x turns towards +z: x -> x cos a + z sin a.
@@ -36,7 +36,7 @@ Eigen::Matrix3d tilt_rotation(double degrees) {
 // The element's reference corners: the box of size h rotated by R (its position is irrelevant).
 Hex8Nodes element_corners(const Eigen::Matrix3d& R, const Eigen::Vector3d& h) {
   Hex8Nodes X;
-  for (int c = 0; c < 8; ++c) X.col(c) = R * Eigen::Vector3d(kCorner[c][0] * h.x(), kCorner[c][1] * h.y(), kCorner[c][2] * h.z());
+  for (int c = 0; c < 8; ++c) X.col(c) = R * Eigen::Vector3d(kBlockCorner[c][0] * h.x(), kBlockCorner[c][1] * h.y(), kBlockCorner[c][2] * h.z());
   return X;
 }
 
@@ -141,7 +141,7 @@ Block3d::Block3d(const Params& p)
 }
 
 void Block3d::element_nodes(Index i, Index j, Index k, Index out[8]) const {
-  for (int c = 0; c < 8; ++c) out[c] = node(i + kCorner[c][0], j + kCorner[c][1], k + kCorner[c][2]);
+  for (int c = 0; c < 8; ++c) out[c] = node(i + kBlockCorner[c][0], j + kBlockCorner[c][1], k + kBlockCorner[c][2]);
 }
 
 Hex8Nodes Block3d::positions(const Index nodes_e[8], ConstVecRef u) const {
@@ -162,7 +162,7 @@ void Block3d::for_each_in_layer(Index k, Visit&& visit) const {
 
 template <class Layer>
 bool Block3d::for_layers_by_parity(Layer&& layer) const {
-  const int threads = threads_for(elements(), kMinElementsPerThread);
+  const int threads = threads_for(elements(), kMinBlockElementsPerThread);
   std::atomic<bool> ok{true};  // a layer that threw (an inverted element) clears it
   // Even element layers, then odd ones: layers of one parity share no node.
   for (Index parity = 0; parity < 2; ++parity)
@@ -270,9 +270,9 @@ void Block3d::cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const 
   // At the centre of the rotated box grad_X N_a = R (c_a / (4 h)), c_a = +-1 per axis.
   Eigen::Matrix<double, 8, 3> grad;
   for (int c = 0; c < 8; ++c)
-    grad.row(c) = (rotation_ * Eigen::Vector3d((2 * kCorner[c][0] - 1) / (4.0 * element_size_.x()),
-                                               (2 * kCorner[c][1] - 1) / (4.0 * element_size_.y()),
-                                               (2 * kCorner[c][2] - 1) / (4.0 * element_size_.z())))
+    grad.row(c) = (rotation_ * Eigen::Vector3d((2 * kBlockCorner[c][0] - 1) / (4.0 * element_size_.x()),
+                                               (2 * kBlockCorner[c][1] - 1) / (4.0 * element_size_.y()),
+                                               (2 * kBlockCorner[c][2] - 1) / (4.0 * element_size_.z())))
                       .transpose();
   Index e = 0;
   Eigen::Matrix3d S;

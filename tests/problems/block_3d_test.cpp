@@ -19,7 +19,7 @@
 
 namespace {
 
-nsb::Block3d block(std::map<std::string, std::string> values) {
+nsb::Block3d make_block3d(std::map<std::string, std::string> values) {
   values.emplace("nx", "3");
   values.emplace("ny", "2");
   values.emplace("nz", "2");
@@ -45,7 +45,7 @@ TEST_CASE("block-3d: F_int = dV/du and K = dF_int/du on a random deformed config
   std::mt19937_64 rng(33);
   for (const char* material : {"svk", "neo-hookean"}) {
     INFO(material);
-    const auto b = block({{"material", material}});
+    const auto b = make_block3d({{"material", material}});
     const nsb::Index n = b.ndof();
     // Strains of a few percent on elements of 0.25 m.
     const nsb::Vec u = 0.01 * random_vector(n, rng), d = random_vector(n, rng);
@@ -71,7 +71,7 @@ TEST_CASE("block-3d: F_int = dV/du and K = dF_int/du on a random deformed config
 
 TEST_CASE("block-3d: force, tangent and energy are bitwise the same on 1 and 2 threads", "[problems][block-3d][threads]") {
   // 16 x 8 x 8 = 1024 elements: enough for two threads (kMinElementsPerThread = 512).
-  const auto b = block({{"nx", "16"}, {"ny", "8"}, {"nz", "8"}});
+  const auto b = make_block3d({{"nx", "16"}, {"ny", "8"}, {"nz", "8"}});
   std::mt19937_64 rng(5);
   const nsb::Vec u = 0.001 * random_vector(b.ndof(), rng);
   std::vector<nsb::Vec> forces;
@@ -96,7 +96,7 @@ TEST_CASE("block-3d: force, tangent and energy are bitwise the same on 1 and 2 t
 TEST_CASE("block-3d: a rigid motion has zero energy and zero internal force", "[problems][block-3d]") {
   for (const char* material : {"svk", "neo-hookean"}) {
     INFO(material);
-    const auto b = block({{"material", material}});
+    const auto b = make_block3d({{"material", material}});
     const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
     const nsb::Vec u = rigid_displacement(b, Q, Eigen::Vector3d(0.3, -0.2, 1.5));
     nsb::Vec f(b.ndof());
@@ -108,7 +108,7 @@ TEST_CASE("block-3d: a rigid motion has zero energy and zero internal force", "[
 }
 
 TEST_CASE("block-3d: the lumped mass is rho W D H on each direction; gravity acts on z", "[problems][block-3d]") {
-  const auto b = block({{"W", "1.2"}, {"D", "0.4"}, {"H", "0.3"}, {"rho", "800"}});
+  const auto b = make_block3d({{"W", "1.2"}, {"D", "0.4"}, {"H", "0.3"}, {"rho", "800"}});
   CHECK(b.total_mass() == Approx(800.0 * 1.2 * 0.4 * 0.3).epsilon(1e-13));
   CHECK(b.mass_matrix().diagonal().minCoeff() > 0.0);
   nsb::Vec f(b.ndof());
@@ -121,7 +121,7 @@ TEST_CASE("block-3d: the lumped mass is rho W D H on each direction; gravity act
 }
 
 TEST_CASE("block-3d: the contact rows L, T1, T2 are the node's z, x, y against differences", "[problems][block-3d][contact]") {
-  const auto b = block({{"mu", "0.4"}, {"height", "0.05"}});
+  const auto b = make_block3d({{"mu", "0.4"}, {"height", "0.05"}});
   const nsb::Contacts& c = b.contacts();
   REQUIRE(c.has_cone());
   CHECK(c.size() == static_cast<nsb::Index>(b.contact_nodes().size()));
@@ -147,7 +147,7 @@ TEST_CASE("block-3d: the contact rows L, T1, T2 are the node's z, x, y against d
     CHECK((position(u + eps * d, 1) - position(u - eps * d, 1)) / (2.0 * eps) == Approx(T2_d[r]).epsilon(1e-8));
   }
   // mu = 0: frictionless, no tangent rows at all.
-  const auto frictionless = block({});
+  const auto frictionless = make_block3d({});
   CHECK(frictionless.contacts().tangent.rows() == 0);
   CHECK(frictionless.contacts().tangent2.rows() == 0);
   CHECK(!frictionless.contacts().has_friction());
@@ -155,7 +155,7 @@ TEST_CASE("block-3d: the contact rows L, T1, T2 are the node's z, x, y against d
 
 TEST_CASE("block-3d: in free flight (mu = 0) the momentum changes by gravity only, the angular momentum not at all",
           "[problems][block-3d]") {
-  const auto b = block({{"height", "5"}, {"vx", "1"}, {"vy", "-0.5"}, {"spin", "3"}});
+  const auto b = make_block3d({{"height", "5"}, {"vx", "1"}, {"vy", "-0.5"}, {"spin", "3"}});
   // CD-Lagrange reports (U_k+1, P_k+3/2): from its first step on, P gains dt M g per step, and
   // J_c of that pair is its exact discrete invariant in free flight (the drift keeps
   // x_k x P_k+1/2, the kick adds x_k+1 x dt F_ext, whose moment about x_c(U_k+1) is zero, and
@@ -179,7 +179,7 @@ TEST_CASE("block-3d: in free flight (mu = 0) the momentum changes by gravity onl
 }
 
 TEST_CASE("block-3d: the field mesh is the hexahedra; Cauchy stress zero at rest, finite deformed", "[problems][block-3d][fields]") {
-  const auto b = block({});
+  const auto b = make_block3d({});
   const auto mesh = b.field_mesh();
   REQUIRE(mesh);
   CHECK(mesh->dimension == 3);
@@ -200,7 +200,7 @@ TEST_CASE("block-3d: the field mesh is the hexahedra; Cauchy stress zero at rest
 
 TEST_CASE("block-3d: bad input is one line naming the parameter and its range", "[problems][block-3d][bad-input]") {
   const auto text = [](std::map<std::string, std::string> values) {
-    return nsb::test::input_error_text_of([&] { block(std::move(values)); });
+    return nsb::test::input_error_text_of([&] { make_block3d(std::move(values)); });
   };
   CHECK(text({{"nx", "0"}}) == "parameter 'nx' = 0 is outside its valid range integer in [1, 1024]");
   CHECK(text({{"nz", "0"}}) == "parameter 'nz' = 0 is outside its valid range integer in [1, 1024]");
