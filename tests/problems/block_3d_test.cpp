@@ -127,9 +127,9 @@ TEST_CASE("block-3d: the contact rows L, T1, T2 are the node's z, x, y against d
   CHECK(c.size() == static_cast<nsb::Index>(b.contact_nodes().size()));
   CHECK(c.size() == b.nodes() - 2);  // the 3 x 2 x 2 mesh has 2 interior nodes
   // L and T1 by the conformance check (gaps and slides at random admissible configurations).
-  const nsb::Verdict rows = nsb::check_contact_rows(b, nsb::Vec::Zero(b.ndof()));
+  const nsb::CheckVerdict rows = nsb::check_contact_rows(b, nsb::Vec::Zero(b.ndof()));
   INFO(rows.figure);
-  CHECK(rows.outcome == nsb::Verdict::Outcome::Pass);
+  CHECK(rows.outcome == nsb::CheckVerdict::Outcome::Pass);
   // All three against the node positions x_a = X_a + u_a along a random direction.
   std::mt19937_64 rng(7);
   const nsb::Vec u = 0.01 * random_vector(b.ndof(), rng), d = random_vector(b.ndof(), rng);
