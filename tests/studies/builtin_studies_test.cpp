@@ -122,3 +122,40 @@ TEST_CASE("built-in study hard: every case run by every registered integrator at
   CHECK(spec.problems[2].label == "10^4 impacts, e = 1");
   CHECK(spec.problems[2].full_only);
 }
+
+namespace nsb {
+extern const StudyEntry energy_study;  // studies/energy.cpp, while it exists
+}
+
+// energy.toml's cases are those of the C++ study it replaces (default and --full): the same
+// problem with the same parameters, integrator and its parameters, step and end time, in the
+// same order. The C++ study ends the energy-target case (bouncing mass, e = 0.9) at its 11th
+// impact computed inside the run (its case says t_end 0); the file says end_at_impact = 11.
+TEST_CASE("built-in study energy: energy.toml's cases are the C++ study's, default and --full", "[studies]") {
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/energy.toml");
+  const auto& file_entry = *std::find_if(nsb::study_registry().begin(), nsb::study_registry().end(),
+                                         [](const nsb::StudyEntry& e) { return e.name == "energy"; });
+  CHECK(file_entry.source == "studies/builtin/energy.toml");
+  for (const bool full : {false, true}) {
+    INFO("full " << full);
+    const auto mine = nsb::study_cases(file_entry, {full});
+    const auto theirs = nsb::study_cases(nsb::energy_study, {full});
+    REQUIRE(mine.size() == theirs.size());
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      INFO("case " << k << ": " << theirs[k].dump());
+      const nsb::FileProblem& p = spec.problems[mine[k]["problem"].get<std::size_t>()];
+      const nsb::FileIntegrator& it = spec.integrators[mine[k]["integrator"].get<std::size_t>()];
+      CHECK(p.parameters == theirs[k]["params"].get<std::map<std::string, std::string>>());
+      CHECK(it.name == theirs[k]["integrator"].get<std::string>());
+      CHECK(it.sweep_for(p.label).parameters == theirs[k]["variant"].get<std::map<std::string, std::string>>());
+      CHECK(mine[k]["dt"].get<double>() == theirs[k]["dt"].get<double>());
+      const double t_end = mine[k].contains("t_end") ? mine[k]["t_end"].get<double>() : spec.t_end_of(p);
+      if (p.label == "bouncing mass, e = 0.9") {
+        CHECK(theirs[k]["t_end"].get<double>() == 0.0);
+        CHECK(t_end == nsb::make_problem(p.name, p.parameters)->impact_times(1e9).at(10));
+      } else {
+        CHECK(t_end == theirs[k]["t_end"].get<double>());
+      }
+    }
+  }
+}
