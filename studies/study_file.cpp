@@ -727,14 +727,32 @@ std::string parameters_text(const FileIntegrator& fi, const std::string& problem
   return fmt::format("{}", fmt::join(items, " "));
 }
 
+// The columns "parameter NAME": each parameter the file sets on its problems.
+std::vector<Column> parameter_columns(const StudySpec& spec) {
+  std::vector<Column> columns;
+  for (const auto& name : problem_parameter_names(spec)) columns.push_back({"parameter " + name, "", "", "the problem's " + name});
+  return columns;
+}
+
 // The run columns of this study's own: its counters (Work::extra, n/a where a scheme does not
 // count one) and the problems' parameters ("parameter NAME": as the file sets it, n/a where it
 // does not).
 std::vector<Column> study_run_columns(const StudySpec& spec) {
   std::vector<Column> columns;
   for (const auto& name : spec.counters) columns.push_back({name, "", "{:.3g}", "the integrator's work counter " + name});
-  for (const auto& name : problem_parameter_names(spec)) columns.push_back({"parameter " + name, "", "", "the problem's " + name});
+  const std::vector<Column> parameters = parameter_columns(spec);
+  columns.insert(columns.end(), parameters.begin(), parameters.end());
   return columns;
+}
+
+// The cells of the columns "parameter NAME" for a run on `p`.
+std::vector<Cell> parameter_cells(const StudySpec& spec, const FileProblem& p) {
+  std::vector<Cell> cells;
+  for (const auto& name : problem_parameter_names(spec)) {
+    const auto it = p.parameters.find(name);
+    cells.push_back(it == p.parameters.end() ? Cell{} : Cell{it->second});
+  }
+  return cells;
 }
 
 std::vector<Cell> study_run_cells(const StudySpec& spec, const Json& c, const Json& r) {
@@ -742,11 +760,8 @@ std::vector<Cell> study_run_cells(const StudySpec& spec, const Json& c, const Js
   const Json& f = r.contains("run") ? r["run"] : Json::object();
   for (std::size_t k = 0; k < spec.counters.size(); ++k)
     cells.push_back(f.contains("counters") ? number_cell(f["counters"][k]) : Cell{});
-  const FileProblem& p = spec.problems[c["problem"].get<std::size_t>()];
-  for (const auto& name : problem_parameter_names(spec)) {
-    const auto it = p.parameters.find(name);
-    cells.push_back(it == p.parameters.end() ? Cell{} : Cell{it->second});
-  }
+  const std::vector<Cell> parameters = parameter_cells(spec, spec.problems[c["problem"].get<std::size_t>()]);
+  cells.insert(cells.end(), parameters.begin(), parameters.end());
   return cells;
 }
 
@@ -790,8 +805,8 @@ Table history_table(const StudySpec& spec, const FileTable& d, const std::vector
   const bool samples = d.rows == "samples";
   Table all;
   all.columns = samples ? samples_columns() : history_columns();
-  const std::vector<std::string> parameters = problem_parameter_names(spec);
-  for (const auto& name : parameters) all.columns.push_back({"parameter " + name, "", "", "the problem's " + name});
+  const std::vector<Column> parameters = parameter_columns(spec);
+  all.columns.insert(all.columns.end(), parameters.begin(), parameters.end());
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Json& r = results[k];
     const char* key = samples ? "samples" : "intervals";
@@ -809,10 +824,8 @@ Table history_table(const StudySpec& spec, const FileTable& d, const std::vector
         row.insert(row.end(), {number_cell(h["energy"][i]), number_cell(h["penetration"][i]), fi.name, variant,
                                h.contains("momentum") ? number_cell(h["momentum"][i]) : Cell{}});
       }
-      for (const auto& name : parameters) {
-        const auto it = p.parameters.find(name);
-        row.push_back(it == p.parameters.end() ? Cell{} : Cell{it->second});
-      }
+      const std::vector<Cell> own = parameter_cells(spec, p);
+      row.insert(row.end(), own.begin(), own.end());
       all.add_row(std::move(row));
     }
   }
