@@ -9,7 +9,9 @@
 //   impact-time  max over the first `count` impacts of |t_i (scheme) - t_i (exact)|, t_i the
 //                end of the first step with an impulse after a step without one [s].
 //   energy       (E - E0)/|E0| (E0 = 0: the problem's energy_scale(), run/run.hpp), E the scheme's own energy: max |.|, final, or drift (its
-//                least-squares slope in time, 1/s).
+//                least-squares slope in time, 1/s); with `every` T, at the first step past each
+//                from + k T (k = 1, 2, ... up to t_end, to half a step): count, first, final, or
+//                drift (the slope against k, per T).
 //   momentum     max over the samples of |P - P0 - sum_k (1^T F_ext(t_k) dt_k + 1^T L^T Lambda_k)|
 //                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
 //                balances momentum exactly when the internal forces sum to zero.
@@ -47,7 +49,6 @@
 #include <cmath>
 #include <memory>
 #include <optional>
-#include <set>
 
 #include "core/output.hpp"
 #include "integrators/registry.hpp"
@@ -82,9 +83,6 @@ ReferenceRequest reference_request(const StudySpec& spec, const FileProblem& p) 
   return {p.name, p.parameters, r.integrator, r.parameters, r.dt, spec.t_end_of(p), r.sample_every};
 }
 
-// Whether the default set (full = false) or --full runs the problem.
-bool runs_in(const FileProblem& p, bool full) { return full ? !p.default_only : !p.full_only; }
-
 // The end time of a case: its problem's, or its full_t_end under --full.
 double case_t_end(const StudySpec& spec, const FileProblem& p, const Json& c) {
   return c.contains("t_end") ? c["t_end"].get<double>() : spec.t_end_of(p);
@@ -93,28 +91,57 @@ double case_t_end(const StudySpec& spec, const FileProblem& p, const Json& c) {
 // A reference run once per problem and cached (not the exact solution, not stepped in lockstep).
 bool cached(const FileReference* r) { return r && !r->exact && !r->lockstep; }
 
+// Whether an [[exclude]] rule removes the run of integrator `entry` on problem `p` at
+// `stable_steps` (NaN: a run not set as a fraction of the stable step).
+bool excluded(const FileExclusion& x, const IntegratorEntry& entry, const FileProblem& p, double stable_steps, bool full) {
+  if ((x.default_only && full) || (x.full_only && !full)) return false;
+  const std::string kind = entry.reference ? "references" : entry.peer ? "peers" : "schemes";
+  if (x.integrators != kind) return false;
+  if (!x.above.empty()) {
+    const Params params(find_problem(p.name).parameters(), p.parameters);
+    for (const auto& [name, value] : x.above)
+      if (!params.values().count(name) || !(params.real(name) > value)) return false;
+  }
+  return x.stable_steps_except.empty() ||
+         std::find(x.stable_steps_except.begin(), x.stable_steps_except.end(), stable_steps) == x.stable_steps_except.end();
+}
+
+// The runs of integrator i on problem p: its sweep's steps (or tolerances), then its stable-step
+// fractions, less those an [[exclude]] rule removes.
+void add_cases(const StudySpec& spec, std::size_t p, std::size_t i, bool full, std::vector<Json>& cases) {
+  const FileProblem& problem = spec.problems[p];
+  const IntegratorEntry& entry = find_integrator(spec.integrators[i].name);
+  const auto kept = [&](double stable_steps) {
+    return std::none_of(spec.exclusions.begin(), spec.exclusions.end(),
+                        [&](const FileExclusion& x) { return excluded(x, entry, problem, stable_steps, full); });
+  };
+  const double t_end = spec.t_end_of(problem, full);
+  const auto push = [&](Json c) {
+    c["file_hash"] = spec.hash;
+    if (t_end != spec.t_end_of(problem)) c["t_end"] = t_end;  // full_t_end
+    cases.push_back(std::move(c));
+  };
+  const FileSweep& s = spec.integrators[i].sweep_for(problem.label);
+  const bool tol = !s.tolerances.empty();
+  for (double x : tol ? s.tolerances : full && !s.full_steps.empty() ? s.full_steps : s.steps)
+    if (kept(kNaN)) push({{"problem", p}, {"integrator", i}, {"dt", tol ? s.dt : x}, {"tol", tol ? Json(x) : Json(nullptr)}});
+  if (s.stable_fractions.empty()) return;
+  const double stable = make_problem(problem.name, problem.parameters)->stable_step();
+  for (double f : s.stable_fractions)
+    if (kept(f)) push({{"problem", p}, {"integrator", i}, {"dt", f * stable}, {"tol", nullptr}, {"stable_steps", f}});
+}
+
 std::vector<Json> file_cases(const StudySpec& spec, bool full) {
   std::vector<Json> cases;
-  for (std::size_t p = 0; p < spec.problems.size(); ++p)
-    for (std::size_t i = 0; i < spec.integrators.size() && runs_in(spec.problems[p], full); ++i) {
-      const FileSweep& s = spec.integrators[i].sweep_for(spec.problems[p].label);
-      const bool tol = !s.tolerances.empty();
-      const std::size_t first = cases.size();
-      for (double x : tol ? s.tolerances : full && !s.full_steps.empty() ? s.full_steps : s.steps)
-        cases.push_back({{"problem", p}, {"integrator", i}, {"dt", tol ? s.dt : x}, {"tol", tol ? Json(x) : Json(nullptr)},
-                         {"file_hash", spec.hash}});
-      if (!s.stable_fractions.empty()) {
-        const double stable = make_problem(spec.problems[p].name, spec.problems[p].parameters)->stable_step();
-        for (double f : s.stable_fractions)
-          cases.push_back({{"problem", p}, {"integrator", i}, {"dt", f * stable}, {"tol", nullptr}, {"stable_steps", f},
-                           {"file_hash", spec.hash}});
-      }
-      if (spec.t_end_of(spec.problems[p], full) != spec.t_end_of(spec.problems[p]))  // full_t_end
-        for (std::size_t k = first; k < cases.size(); ++k) cases[k]["t_end"] = spec.t_end_of(spec.problems[p], full);
+  const std::size_t np = spec.problems.size(), ni = spec.integrators.size();
+  for (std::size_t outer = 0; outer < (spec.integrator_major ? ni : np); ++outer)
+    for (std::size_t inner = 0; inner < (spec.integrator_major ? np : ni); ++inner) {
+      const std::size_t p = spec.integrator_major ? inner : outer, i = spec.integrator_major ? outer : inner;
+      if (spec.runs(spec.problems[p], full)) add_cases(spec, p, i, full, cases);
     }
   // A reference integrator runs once per problem, here, before the cases that read it.
   for (const auto& p : spec.problems)
-    if (cached(spec.reference_of(p)) && runs_in(p, full)) try {
+    if (cached(spec.reference_of(p)) && spec.runs(p, full)) try {
         cached_reference(reference_cache_dir(), reference_request(spec, p));
       } catch (const InputError& e) {
         throw InputError(fmt::format("study {}, reference run on {}: {}", spec.name, p.label, e.what()));
@@ -345,7 +372,28 @@ struct Accumulator {
   ContactPhases impacts;
   Polyline graph;  // Hausdorff: the run's samples
   FlightEnergies flights;
+  std::vector<double> periodic;  // Energy with `every`: the error at each sample time from + k every
 };
+
+// An energy measure with `every` after a step ending at t (nominal step dt): its error e at each
+// sample time t_k = from + k every (k = 1, 2, ..., t_k <= t_end) the step reaches, to half a step
+// (t >= t_k - dt/2): several when a step spans more than one.
+void sample_periodic(const FileMeasure& m, Accumulator& a, double t, double dt, double t_end, double e) {
+  const auto next = [&] { return m.from + static_cast<double>(a.periodic.size() + 1) * m.every; };
+  while (next() <= t_end && t >= next() - 0.5 * dt) a.periodic.push_back(e);
+}
+
+// Its value: the number of samples, the first, the last (final), or the least-squares slope
+// against k (drift, per `every`); NaN without the samples it needs.
+double periodic_value(const std::string& norm, const std::vector<double>& e) {
+  if (norm == "count") return static_cast<double>(e.size());
+  if (e.empty()) return kNaN;
+  if (norm == "first") return e.front();
+  if (norm == "final") return e.back();
+  std::vector<double> k(e.size());
+  for (std::size_t i = 0; i < k.size(); ++i) k[i] = static_cast<double>(i + 1);
+  return fit_line(k, e).slope;
+}
 
 Json run_file_case(const StudySpec& spec, const Json& c) {
   const FileProblem& fp = spec.problems[c["problem"].get<std::size_t>()];
@@ -358,7 +406,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const double t_end = case_t_end(spec, fp, c);
   options.t_end = t_end;
   options.record_series = false;
-  options.max_force_evaluations = spec.budget_of(fp);
+  options.max_force_evaluations = spec.budget_of(fp, options.dt, t_end);
   options.sample_every = spec.check_every;  // the driver checks the state for NaN at its samples
   if (const FileReference* ref = spec.reference_of(fp); ref && ref->lockstep && fi.name == ref->integrator)  // its error is 0 by construction
     return not_run("the reference of this problem");
@@ -400,6 +448,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   });
   RunFigures figures(*problem, spec, fp, t_end, e0, e_scale);
   double e1 = kNaN;  // the energy after the first step
+  // An energy measure's error of E: relative to E_1 (relative_to = "first step") or E0 (its scale).
+  const auto energy_error = [&](const FileMeasure& fm, double e) { return fm.from_first_step ? (e - e1) / std::abs(e1) : (e - e0) / e_scale; };
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights = FlightEnergies(*problem, t_end, spec.measures[m].count);
 
@@ -428,7 +478,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         const Energy energy = it.energy();
         a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy));
       } else if (fm.kind == MeasureKind::Energy) {
-        e = fm.from_first_step ? (it.energy().total() - e1) / std::abs(e1) : (it.energy().total() - e0) / e_scale;
+        e = energy_error(fm, it.energy().total());
         a.drift.add(s.t, e);
         e = fm.norm == "final" ? e : std::abs(e);
       } else if (fm.kind == MeasureKind::Momentum) {
@@ -453,6 +503,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) acc[m].impacts.add(s.t, contact);
       if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights.add(s.t, it.energy().total());
+      if (on[m] && spec.measures[m].kind == MeasureKind::Energy && spec.measures[m].every > 0.0)
+        sample_periodic(spec.measures[m], acc[m], s.t, options.dt, t_end, energy_error(spec.measures[m], it.energy().total()));
     }
     growth.add(it, info.dt);
     if (stop) stop->add(s);
@@ -475,7 +527,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     out["status"] = "penetration";
     out["message"] = fmt::format("max penetration {:.3g} > {}", r.max_penetration, spec.max_penetration_of(fp));
   }
-  if (r.status != RunStatus::Ok) return out;
+  if (r.status != RunStatus::Ok && !(r.status == RunStatus::OverBudget && spec.measure_over_budget)) return out;
   if (step % spec.sample_every != 0) sample(*integrator);
   history.finish();
   Json values = Json::array();
@@ -501,6 +553,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         break;
       }
       case MeasureKind::Energy:
+        if (fm.every > 0.0) {
+          v = periodic_value(fm.norm, a.periodic);
+          break;
+        }
         v = fm.norm == "max"      ? a.largest
             : fm.norm == "final"  ? a.last
             : fm.norm == "final abs" ? std::abs(a.last)
@@ -727,16 +783,15 @@ std::string parameters_text(const FileIntegrator& fi, const std::string& problem
   return fmt::format("{}", fmt::join(items, " "));
 }
 
-// The columns "parameter NAME": each parameter the file sets on its problems.
+// The columns "parameter NAME" (parameter_column_names).
 std::vector<Column> parameter_columns(const StudySpec& spec) {
   std::vector<Column> columns;
-  for (const auto& name : problem_parameter_names(spec)) columns.push_back({"parameter " + name, "", "", "the problem's " + name});
+  for (const auto& name : parameter_column_names(spec)) columns.push_back({name, "", "", "the problem's parameter"});
   return columns;
 }
 
 // The run columns of this study's own: its counters (Work::extra, n/a where a scheme does not
-// count one) and the problems' parameters ("parameter NAME": as the file sets it, n/a where it
-// does not).
+// count one) and the problems' parameters ("parameter NAME", empty where a problem has none).
 std::vector<Column> study_run_columns(const StudySpec& spec) {
   std::vector<Column> columns;
   for (const auto& name : spec.counters) columns.push_back({name, "", "{:.3g}", "the integrator's work counter " + name});
@@ -745,12 +800,24 @@ std::vector<Column> study_run_columns(const StudySpec& spec) {
   return columns;
 }
 
-// The cells of the columns "parameter NAME" for a run on `p`.
-std::vector<Cell> parameter_cells(const StudySpec& spec, const FileProblem& p) {
+// The cells of the parameter columns `names` ("parameter NAME") for a run on p: its value
+// (integers and reals as numbers, choices as text), empty where p has no such parameter.
+std::vector<Cell> parameter_cells(const FileProblem& p, const std::vector<std::string>& names) {
+  const ParamSpecs specs = find_problem(p.name).parameters();
+  const Params params(specs, p.parameters);
   std::vector<Cell> cells;
-  for (const auto& name : problem_parameter_names(spec)) {
-    const auto it = p.parameters.find(name);
-    cells.push_back(it == p.parameters.end() ? Cell{} : Cell{it->second});
+  for (const std::string& name : names) {
+    const auto s = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& q) { return "parameter " + q.name == name; });
+    if (s == specs.end()) {
+      cells.emplace_back();
+    } else if (s->kind == ParamSpec::Kind::Integer) {
+      cells.emplace_back(params.integer(s->name));
+    } else if (s->kind == ParamSpec::Kind::Real) {
+      const auto v = params.optional_real(s->name);
+      cells.push_back(v ? Cell{*v} : Cell{});
+    } else {
+      cells.emplace_back(params.choice(s->name));
+    }
   }
   return cells;
 }
@@ -760,7 +827,7 @@ std::vector<Cell> study_run_cells(const StudySpec& spec, const Json& c, const Js
   const Json& f = r.contains("run") ? r["run"] : Json::object();
   for (std::size_t k = 0; k < spec.counters.size(); ++k)
     cells.push_back(f.contains("counters") ? number_cell(f["counters"][k]) : Cell{});
-  const std::vector<Cell> parameters = parameter_cells(spec, spec.problems[c["problem"].get<std::size_t>()]);
+  const std::vector<Cell> parameters = parameter_cells(spec.problems[c["problem"].get<std::size_t>()], parameter_column_names(spec));
   cells.insert(cells.end(), parameters.begin(), parameters.end());
   return cells;
 }
@@ -770,9 +837,10 @@ std::vector<Cell> run_cells(const StudySpec& spec, const Json& c, const Json& r)
   const FileIntegrator& fi = spec.integrators[c["integrator"].get<std::size_t>()];
   const Json& f = r.contains("run") ? r["run"] : Json::object();
   const auto value = [&](const char* key) { return f.contains(key) ? number_cell(f[key]) : Cell{}; };
-  return {p.name, c.contains("stable_steps") ? Cell{c["stable_steps"].get<double>()} : Cell{}, case_t_end(spec, p, c),
+  const double t_end = case_t_end(spec, p, c);
+  return {p.name, c.contains("stable_steps") ? Cell{c["stable_steps"].get<double>()} : Cell{}, t_end,
           r["status"].get<std::string>(), value("t_reached"), f.contains("impacts") ? Cell{f["impacts"].get<long>()} : Cell{},
-          value("switches"), value("missed_switches"), spec.budget_of(p), value("max_penetration"), spec.max_penetration_of(p),
+          value("switches"), value("missed_switches"), spec.budget_of(p, c["dt"].get<double>(), t_end), value("max_penetration"), spec.max_penetration_of(p),
           value("energy_scale"), value("energy_growth"), spec.energy_blow_up_of(p), value("final_energy_error"),
           f.contains("note") ? Cell{f["note"].get<std::string>()} : Cell{}, fi.name, parameters_text(fi, p.label),
           value("min_step"), value("max_step")};
@@ -807,6 +875,7 @@ Table history_table(const StudySpec& spec, const FileTable& d, const std::vector
   all.columns = samples ? samples_columns() : history_columns();
   const std::vector<Column> parameters = parameter_columns(spec);
   all.columns.insert(all.columns.end(), parameters.begin(), parameters.end());
+  const std::vector<std::string> parameter_names = parameter_column_names(spec);
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Json& r = results[k];
     const char* key = samples ? "samples" : "intervals";
@@ -816,6 +885,7 @@ Table history_table(const StudySpec& spec, const FileTable& d, const std::vector
     const FileIntegrator& fi = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
     const std::string integrator = shown_label(fi, p.label), variant = parameters_text(fi, p.label);
     const Json& h = r["run"][key];
+    const std::vector<Cell> own = parameter_cells(p, parameter_names);
     for (std::size_t i = 0; i < h["t"].size(); ++i) {
       std::vector<Cell> row = {p.label, p.name, integrator, run_label(cases[k]), number_cell(h["t"][i])};
       if (samples) {
@@ -824,7 +894,6 @@ Table history_table(const StudySpec& spec, const FileTable& d, const std::vector
         row.insert(row.end(), {number_cell(h["energy"][i]), number_cell(h["penetration"][i]), fi.name, variant,
                                h.contains("momentum") ? number_cell(h["momentum"][i]) : Cell{}});
       }
-      const std::vector<Cell> own = parameter_cells(spec, p);
       row.insert(row.end(), own.begin(), own.end());
       all.add_row(std::move(row));
     }
@@ -898,7 +967,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
                {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
   for (const auto& m : spec.measures)
-    t.columns.push_back({m.label, is_event_time(m.kind) ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" ? "1/s" : "",
+    t.columns.push_back({m.label, is_event_time(m.kind) ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" && m.every == 0.0 ? "1/s" : "",
                          "{:.3e}", ""});
   t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", "", true}, {"steps", "", "", ""},
                                      {"F_int evals", "", "", "internal force evaluations"},
@@ -1075,11 +1144,12 @@ const std::vector<std::string>& samples_column_names() {
   return names;
 }
 
-std::vector<std::string> problem_parameter_names(const StudySpec& spec) {
-  std::set<std::string> names;
+std::vector<std::string> parameter_column_names(const StudySpec& spec) {
+  std::vector<std::string> names;
   for (const auto& p : spec.problems)
-    for (const auto& [name, value] : p.parameters) names.insert(name);
-  return {names.begin(), names.end()};
+    for (const auto& s : find_problem(p.name).parameters())
+      if (std::find(names.begin(), names.end(), "parameter " + s.name) == names.end()) names.push_back("parameter " + s.name);
+  return names;
 }
 
 StudyEntry file_study(const StudySpec& spec) {
