@@ -223,7 +223,7 @@ TEST_CASE("study file: errors name FILE:LINE and the key path and what is wrong 
   CHECK_THAT(error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2]\nper_problem = { chain = { steps = [1e-3] } }")),
              StartsWith("f.toml:12: integrator[0].per_problem.chain: unknown key (nearest valid key: bouncing-mass)"));
   CHECK_THAT(error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"energy\"\nnorm = \"l2\"")),
-             StartsWith("f.toml:18: measure[0].norm: 'l2' is not valid") && Contains("valid: max, final, drift"));
+             StartsWith("f.toml:18: measure[0].norm: 'l2' is not valid") && Contains("valid: max, final, final abs, drift, offset"));
   CHECK_THAT(error_of("[study]\ntitle = 1\n"), StartsWith("f.toml:2: study.title: expected a string, got an integer"));
 }
 
@@ -1111,13 +1111,13 @@ TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, c
   CHECK(nsb::parse_study_text(history, "f.toml", false).tables.at(0).rows == "history");
   CHECK_THAT(error_of(history + "problems = [\"nope\"]\n"),
              StartsWith("f.toml:23: table[0].problems[0]: 'nope' is not valid (nearest: bouncing-mass); valid: bouncing-mass"));
-  CHECK_THAT(error_of(replaced(history, "rows = \"history\"", "rows = \"case\"\nproblems = [\"bouncing-mass\"]")),
-             StartsWith("f.toml:22: table[0].problems: only a history table picks its problems; valid: rows = \"history\""));
+  CHECK_THAT(error_of(replaced(history, "rows = \"history\"", "rows = \"group\"\nproblems = [\"bouncing-mass\"]")),
+             StartsWith("f.toml:22: table[0].problems: only a table of runs picks its problems; valid: rows = \"case\", \"history\" or \"samples\""));
   CHECK_THAT(error_of(replaced(history, "\"penetration\"]", "\"steps\"]")),
              StartsWith("f.toml:22: table[0].columns[1]: 'steps' is not valid (nearest: "));
   const std::string figure = "[[figure]]\nid = \"d\"\ntitle = \"d\"\nx = \"t\"\ny = \"energy deviation\"\ntable = ";
   CHECK_THAT(error_of(history + figure + "\"runs\"\n"),
-             StartsWith("f.toml:28: figure[0].table: 'runs' is no declared history table; valid: h"));
+             StartsWith("f.toml:28: figure[0].table: 'runs' is no declared history or samples table; valid: h"));
   CHECK_THAT(error_of(history + figure + "\"h\"\n"),
              StartsWith("f.toml:27: figure[0].y: 'energy deviation' is not a column of table 'h'; valid: t, penetration"));
   CHECK_THAT(error_of(history + replaced(figure, "\"energy deviation\"", "\"err\"") + "\"h\"\n"),
@@ -1312,14 +1312,6 @@ TEST_CASE("study file: a run without an error (over budget) is not reached, not 
 
 namespace {
 
-// The column of a declared table by header.
-std::size_t column_at(const nsb::Table& t, const std::string& header) {
-  for (std::size_t k = 0; k < t.columns.size(); ++k)
-    if (t.columns[k].name == header) return k;
-  FAIL("no column " << header << " in " << t.id);
-  return 0;
-}
-
 const std::string kLongTime = quick_study("1.0", "history_intervals = 10\ncounters = [\"no_root_steps\"]\n") + R"(
 [[problem]]
 name = "bouncing-mass"
@@ -1394,7 +1386,7 @@ TEST_CASE("study file: errors from the first step, flight energies, a momentum s
   const auto tables = run_all(spec, &results);
   const nsb::Table& runs = table(tables, "runs");
   REQUIRE(runs.rows.size() == 2);  // the target problem's alone
-  const auto cell = [&](std::size_t row, const std::string& header) { return runs.rows[row][column_at(runs, header)]; };
+  const auto cell = [&](std::size_t row, const std::string& header) { return runs.rows[row][column(runs, header)]; };
   // Moreau-Jean: the offset is its first step's energy change, relative to E0.
   auto mj = nsb::make_integrator("moreau-jean");
   mj->init(*target, target->initial_state());
@@ -1409,18 +1401,19 @@ TEST_CASE("study file: errors from the first step, flight energies, a momentum s
   CHECK(std::holds_alternative<std::monostate>(cell(0, "no_root_steps")));  // moreau-jean counts none
   CHECK(std::get<std::string>(cell(0, "integrator name")) == "moreau-jean");
   CHECK(std::get<std::string>(cell(0, "parameters")) == "default");
-  CHECK(std::get<std::string>(cell(0, "parameter e")) == "0.9");
+  CHECK(std::get<double>(cell(0, "parameter e")) == 0.9);  // a real parameter: a number
   // newmark-lm declines e = 0.9: what was asked kept, what a run measures n/a (not 0 steps).
   CHECK_THAT(std::get<std::string>(cell(1, "status")), Catch::StartsWith("n/a: "));
   CHECK(std::get<double>(cell(1, "t_end")) == spec.problems[0].t_end);
   CHECK(std::holds_alternative<std::monostate>(cell(1, "steps")));
   CHECK(std::holds_alternative<std::monostate>(cell(1, "flights")));
-  // The chain (no external force): Moreau-Jean balances momentum; 10 intervals, 10 samples.
+  // The chain (no external force): Moreau-Jean balances momentum; 10 intervals; 11 samples (the
+  // first step's, then at or after each k t_end / 10, k = 1..10: the last step reaches t_end).
   const nsb::Table& momentum = table(tables, "momentum");
   REQUIRE(momentum.rows.size() == 10);  // moreau-jean's (newmark-lm declines the chain too)
   for (const auto& row : momentum.rows) CHECK(std::get<double>(row[2]) < 1e-12);
   const nsb::Table& ratio = table(tables, "ratio");
-  REQUIRE(ratio.rows.size() == 10);
+  REQUIRE(ratio.rows.size() == 11);
   CHECK(std::get<double>(ratio.rows[0][1]) == Approx(0.02));  // the first step's
   CHECK(std::get<double>(ratio.rows[1][1]) >= 0.1);           // then at or after k t_end / 10
   CHECK(std::get<double>(ratio.rows[0][2]) == Approx(1.0).epsilon(1e-2));
@@ -1451,6 +1444,8 @@ parameters = { momentum = "talk" }
 name = "cd-lagrange-adaptive"
 label = "variational"
 parameters = { momentum = "variational" }
+[[measure]]
+kind = "energy"
 )";
   const nsb::StudySpec spec = nsb::parse_study_text(all, "f.toml", false);
   const auto& registry = nsb::integrator_registry();
@@ -1504,8 +1499,8 @@ parameters = { momentum = "variational" }
              StartsWith("f.toml:23: table[0].declined: only a table of one row per run shows declined runs; valid: rows = \"case\""));
   CHECK_THAT(error_of(declared + "rows = \"group\"\nproblems = [\"bouncing-mass\"]\n"),
              StartsWith("f.toml:23: table[0].problems: only a table of runs picks its problems"));
-  CHECK_THAT(error_of(replaced(declared, "columns = [\"problem\"]", "columns = [\"parameter h0\"]")),
-             StartsWith("f.toml:21: table[0].columns[0]: 'parameter h0' is not valid (nearest: parameter e)"));
+  CHECK_THAT(error_of(replaced(declared, "columns = [\"problem\"]", "columns = [\"parameter wall\"]")),
+             StartsWith("f.toml:21: table[0].columns[0]: 'parameter wall' is not valid (nearest: parameter "));
   const std::string figure = "[[figure]]\nid = \"f\"\ntitle = \"f\"\nx = \"dt\"\ny = \"steps\"\nsmall_multiples = 1\n";
   CHECK_THAT(error_of(kMinimal + figure), StartsWith("f.toml:23: figure[0].small_multiples: expected a boolean, got an integer"));
   CHECK_THAT(error_of(kMinimal + replaced(figure, "small_multiples", "deviation")),
