@@ -53,6 +53,13 @@ std::vector<double> BouncingMass::impact_times(double t_end) const {
   return times;
 }
 
+std::vector<double> BouncingMass::energies_after_impacts(double t_end) const {
+  std::vector<double> energies;
+  const std::size_t impacts = impact_times(t_end).size();
+  for (std::size_t i = 1; i <= impacts; ++i) energies.push_back(energy_after_impact(static_cast<int>(i)));
+  return energies;
+}
+
 double BouncingMass::zeno_time() const {
   if (e_ == 1.0) return std::numeric_limits<double>::infinity();
   return t1_ + 2.0 * e_ * w1_ / (g_ * (1.0 - e_));

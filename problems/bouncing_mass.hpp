@@ -34,6 +34,7 @@ class BouncingMass final : public RigidProblem {
   void observe(const State& s, std::span<double> out) const override;
   std::optional<State> exact_state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;  // up to 1000, before the Zeno time
+  std::vector<double> energies_after_impacts(double t_end) const override;  // E0 e^{2i}, of those impacts
   std::optional<FieldMesh> field_mesh() const override;
 
   // Exact impact sequence.

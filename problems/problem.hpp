@@ -273,6 +273,9 @@ class Problem {
   // Exact times of the impacts in [0, t_end], in order, where the problem knows them
   // (impact-time errors of study files); empty otherwise.
   virtual std::vector<double> impact_times(double /*t_end*/) const { return {}; }
+  // The exact energy after each of those impacts (the flight that follows it), where the
+  // problem knows it; empty otherwise.
+  virtual std::vector<double> energies_after_impacts(double /*t_end*/) const { return {}; }
 };
 
 // The diagonal of M when M is diagonal; nullopt otherwise.

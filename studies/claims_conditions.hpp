@@ -77,7 +77,7 @@ struct SpinningBlock {
 };
 SpinningBlock spinning_block(const std::string& integrator, long free_steps, long floor_steps);
 
-// (4), (5) The energy study's two long runs with e = 1 (studies/energy.cpp): the bouncing mass,
+// (4), (5) The energy study's two long runs with e = 1 (studies/builtin/energy.toml): the bouncing mass,
 // h0 1, dt 1e-3, 100 impacts; the spring chain between walls 0.5 m away, dt 0.02 s, 40 s. Errors
 // |E - E_1| / E_1, E the scheme's own energy, E_1 after its first step; each figure the worst
 // of the two runs. A fixed-step scheme fills first / second (max over each half of the run; NaN

@@ -101,7 +101,8 @@ MomentumBalance::MomentumBalance(const Problem& problem, const Vec& v0)
       mass_row_(problem.mass_matrix().transpose() * ones_),
       gap_row_(problem.gap_operator() * ones_),
       f_ext_(problem.ndof()),
-      p0_(mass_row_.dot(v0)) {
+      p0_(mass_row_.dot(v0)),
+      speed_scale_(problem.mass_matrix().diagonal().cwiseProduct(v0).cwiseAbs().sum()) {
   if (problem.external_force_is_constant()) {  // summed once: the observer's cost stays that of a dot product
     problem.external_force(0.0, f_ext_);
     constant_force_sum_ = ones_.dot(f_ext_);

@@ -90,11 +90,13 @@ class MomentumBalance {
   double momentum(const Vec& v) const { return mass_row_.dot(v); }
   double initial() const { return p0_; }
   double residual(const Vec& v) const;  // |P - P0 - impulses|, absolute
+  // sum_i M_ii |v0_i|: a scale of the residual that is not zero when P0 is (bodies moving apart).
+  double speed_scale() const { return speed_scale_; }
 
  private:
   const Problem& problem_;
   Vec ones_, mass_row_, gap_row_, f_ext_;
-  double p0_ = 0.0, impulse_sum_ = 0.0;
+  double p0_ = 0.0, impulse_sum_ = 0.0, speed_scale_ = 0.0;
   double constant_force_sum_ = std::numeric_limits<double>::quiet_NaN();  // 1^T F_ext of a constant load
 };
 

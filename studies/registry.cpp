@@ -8,7 +8,6 @@
 namespace nsb {
 
 extern const StudyEntry bouncing_study;
-extern const StudyEntry energy_study;
 extern const StudyEntry reference_study;
 extern const StudyEntry bar_study;
 extern const StudyEntry block_study;
@@ -54,7 +53,8 @@ const std::vector<StudyEntry>& study_registry() {
                          "studies/builtin/hard.toml"),
       builtin_file_study("precision", "work-precision and convergence orders (smooth window and with impacts) against exact solutions",
                          "studies/builtin/precision.toml"),
-      cpp_study(energy_study, "studies/energy.cpp"),
+      builtin_file_study("energy", "long-time energy and momentum: fixed vs adaptive CD-Lagrange (all variants) vs Moreau-Jean",
+                         "studies/builtin/energy.toml"),
       cpp_study(reference_study, "studies/reference.cpp"),
       cpp_study(bar_study, "studies/bar.cpp"),
       cpp_study(block_study, "studies/block.cpp"),

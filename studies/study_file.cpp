@@ -83,6 +83,11 @@ ReferenceRequest reference_request(const StudySpec& spec, const FileProblem& p) 
   return {p.name, p.parameters, r.integrator, r.parameters, r.dt, spec.t_end_of(p), r.sample_every};
 }
 
+// The end time of a case: its problem's, or its full_t_end under --full.
+double case_t_end(const StudySpec& spec, const FileProblem& p, const Json& c) {
+  return c.contains("t_end") ? c["t_end"].get<double>() : spec.t_end_of(p);
+}
+
 // A reference run once per problem and cached (not the exact solution, not stepped in lockstep).
 bool cached(const FileReference* r) { return r && !r->exact && !r->lockstep; }
 
@@ -110,18 +115,20 @@ void add_cases(const StudySpec& spec, std::size_t p, std::size_t i, bool full, s
     return std::none_of(spec.exclusions.begin(), spec.exclusions.end(),
                         [&](const FileExclusion& x) { return excluded(x, entry, problem, stable_steps, full); });
   };
+  const double t_end = spec.t_end_of(problem, full);
+  const auto push = [&](Json c) {
+    c["file_hash"] = spec.hash;
+    if (t_end != spec.t_end_of(problem)) c["t_end"] = t_end;  // full_t_end
+    cases.push_back(std::move(c));
+  };
   const FileSweep& s = spec.integrators[i].sweep_for(problem.label);
   const bool tol = !s.tolerances.empty();
   for (double x : tol ? s.tolerances : full && !s.full_steps.empty() ? s.full_steps : s.steps)
-    if (kept(kNaN))
-      cases.push_back({{"problem", p}, {"integrator", i}, {"dt", tol ? s.dt : x}, {"tol", tol ? Json(x) : Json(nullptr)},
-                       {"file_hash", spec.hash}});
+    if (kept(kNaN)) push({{"problem", p}, {"integrator", i}, {"dt", tol ? s.dt : x}, {"tol", tol ? Json(x) : Json(nullptr)}});
   if (s.stable_fractions.empty()) return;
   const double stable = make_problem(problem.name, problem.parameters)->stable_step();
   for (double f : s.stable_fractions)
-    if (kept(f))
-      cases.push_back({{"problem", p}, {"integrator", i}, {"dt", f * stable}, {"tol", nullptr}, {"stable_steps", f},
-                       {"file_hash", spec.hash}});
+    if (kept(f)) push({{"problem", p}, {"integrator", i}, {"dt", f * stable}, {"tol", nullptr}, {"stable_steps", f}});
 }
 
 std::vector<Json> file_cases(const StudySpec& spec, bool full) {
@@ -251,25 +258,37 @@ class EnergyGrowth {
 };
 
 // What every run reports besides its measures (the run columns of a declared case table and
-// the rows of a history table): where it stopped, its contact phases and the mode switches a
-// scheme locates inside its steps, its largest energy rise and penetration against the
-// problem's limits; over each of kHistoryIntervals equal intervals of [0, t_end], the largest
-// |E - E0| / E scale and the largest penetration -min g (negative while every gap is open).
+// the rows of its history tables): where it stopped, its contact phases (a phase after at least
+// the problem's min_flight without impulse) and the mode switches a scheme locates inside its
+// steps, its smallest and largest step, the study's work counters, its largest energy rise and
+// penetration against the problem's limits. Histories (only for the problems a history or
+// samples table shows): over each of study.history_intervals equal intervals of [0, t_end],
+// the largest |E - E0| / E scale, the largest penetration -min g (negative while every gap is
+// open) and, where a table shows it, the largest momentum residual (momentum_history); and
+// E/E0 at the first step at or after each of as many evenly spaced times (samples).
 class RunFigures {
  public:
-  RunFigures(const Problem& problem, const StudySpec& spec, const FileProblem& fp, double e0, double e_scale)
-      : problem_(problem), e0_(e0), e_scale_(e_scale), history_(spec.t_end_of(fp), kHistoryIntervals, 2),
-        keeps_history_(std::any_of(spec.tables.begin(), spec.tables.end(), [&](const FileTable& t) {
-          return t.rows == "history" && t.applies_to(fp.label);
-        })) {}
-  void add(const Integrator& it) {
-    impacts_.add(it.state().t, it.impulses().sum() > 0.0);
+  RunFigures(const Problem& problem, const StudySpec& spec, const FileProblem& fp, double t_end, double e0, double e_scale)
+      : problem_(problem), spec_(spec), e0_(e0), e_scale_(e_scale), t_end_(t_end), impacts_(fp.min_flight),
+        history_(t_end, spec.history_intervals, 2),
+        momentum_history_(t_end, spec.history_intervals, 1), keeps_history_(shows(spec, fp, "history", "")),
+        keeps_momentum_(shows(spec, fp, "history", "momentum residual")), keeps_samples_(shows(spec, fp, "samples", "")) {}
+  void add(const Integrator& it, double dt, const MomentumBalance& momentum) {
+    const double t = it.state().t;
+    impacts_.add(t, it.impulses().sum() > 0.0);
+    min_step_ = std::min(min_step_, dt);
+    max_step_ = std::max(max_step_, dt);
+    if (keeps_samples_ && t >= t_end_ * static_cast<double>(samples_t_.size()) / spec_.history_intervals) {
+      samples_t_.push_back(t);
+      samples_e_.push_back(it.energy().total() / e0_);
+    }
     if (!keeps_history_) return;
     const double gap = problem_.ncontacts() ? (problem_.gap_offset() + problem_.gap_operator() * it.state().u).minCoeff() : kNaN;
-    history_.add(it.state().t, {std::abs(it.energy().total() - e0_) / e_scale_, -gap});
+    history_.add(t, {std::abs(it.energy().total() - e0_) / e_scale_, -gap});
+    if (keeps_momentum_) momentum_history_.add(t, {momentum.residual(it.state().v) / momentum.speed_scale()});
   }
   Json result(const RunResult& r, double energy_growth) {
-    const auto extra = [&](const char* key) {
+    const auto extra = [&](const std::string& key) {
       const auto it = r.work.extra.find(key);
       return it == r.work.extra.end() ? Json(nullptr) : real(it->second);
     };
@@ -277,21 +296,39 @@ class RunFigures {
                     {"switches", extra("switches")}, {"missed_switches", extra("missed_switches")},
                     {"max_penetration", r.max_penetration}, {"energy_growth", real(energy_growth)},
                     {"final_energy_error", real(std::abs(r.final_energy - r.initial_energy) / e_scale_)},
-                    {"energy_scale", e_scale_}, {"note", r.message}};
+                    {"energy_scale", e_scale_}, {"note", r.message}, {"min_step", min_step_}, {"max_step", max_step_}};
+    Json counters = Json::array();
+    for (const auto& name : spec_.counters) counters.push_back(extra(name));
+    figures["counters"] = counters;
     if (keeps_history_) {
       history_.finish();
       figures["intervals"] = {{"t", reals(history_.times())}, {"energy", reals(history_.largest(0))},
                               {"penetration", reals(history_.largest(1))}};
+      if (keeps_momentum_) {
+        momentum_history_.finish();
+        figures["intervals"]["momentum"] = reals(momentum_history_.largest(0));
+      }
     }
+    if (keeps_samples_) figures["samples"] = {{"t", reals(samples_t_)}, {"energy_ratio", reals(samples_e_)}};
     return {{"run", figures}};
   }
 
  private:
+  // Whether a declared table of `rows` shows the runs of `fp` (and the column `column`, unless empty).
+  static bool shows(const StudySpec& spec, const FileProblem& fp, const std::string& rows, const std::string& column) {
+    return std::any_of(spec.tables.begin(), spec.tables.end(), [&](const FileTable& t) {
+      return t.rows == rows && t.applies_to(fp.label) &&
+             (column.empty() || std::any_of(t.columns.begin(), t.columns.end(), [&](const FileColumn& c) { return c.of == column; }));
+    });
+  }
   const Problem& problem_;
-  double e0_, e_scale_;
+  const StudySpec& spec_;
+  double e0_, e_scale_, t_end_;
   ContactPhases impacts_;
-  IntervalMax history_;
-  bool keeps_history_;
+  double min_step_ = std::numeric_limits<double>::max(), max_step_ = 0.0;
+  IntervalMax history_, momentum_history_;
+  bool keeps_history_, keeps_momentum_, keeps_samples_;
+  std::vector<double> samples_t_, samples_e_;
 };
 
 // A run that never started: declined by the scheme (its reason), or the lockstep reference
@@ -302,12 +339,39 @@ Json not_run(const std::string& why) {
                    {"energy_growth", 0.0}, {"final_energy_error", 0.0}, {"energy_scale", 0.0}, {"note", why}}}};
 }
 
+// The flight-energy measure: after each step, the energy of the next of the first `count`
+// flights is compared once the step reaches the flight's exact middle (between exact impacts
+// i and i + 1) with the exact energy after impact i: E / E_i - 1.
+class FlightEnergies {
+ public:
+  FlightEnergies() = default;
+  FlightEnergies(const Problem& problem, double t_end, int count)
+      : impacts_(problem.impact_times(t_end)), energies_(problem.energies_after_impacts(t_end)), count_(count) {}
+  void add(double t, double energy) {
+    const std::size_t i = errors_.size();  // flight i + 1, after impact i + 1
+    if (static_cast<int>(i) < count_ && i + 1 < impacts_.size() && t >= 0.5 * (impacts_[i] + impacts_[i + 1]))
+      errors_.push_back(energy / energies_[i] - 1.0);
+  }
+  // max |E / E_i - 1| over the flights compared (NaN: none), or how many were.
+  double largest() const {
+    double largest = errors_.empty() ? kNaN : 0.0;
+    for (double x : errors_) largest = std::max(largest, std::abs(x));
+    return largest;
+  }
+  std::size_t compared() const { return errors_.size(); }
+
+ private:
+  std::vector<double> impacts_, energies_, errors_;
+  int count_ = 0;
+};
+
 // One measure's running figures.
 struct Accumulator {
   double scale = 0.0, largest = 0.0, square = 0.0, last = kNaN, t_prev = 0.0;
   RunningSlope drift;
   ContactPhases impacts;
   Polyline graph;  // Hausdorff: the run's samples
+  FlightEnergies flights;
   std::vector<double> periodic;  // Energy with `every`: the error at each sample time from + k every
 };
 
@@ -339,10 +403,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   if (!c["tol"].is_null()) params[fi.sweep_for(fp.label).tolerance_parameter] = fmt::format("{}", c["tol"].get<double>());
   RunOptions options;
   options.dt = c["dt"];
-  const double t_end = spec.t_end_of(fp);
+  const double t_end = case_t_end(spec, fp, c);
   options.t_end = t_end;
   options.record_series = false;
-  options.max_force_evaluations = spec.budget_of(fp, options.dt);
+  options.max_force_evaluations = spec.budget_of(fp, options.dt, t_end);
   options.sample_every = spec.check_every;  // the driver checks the state for NaN at its samples
   if (const FileReference* ref = spec.reference_of(fp); ref && ref->lockstep && fi.name == ref->integrator)  // its error is 0 by construction
     return not_run("the reference of this problem");
@@ -365,7 +429,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     on[m] = fm.applies_to(fp.label);
     stops = stops || (on[m] && (fm.kind == MeasureKind::StopTime || fm.kind == MeasureKind::OnsetTime));
   }
-  MomentumBalance momentum(*problem, integrator->state().v);
+  // P0 and the speed scale from the problem's initial velocity, not the scheme's state after init
+  // (modal-exact's passes through its modal basis: round-off in P0).
+  MomentumBalance momentum(*problem, problem->initial_state().v);
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (on[m] && spec.measures[m].kind == MeasureKind::Hausdorff) {
       const Energy energy = integrator->energy();
@@ -382,7 +448,12 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const auto history_measure = std::find_if(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) {
     return m.kind == MeasureKind::Energy && m.history;
   });
-  RunFigures figures(*problem, spec, fp, e0, e_scale);
+  RunFigures figures(*problem, spec, fp, t_end, e0, e_scale);
+  double e1 = kNaN;  // the energy after the first step
+  // An energy measure's error of E: relative to E_1 (relative_to = "first step") or E0 (its scale).
+  const auto energy_error = [&](const FileMeasure& fm, double e) { return fm.from_first_step ? (e - e1) / std::abs(e1) : (e - e0) / e_scale; };
+  for (std::size_t m = 0; m < spec.measures.size(); ++m)
+    if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights = FlightEnergies(*problem, t_end, spec.measures[m].count);
 
   // The measures at a sample: every sample_every steps, and the last step.
   const auto sample = [&](const Integrator& it) {
@@ -409,12 +480,13 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         const Energy energy = it.energy();
         a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy));
       } else if (fm.kind == MeasureKind::Energy) {
-        e = (it.energy().total() - e0) / e_scale;
+        e = energy_error(fm, it.energy().total());
         a.drift.add(s.t, e);
         e = fm.norm == "final" ? e : std::abs(e);
       } else if (fm.kind == MeasureKind::Momentum) {
         e = momentum.residual(s.v);
-        a.scale = std::max({a.scale, std::abs(momentum.momentum(s.v)), std::abs(momentum.initial())});
+        a.scale = fm.initial_speeds_scale ? momentum.speed_scale()
+                                          : std::max({a.scale, std::abs(momentum.momentum(s.v)), std::abs(momentum.initial())});
       }
       if (!inside) continue;
       a.largest = std::max(a.largest, std::abs(e));
@@ -428,16 +500,18 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     const State& s = it.state();
     reference.advance(info.dt);
     momentum.add(it, info.dt);
+    if (step == 0) e1 = it.energy().total();
     const bool contact = it.impulses().sum() > 0.0;
-    for (std::size_t m = 0; m < spec.measures.size(); ++m)
+    for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) acc[m].impacts.add(s.t, contact);
+      if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights.add(s.t, it.energy().total());
+      if (on[m] && spec.measures[m].kind == MeasureKind::Energy && spec.measures[m].every > 0.0)
+        sample_periodic(spec.measures[m], acc[m], s.t, options.dt, t_end, energy_error(spec.measures[m], it.energy().total()));
+    }
     growth.add(it, info.dt);
     if (stop) stop->add(s);
     if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(it.energy().total() - e0) / e_scale});
-    for (std::size_t m = 0; m < spec.measures.size(); ++m)
-      if (on[m] && spec.measures[m].kind == MeasureKind::Energy && spec.measures[m].every > 0.0)
-        sample_periodic(spec.measures[m], acc[m], s.t, options.dt, t_end, (it.energy().total() - e0) / e_scale);
-    figures.add(it);
+    figures.add(it, info.dt, momentum);
     if (++step % spec.sample_every == 0) sample(it);
     t_prev = s.t;
   });
@@ -485,7 +559,14 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
           v = periodic_value(fm.norm, a.periodic);
           break;
         }
-        v = fm.norm == "max" ? a.largest : fm.norm == "final" ? a.last : a.drift.slope();
+        v = fm.norm == "max"      ? a.largest
+            : fm.norm == "final"  ? a.last
+            : fm.norm == "final abs" ? std::abs(a.last)
+            : fm.norm == "offset" ? (e1 - e0) / e_scale
+                                  : a.drift.slope();
+        break;
+      case MeasureKind::FlightEnergy:
+        v = fm.norm == "count" ? static_cast<double>(a.flights.compared()) : a.flights.largest();
         break;
       case MeasureKind::Momentum: v = a.largest / scale; break;
       case MeasureKind::Penetration: v = r.max_penetration; break;
@@ -568,6 +649,17 @@ std::string against_text(const FileReference* r) {
                        : fmt::format("{} (dt = {}, cached)", r->integrator, r->dt);
 }
 
+// A declared figure's id: <name>_<id>, or <id> with study.figures = "declared".
+std::string figure_id(const StudySpec& spec, const FileFigure& f) { return spec.declared_figures_only ? f.id : spec.name + "_" + f.id; }
+
+// A figure the file declares, as the report draws it.
+Figure declared_figure(const StudySpec& spec, const FileFigure& f) {
+  Figure figure{figure_id(spec, f), f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes};
+  figure.small_multiples = f.small_multiples;
+  figure.deviation = f.deviation;
+  return figure;
+}
+
 // A declared column: the source column under its own header, unit, format and description.
 Column declared_column(const Column& source, const FileColumn& d) {
   return {d.header.value_or(source.name), d.unit.value_or(source.unit), d.format.value_or(source.format),
@@ -578,6 +670,21 @@ std::size_t column_index(const Table& t, const std::string& name) {
   const auto it = std::find_if(t.columns.begin(), t.columns.end(), [&](const Column& c) { return c.name == name; });
   if (it == t.columns.end()) throw std::logic_error(fmt::format("table {} has no column '{}'", t.id, name));
   return static_cast<std::size_t>(it - t.columns.begin());
+}
+
+// A status cell of a run that never started (declined: "n/a: why").
+bool declined(const Cell& status) {
+  const auto* text = std::get_if<std::string>(&status);
+  return text && text->rfind("n/a", 0) == 0;
+}
+
+// A column that says what a case asked for (problem, integrator, step, limits, status), not
+// what its run measured: kept in a declined run's row with declined = "n/a".
+bool asked(const std::string& source) {
+  static const std::vector<std::string> names = {"problem", "problem name", "integrator", "integrator name", "parameters", "dt", "tol",
+                                                 "stable steps", "t_end", "budget", "penetration limit", "energy blow-up limit",
+                                                 "status", "outcome", "note"};
+  return source.rfind("parameter ", 0) == 0 || std::find(names.begin(), names.end(), source) != names.end();
 }
 
 // rows = "case": the work-precision rows, their columns picked, ordered and renamed; the first
@@ -591,9 +698,12 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
     out.columns.push_back(declared_column(runs.columns[at.back()], c));
     renamed[c.of] = out.columns.back().name;
   }
+  const auto status = std::find_if(runs.columns.begin(), runs.columns.end(), [](const Column& c) { return c.name == "status"; });
   for (const auto& row : runs.rows) {
+    if (const auto* label = std::get_if<std::string>(&row[0]); label && !d.applies_to(*label)) continue;
+    const bool blank = d.declined_blank && status != runs.columns.end() && declined(row[static_cast<std::size_t>(status - runs.columns.begin())]);
     std::vector<Cell> cells;
-    for (std::size_t k : at) cells.push_back(row[k]);
+    for (std::size_t i = 0; i < at.size(); ++i) cells.push_back(blank && !asked(d.columns[i].of) ? Cell{} : row[at[i]]);
     out.add_row(std::move(cells));
   }
   if (!with_figures) return out;
@@ -658,27 +768,37 @@ const std::vector<Column>& run_columns() {
       {"energy growth", "", "{:.2e}", "max (E - E0 - W) / E scale"},
       {"energy blow-up limit", "", "{:.0e}", "status energy blow-up above it"},
       {"final energy err", "", "{:.2e}", "|E_end - E0| / E scale"},
-      {"note", "", "", "the run driver's message: why a run diverged, stopped or is n/a"}};
+      {"note", "", "", "the run driver's message: why a run diverged, stopped or is n/a"},
+      {"integrator name", "", "", "the registered integrator"},
+      {"parameters", "", "", "the integrator's parameters set by the file (default: none)"},
+      {"min step", "s", "{:.2e}", "smallest step taken"},
+      {"max step", "s", "{:.2e}", "largest step taken"}};
   return columns;
 }
 
-std::vector<Cell> run_cells(const StudySpec& spec, const Json& c, const Json& r) {
-  const FileProblem& p = spec.problems[c["problem"].get<std::size_t>()];
-  const Json& f = r.contains("run") ? r["run"] : Json::object();
-  const auto value = [&](const char* key) { return f.contains(key) ? number_cell(f[key]) : Cell{}; };
-  return {p.name, c.contains("stable_steps") ? Cell{c["stable_steps"].get<double>()} : Cell{}, spec.t_end_of(p),
-          r["status"].get<std::string>(), value("t_reached"), f.contains("impacts") ? Cell{f["impacts"].get<long>()} : Cell{},
-          value("switches"), value("missed_switches"), spec.budget_of(p, c["dt"].get<double>()), value("max_penetration"), spec.max_penetration_of(p),
-          value("energy_scale"), value("energy_growth"), spec.energy_blow_up_of(p), value("final_energy_error"),
-          f.contains("note") ? Cell{f["note"].get<std::string>()} : Cell{}};
+// The integrator's parameters the file sets on a problem, "key=value ..." by key, or "default".
+std::string parameters_text(const FileIntegrator& fi, const std::string& problem_label) {
+  const Overrides& set = fi.sweep_for(problem_label).parameters;
+  if (set.empty()) return "default";
+  std::vector<std::string> items;
+  for (const auto& [key, value] : set) items.push_back(key + "=" + value);
+  return fmt::format("{}", fmt::join(items, " "));
 }
 
-const std::vector<Column>& history_columns() {
-  static const std::vector<Column> columns = {
-      {"problem", "", "", ""}, {"problem name", "", "", "the registered problem"}, {"integrator", "", "", ""}, {"run", "", "", ""},
-      {"t", "s", "", "end of the interval"},
-      {"energy deviation", "", "", "largest |E - E0| / E scale over the interval"},
-      {"penetration", "m", "", "largest -min g over the interval (negative: every gap open)"}};
+// The columns "parameter NAME" (parameter_column_names).
+std::vector<Column> parameter_columns(const StudySpec& spec) {
+  std::vector<Column> columns;
+  for (const auto& name : parameter_column_names(spec)) columns.push_back({name, "", "", "the problem's parameter"});
+  return columns;
+}
+
+// The run columns of this study's own: its counters (Work::extra, n/a where a scheme does not
+// count one) and the problems' parameters ("parameter NAME", empty where a problem has none).
+std::vector<Column> study_run_columns(const StudySpec& spec) {
+  std::vector<Column> columns;
+  for (const auto& name : spec.counters) columns.push_back({name, "", "{:.3g}", "the integrator's work counter " + name});
+  const std::vector<Column> parameters = parameter_columns(spec);
+  columns.insert(columns.end(), parameters.begin(), parameters.end());
   return columns;
 }
 
@@ -704,28 +824,84 @@ std::vector<Cell> parameter_cells(const FileProblem& p, const std::vector<std::s
   return cells;
 }
 
-// A declared figure's id: <name>_<id>, or <id> with study.figures = "declared".
-std::string figure_id(const StudySpec& spec, const FileFigure& f) { return spec.declared_figures_only ? f.id : spec.name + "_" + f.id; }
+std::vector<Cell> study_run_cells(const StudySpec& spec, const Json& c, const Json& r) {
+  std::vector<Cell> cells;
+  const Json& f = r.contains("run") ? r["run"] : Json::object();
+  for (std::size_t k = 0; k < spec.counters.size(); ++k)
+    cells.push_back(f.contains("counters") ? number_cell(f["counters"][k]) : Cell{});
+  const std::vector<Cell> parameters = parameter_cells(spec.problems[c["problem"].get<std::size_t>()], parameter_column_names(spec));
+  cells.insert(cells.end(), parameters.begin(), parameters.end());
+  return cells;
+}
 
-// rows = "history": a row per interval of each run on the table's problems, the columns picked;
-// its figures, the [[figure]]s that name it, under its headers.
+std::vector<Cell> run_cells(const StudySpec& spec, const Json& c, const Json& r) {
+  const FileProblem& p = spec.problems[c["problem"].get<std::size_t>()];
+  const FileIntegrator& fi = spec.integrators[c["integrator"].get<std::size_t>()];
+  const Json& f = r.contains("run") ? r["run"] : Json::object();
+  const auto value = [&](const char* key) { return f.contains(key) ? number_cell(f[key]) : Cell{}; };
+  const double t_end = case_t_end(spec, p, c);
+  return {p.name, c.contains("stable_steps") ? Cell{c["stable_steps"].get<double>()} : Cell{}, t_end,
+          r["status"].get<std::string>(), value("t_reached"), f.contains("impacts") ? Cell{f["impacts"].get<long>()} : Cell{},
+          value("switches"), value("missed_switches"), spec.budget_of(p, c["dt"].get<double>(), t_end), value("max_penetration"), spec.max_penetration_of(p),
+          value("energy_scale"), value("energy_growth"), spec.energy_blow_up_of(p), value("final_energy_error"),
+          f.contains("note") ? Cell{f["note"].get<std::string>()} : Cell{}, fi.name, parameters_text(fi, p.label),
+          value("min_step"), value("max_step")};
+}
+
+const std::vector<Column>& history_columns() {
+  static const std::vector<Column> columns = {
+      {"problem", "", "", ""}, {"problem name", "", "", "the registered problem"}, {"integrator", "", "", ""}, {"run", "", "", ""},
+      {"t", "s", "", "end of the interval"},
+      {"energy deviation", "", "", "largest |E - E0| / E scale over the interval"},
+      {"penetration", "m", "", "largest -min g over the interval (negative: every gap open)"},
+      {"integrator name", "", "", "the registered integrator"},
+      {"parameters", "", "", "the integrator's parameters set by the file (default: none)"},
+      {"momentum residual", "", "", "largest |P - P0 - sum of the impulses| / sum_i m_i |v0_i| over the interval"}};
+  return columns;
+}
+
+const std::vector<Column>& samples_columns() {
+  static const std::vector<Column> columns = {
+      {"problem", "", "", ""}, {"problem name", "", "", "the registered problem"}, {"integrator", "", "", ""}, {"run", "", "", ""},
+      {"t", "s", "", "the sample's step"}, {"energy ratio", "", "", "E / E0"},
+      {"integrator name", "", "", "the registered integrator"},
+      {"parameters", "", "", "the integrator's parameters set by the file (default: none)"}};
+  return columns;
+}
+
+// rows = "history" (a row per interval of each run on the table's problems) or "samples" (a
+// row per sample), the columns picked; its figures, the [[figure]]s that name it, under its headers.
 Table history_table(const StudySpec& spec, const FileTable& d, const std::vector<Json>& cases, const std::vector<Json>& results) {
+  const bool samples = d.rows == "samples";
   Table all;
-  all.columns = history_columns();
+  all.columns = samples ? samples_columns() : history_columns();
+  const std::vector<Column> parameters = parameter_columns(spec);
+  all.columns.insert(all.columns.end(), parameters.begin(), parameters.end());
+  const std::vector<std::string> parameter_names = parameter_column_names(spec);
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Json& r = results[k];
-    if (!r.contains("run") || !r["run"].contains("intervals")) continue;
+    const char* key = samples ? "samples" : "intervals";
+    if (!r.contains("run") || !r["run"].contains(key)) continue;
     const FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
     if (!d.applies_to(p.label)) continue;
-    const std::string integrator = shown_label(spec.integrators[cases[k]["integrator"].get<std::size_t>()], p.label);
-    const Json& h = r["run"]["intervals"];
-    for (std::size_t i = 0; i < h["t"].size(); ++i)
-      all.add_row({p.label, p.name, integrator, run_label(cases[k]), number_cell(h["t"][i]), number_cell(h["energy"][i]),
-                   number_cell(h["penetration"][i])});
+    const FileIntegrator& fi = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
+    const std::string integrator = shown_label(fi, p.label), variant = parameters_text(fi, p.label);
+    const Json& h = r["run"][key];
+    const std::vector<Cell> own = parameter_cells(p, parameter_names);
+    for (std::size_t i = 0; i < h["t"].size(); ++i) {
+      std::vector<Cell> row = {p.label, p.name, integrator, run_label(cases[k]), number_cell(h["t"][i])};
+      if (samples) {
+        row.insert(row.end(), {number_cell(h["energy_ratio"][i]), fi.name, variant});
+      } else {
+        row.insert(row.end(), {number_cell(h["energy"][i]), number_cell(h["penetration"][i]), fi.name, variant,
+                               h.contains("momentum") ? number_cell(h["momentum"][i]) : Cell{}});
+      }
+      row.insert(row.end(), own.begin(), own.end());
+      all.add_row(std::move(row));
+    }
   }
   for (const FileFigure& f : spec.figures)
-    if (f.table == d.id)
-      all.figures.push_back({figure_id(spec, f), f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
+    if (f.table == d.id) all.figures.push_back(declared_figure(spec, f));
   Table t = case_table(d, all, true);
   t.csv_only = true;
   return t;
@@ -739,7 +915,7 @@ std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, con
   bool figures_placed = false;
   for (const FileTable& d : spec.tables) {
     Table t;
-    if (d.rows == "history") {
+    if (d.rows == "history" || d.rows == "samples") {
       t = history(d);
     } else if (d.rows == "ranking") {
       t = *rank;  // the reader refuses a ranking without a ranked measure
@@ -837,7 +1013,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
 
   for (const FileFigure& f : spec.figures)
     if (f.table.empty())  // else drawn from its history table
-      t.figures.push_back({figure_id(spec, f), f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes});
+      t.figures.push_back(declared_figure(spec, f));
 
   // Event times are against the problem's exact solution whatever the reference.
   const bool exact_times = primary != spec.measures.end() && is_event_time(primary->kind);
@@ -856,8 +1032,8 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   for (const auto& m : spec.measures)
     if (measure_converges(m.kind)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
   counters.insert(counters.end(), run_columns().begin(), run_columns().end());
-  const std::vector<std::string> parameters = parameter_column_names(spec);
-  for (const auto& name : parameters) counters.push_back({name, "", "", "the problem's parameter"});
+  const std::vector<Column> own = study_run_columns(spec);
+  counters.insert(counters.end(), own.begin(), own.end());
   std::vector<std::vector<Cell>> counter_rows;
   std::size_t k = 0;
   while (k < cases.size()) {
@@ -892,10 +1068,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
         const auto e = [&](std::size_t j) { return is_event_time(spec.measures[m].kind) ? ys[m][j] : above_round_off(ys[m][j]); };
         more.push_back(i ? number_cell(observed_order(xs[i - 1], e(i - 1), xs[i], e(i))) : Cell{});
       }
-      const std::vector<Cell> run = run_cells(spec, cases[k], r);
+      const std::vector<Cell> run = run_cells(spec, cases[k], r), study = study_run_cells(spec, cases[k], r);
       more.insert(more.end(), run.begin(), run.end());
-      const std::vector<Cell> own = parameter_cells(spec.problems[pi], parameters);
-      more.insert(more.end(), own.begin(), own.end());
+      more.insert(more.end(), study.begin(), study.end());
       counter_rows.push_back(std::move(more));
       // A declined run is no point; a run an outcome threshold removed (its values kept: energy
       // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
@@ -963,6 +1138,11 @@ const std::vector<std::string>& run_column_names() {
 
 const std::vector<std::string>& history_column_names() {
   static const std::vector<std::string> names = column_names(history_columns());
+  return names;
+}
+
+const std::vector<std::string>& samples_column_names() {
+  static const std::vector<std::string> names = column_names(samples_columns());
   return names;
 }
 

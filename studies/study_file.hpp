@@ -45,6 +45,10 @@ struct FileProblem {
   double energy_blow_up = 0.0, max_penetration = 0.0, energy_scale = 0.0;
   bool full_only = false;
   bool default_only = false;  // only a run without --full runs it (its --full counterpart: another problem)
+  double full_t_end = 0.0;    // its end time under --full (0: t_end)
+  // A contact phase counts (the impacts column) after at least this long without a contact
+  // impulse: a chattering node does not restart a phase within one contact.
+  double min_flight = 0.0;
   std::optional<FileReference> reference;  // its own reference (none: the study's [reference])
   // The sweep of every integrator that gives none of its own on this problem (and under --full).
   std::vector<double> steps, full_steps;
@@ -72,14 +76,19 @@ struct FileIntegrator {
   const FileSweep& sweep_for(const std::string& problem_label) const;
 };
 
-enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime };
+enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime, FlightEnergy };
 
 struct FileMeasure {
   MeasureKind kind = MeasureKind::Error;
   std::string label;             // the column's name
   std::string observable = "u";  // Error: "u" or one of the problem's observables; Hausdorff: an observable
-  std::string norm = "max";      // Error: final|max|l2; Energy: max|final|drift
-  int count = 3;                 // ImpactTime: the first `count` impacts
+  std::string norm = "max";      // Error: final|max|l2; Energy: max|final|final abs|drift|offset; FlightEnergy: max|count
+  int count = 3;                 // ImpactTime, FlightEnergy: the first `count` impacts (flights)
+  // Energy: errors relative to the energy after the first step E_1 ((E - E_1) / |E_1|), not E0.
+  bool from_first_step = false;
+  // Momentum: the residual divided by sum_i m_i |v0_i| (nonzero when the total momentum is),
+  // not by the largest |P|.
+  bool initial_speeds_scale = false;
   bool history = false;          // Energy: also a history table and figure
   // Energy: > 0: sampled at the first step past each t_k = from + k every (k = 1, 2, ... while
   // t_k <= t_end, to half a step), its norm count | first | final | drift (slope against k).
@@ -111,6 +120,8 @@ struct FileFigure {
   std::vector<std::string> panels{"problem"};
   bool log_x = true, log_y = true;
   std::vector<double> slopes;  // reference slopes drawn as triangles (log-log)
+  bool small_multiples = false;  // one panel per value of the first series column (Figure::small_multiples)
+  bool deviation = false;        // y is a ratio to its start: its signed deviation y - 1 drawn (Figure::deviation)
   std::string table;           // a declared history table to draw it from (empty: the runs)
 };
 
@@ -134,7 +145,10 @@ struct FileTable {
   std::optional<std::string> caption;
   std::string rows = "case";
   std::vector<FileColumn> columns;
-  std::vector<std::string> problems;  // history: the labels of the problems whose runs it shows
+  std::vector<std::string> problems;  // the labels of the problems whose runs it shows (empty: all)
+  // A declined run's row (status n/a): its measured cells (counts, figures of the run) shown
+  // as n/a, only what was asked kept (declined = "n/a"); by default as the run reports them (0).
+  bool declined_blank = false;
   bool applies_to(const std::string& problem_label) const;
   // rows = "ranking" (the first such table): its error column's header, unit, format and
   // description (`of` unused), and the number format of dt or tol in its runs cells.
@@ -162,6 +176,10 @@ struct StudySpec {
   double t_end = 0.0;
   long sample_every = 1;
   long check_every = 1;  // the run driver checks the state for a non-finite value every k steps
+  int history_intervals = 200;  // the intervals (samples) of a history (samples) table's runs
+  // Work counters of the integrators (Work::extra) shown as run columns by name (n/a where a
+  // scheme does not count it).
+  std::vector<std::string> counters;
   int cpu_repeats = 3;
   long max_force_evaluations = 10'000'000;
   // > 0: each run's budget is floor(this x t_end / dt) F_int evaluations (a count per nominal
@@ -190,12 +208,13 @@ struct StudySpec {
   // label; default: the first error measure); measures.size(): none.
   std::size_t ranked = 0;
   double t_end_of(const FileProblem& p) const { return p.t_end > 0.0 ? p.t_end : t_end; }
+  double t_end_of(const FileProblem& p, bool full) const { return full && p.full_t_end > 0.0 ? p.full_t_end : t_end_of(p); }
   double energy_blow_up_of(const FileProblem& p) const { return p.energy_blow_up > 0.0 ? p.energy_blow_up : energy_blow_up; }
   double max_penetration_of(const FileProblem& p) const { return p.max_penetration > 0.0 ? p.max_penetration : max_penetration; }
-  // The F_int budget of a run of step dt on p: its own, else per step, else the study's.
-  long budget_of(const FileProblem& p, double dt) const {
+  // The F_int budget of a run of step dt to t_end on p: its own, else per step, else the study's.
+  long budget_of(const FileProblem& p, double dt, double t_end) const {
     if (p.max_force_evaluations > 0) return p.max_force_evaluations;
-    return force_evaluations_per_step > 0.0 ? static_cast<long>(force_evaluations_per_step * t_end_of(p) / dt) : max_force_evaluations;
+    return force_evaluations_per_step > 0.0 ? static_cast<long>(force_evaluations_per_step * t_end / dt) : max_force_evaluations;
   }
   // Whether a run of `full` (--full or not) makes the problem's runs.
   bool runs(const FileProblem& p, bool full) const { return full ? !p.default_only : !p.full_only; }
@@ -214,7 +233,8 @@ bool measure_converges(MeasureKind kind);
 // work-precision ones), and the columns of a history table.
 const std::vector<std::string>& run_column_names();
 const std::vector<std::string>& history_column_names();
-// The problems' parameters a declared case table may show: "parameter NAME" for each parameter
+const std::vector<std::string>& samples_column_names();
+// The problems' parameters a declared case, history or samples table may show: "parameter NAME" for each parameter
 // of each problem (the first problem's order first); a problem without it shows an empty cell.
 std::vector<std::string> parameter_column_names(const StudySpec& spec);
 

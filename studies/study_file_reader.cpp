@@ -417,6 +417,24 @@ std::pair<double, double> read_window(const Checker& c, const Json& v, const std
   return {t0, t1};
 }
 
+// A flight-energy measure's count and norm (max or count), checked against the exact impacts of
+// the problems it is measured on (`on`): count + 1 of them by the end of each.
+void read_flight_energy(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec,
+                        const std::vector<std::size_t>& on, const std::vector<std::unique_ptr<Problem>>& instances, FileMeasure& m) {
+  m.count = static_cast<int>(c.integer(c.require(j, path, "count"), child(path, "count"), 1, 999));
+  m.norm = "max";
+  if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "count"});
+  for (const std::size_t p : on) {
+    const double t_end = spec.t_end_of(spec.problems[p]);
+    const std::size_t known = std::min(instances[p]->impact_times(t_end).size(), instances[p]->energies_after_impacts(t_end).size());
+    if (known < static_cast<std::size_t>(m.count) + 1)
+      c.fail(child(path, "count"), fmt::format("problem '{}' knows {} exact impacts and energies by t_end, not count + 1 = {}",
+                                               spec.problems[p].label, known, m.count + 1),
+             "problems with known impacts and energies (bouncing-mass), a later t_end or end_at_impact, or problems = [...]");
+  }
+  m.label = m.norm == "count" ? "flights compared" : "flight energy err";
+}
+
 // study.rank_by: the label of a measure the ranking can rank by; by default the first error.
 std::size_t ranked_measure(const Checker& c, const Json& study, const std::vector<FileMeasure>& measures) {
   std::vector<std::string> valid;
@@ -487,7 +505,15 @@ const Json& optional_tables(const Checker& c, const Json& root, const char* key)
 }
 
 // [[figure]]: drawn from the work-precision table, its columns named by their headers.
-std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const std::vector<FileMeasure>& measures, bool declared_only) {
+std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const StudySpec& spec) {
+  const std::vector<FileMeasure>& measures = spec.measures;
+  const bool declared_only = spec.declared_figures_only;
+  // A figure of a history or samples table: any of their columns (its table's checked with the tables).
+  std::vector<std::string> table_columns = history_column_names();
+  for (const auto& name : samples_column_names())
+    if (std::find(table_columns.begin(), table_columns.end(), name) == table_columns.end()) table_columns.push_back(name);
+  const auto parameters = parameter_column_names(spec);
+  table_columns.insert(table_columns.end(), parameters.begin(), parameters.end());
   std::vector<FileFigure> figures;
   const Json* list = c.find(root, "figure");
   if (!list) return figures;
@@ -499,10 +525,10 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const s
     const Json& j = (*list)[i];
     const std::string path = element("figure", i);
     c.expect(j, path, j.is_object(), "a table");
-    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes", "table"});
+    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes", "table", "small_multiples", "deviation"});
     FileFigure f;
     if (const Json* v = c.find(j, "table")) f.table = c.string(*v, child(path, "table"));
-    const std::vector<std::string>& columns = f.table.empty() ? run_columns : history_column_names();
+    const std::vector<std::string>& columns = f.table.empty() ? run_columns : table_columns;
     f.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(f.id))
       c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", f.id), "[a-z0-9_]+");
@@ -527,6 +553,8 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const s
     names("panels", f.panels);
     if (const Json* v = c.find(j, "log_x")) f.log_x = c.boolean(*v, child(path, "log_x"));
     if (const Json* v = c.find(j, "log_y")) f.log_y = c.boolean(*v, child(path, "log_y"));
+    if (const Json* v = c.find(j, "small_multiples")) f.small_multiples = c.boolean(*v, child(path, "small_multiples"));
+    if (const Json* v = c.find(j, "deviation")) f.deviation = c.boolean(*v, child(path, "deviation"));
     if (const Json* v = c.find(j, "slopes")) {
       const std::string at = child(path, "slopes");
       c.expect(*v, at, v->is_array(), "an array of numbers");
@@ -552,14 +580,17 @@ std::vector<std::string> table_sources(const std::string& rows, const StudySpec&
       if (measure_converges(m.kind)) sources.push_back("pairwise order of " + m.label);
     const auto& run = run_column_names();
     sources.insert(sources.end(), run.begin(), run.end());
-    const auto parameters = parameter_column_names(spec);
-    sources.insert(sources.end(), parameters.begin(), parameters.end());
+    sources.insert(sources.end(), spec.counters.begin(), spec.counters.end());
   } else if (rows == "group") {
     for (const auto& m : measures)
       if (measure_converges(m.kind))
         for (const char* what : {"order", "CI low", "CI high", "points"}) sources.push_back(fmt::format("{} of {}", what, m.label));
-  } else if (rows == "history") {
-    sources = history_column_names();
+  } else if (rows == "history" || rows == "samples") {
+    sources = rows == "history" ? history_column_names() : samples_column_names();
+  }
+  if (rows != "group") {
+    const auto parameters = parameter_column_names(spec);
+    sources.insert(sources.end(), parameters.begin(), parameters.end());
   }
   return sources;
 }
@@ -604,7 +635,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Json& j = list[i];
     const std::string path = element("table", i);
-    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems"});
+    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
@@ -612,10 +643,15 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       if (u.id == t.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", t.id), "distinct ids");
     t.title = c.string(c.require(j, path, "title"), child(path, "title"));
     t.caption = optional_string(c, j, path, "caption");
-    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history"});
+    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples"});
+    if (const Json* v = c.find(j, "declined")) {
+      if (t.rows != "case") c.fail(child(path, "declined"), "only a table of one row per run shows declined runs", "rows = \"case\"");
+      t.declined_blank = c.choice(*v, child(path, "declined"), {"as run", "n/a"}) == "n/a";
+    }
     if (const Json* v = c.find(j, "problems")) {
       const std::string at = child(path, "problems");
-      if (t.rows != "history") c.fail(at, "only a history table picks its problems", "rows = \"history\"");
+      if (t.rows == "group" || t.rows == "ranking")
+        c.fail(at, "only a table of runs picks its problems", "rows = \"case\", \"history\" or \"samples\"");
       c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more problem labels");
       std::vector<std::string> labels;
       for (const auto& p : spec.problems) labels.push_back(p.label);
@@ -664,12 +700,12 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     auto runs = first_runs;
     if (!spec.figures[i].table.empty()) {
       runs = std::find_if(tables.begin(), tables.end(), [&](const FileTable& t) { return t.id == spec.figures[i].table; });
-      if (runs == tables.end() || runs->rows != "history") {
+      if (runs == tables.end() || (runs->rows != "history" && runs->rows != "samples")) {
         std::vector<std::string> histories;
         for (const auto& t : tables)
-          if (t.rows == "history") histories.push_back(t.id);
-        c.fail(child(path, "table"), fmt::format("'{}' is no declared history table", spec.figures[i].table),
-               histories.empty() ? "a [[table]] with rows = \"history\"" : fmt::format("{}", fmt::join(histories, ", ")));
+          if (t.rows == "history" || t.rows == "samples") histories.push_back(t.id);
+        c.fail(child(path, "table"), fmt::format("'{}' is no declared history or samples table", spec.figures[i].table),
+               histories.empty() ? "a [[table]] with rows = \"history\" or \"samples\"" : fmt::format("{}", fmt::join(histories, ", ")));
       }
     }
     if (runs == tables.end()) c.fail(path, "declared tables hold no table of one row per run to draw it from", "a [[table]] with rows = \"case\"");
@@ -696,13 +732,47 @@ void read_problem_outcome(const Checker& c, const Json& j, const std::string& pa
   if (const Json* v = c.find(j, "default_only")) p.default_only = c.boolean(*v, child(path, "default_only"));
   if (p.full_only && p.default_only)
     c.fail(child(path, "default_only"), "full_only and default_only both: the problem would never run", "at most one of them true");
+  if (const Json* v = c.find(j, "full_t_end")) {
+    if (p.default_only) c.fail(child(path, "full_t_end"), "a default_only problem has no run under --full", "no full_t_end with default_only");
+    p.full_t_end = c.positive(*v, child(path, "full_t_end"));
+  }
+  if (const Json* v = c.find(j, "min_flight")) p.min_flight = c.positive(*v, child(path, "min_flight"));
+}
+
+// end_at_impact = n: the problem's t_end is the exact time of its n-th impact (`instance`: the problem).
+void read_end_at_impact(const Checker& c, const Json& j, const std::string& path, const Problem& instance, FileProblem& p) {
+  const Json* v = c.find(j, "end_at_impact");
+  if (!v) return;
+  const std::string at = child(path, "end_at_impact");
+  if (c.find(j, "t_end") || c.find(j, "full_t_end")) c.fail(at, "the run's end given twice", "one of t_end (with full_t_end) or end_at_impact");
+  const long n = c.integer(*v, at, 1, 1000);
+  const auto times = instance.impact_times(std::numeric_limits<double>::infinity());
+  if (static_cast<std::size_t>(n) > times.size())
+    c.fail(at, fmt::format("problem '{}' knows {} exact impact times", p.label, times.size()),
+           times.empty() ? "problems with known impacts (bouncing-mass)" : fmt::format("[1, {}]", times.size()));
+  p.t_end = times[static_cast<std::size_t>(n) - 1];
+}
+
+// study.counters: names of integrators' work counters (Work::extra), each once.
+std::vector<std::string> counter_names(const Checker& c, const Json& j, const std::string& path) {
+  c.expect(j, path, j.is_array() && !j.empty(), "an array of one or more counter names");
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const std::string name = c.string(j[i], element(path, i));
+    if (name.empty() || std::find(names.begin(), names.end(), name) != names.end() ||
+        std::find(run_column_names().begin(), run_column_names().end(), name) != run_column_names().end())
+      c.fail(element(path, i), fmt::format("'{}' is empty, given twice or the name of a run column", name),
+             "distinct names of the integrators' work counters (Work::extra, e.g. energy_iterations)");
+    names.push_back(name);
+  }
+  return names;
 }
 
 // An integrator joins the study under a label no other has.
-void add_integrator(const Checker& c, StudySpec& spec, FileIntegrator it, const std::string& path) {
-  for (const auto& q : spec.integrators)
+void add_integrator(const Checker& c, std::vector<FileIntegrator>& integrators, FileIntegrator it, const std::string& path) {
+  for (const auto& q : integrators)
     if (q.label == it.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", it.label), "distinct labels");
-  spec.integrators.push_back(std::move(it));
+  integrators.push_back(std::move(it));
 }
 
 // The end time of the longest run: the bound of the series held in memory.
@@ -739,7 +809,7 @@ void read_energy_sampling(const Checker& c, const Json& j, const std::string& pa
     return;
   }
   if (c.find(j, "from")) c.fail(child(path, "from"), "from without every", "every = T beside it");
-  if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "final", "drift"});
+  if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "final", "final abs", "drift", "offset"});
   if (const Json* v = c.find(j, "history")) m.history = c.boolean(*v, child(path, "history"));
   m.label = fmt::format("energy err {}", m.norm);
 }
@@ -809,7 +879,7 @@ std::pair<double, double> FileMeasure::window_for(const std::string& problem_lab
   return problem_windows.empty() ? std::pair{window_start, window_end} : std::pair{0.0, std::numeric_limits<double>::infinity()};
 }
 
-bool FileMeasure::rankable() const { return kind != MeasureKind::Energy || norm == "max"; }
+bool FileMeasure::rankable() const { return (kind != MeasureKind::Energy && kind != MeasureKind::FlightEnergy) || norm == "max"; }
 
 const FileSweep& FileIntegrator::sweep_for(const std::string& problem_label) const {
   const auto it = per_problem.find(problem_label);
@@ -848,11 +918,14 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   c.expect(study, "study", study.is_object(), "a table");
   c.keys(study, "study", {"title", "t_end", "sample_every", "check_every", "cpu_repeats", "max_force_evaluations", "targets",
                           "rank_by", "energy_blow_up", "max_penetration", "integrators", "figures", "case_order",
-                          "max_force_evaluations_per_step", "measure_over_budget"});
+                          "max_force_evaluations_per_step", "measure_over_budget", "history_intervals", "counters"});
   spec.title = c.string(c.require(study, "study", "title"), "study.title");
   spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
   if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
   if (const Json* v = c.find(study, "check_every")) spec.check_every = c.integer(*v, "study.check_every", 1, 1L << 40);
+  if (const Json* v = c.find(study, "history_intervals"))
+    spec.history_intervals = static_cast<int>(c.integer(*v, "study.history_intervals", 1, 100000));
+  if (const Json* v = c.find(study, "counters")) spec.counters = counter_names(c, *v, "study.counters");
   if (const Json* v = c.find(study, "cpu_repeats")) spec.cpu_repeats = static_cast<int>(c.integer(*v, "study.cpu_repeats", 0, 100));
   if (const Json* v = c.find(study, "max_force_evaluations"))  // >= 1: no budget (0) would let a case run 2e8 steps
     spec.max_force_evaluations = c.integer(*v, "study.max_force_evaluations", 1, 1L << 50);
@@ -880,7 +953,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     const Json& j = problems[i];
     const std::string path = element("problem", i);
     c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations", "steps", "full_steps", "stable_steps",
-                     "reference", "energy_blow_up", "max_penetration", "energy_scale", "full_only", "default_only"});
+                     "reference", "energy_blow_up", "max_penetration", "energy_scale", "full_only", "default_only", "full_t_end",
+                     "end_at_impact", "min_flight"});
     FileProblem p;
     p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
     p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
@@ -892,7 +966,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     read_problem_outcome(c, j, path, p);
     read_problem_steps(c, j, path, spec, p);
     const std::size_t first = spec.problems.size();
-    for (const FileProblem& q : grid_points(c, j, path, p, entry.parameters())) {
+    for (FileProblem q : grid_points(c, j, path, p, entry.parameters())) {
       for (const auto& r : spec.problems)
         if (r.label == q.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", q.label), "distinct labels");
       try {
@@ -900,6 +974,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       } catch (const InputError& e) {
         c.fail(child(path, c.find(j, "grid") ? "grid" : "parameters"), e.what());
       }
+      read_end_at_impact(c, j, path, *instances.back(), q);
       FileSweep own_steps;  // its stable steps against its end time
       own_steps.stable_fractions = q.stable_fractions;
       check_steps(c, own_steps, path, spec, q, instances.back()->stable_step());
@@ -913,16 +988,10 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     }
   }
 
-  if (all_integrators) {  // study.integrators = "all": each registered one, with the problems' steps
-    if (c.find(root, "integrator"))
-      c.fail("integrator", "study.integrators = \"all\" lists the integrators", "no [[integrator]] tables with integrators = \"all\"");
-    for (const auto& entry : integrator_registry()) {
-      FileIntegrator it{entry.name, entry.name, {}, {}};
-      sweep_from_problems(c, it, "study.integrators", spec.problems);
-      spec.integrators.push_back(it);
-    }
-  }
-  const Json& integrators = all_integrators ? Json::array() : list("integrator");
+  // study.integrators = "all": each registered one, with the problems' steps, but those the
+  // [[integrator]] tables name: in its place, the tables' variants, in their order.
+  std::vector<FileIntegrator> declared;
+  const Json& integrators = all_integrators && !c.find(root, "integrator") ? Json::array() : list("integrator");
   const std::vector<std::string> sweep_keys{"parameters", "steps", "full_steps", "stable_steps", "tolerances", "tolerance_parameter", "dt"};
   for (std::size_t i = 0; i < integrators.size(); ++i) {
     const Json& j = integrators[i];
@@ -954,7 +1023,19 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       check_steps(c, it.sweep_for(label), own ? child(child(path, "per_problem"), label) : path, spec, spec.problems[p],
                   instances[p]->stable_step());
     }
-    add_integrator(c, spec, std::move(it), path);
+    add_integrator(c, declared, std::move(it), path);
+  }
+  if (!all_integrators) spec.integrators = std::move(declared);
+  for (const auto& entry : integrator_registry()) {
+    if (!all_integrators) break;
+    const auto named = [&](const FileIntegrator& it) { return it.name == entry.name; };
+    if (std::any_of(declared.begin(), declared.end(), named)) {
+      std::copy_if(declared.begin(), declared.end(), std::back_inserter(spec.integrators), named);
+      continue;
+    }
+    FileIntegrator it{entry.name, entry.name, {}, {}};
+    sweep_from_problems(c, it, "study.integrators", spec.problems);
+    add_integrator(c, spec.integrators, std::move(it), "study.integrators");
   }
 
   if (const Json* r = c.find(root, "reference")) {
@@ -967,7 +1048,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 
   // A study of declared tables may show its runs' own figures alone (outcome, steps, histories).
   const Json& measures = c.find(root, "measure") || !c.find(root, "table") ? list("measure") : Json::array();
-  const std::vector<std::string> kinds{"error", "impact-time", "energy", "momentum", "penetration", "hausdorff", "stop-time", "onset-time"};
+  const std::vector<std::string> kinds{"error",     "impact-time", "energy",     "momentum",     "penetration",
+                                       "hausdorff", "stop-time",   "onset-time", "flight-energy"};
   std::vector<std::string> problem_labels;
   for (const auto& p : spec.problems) problem_labels.push_back(p.label);
   for (std::size_t i = 0; i < measures.size(); ++i) {
@@ -1045,10 +1127,19 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       }
       m.label = onset ? "onset time err" : "stop time err";
     } else if (m.kind == MeasureKind::Energy) {
-      keys({"norm", "history", "window", "every", "from"});
+      keys({"norm", "history", "window", "every", "from", "relative_to"});
+      if (const Json* v = c.find(j, "relative_to"))
+        m.from_first_step = c.choice(*v, child(path, "relative_to"), {"initial", "first step"}) == "first step";
       read_energy_sampling(c, j, path, m);
+      if (m.from_first_step && m.norm == "offset")
+        c.fail(child(path, "relative_to"), "the offset is E_1 - E0 relative to E0's scale", "relative_to = \"initial\" with norm = \"offset\"");
+    } else if (m.kind == MeasureKind::FlightEnergy) {
+      read_flight_energy(c, j, path, spec, on, instances, m);
+      keys({"count", "norm"});
     } else {
-      keys(kind == "momentum" ? std::vector<std::string>{"window"} : std::vector<std::string>{});
+      keys(kind == "momentum" ? std::vector<std::string>{"window", "relative_to"} : std::vector<std::string>{});
+      if (const Json* v = c.find(j, "relative_to"))
+        m.initial_speeds_scale = c.choice(*v, child(path, "relative_to"), {"momentum", "initial speeds"}) == "initial speeds";
       m.label = kind == "momentum" ? "momentum residual" : "penetration";
     }
     if (const Json* v = c.find(j, "window")) {
@@ -1073,7 +1164,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   }
   spec.exclusions = read_exclusions(c, root, spec);
   spec.ranked = ranked_measure(c, study, spec.measures);
-  spec.figures = read_figures(c, root, spec.measures, spec.declared_figures_only);
+  spec.figures = read_figures(c, root, spec);
   spec.tables = read_tables(c, root, spec);
   if (std::any_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; }))
     for (std::size_t i = 0; i < spec.integrators.size(); ++i) {

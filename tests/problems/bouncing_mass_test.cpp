@@ -42,6 +42,12 @@ TEST_CASE("bouncing mass exact: restitution, flight energy E0 e^(2i), continuity
       CHECK(energy(p, *p.exact_state(mid)) == Approx(p.energy_after_impact(i)).epsilon(1e-12));
       CHECK(p.energy_after_impact(i) == Approx(E0 * std::pow(e, 2 * i)).epsilon(1e-14));
     }
+    // Through the Problem interface: one energy per impact before t_end, the same numbers.
+    const nsb::Problem& generic = p;
+    const auto energies = generic.energies_after_impacts(p.impact_time(6));
+    REQUIRE(energies.size() == 6);
+    REQUIRE(generic.impact_times(p.impact_time(6)).size() == 6);
+    for (int i = 1; i <= 6; ++i) CHECK(energies[static_cast<std::size_t>(i - 1)] == p.energy_after_impact(i));
   }
 }
 

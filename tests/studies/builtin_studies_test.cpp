@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <tuple>
 #include <vector>
@@ -124,6 +125,61 @@ TEST_CASE("built-in study hard: every case run by every registered integrator at
   CHECK(spec.problems[2].full_only);
 }
 
+// energy.toml's cases are those of the C++ study it replaced (studies/energy.cpp, whose case list
+// this file's equalled, default and --full, before it was deleted: commit dd90fe1): per problem
+// in its order, every registered integrator in the registry's order at its defaults but
+// cd-lagrange-adaptive, in its place in its four variants; the problems' parameters, steps and
+// end times below are the C++ study's (kProblems). The energy-target case (bouncing mass,
+// e = 0.9) ends at its exact 11th impact (end_at_impact). Its reports verify at --rtol 0 against
+// the C++ study's but for its declined rows' table: nsbench-study energy --verify reports --rtol 0.
+TEST_CASE("built-in study energy: energy.toml's cases are the C++ study's, default and --full", "[studies]") {
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/energy.toml");
+  const auto& energy = *std::find_if(nsb::study_registry().begin(), nsb::study_registry().end(),
+                                     [](const nsb::StudyEntry& e) { return e.name == "energy"; });
+  CHECK(energy.source == "studies/builtin/energy.toml");
+  struct Expected {
+    std::map<std::string, std::string> parameters;
+    double dt, t_end;
+  };
+  const double target_end = nsb::make_problem("bouncing-mass", {{"e", "0.9"}})->impact_times(1e9).at(10);
+  const std::vector<Expected> problems = {{{{"e", "1"}}, 1e-3, 904.0},
+                                          {{{"wall", "both"}, {"gap", "0.5"}}, 0.02, 40.0},
+                                          {{{"e", "0.9"}}, 1e-3, target_end},
+                                          {{{"g", "0.25"}, {"mass", "lumped"}, {"N", "50"}}, 0.01, 210.0},
+                                          {{{"g", "0.25"}, {"mass", "singular"}, {"N", "50"}}, 0.01, 210.0}};
+  const std::vector<Expected> full = {{{{"e", "1"}}, 1e-3, 9031.0},
+                                      {{{"wall", "both"}, {"gap", "0.5"}}, 0.02, 400.0},
+                                      {{{"e", "0.9"}}, 1e-3, target_end},
+                                      {{{"g", "0.25"}, {"mass", "lumped"}, {"N", "100"}}, 0.005, 2100.0},
+                                      {{{"g", "0.25"}, {"mass", "singular"}, {"N", "100"}}, 0.005, 2100.0}};
+  const std::vector<std::map<std::string, std::string>> variants = {{{"momentum", "variational"}, {"energy_target", "impact-law"}},
+                                                                    {{"momentum", "variational"}, {"energy_target", "no-work"}},
+                                                                    {{"momentum", "talk"}, {"energy_target", "impact-law"}},
+                                                                    {{"momentum", "talk"}, {"energy_target", "no-work"}}};
+  for (const bool is_full : {false, true}) {
+    INFO("full " << is_full);
+    const auto cases = nsb::study_cases(energy, {is_full});
+    std::size_t k = 0;
+    for (const Expected& want : is_full ? full : problems)
+      for (const auto& entry : nsb::integrator_registry()) {
+        const bool adaptive = entry.name == "cd-lagrange-adaptive";
+        for (const auto& variant : adaptive ? variants : std::vector<std::map<std::string, std::string>>{{}}) {
+          REQUIRE(k < cases.size());
+          INFO("case " << k << ": " << cases[k].dump());
+          const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+          const nsb::FileIntegrator& it = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
+          CHECK(p.parameters == want.parameters);
+          CHECK(it.name == entry.name);
+          CHECK(it.sweep_for(p.label).parameters == variant);
+          CHECK(cases[k]["dt"].get<double>() == want.dt);
+          CHECK((cases[k].contains("t_end") ? cases[k]["t_end"].get<double>() : spec.t_end_of(p)) == want.t_end);
+          ++k;
+        }
+      }
+    CHECK(k == cases.size());
+  }
+}
+
 // The draft studies/builtin/drafts/bouncing-bar.toml against the C++ study it is to replace
 // (studies/bouncing_bar.cpp), default and --full: the same runs in the same order (integrator,
 // mass model, N, alpha = dt / stable step), each with the C++ study's dt, end time t1 + K P and
@@ -158,7 +214,7 @@ TEST_CASE("draft bouncing-bar.toml: the C++ study bouncing-bar's runs, in its or
       const nsb::BouncingBarExact fall(params, 0.0);
       const double t_end = fall.impact_time() + e["periods"].get<int>() * (16.0 * fall.wave_time());
       CHECK(spec.t_end_of(p) == t_end);
-      CHECK(spec.budget_of(p, dt) == static_cast<long>(4.0 * t_end / dt));
+      CHECK(spec.budget_of(p, dt, t_end) == static_cast<long>(4.0 * t_end / dt));
     }
   }
 }

@@ -95,6 +95,21 @@ TEST_CASE("MomentumBalance and ContactPhases on the bouncing mass: Moreau-Jean b
   CHECK(impacts.starts()[1] == Approx(t2).margin(2e-3));
 }
 
+TEST_CASE("MomentumBalance::speed_scale: sum_i m_i |v0_i|, nonzero where the momentum P0 is zero", "[studies][measures]") {
+  const auto falling = nsb::make_problem("bouncing-mass", {{"m", "3"}, {"v0", "-2"}});
+  const nsb::MomentumBalance one(*falling, falling->initial_state().v);
+  CHECK(one.initial() == -6.0);
+  CHECK(one.speed_scale() == 6.0);
+  // Two masses moving apart: P0 = 0, the scale m1 |v1| + m2 |v2| = 2 + 2.
+  nsb::Vec v(2);
+  v << -1.0, 1.0;
+  const auto chain = nsb::make_problem("spring-chain", {{"n", "2"}, {"a", "0"}, {"v0", "0"}});
+  const nsb::Vec m = chain->mass_matrix().diagonal();
+  const nsb::MomentumBalance apart(*chain, v);
+  CHECK(apart.initial() == Approx(m[1] - m[0]).margin(1e-15));
+  CHECK(apart.speed_scale() == m[0] + m[1]);
+}
+
 TEST_CASE("cost_column: the stepping time, a timing column", "[studies][measures]") {
   const nsb::Column c = nsb::cost_column();
   CHECK(c.name == "CPU");

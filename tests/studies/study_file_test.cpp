@@ -217,7 +217,7 @@ TEST_CASE("study file: errors name FILE:LINE and the key path and what is wrong 
   CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2]\nper_problem = { chain = { steps = [1e-3] } }")),
              StartsWith("f.toml:12: integrator[0].per_problem.chain: unknown key (nearest valid key: bouncing-mass)"));
   CHECK_THAT(study_error_of(replaced(kMinimal, "kind = \"error\"", "kind = \"energy\"\nnorm = \"l2\"")),
-             StartsWith("f.toml:18: measure[0].norm: 'l2' is not valid") && Contains("valid: max, final, drift"));
+             StartsWith("f.toml:18: measure[0].norm: 'l2' is not valid") && Contains("valid: max, final, final abs, drift, offset"));
   CHECK_THAT(study_error_of("[study]\ntitle = 1\n"), StartsWith("f.toml:2: study.title: expected a string, got an integer"));
 }
 
@@ -725,8 +725,8 @@ kind = "penetration"
   const nsb::StudySpec spec = nsb::parse_study_text(text, "w.toml", false);
   CHECK(spec.t_end_of(spec.problems[0]) == 0.3);
   CHECK(spec.t_end_of(spec.problems[1]) == 0.6);
-  CHECK(spec.budget_of(spec.problems[1], 1e-2) == 5);
-  CHECK(spec.budget_of(spec.problems[0], 1e-2) == spec.max_force_evaluations);
+  CHECK(spec.budget_of(spec.problems[1], 1e-2, spec.t_end_of(spec.problems[1])) == 5);
+  CHECK(spec.budget_of(spec.problems[0], 1e-2, spec.t_end_of(spec.problems[0])) == spec.max_force_evaluations);
   const auto cases = nsb::study_cases(nsb::file_study(spec), {});
   REQUIRE(cases.size() == 4);
   const double stable = nsb::make_problem("signorini-bar", {{"N", "10"}})->stable_step();
@@ -1105,13 +1105,13 @@ TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, c
   CHECK(nsb::parse_study_text(history, "f.toml", false).tables.at(0).rows == "history");
   CHECK_THAT(study_error_of(history + "problems = [\"nope\"]\n"),
              StartsWith("f.toml:23: table[0].problems[0]: 'nope' is not valid (nearest: bouncing-mass); valid: bouncing-mass"));
-  CHECK_THAT(study_error_of(replaced(history, "rows = \"history\"", "rows = \"case\"\nproblems = [\"bouncing-mass\"]")),
-             StartsWith("f.toml:22: table[0].problems: only a history table picks its problems; valid: rows = \"history\""));
+  CHECK_THAT(study_error_of(replaced(history, "rows = \"history\"", "rows = \"group\"\nproblems = [\"bouncing-mass\"]")),
+             StartsWith("f.toml:22: table[0].problems: only a table of runs picks its problems; valid: rows = \"case\", \"history\" or \"samples\""));
   CHECK_THAT(study_error_of(replaced(history, "\"penetration\"]", "\"steps\"]")),
              StartsWith("f.toml:22: table[0].columns[1]: 'steps' is not valid (nearest: "));
   const std::string figure = "[[figure]]\nid = \"d\"\ntitle = \"d\"\nx = \"t\"\ny = \"energy deviation\"\ntable = ";
   CHECK_THAT(study_error_of(history + figure + "\"runs\"\n"),
-             StartsWith("f.toml:28: figure[0].table: 'runs' is no declared history table; valid: h"));
+             StartsWith("f.toml:28: figure[0].table: 'runs' is no declared history or samples table; valid: h"));
   CHECK_THAT(study_error_of(history + figure + "\"h\"\n"),
              StartsWith("f.toml:27: figure[0].y: 'energy deviation' is not a column of table 'h'; valid: t, penetration"));
   CHECK_THAT(study_error_of(history + replaced(figure, "\"energy deviation\"", "\"err\"") + "\"h\"\n"),
@@ -1160,8 +1160,10 @@ kind = "error"
   CHECK_THAT(study_error_of(replaced(all, "steps = [1e-2, 5e-3]", "steps = [1e-2, 0.7]")),
              StartsWith("f.toml:8: problem[0].steps[1]: dt = 0.7 is larger than study.t_end = 0.6; valid: dt <= t_end"));
   CHECK_THAT(study_error_of(replaced(all, "\"all\"", "\"some\"")), StartsWith("f.toml:4: study.integrators: 'some' is not valid (nearest: "));
-  CHECK_THAT(study_error_of(all + "\n[[integrator]]\nname = \"cd-lagrange\"\n"),
-             StartsWith("f.toml:17: integrator: study.integrators = \"all\" lists the integrators; valid: no [[integrator]] tables"));
+  // [[integrator]] tables beside "all" are variants in the place of the one they name; a label
+  // of another registered integrator is taken.
+  CHECK_THAT(study_error_of(all + "\n[[integrator]]\nname = \"cd-lagrange\"\nlabel = \"moreau-jean\"\n"),
+             StartsWith("f.toml:4: study.integrators.label: label 'moreau-jean' used twice; valid: distinct labels"));
   CHECK_THAT(study_error_of(replaced(listed, "steps = [2e-2]", "full_steps = [2e-2]")),
              StartsWith("f.toml:21: integrator[1].full_steps: full_steps without steps; valid: steps = [dt, ...] beside it"));
 }
@@ -1302,6 +1304,203 @@ TEST_CASE("study file: a run without an error (over budget) is not reached, not 
   CHECK(std::get<std::string>(rank.rows[0][2]) == "none");
 }
 
+namespace {
+
+const std::string kLongTime = quick_study("1.0", "history_intervals = 10\ncounters = [\"no_root_steps\"]\n") + R"(
+[[problem]]
+name = "bouncing-mass"
+label = "target"
+parameters = { e = 0.9 }
+steps = [1e-3]
+end_at_impact = 3
+[[problem]]
+name = "spring-chain"
+label = "chain"
+parameters = { wall = "both", gap = 0.5 }
+steps = [0.02]
+min_flight = 0.5
+[[integrator]]
+name = "moreau-jean"
+[[integrator]]
+name = "newmark-lm"
+[[measure]]
+kind = "energy"
+norm = "offset"
+label = "offset"
+[[measure]]
+kind = "energy"
+norm = "final abs"
+relative_to = "first step"
+label = "final"
+[[measure]]
+kind = "momentum"
+relative_to = "initial speeds"
+problems = ["chain"]
+label = "momentum"
+[[measure]]
+kind = "flight-energy"
+count = 2
+problems = ["target"]
+label = "flight"
+[[measure]]
+kind = "flight-energy"
+count = 2
+norm = "count"
+problems = ["target"]
+label = "flights"
+[[table]]
+id = "runs"
+title = "runs"
+problems = ["target"]
+declined = "n/a"
+columns = ["problem", "integrator name", "parameters", "t_end", "steps", "min step", "max step", "offset", "final", "flight",
+           "flights", "no_root_steps", "parameter e", "status"]
+[[table]]
+id = "momentum"
+title = "momentum"
+rows = "history"
+problems = ["chain"]
+columns = ["integrator", "t", "momentum residual"]
+[[table]]
+id = "ratio"
+title = "ratio"
+rows = "samples"
+problems = ["chain"]
+columns = ["integrator", "t", "energy ratio", "parameter wall"]
+)";
+
+}  // namespace
+
+TEST_CASE("study file: errors from the first step, flight energies, a momentum scale, end_at_impact, counters, declined rows, "
+          "momentum histories and samples", "[studies][study_file]") {
+  const nsb::StudySpec spec = nsb::parse_study_text(kLongTime, "f.toml", false);
+  const auto target = nsb::make_problem("bouncing-mass", {{"e", "0.9"}});
+  CHECK(spec.problems[0].t_end == target->impact_times(10.0).at(2));  // end_at_impact = 3
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(spec, &results);
+  const nsb::Table& runs = table_ending(tables, "runs");
+  REQUIRE(runs.rows.size() == 2);  // the target problem's alone
+  const auto cell = [&](std::size_t row, const std::string& header) { return runs.rows[row][column(runs, header)]; };
+  // Moreau-Jean: the offset is its first step's energy change, relative to E0.
+  auto mj = nsb::make_integrator("moreau-jean");
+  mj->init(*target, target->initial_state());
+  const double e0 = mj->energy().total();
+  mj->step(1e-3);
+  CHECK(std::get<double>(cell(0, "offset")) == (mj->energy().total() - e0) / std::abs(e0));
+  CHECK(std::get<double>(cell(0, "final")) >= 0.0);
+  CHECK(std::get<double>(cell(0, "flights")) == 2.0);  // two flights compared ...
+  CHECK(std::get<double>(cell(0, "flight")) < 1e-2);   // ... close to E0 e^(2i)
+  CHECK(std::get<double>(cell(0, "min step")) == 1e-3);
+  CHECK(std::get<double>(cell(0, "max step")) == 1e-3);
+  CHECK(std::holds_alternative<std::monostate>(cell(0, "no_root_steps")));  // moreau-jean counts none
+  CHECK(std::get<std::string>(cell(0, "integrator name")) == "moreau-jean");
+  CHECK(std::get<std::string>(cell(0, "parameters")) == "default");
+  CHECK(std::get<double>(cell(0, "parameter e")) == 0.9);  // a real parameter: a number
+  // newmark-lm declines e = 0.9: what was asked kept, what a run measures n/a (not 0 steps).
+  CHECK_THAT(std::get<std::string>(cell(1, "status")), Catch::StartsWith("n/a: "));
+  CHECK(std::get<double>(cell(1, "t_end")) == spec.problems[0].t_end);
+  CHECK(std::holds_alternative<std::monostate>(cell(1, "steps")));
+  CHECK(std::holds_alternative<std::monostate>(cell(1, "flights")));
+  // The chain (no external force): Moreau-Jean balances momentum; 10 intervals; 11 samples (the
+  // first step's, then at or after each k t_end / 10, k = 1..10: the last step reaches t_end).
+  const nsb::Table& momentum = table_ending(tables, "momentum");
+  REQUIRE(momentum.rows.size() == 10);  // moreau-jean's (newmark-lm declines the chain too)
+  for (const auto& row : momentum.rows) CHECK(std::get<double>(row[2]) < 1e-12);
+  const nsb::Table& ratio = table_ending(tables, "ratio");
+  REQUIRE(ratio.rows.size() == 11);
+  CHECK(std::get<double>(ratio.rows[0][1]) == Approx(0.02));  // the first step's
+  CHECK(std::get<double>(ratio.rows[1][1]) >= 0.1);           // then at or after k t_end / 10
+  CHECK(std::get<double>(ratio.rows[0][2]) == Approx(1.0).epsilon(1e-2));
+  CHECK(std::get<std::string>(ratio.rows[0][3]) == "both");
+  // The chain's momentum measure, by its scale sum_i m_i |v0_i|.
+  const auto chain = std::find_if(results.begin(), results.end(), [](const nsb::Json& r) { return r.contains("values") && !r["values"][2].is_null(); });
+  REQUIRE(chain != results.end());
+  CHECK((*chain)["values"][2].get<double>() < 1e-12);
+}
+
+TEST_CASE("study file: integrators = \"all\" with variants in place; full_t_end, default_only; the new keys' bad input named",
+          "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  const std::string all = quick_study("0.6", "integrators = \"all\"\n") + R"(
+[[problem]]
+name = "bouncing-mass"
+steps = [1e-2]
+full_t_end = 1.2
+[[problem]]
+name = "spring-chain"
+steps = [1e-2]
+default_only = true
+[[integrator]]
+name = "cd-lagrange-adaptive"
+label = "talk"
+parameters = { momentum = "talk" }
+[[integrator]]
+name = "cd-lagrange-adaptive"
+label = "variational"
+parameters = { momentum = "variational" }
+[[measure]]
+kind = "energy"
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(all, "f.toml", false);
+  const auto& registry = nsb::integrator_registry();
+  REQUIRE(spec.integrators.size() == registry.size() + 1);
+  std::size_t k = 0;
+  for (const auto& entry : registry) {
+    if (entry.name != "cd-lagrange-adaptive") {
+      CHECK(spec.integrators[k++].label == entry.name);
+      continue;
+    }
+    CHECK(spec.integrators[k++].label == "talk");
+    CHECK(spec.integrators[k++].label == "variational");
+  }
+  const nsb::StudyEntry entry = nsb::file_study(spec);
+  const auto plain = nsb::study_cases(entry, {false}), full = nsb::study_cases(entry, {true});
+  CHECK(plain.size() == 2 * spec.integrators.size());
+  REQUIRE(full.size() == spec.integrators.size());  // the chain is default_only
+  CHECK(full.front()["t_end"].get<double>() == 1.2);
+  CHECK_FALSE(plain.front().contains("t_end"));
+
+  const auto with_problem = [](const std::string& line) { return replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\n" + line); };
+  CHECK_THAT(study_error_of(with_problem("full_only = true\ndefault_only = true")),
+             StartsWith("f.toml:9: problem[0].default_only: full_only and default_only both: the problem would never run; valid: at most one"));
+  CHECK_THAT(study_error_of(with_problem("full_t_end = 0")), StartsWith("f.toml:8: problem[0].full_t_end: 0 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(study_error_of(with_problem("min_flight = -1")), StartsWith("f.toml:8: problem[0].min_flight: -1 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(study_error_of(with_problem("end_at_impact = 0")), StartsWith("f.toml:8: problem[0].end_at_impact: 0 is out of range; valid: [1, 1000]"));
+  CHECK_THAT(study_error_of(with_problem("end_at_impact = 900")),
+             StartsWith("f.toml:8: problem[0].end_at_impact: problem 'bouncing-mass' knows ") && Catch::Contains("exact impact times; valid: [1, "));
+  CHECK_THAT(study_error_of(with_problem("end_at_impact = 2\nt_end = 1")),
+             StartsWith("f.toml:8: problem[0].end_at_impact: the run's end given twice; valid: one of t_end (with full_t_end) or end_at_impact"));
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\ncounters = [\"impacts\"]")),
+             StartsWith("f.toml:4: study.counters[0]: 'impacts' is empty, given twice or the name of a run column; valid: distinct names"));
+  CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nhistory_intervals = 0")),
+             StartsWith("f.toml:4: study.history_intervals: 0 is out of range; valid: [1, 100000]"));
+  const auto with_measure = [](const std::string& lines) { return replaced(kMinimal, "kind = \"error\"", lines); };
+  CHECK_THAT(study_error_of(with_measure("kind = \"energy\"\nrelative_to = \"start\"")),
+             StartsWith("f.toml:18: measure[0].relative_to: 'start' is not valid (nearest: ") && Catch::Contains("valid: initial, first step"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"energy\"\nnorm = \"offset\"\nrelative_to = \"first step\"")),
+             StartsWith("f.toml:19: measure[0].relative_to: the offset is E_1 - E0 relative to E0's scale"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"momentum\"\nrelative_to = \"speeds\"")),
+             StartsWith("f.toml:18: measure[0].relative_to: 'speeds' is not valid (nearest: ") && Catch::Contains("valid: momentum, initial speeds"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"flight-energy\"")), StartsWith("f.toml:16: measure[0]: missing key 'count'"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"flight-energy\"\ncount = 3")),  // t_end 0.6: one impact, at 0.45 s
+             StartsWith("f.toml:18: measure[0].count: problem 'bouncing-mass' knows 1 exact impacts and energies by t_end, not count + 1 = 4"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"flight-energy\"\ncount = 1\nnorm = \"l2\"")),
+             StartsWith("f.toml:19: measure[0].norm: 'l2' is not valid (nearest: ") && Catch::Contains("valid: max, count"));
+  const std::string declared = kMinimal + "[[table]]\nid = \"t\"\ntitle = \"t\"\ncolumns = [\"problem\"]\n";
+  CHECK_THAT(study_error_of(declared + "declined = \"zero\"\n"),
+             StartsWith("f.toml:22: table[0].declined: 'zero' is not valid (nearest: ") && Catch::Contains("valid: as run, n/a"));
+  CHECK_THAT(study_error_of(declared + "rows = \"group\"\ndeclined = \"n/a\"\n"),
+             StartsWith("f.toml:23: table[0].declined: only a table of one row per run shows declined runs; valid: rows = \"case\""));
+  CHECK_THAT(study_error_of(declared + "rows = \"group\"\nproblems = [\"bouncing-mass\"]\n"),
+             StartsWith("f.toml:23: table[0].problems: only a table of runs picks its problems"));
+  CHECK_THAT(study_error_of(replaced(declared, "columns = [\"problem\"]", "columns = [\"parameter wall\"]")),
+             StartsWith("f.toml:21: table[0].columns[0]: 'parameter wall' is not valid (nearest: parameter "));
+  const std::string figure = "[[figure]]\nid = \"f\"\ntitle = \"f\"\nx = \"dt\"\ny = \"steps\"\nsmall_multiples = 1\n";
+  CHECK_THAT(study_error_of(kMinimal + figure), StartsWith("f.toml:23: figure[0].small_multiples: expected a boolean, got an integer"));
+  CHECK_THAT(study_error_of(kMinimal + replaced(figure, "small_multiples", "deviation")),
+             StartsWith("f.toml:23: figure[0].deviation: expected a boolean, got an integer"));
+}
+
 TEST_CASE("study file: case_order, default_only, [[exclude]] rules by kind, parameter and stable step, a budget per step",
           "[studies][study_file]") {
   const std::string text = quick_study("0.6", "integrators = \"all\"\ncase_order = \"integrator\"\nmax_force_evaluations_per_step = 4\n") + R"(
@@ -1353,7 +1552,7 @@ columns = ["problem", "integrator", "dt", "budget"]
       CHECK(cases[k]["integrator"].get<std::size_t>() == expected[k].first);
       CHECK(p.label == expected[k].second);
       const double dt = cases[k]["dt"];
-      CHECK(spec.budget_of(p, dt) == static_cast<long>(4.0 * 0.6 / dt));  // floor(4 t_end / dt)
+      CHECK(spec.budget_of(p, dt, 0.6) == static_cast<long>(4.0 * 0.6 / dt));  // floor(4 t_end / dt)
     }
   }
   // The budget holds: at 0.5 evaluations per step, a run of 60 steps stops over budget past 30.
