@@ -8,6 +8,10 @@
 //   - momentum balance of a 1D problem (MomentumBalance): P - P0 - sum of the impulses of the
 //     external forces and the contacts;
 //   - contact phases and impact times (ContactPhases);
+//   - impacts seen per contact, with an observable before and after each and its amplitude
+//     between them (ContactImpacts), and the closed forms they are held against on the
+//     moving-contact problems (rocking_law_ratio, rocking_amplitude_after, rocking_rest_time,
+//     painleve_jam_time);
 //   - the cost of a run: the thread CPU time of its stepping, observer excluded (cost_column,
 //     RunResult::step_cpu_seconds; median_cpu_seconds in studies/study.hpp for timed runs);
 //   - stop and onset times of a slip (studies/slip_stop.hpp) and the Hausdorff distance between
@@ -114,6 +118,42 @@ class ContactPhases {
   double last_contact_ = -1e300;
   std::vector<double> starts_;
 };
+
+// Impacts seen per contact: a step at which a contact takes an impulse after a step in which
+// it took none. A contact closed at t = 0 (gap <= 0) carries its load from the first step
+// on: that is no impact (the rocking block's pivot). At each impact: its time, an observable
+// before (at the end of the step before) and after (at the end of the impact step), and its
+// amplitude after: the largest |value| at the ends of the steps after the impact step, up to
+// the step before the next impact (or the run's last step). A time-stepping scheme may apply
+// the impulse a step after the gap closed (Moreau-Jean forecasts it at U_k): before and after
+// are taken around the impulse, so that step's smooth motion adds O(dt) to the ratio.
+class ContactImpacts {
+ public:
+  struct Impact {
+    double t = 0.0, before = 0.0, after = 0.0, amplitude = 0.0;
+  };
+  ContactImpacts(const Vec& initial_gaps, double initial_value);
+  // After each step ending at t: the contacts' normal impulses and the observable's value.
+  void add(double t, const Vec& impulses, double value);
+  const std::vector<Impact>& impacts() const { return impacts_; }
+
+ private:
+  std::vector<bool> carrying_;  // took an impulse in the last step (or closed at t = 0)
+  double previous_;
+  std::vector<Impact> impacts_;
+};
+
+// The closed forms the rigid study holds the schemes against, NaN on any other problem:
+// the rocking block's impact ratio omega+ / omega- under Housner's law, 1 - (3/2) sin^2(alpha),
+// or Moreau's (its exact solution's: Newton and Coulomb on both corners), its exact amplitude
+// |theta_max| after impact k (1-based; NaN past the impacts its exact solution marches) and
+// its exact time to rest (+inf when it never rests); the Painleve rod's dynamic jam time
+// (problems/painleve_rod_exact.hpp; NaN when its sliding phase ends otherwise).
+enum class ImpactLaw { housner, moreau };
+double rocking_law_ratio(const Problem& problem, ImpactLaw law);
+double rocking_amplitude_after(const Problem& problem, std::size_t k);
+double rocking_rest_time(const Problem& problem);
+double painleve_jam_time(const Problem& problem);
 
 // ---- Cost --------------------------------------------------------------------------------
 

@@ -71,7 +71,8 @@ struct FileIntegrator {
   const FileSweep& sweep_for(const std::string& problem_label) const;
 };
 
-enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime };
+enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime,
+                         ImpactRatio, Amplitude, ImpactCount, RestTime, PeakTime, Value };
 
 struct FileMeasure {
   MeasureKind kind = MeasureKind::Error;
@@ -83,6 +84,14 @@ struct FileMeasure {
   double time_scale = 0.0;       // Hausdorff: T (0: t_end)
   double value_scale = 0.0;      // Hausdorff: V (0: the reference's largest |value|)
   std::vector<std::string> problems;  // the labels of the problems it is measured on (empty: all)
+  // The measures of an observable's events (README, "Studies from a file"): impact-ratio's
+  // law ("housner" | "moreau", "": the ratio itself), the impact it is taken at (impact-ratio,
+  // amplitude; 0: `count` for impact-ratio), rest-time's threshold, and `exact`: the difference
+  // from the problem's closed form (studies/measures.hpp) instead of the value.
+  std::string law;
+  int impact = 0;
+  double threshold = 0.0;
+  bool exact = false;
   // Error, energy, momentum: sampled on [window_start, window_end] only (the whole run by default),
   // or on a window of each problem's own (by label; a problem not named: the whole run).
   double window_start = 0.0;
@@ -130,7 +139,7 @@ struct FileTable {
   std::optional<std::string> caption;
   std::string rows = "case";
   std::vector<FileColumn> columns;
-  std::vector<std::string> problems;  // history: the labels of the problems whose runs it shows
+  std::vector<std::string> problems;  // case, history: the labels of the problems whose runs it shows (empty: all)
   bool applies_to(const std::string& problem_label) const;
   // rows = "ranking" (the first such table): its error column's header, unit, format and
   // description (`of` unused), and the number format of dt or tol in its runs cells.

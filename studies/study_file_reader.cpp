@@ -14,6 +14,7 @@
 #include "core/output.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
+#include "studies/measures.hpp"
 #include "studies/report_text.hpp"
 #include "studies/slip_stop.hpp"
 #include "studies/study_file.hpp"
@@ -417,6 +418,68 @@ std::pair<double, double> read_window(const Checker& c, const Json& v, const std
   return {t0, t1};
 }
 
+// The measures of an observable's events (impact-ratio, amplitude, impact-count, rest-time,
+// peak-time, value) into `m`: their keys, the observable of every problem `on`, and for `law`
+// or `exact` the problem's closed form (studies/measures.hpp).
+void read_event_measure(const Checker& c, const Json& j, const std::string& path, const std::string& kind, FileMeasure& m,
+                        const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances,
+                        const std::vector<std::size_t>& on) {
+  const std::map<std::string, std::vector<std::string>> own{
+      {"impact-ratio", {"observable", "impact", "count", "law"}}, {"amplitude", {"observable", "impact", "exact"}},
+      {"impact-count", {}}, {"rest-time", {"observable", "threshold", "exact"}}, {"peak-time", {"observable", "exact"}},
+      {"value", {"observable", "norm"}}};
+  std::vector<std::string> keys = own.at(kind);
+  keys.insert(keys.end(), {"kind", "label", "problems"});
+  c.keys(j, path, keys);
+  if (kind != "impact-count") {
+    m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
+    for (const std::size_t p : on) {
+      std::vector<std::string> valid = instances[p]->observable_names();
+      valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
+      if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
+      if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
+        c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'", m.observable, spec.problems[p].label),
+               fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
+    }
+  }
+  if (const Json* v = c.find(j, "exact")) m.exact = c.boolean(*v, child(path, "exact"));
+  if (const Json* v = c.find(j, "law")) m.law = c.choice(*v, child(path, "law"), {"housner", "moreau"});
+  if (const Json* v = c.find(j, "impact")) m.impact = static_cast<int>(c.integer(*v, child(path, "impact"), 1, 1000000));
+  if (const Json* v = c.find(j, "count")) {
+    if (c.find(j, "impact")) c.fail(child(path, "count"), "impact and count both given", "one of them");
+    if (m.law.empty()) c.fail(child(path, "count"), "the largest difference over the first count impacts needs a law", "law = \"housner\" | \"moreau\"");
+    m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000000));
+  } else if (m.impact == 0 && kind != "impact-count") {
+    m.impact = 1;
+  }
+  if (kind == "rest-time") m.threshold = c.positive(c.require(j, path, "threshold"), child(path, "threshold"));
+  m.norm = "final";
+  if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "min"});
+  // The closed form each problem must have.
+  for (const std::size_t p : on) {
+    const Problem& problem = *instances[p];
+    const bool rocking = !std::isnan(rocking_law_ratio(problem, ImpactLaw::housner));
+    if ((!m.law.empty() || (m.exact && kind != "peak-time")) && !rocking)
+      c.fail(child(path, m.law.empty() ? "exact" : "law"), fmt::format("problem '{}' has no closed-form impacts", spec.problems[p].label),
+             "rocking-block problems, or problems = [...]");
+    if (m.exact && kind == "rest-time" && !std::isfinite(rocking_rest_time(problem)))
+      c.fail(child(path, "exact"), fmt::format("problem '{}' does not come to rest", spec.problems[p].label),
+             "a rocking block that comes to rest (e = 0), or problems = [...]");
+    if (m.exact && kind == "peak-time" && std::isnan(painleve_jam_time(problem)))
+      c.fail(child(path, "exact"), fmt::format("problem '{}' has no exact dynamic jam", spec.problems[p].label),
+             "painleve-rod problems whose sliding phase ends in a jam, or problems = [...]");
+  }
+  const std::string o = m.observable;
+  m.label = kind == "impact-ratio" ? (m.law.empty()   ? fmt::format("{} ratio at impact {}", o, m.impact)
+                                      : m.count > 0   ? fmt::format("{} ratio err {}, impacts 1..{}", o, m.law, m.count)
+                                                      : fmt::format("{} ratio err {} at impact {}", o, m.law, m.impact))
+            : kind == "amplitude"  ? fmt::format("{}amplitude of {} after impact {}", m.exact ? "rel err " : "", o, m.impact)
+            : kind == "impact-count" ? std::string("impacts per contact")
+            : kind == "rest-time"  ? fmt::format("{} time |{}| <= {:g}", m.exact ? "err rest" : "rest", o, m.threshold)
+            : kind == "peak-time"  ? fmt::format("{}time of max {}", m.exact ? "err " : "", o)
+                                   : fmt::format("{} {}", o, m.norm);
+}
+
 // study.rank_by: the label of a measure the ranking can rank by; by default the first error.
 std::size_t ranked_measure(const Checker& c, const Json& study, const std::vector<FileMeasure>& measures) {
   std::vector<std::string> valid;
@@ -604,7 +667,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history"});
     if (const Json* v = c.find(j, "problems")) {
       const std::string at = child(path, "problems");
-      if (t.rows != "history") c.fail(at, "only a history table picks its problems", "rows = \"history\"");
+      if (t.rows != "history" && t.rows != "case") c.fail(at, "only a case or history table picks its problems", "rows = \"case\" or \"history\"");
       c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more problem labels");
       std::vector<std::string> labels;
       for (const auto& p : spec.problems) labels.push_back(p.label);
@@ -717,7 +780,10 @@ std::pair<double, double> FileMeasure::window_for(const std::string& problem_lab
   return problem_windows.empty() ? std::pair{window_start, window_end} : std::pair{0.0, std::numeric_limits<double>::infinity()};
 }
 
-bool FileMeasure::rankable() const { return kind != MeasureKind::Energy || norm == "max"; }
+bool FileMeasure::rankable() const {
+  if (kind >= MeasureKind::ImpactRatio) return !law.empty() || exact;  // a difference from a closed form, not a value
+  return kind != MeasureKind::Energy || norm == "max";
+}
 
 const FileSweep& FileIntegrator::sweep_for(const std::string& problem_label) const {
   const auto it = per_problem.find(problem_label);
@@ -873,7 +939,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 
   // A study of declared tables may show its runs' own figures alone (outcome, steps, histories).
   const Json& measures = c.find(root, "measure") || !c.find(root, "table") ? list("measure") : Json::array();
-  const std::vector<std::string> kinds{"error", "impact-time", "energy", "momentum", "penetration", "hausdorff", "stop-time", "onset-time"};
+  const std::vector<std::string> kinds{"error",        "impact-time", "energy",       "momentum",  "penetration", "hausdorff", "stop-time",
+                                      "onset-time",   "impact-ratio", "amplitude",   "impact-count", "rest-time", "peak-time", "value"};
   std::vector<std::string> problem_labels;
   for (const auto& p : spec.problems) problem_labels.push_back(p.label);
   for (std::size_t i = 0; i < measures.size(); ++i) {
@@ -896,7 +963,9 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     std::vector<std::size_t> on;
     for (std::size_t p = 0; p < instances.size(); ++p)
       if (m.applies_to(spec.problems[p].label)) on.push_back(p);
-    if (m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff) {
+    if (m.kind >= MeasureKind::ImpactRatio) {
+      read_event_measure(c, j, path, kind, m, spec, instances, on);
+    } else if (m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff) {
       const bool hausdorff = m.kind == MeasureKind::Hausdorff;
       if (hausdorff) {
         keys({"observable", "time_scale", "value_scale"});
