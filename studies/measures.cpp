@@ -130,15 +130,20 @@ bool ContactPhases::add(double t, bool contact) {
 }
 
 ContactImpacts::ContactImpacts(const Vec& initial_gaps, double initial_value) : previous_(initial_value) {
-  for (Index i = 0; i < initial_gaps.size(); ++i) carrying_.push_back(initial_gaps[i] <= 0.0);
+  for (Index i = 0; i < initial_gaps.size(); ++i) {
+    carrying_.push_back(initial_gaps[i] <= 0.0);
+    open_.push_back(initial_gaps[i] > 0.0);
+  }
 }
 
-void ContactImpacts::add(double t, const Vec& impulses, double value) {
+void ContactImpacts::add(double t, const Vec& impulses, const Vec& gaps, double value) {
   bool struck = false;
   for (std::size_t i = 0; i < carrying_.size(); ++i) {
-    const bool carries = impulses[static_cast<Index>(i)] > 0.0;
-    struck = struck || (carries && !carrying_[i]);
+    const auto k = static_cast<Index>(i);
+    const bool carries = impulses[k] > 0.0;
+    struck = struck || (carries && !carrying_[i] && open_[i]);
     carrying_[i] = carries;
+    open_[i] = gaps[k] > 0.0;
   }
   if (struck)
     impacts_.push_back({t, previous_, value, 0.0});

@@ -120,8 +120,9 @@ class ContactPhases {
 };
 
 // Impacts seen per contact: a step at which a contact takes an impulse after a step in which
-// it took none. A contact closed at t = 0 (gap <= 0) carries its load from the first step
-// on: that is no impact (the rocking block's pivot). At each impact: its time, an observable
+// it took none, its gap open (> 0) at the step's start. A contact closed at t = 0 (gap <= 0)
+// carries its load from the first step on, and one that lost its impulse for a step without
+// opening takes it up again: neither is an impact (the rocking block's pivot). At each impact: its time, an observable
 // before (at the end of the step before) and after (at the end of the impact step), and its
 // amplitude after: the largest |value| at the ends of the steps after the impact step, up to
 // the step before the next impact (or the run's last step). A time-stepping scheme may apply
@@ -133,12 +134,13 @@ class ContactImpacts {
     double t = 0.0, before = 0.0, after = 0.0, amplitude = 0.0;
   };
   ContactImpacts(const Vec& initial_gaps, double initial_value);
-  // After each step ending at t: the contacts' normal impulses and the observable's value.
-  void add(double t, const Vec& impulses, double value);
+  // After each step ending at t: the contacts' normal impulses, their gaps and the observable's value.
+  void add(double t, const Vec& impulses, const Vec& gaps, double value);
   const std::vector<Impact>& impacts() const { return impacts_; }
 
  private:
   std::vector<bool> carrying_;  // took an impulse in the last step (or closed at t = 0)
+  std::vector<bool> open_;      // gap > 0 at the end of the last step
   double previous_;
   std::vector<Impact> impacts_;
 };

@@ -299,12 +299,13 @@ Json not_run(const std::string& why) {
 class EventFigures {
  public:
   EventFigures(const FileMeasure& m, const Problem& problem, double value0)
-      : m_(m), impacts_(Vec(problem.gap_offset() + problem.gap_operator() * problem.initial_state().u), value0),
-        largest_(value0), smallest_(value0), last_(value0) {
-    add(0.0, Vec::Zero(problem.ncontacts()), value0);
+      : m_(m), problem_(problem), geometry_(problem.contact_geometry()),
+        impacts_(gaps(problem.initial_state().u), value0), largest_(value0), smallest_(value0), last_(value0) {
+    add(0.0, Vec::Zero(problem.ncontacts()), problem.initial_state().u, value0);
   }
-  void add(double t, const Vec& impulses, double value) {
-    if (t > 0.0) impacts_.add(t, impulses, value);
+  // After a step ending at t with configuration u.
+  void add(double t, const Vec& impulses, const Vec& u, double value) {
+    if (t > 0.0) impacts_.add(t, impulses, gaps(u), value);
     above_ = std::abs(value) > m_.threshold;
     if (above_) last_above_ = t;
     if (std::isnan(peak_t_) || value > largest_) peak_t_ = t;
@@ -343,7 +344,15 @@ class EventFigures {
   }
 
  private:
+  // The gaps g(u) (moving contacts: evaluated, not linearised at U0).
+  const Vec& gaps(const Vec& u) {
+    problem_.evaluate_contacts(u, geometry_);
+    return geometry_.gap;
+  }
+
   const FileMeasure& m_;
+  const Problem& problem_;
+  ContactGeometry geometry_;
   ContactImpacts impacts_;
   bool above_ = false;
   double last_above_ = 0.0, peak_t_ = kNaN, largest_, smallest_, last_;
@@ -464,7 +473,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     const bool contact = it.impulses().sum() > 0.0;
     for (std::size_t m = 0; m < spec.measures.size(); ++m)
       if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) acc[m].impacts.add(s.t, contact);
-      else if (acc[m].events) acc[m].events->add(s.t, it.impulses(), event_observable(*problem, M, it, info.dt, spec.measures[m], obs, it.energy()));
+      else if (acc[m].events) acc[m].events->add(s.t, it.impulses(), s.u, event_observable(*problem, M, it, info.dt, spec.measures[m], obs, it.energy()));
     growth.add(it, info.dt);
     if (stop) stop->add(s);
     if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(it.energy().total() - e0) / e_scale});

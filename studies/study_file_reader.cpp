@@ -445,6 +445,7 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
   if (const Json* v = c.find(j, "exact")) m.exact = c.boolean(*v, child(path, "exact"));
   if (const Json* v = c.find(j, "law")) m.law = c.choice(*v, child(path, "law"), {"housner", "moreau"});
   if (const Json* v = c.find(j, "impact")) m.impact = static_cast<int>(c.integer(*v, child(path, "impact"), 1, 1000000));
+  m.count = 0;  // impact-time's default of 3 is not one here
   if (const Json* v = c.find(j, "count")) {
     if (c.find(j, "impact")) c.fail(child(path, "count"), "impact and count both given", "one of them");
     if (m.law.empty()) c.fail(child(path, "count"), "the largest difference over the first count impacts needs a law", "law = \"housner\" | \"moreau\"");

@@ -96,17 +96,18 @@ TEST_CASE("ContactImpacts: an impact is a contact's impulse after a step without
   nsb::Vec gaps(2);
   gaps << 0.0, 0.3;
   nsb::ContactImpacts impacts(gaps, -1.0);
-  const auto impulses = [](double a, double b) {
+  const auto pair = [](double a, double b) {
     nsb::Vec v(2);
     v << a, b;
     return v;
   };
-  impacts.add(0.1, impulses(1, 0), -2.0);  // the pivot's load
-  impacts.add(0.2, impulses(0, 1), 1.5);   // contact 1 struck: -2 -> 1.5
-  impacts.add(0.3, impulses(0, 1), 3.0);
-  impacts.add(0.4, impulses(0, 1), -4.0);  // amplitude 4 until the next impact
-  impacts.add(0.5, impulses(1, 0), 0.5);   // contact 0 struck again after a step without
-  impacts.add(0.6, impulses(1, 0), 0.25);
+  impacts.add(0.1, pair(0, 0), pair(-1e-6, 0.2), -1.0);  // the pivot without impulse for a step, still closed
+  impacts.add(0.15, pair(1, 0), pair(0, 0.1), -2.0);     // takes its load again: no impact
+  impacts.add(0.2, pair(0, 1), pair(0.1, 0), 1.5);       // contact 1 struck: -2 -> 1.5
+  impacts.add(0.3, pair(0, 1), pair(0.2, 0), 3.0);
+  impacts.add(0.4, pair(0, 1), pair(0.1, 0), -4.0);  // amplitude 4 until the next impact
+  impacts.add(0.5, pair(1, 0), pair(0, 0.1), 0.5);   // contact 0 struck: open at the step's start
+  impacts.add(0.6, pair(1, 0), pair(0, 0.2), 0.25);
   REQUIRE(impacts.impacts().size() == 2);
   const auto& first = impacts.impacts()[0];
   CHECK(first.t == 0.2);
