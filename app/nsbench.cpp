@@ -65,13 +65,14 @@ void list() {
     fmt::print("      observables (at the defaults): {}\n", names.empty() ? std::string("none of its own") : fmt::format("{}", fmt::join(names, ", ")));
   }
   fmt::print("integrators (friction: treats Coulomb friction, mu > 0; moving contacts: treats contacts whose rows\n"
-             "follow the configuration; the others decline them. needs: what it can run, declared in its registry\n"
-             "entry, refused when it binds a problem; integrators/capabilities.hpp):\n");
+             "follow the configuration; 3D friction cone: treats 3D contacts, two tangent rows; the others decline\n"
+             "them. needs: what it can run, declared in its registry entry, refused when it binds a problem;\n"
+             "integrators/capabilities.hpp):\n");
   for (const auto& e : nsb::integrator_registry()) {
     const nsb::DeclaredCapabilities declared = e.declared();
     const nsb::Capabilities& can = declared.resolved(nsb::Params(e.parameters()));
-    fmt::print("  {:<22} {}{}{}\n", e.name, e.description, can.friction ? " [friction]" : "",
-               can.moving_contacts ? " [moving contacts]" : "");
+    fmt::print("  {:<22} {}{}{}{}\n", e.name, e.description, can.friction ? " [friction]" : "",
+               can.moving_contacts ? " [moving contacts]" : "", can.friction_cone ? " [3D friction cone]" : "");
     fmt::print("      needs: {}\n", declared.text());
     print_params(e.parameters());
   }

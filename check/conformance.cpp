@@ -382,25 +382,21 @@ void field_mesh(const Problem& p, const State& s0, std::vector<Verdict>& out) {
                                     "initial state", mesh->npoints(), mesh->nelements(), mesh->nbodies())));
 }
 
-// L(U) and T(U) against central differences of g(U) and of the slide s(U) (T = ds/dU) along
-// random directions, at the initial configuration and at random admissible ones (every gap
-// >= 0) near it. Error of a row: |FD - row . d| / (|row| |d|).
-void contact_rows(const Problem& p, const State& s0, std::vector<Verdict>& out) {
+}  // namespace
+
+Verdict check_contact_rows(const Problem& p, const Vec& u0) {
   const Index n = p.ndof(), nc = p.ncontacts();
-  if (nc == 0) {
-    out.push_back({"contact rows", Outcome::Pass, "0 contacts: no rows to test"});
-    return;
-  }
+  if (nc == 0) return {"contact rows", Outcome::Pass, "0 contacts: no rows to test"};
   ContactGeometry at = p.contact_geometry(), plus = p.contact_geometry(), minus = p.contact_geometry();
   const bool friction = at.tangent.rows() > 0;
   Vec s_plus = Vec::Zero(nc), s_minus = Vec::Zero(nc);
   std::mt19937_64 rng(20261125);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   const auto random_vector = [&] { return Vec(Vec::NullaryExpr(n, [&] { return uniform(rng); })); };
-  const double scale = 1.0 + s0.u.cwiseAbs().maxCoeff();
-  std::vector<Vec> configurations = {s0.u};
+  const double scale = 1.0 + u0.cwiseAbs().maxCoeff();
+  std::vector<Vec> configurations = {u0};
   for (int tries = 0; tries < 400 && configurations.size() < 6; ++tries) {
-    const Vec u = s0.u + 0.05 * scale * random_vector();
+    const Vec u = u0 + 0.05 * scale * random_vector();
     p.evaluate_contacts(u, at);
     if (at.gap.minCoeff() >= 0.0) configurations.push_back(u);
   }
@@ -426,13 +422,11 @@ void contact_rows(const Problem& p, const State& s0, std::vector<Verdict>& out) 
       }
     }
   }
-  out.push_back(verdict("contact rows", worst_normal <= 1e-5 && worst_tangent <= 1e-5,
-                        fmt::format("{} contacts {}, {} configurations: L against d g, worst {:.3g}; T against d s, {} (<= 1e-5)",
-                                    nc, p.contacts_move() ? "moving" : "constant", configurations.size(), worst_normal,
-                                    friction ? fmt::format("worst {:.3g}", worst_tangent) : std::string("frictionless"))));
+  return verdict("contact rows", worst_normal <= 1e-5 && worst_tangent <= 1e-5,
+                 fmt::format("{} contacts {}, {} configurations: L against d g, worst {:.3g}; T against d s, {} (<= 1e-5)",
+                             nc, p.contacts_move() ? "moving" : "constant", configurations.size(), worst_normal,
+                             friction ? fmt::format("worst {:.3g}", worst_tangent) : std::string("frictionless")));
 }
-
-}  // namespace
 
 std::vector<Verdict> check_integrator(const IntegratorEntry& entry) {
   std::vector<Verdict> out;
@@ -490,7 +484,7 @@ std::vector<Verdict> check_problem(const ProblemEntry& entry) {
   const double dt = p->stable_step();
   out.push_back(verdict("stable step", dt > 0.0, fmt::format("{:.4g} (> 0; inf: no stiffness, 2 / omega_max)", dt)));
   try {
-    contact_rows(*p, s0, out);
+    out.push_back(check_contact_rows(*p, s0.u));
   } catch (const std::exception& err) {
     out.push_back({"contact rows", Outcome::Fail, fmt::format("threw: {}", err.what())});
   }

@@ -101,4 +101,11 @@ std::vector<Verdict> check_integrator(const IntegratorEntry& entry);
 // measured without one); bad parameters refused.
 std::vector<Verdict> check_problem(const ProblemEntry& entry);
 
+// The contact rows' part of check_problem for one problem around configuration u0: L(U) and
+// T(U) against central differences of g(U) and of the slide s(U) (T = ds/dU) along three
+// random directions d each, at u0 and at up to five random admissible configurations (every
+// gap >= 0) within 0.05 (1 + max|u0|) of it. Error of a row: |FD - row . d| / (|row| |d|),
+// <= 1e-5 to pass. The figure says how many configurations were admissible.
+Verdict check_contact_rows(const Problem& p, const Vec& u0);
+
 }  // namespace nsb

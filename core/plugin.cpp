@@ -105,7 +105,10 @@ void load_plugin(const std::string& path) {
     fail(fmt::format("built for plugin ABI {}, this nsbench has ABI {}: rebuild it against this nsbench", *abi,
                      NSBENCH_PLUGIN_ABI));
   if (!l.errors.empty()) fail(l.errors.front());
-  PluginInfo info{canonical.string(), canonical.filename().string(), hash};
+  PluginInfo info;
+  info.path = canonical.string();
+  info.file = canonical.filename().string();
+  info.hash = hash;
   const auto* optimized = static_cast<const int*>(dlsym(handle, "nsbench_plugin_optimized"));
   const auto* build_type = static_cast<const char*>(dlsym(handle, "nsbench_plugin_build_type"));
   const auto* flags = static_cast<const char*>(dlsym(handle, "nsbench_plugin_compile_flags"));

@@ -115,6 +115,10 @@ void check_capabilities(const DeclaredCapabilities& declared, const std::string&
     refuse("contacts with constant kinematics (g = g0 + L U, L and T fixed)",
            "contacts that move with the configuration (g(U), L(U), T(U))",
            "a problem whose contact rows are constant, or an integrator `nsbench list` marks as treating moving contacts");
+  if (c.has_cone() && !can.friction_cone)
+    refuse("2D contacts (one tangent row: the Coulomb interval) or mu = 0",
+           fmt::format("3D contacts with friction (two tangent rows: the Coulomb cone, mu = {})", c.max_mu()),
+           "a problem with 2D contacts or mu = 0, or an integrator `nsbench list` marks as treating the 3D friction cone");
   if (c.has_friction() && !can.friction)
     refuse("mu = 0 (it does not treat Coulomb friction)", fmt::format("mu = {}", c.max_mu()),
            "a problem with mu = 0, or an integrator `nsbench list` marks as treating friction");

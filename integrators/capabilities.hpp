@@ -33,6 +33,11 @@ struct Capabilities {
   // T(U)), as its header's formula block states. Without it such a problem is refused, so
   // that no scheme runs frozen rows silently.
   bool moving_contacts = false;
+  // Treats 3D contacts with friction (Contacts::has_cone: two tangent rows, the Coulomb cone
+  // |Lambda_T| <= mu Lambda_N with maximal dissipation), fills tangential_impulses2, as its
+  // header's formula block states. Without it such a problem is refused, so that no scheme
+  // drops the second tangent row silently.
+  bool friction_cone = false;
   // Explicit: only conditionally stable at a fixed step, dt below Problem::stable_step
   // (nsbench run warns above it). Not a refusal.
   bool explicit_step = false;

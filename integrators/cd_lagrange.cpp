@@ -56,7 +56,12 @@ void CdLagrange::init(const Problem& problem, const State& initial) {
     }
   }
   massless_impulse_ = Vec::Zero(static_cast<Index>(massless_.size()));
-  contact_ = ImpulseContact(problem, cd_.minv, lcp_);
+  cone_ = problem.contacts().has_cone();
+  if (cone_) {
+    cone_contact_ = ConeContact(problem, cd_.minv, lcp_);
+  } else {
+    contact_ = ImpulseContact(problem, cd_.minv, lcp_);
+  }
 }
 
 StepInfo CdLagrange::advance(double tau) {
@@ -66,7 +71,9 @@ StepInfo CdLagrange::advance(double tau) {
   if (!massless_.empty()) solve_massless(tau);
   cd_.kick(state_, tau);
 
-  info.iterations = contact_.apply(state_.u, cd_.v_prev, state_.v, impulses_, tangential_impulses_, info, work_);
+  info.iterations = cone_ ? cone_contact_.apply(state_.u, cd_.v_prev, state_.v, impulses_, tangential_impulses_,
+                                                tangential_impulses2_, info, work_)
+                         : contact_.apply(state_.u, cd_.v_prev, state_.v, impulses_, tangential_impulses_, info, work_);
   for (std::size_t q = 0; q < massless_.size(); ++q) {
     const MasslessDof& d = massless_[q];
     state_.v[d.dof] = (state_.u[d.dof] - cd_.u_prev[d.dof]) / tau;
@@ -100,6 +107,6 @@ Energy CdLagrange::energy() const {
 }
 
 NSBENCH_INTEGRATOR({"cd-lagrange", "explicit variational CD-Lagrange, fixed step, impulse contact", &CdLagrange::parameters_spec, &make_from_params<Integrator, CdLagrange>, false, false,
-                    {.friction = true, .moving_contacts = true, .explicit_step = true, .mass = MassNeed::Diagonal}});
+                    {.friction = true, .moving_contacts = true, .friction_cone = true, .explicit_step = true, .mass = MassNeed::Diagonal}});
 
 }  // namespace nsb

@@ -19,6 +19,19 @@
 // per contact where no two contacts share a dof (impulse_contact.hpp); no tangential
 // restitution.
 //
+// 3D contacts (Contacts::has_cone, capability "3D friction cone"; docs/three_d.md): the
+// closed contacts take (Lambda_N, Lambda_T1, Lambda_T2) from the cone law
+//     0 <= Lambda_N _|_ U_N >= 0,  |Lambda_T| <= mu Lambda_N,  stick U_T = 0 inside,
+//     Lambda_T = -mu Lambda_N U_T / |U_T| on the boundary (maximal dissipation),
+// U = q + W Lambda, W_i = [L_i; T_i; T2_i] M^{-1} [L_i; T_i; T2_i]^T (3x3), and
+// P_{k+3/2} = P_free + L^T Lambda_N + T^T Lambda_T1 + T2^T Lambda_T2 (cone_contact.hpp): per
+// contact in closed form where W_i is diagonal with equal tangent entries (W_i = w I_3, a node
+// of equal mass in x, y, z on a flat obstacle, the talk's "diagonal and spherical": Lambda_N =
+// -q_N / w, Lambda_T = -q_T / w projected onto the disk of radius mu Lambda_N; a rigid sphere's
+// diag(w_n, w_t, w_t) likewise), the exact local solve of coulomb_cone.hpp otherwise
+// (trust-region disk step, Illinois on Lambda_N to 1e-15 relative), nonsmooth Gauss–Seidel
+// over the closed contacts where contacts share a dof (to lcp_tol). The step stays explicit.
+//
 // Moving contacts (Problem::contacts_move; the talk's step 3): the gaps and rows are
 // evaluated at the new position, g(U_{k+1}), L(U_{k+1}), T(U_{k+1}), and every quantity of
 // the impulse law above uses them: the active set g_i(U_{k+1}) <= 0, g'_free = L(U_{k+1})
@@ -49,6 +62,7 @@
 //     E_{k+1/2} = 1/2 P_{k+1/2}^T M^{-1} P_{k+1/2} + 1/2 (V(U_k) + V(U_{k+1})),
 // which is constant in free flight under a constant force.
 #include "integrators/central_difference.hpp"
+#include "integrators/cone_contact.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/impulse_contact.hpp"
 
@@ -66,6 +80,8 @@ class CdLagrange final : public Integrator {
   StepInfo advance(double dt_requested) override;
   LcpOptions lcp_;
   ImpulseContact contact_;
+  bool cone_ = false;        // 3D contacts with friction: cone_contact_ instead of contact_
+  ConeContact cone_contact_;
   CentralDifference cd_;
 
   // Quasi-static (massless) dofs; K's column i is stored as entries [begin, end) of

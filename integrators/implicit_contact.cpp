@@ -105,7 +105,7 @@ const Vec& ImplicitContact::tangent_response(Index i) {
 LcpResult ImplicitContact::correct_with_friction(const Vec& b, Vec& x, Vec& normal, Vec& tangential,
                                                  const std::vector<Index>& active) {
   const FrictionalCorrection c{L_, T_, problem_->contacts(), [this](Index i) -> const Vec& { return response(i); },
-                               [this](Index i) -> const Vec& { return tangent_response(i); }};
+                               [this](Index i) -> const Vec& { return tangent_response(i); }, nullptr, {}, nullptr};
   const LcpResult res = frictional_correction(c, b, x, normal, tangential, active, lcp_, buffers_.lcp, mu_active_);
   work_->lcp_iterations += res.iterations;
   if (!res.converged) ++work_->lcp_unconverged;
@@ -115,34 +115,37 @@ LcpResult ImplicitContact::correct_with_friction(const Vec& b, Vec& x, Vec& norm
 LcpResult frictional_correction(const FrictionalCorrection& c, const Vec& b, Vec& x, Vec& normal, Vec& tangential,
                                 const std::vector<Index>& active, const LcpOptions& lcp, LcpStorage& storage,
                                 Vec& mu_active) {
+  const bool cone = c.T2 != nullptr;
   normal.setZero();
   tangential.setZero();
+  if (cone) c.tangential2->setZero();
   const Index a = static_cast<Index>(active.size());
   if (a == 0) return {};
-  auto& [D, q, z] = storage.of_size(2 * a);
-  for (Index col = 0; col < a; ++col) {
-    const Vec& rn = c.normal_response(active[col]);
-    const Vec& rt = c.tangent_response(active[col]);
-    for (Index row = 0; row < a; ++row) {
-      D(2 * row, 2 * col) = c.L.row(active[row]).dot(rn);
-      D(2 * row, 2 * col + 1) = c.L.row(active[row]).dot(rt);
-      D(2 * row + 1, 2 * col) = c.T.row(active[row]).dot(rn);
-      D(2 * row + 1, 2 * col + 1) = c.T.row(active[row]).dot(rt);
+  const Index m = cone ? 3 : 2;  // rows per contact: N, T (, T2)
+  const ContactRows* rows[3] = {&c.L, &c.T, c.T2};
+  const std::function<const Vec&(Index)>* responses[3] = {&c.normal_response, &c.tangent_response, &c.tangent2_response};
+  auto& [D, q, z] = storage.of_size(m * a);
+  for (Index col = 0; col < a; ++col)
+    for (Index l = 0; l < m; ++l) {
+      const Vec& r = (*responses[l])(active[col]);
+      for (Index row = 0; row < a; ++row)
+        for (Index k = 0; k < m; ++k) D(m * row + k, m * col + l) = rows[k]->row(active[row]).dot(r);
     }
-  }
   for (Index row = 0; row < a; ++row) {
     const Index i = active[row];
-    q[2 * row] = b[i] + c.L.row(i).dot(x);
-    q[2 * row + 1] = c.T.row(i).dot(x) - c.contacts.tangent_velocity[i];
+    q[m * row] = b[i] + c.L.row(i).dot(x);
+    q[m * row + 1] = c.T.row(i).dot(x) - c.contacts.tangent_velocity[i];
+    if (cone) q[m * row + 2] = c.T2->row(i).dot(x) - c.contacts.tangent2_velocity[i];
     mu_active[row] = c.contacts.mu[i];
   }
-  const LcpResult res = solve_coulomb(D, q, mu_active.head(a), z, lcp);
+  const LcpResult res = cone ? solve_coulomb_cone(D, q, mu_active.head(a), z, lcp) : solve_coulomb(D, q, mu_active.head(a), z, lcp);
+  Vec* outputs[3] = {&normal, &tangential, c.tangential2};
   for (Index k = 0; k < a; ++k) {
     const Index i = active[k];
-    normal[i] = z[2 * k];
-    tangential[i] = z[2 * k + 1];
-    if (z[2 * k] != 0.0) x.noalias() += z[2 * k] * c.normal_response(i);
-    if (z[2 * k + 1] != 0.0) x.noalias() += z[2 * k + 1] * c.tangent_response(i);
+    for (Index l = 0; l < m; ++l) {
+      (*outputs[l])[i] = z[m * k + l];
+      if (z[m * k + l] != 0.0) x.noalias() += z[m * k + l] * (*responses[l])(i);
+    }
   }
   return res;
 }

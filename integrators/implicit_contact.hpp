@@ -31,6 +31,7 @@
 
 #include "integrators/contact_responses.hpp"
 #include "solvers/coulomb.hpp"
+#include "solvers/coulomb_cone.hpp"
 #include "integrators/integrator.hpp"
 #include "solvers/lcp.hpp"
 #include "solvers/sparse_cholesky.hpp"
@@ -59,11 +60,18 @@ LcpResult contact_correction(const ContactRows& L, const Vec& b, Vec& x, Vec& mu
 // Delassus blocks [L_i; T_i] S^{-1} [L_j; T_j]^T from the cached responses S^{-1} L_j^T and
 // S^{-1} T_j^T. normal, tangential (size p) get the impulses, zero off the set. The caller
 // counts the iterations.
+// 3D contacts (T2 set: Contacts::has_cone): the rows [L_i; T_i; T2_i], U_T2 = T2_i x - w2_i,
+// the 3x3 blocks from S^{-1} T2_j^T too, the cone law solved by nonsmooth Gauss–Seidel over
+// contacts with each contact's exact local solve (solve_coulomb_cone, coulomb_cone.hpp), and
+// x <- x + S^{-1} (L^T Lambda_N + T^T Lambda_T1 + T2^T Lambda_T2), Lambda_T2 into *tangential2.
 struct FrictionalCorrection {
   const ContactRows& L;
   const ContactRows& T;
-  const Contacts& contacts;  // mu and w
+  const Contacts& contacts;  // mu and w (w2)
   std::function<const Vec&(Index)> normal_response, tangent_response;
+  const ContactRows* T2;  // null: 2D contacts (the interval law)
+  std::function<const Vec&(Index)> tangent2_response;
+  Vec* tangential2;  // the impulses along T2 (size p), with T2
 };
 LcpResult frictional_correction(const FrictionalCorrection& c, const Vec& b, Vec& x, Vec& normal, Vec& tangential,
                                 const std::vector<Index>& active, const LcpOptions& lcp, LcpStorage& storage,

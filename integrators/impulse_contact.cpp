@@ -30,6 +30,16 @@ ImpulseContact::ImpulseContact(const Problem& problem, const Vec& minv, LcpOptio
       if (it.row() != it.col() && it.value() != 0.0) h_is_diagonal_ = false;
   if (!h_is_diagonal_) h_full_ = Eigen::MatrixXd(H);
   closed_.reserve(static_cast<std::size_t>(problem.ncontacts()));
+  if (moving_) {
+    const Index p = problem.ncontacts();
+    entries_begin_.assign(static_cast<std::size_t>(p + 1), 0);
+    entries_end_.assign(static_cast<std::size_t>(p), 0);
+    for (Index i = 0; i < p; ++i) {
+      const Index capacity = rows_.normal.row(i).nonZeros() + (rows_.tangent.rows() > 0 ? rows_.tangent.row(i).nonZeros() : 0);
+      entries_begin_[static_cast<std::size_t>(i + 1)] = entries_begin_[static_cast<std::size_t>(i)] + capacity;
+    }
+    entries_.resize(static_cast<std::size_t>(entries_begin_.back()));
+  }
 
   const Contacts& c = problem.contacts();
   friction_ = c.has_friction();
@@ -62,7 +72,55 @@ ImpulseContact::ImpulseContact(const Problem& problem, const Vec& minv, LcpOptio
   mu_closed_ = Vec::Zero(p);
 }
 
-double ImpulseContact::weighted_dot(const RowSpMat& A, Index i, const RowSpMat& B, Index j) const {
+void ImpulseContact::gather(Index i) {
+  auto k = static_cast<std::size_t>(entries_begin_[static_cast<std::size_t>(i)]);
+  const auto keep = [&](Index col, double l, double t) {
+    if (l != 0.0 || t != 0.0) entries_[k++] = {col, l, t};
+  };
+  RowSpMat::InnerIterator l(rows_.normal, i);
+  if (!friction_) {
+    for (; l; ++l) keep(l.col(), l.value(), 0.0);
+  } else {
+    for (RowSpMat::InnerIterator t(rows_.tangent, i); l || t;) {
+      if (t && (!l || t.col() < l.col())) {
+        keep(t.col(), 0.0, t.value());
+        ++t;
+      } else if (!t || l.col() < t.col()) {
+        keep(l.col(), l.value(), 0.0);
+        ++l;
+      } else {
+        keep(l.col(), l.value(), t.value());
+        ++l;
+        ++t;
+      }
+    }
+  }
+  entries_end_[static_cast<std::size_t>(i)] = static_cast<Index>(k);
+}
+
+ImpulseContact::Products ImpulseContact::products(Index i, Index j) const {
+  Products s;
+  const RowEntry *a = gathered_begin(i), *a_end = gathered_end(i), *b = gathered_begin(j), *b_end = gathered_end(j);
+  if (a == a_end || b == b_end || a->col > (b_end - 1)->col || b->col > (a_end - 1)->col) return s;  // no shared dof
+  while (a != a_end && b != b_end) {
+    if (a->col < b->col) {
+      ++a;
+    } else if (b->col < a->col) {
+      ++b;
+    } else {
+      const double m = minv_[a->col];
+      s.nn += a->l * m * b->l;
+      s.nt += a->l * m * b->t;
+      s.tn += a->t * m * b->l;
+      s.tt += a->t * m * b->t;
+      ++a;
+      ++b;
+    }
+  }
+  return s;
+}
+
+double weighted_row_dot(const RowSpMat& A, Index i, const RowSpMat& B, Index j, const Vec& minv) {
   RowSpMat::InnerIterator a(A, i), b(B, j);
   double sum = 0.0;
   while (a && b) {
@@ -71,7 +129,7 @@ double ImpulseContact::weighted_dot(const RowSpMat& A, Index i, const RowSpMat& 
     } else if (b.col() < a.col()) {
       ++b;
     } else {
-      sum += a.value() * minv_[a.col()] * b.value();
+      sum += a.value() * minv[a.col()] * b.value();
       ++a;
       ++b;
     }
@@ -81,24 +139,39 @@ double ImpulseContact::weighted_dot(const RowSpMat& A, Index i, const RowSpMat& 
 
 void ImpulseContact::evaluate_at(ConstVecRef u) {
   problem_->evaluate_contacts(u, rows_);
-  const RowSpMat &L = rows_.normal, &T = rows_.tangent;
-  const Index p = L.rows();
-  for (Index i = 0; i < p; ++i) h_diag_[i] = weighted_dot(L, i, L, i);
-  if (!h_is_diagonal_)
-    for (Index i = 0; i < p; ++i)
-      for (Index j = 0; j < p; ++j) h_full_(i, j) = weighted_dot(L, i, L, j);
-  if (!friction_) return;
-  for (Index i = 0; i < p; ++i) {
-    w_nt_[i] = weighted_dot(L, i, T, i);
-    w_tt_[i] = weighted_dot(T, i, T, i);
+  for (Index i = 0; i < rows_.normal.rows(); ++i) {
+    if (!(rows_.gap[i] <= 0.0)) continue;  // open at u: nothing of it is read this step
+    gather(i);
+    const Products s = products(i, i);
+    h_diag_[i] = s.nn;
+    if (!friction_) continue;
+    w_nt_[i] = s.nt;
+    w_tt_[i] = s.tt;
   }
-  if (!friction_coupled_) return;
-  for (Index i = 0; i < 2 * p; ++i)
-    for (Index j = 0; j < 2 * p; ++j)
-      w_full_(i, j) = weighted_dot(i % 2 ? T : L, i / 2, j % 2 ? T : L, j / 2);
+}
+
+void ImpulseContact::couple_closed() {
+  const auto a = static_cast<Index>(closed_.size());
+  for (Index r = 0; r < a; ++r)
+    for (Index c = r; c < a; ++c) {
+      const Index i = closed_[r], j = closed_[c];
+      const Products s = products(i, j);
+      if (!friction_) {
+        h_full_(i, j) = h_full_(j, i) = s.nn;
+        continue;
+      }
+      w_full_(2 * i, 2 * j) = w_full_(2 * j, 2 * i) = s.nn;
+      w_full_(2 * i, 2 * j + 1) = w_full_(2 * j + 1, 2 * i) = s.nt;
+      w_full_(2 * i + 1, 2 * j) = w_full_(2 * j, 2 * i + 1) = s.tn;
+      w_full_(2 * i + 1, 2 * j + 1) = w_full_(2 * j + 1, 2 * i + 1) = s.tt;
+    }
 }
 
 void ImpulseContact::add_impulse(Index i, double n, double t, VecRef v) const {
+  if (moving_) {  // the closed contact's gathered nonzeros, not its worst-case pattern
+    for (const RowEntry* e = gathered_begin(i); e != gathered_end(i); ++e) v[e->col] += minv_[e->col] * (e->l * n + e->t * t);
+    return;
+  }
   for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * n;
   if (t != 0.0)
     for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) v[it.col()] += minv_[it.col()] * it.value() * t;
@@ -113,14 +186,21 @@ Index ImpulseContact::collect_closed() {
 
 long ImpulseContact::apply_with_friction(ConstVecRef v_prev, VecRef v, VecRef impulses, VecRef tangential,
                                          StepInfo& info, WorkCounters& work, double e) {
+  // Called for closed contacts only: with moving contacts their gathered nonzeros.
   const auto normal_rate = [&](Index i, ConstVecRef x) {
     double r = 0.0;
-    for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) r += it.value() * x[it.col()];
+    if (moving_)
+      for (const RowEntry* e = gathered_begin(i); e != gathered_end(i); ++e) r += e->l * x[e->col];
+    else
+      for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) r += it.value() * x[it.col()];
     return r;
   };
   const auto slip_rate = [&](Index i) {
     double r = -w_[i];
-    for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) r += it.value() * v[it.col()];
+    if (moving_)
+      for (const RowEntry* e = gathered_begin(i); e != gathered_end(i); ++e) r += e->t * v[e->col];
+    else
+      for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) r += it.value() * v[it.col()];
     return r;
   };
   if (!friction_coupled_) {
@@ -137,6 +217,7 @@ long ImpulseContact::apply_with_friction(ConstVecRef v_prev, VecRef v, VecRef im
   }
   const Index a = collect_closed();
   if (a == 0) return 0;
+  if (moving_) couple_closed();
   auto& [D, q, x] = storage_.of_size(2 * a);
   for (Index r = 0; r < 2 * a; ++r)
     for (Index c = 0; c < 2 * a; ++c) D(r, c) = w_full_(2 * closed_[r / 2] + r % 2, 2 * closed_[c / 2] + c % 2);
@@ -193,6 +274,7 @@ long ImpulseContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef i
   }
   const Index a = collect_closed();
   if (a == 0) return 0;
+  if (moving_) couple_closed();
   auto& [D, q, x] = storage_.of_size(a);
   for (Index r = 0; r < a; ++r) {
     for (Index c = 0; c < a; ++c) D(r, c) = h_full_(closed_[r], closed_[c]);

@@ -21,15 +21,21 @@
 //
 // Moving contacts (Problem::contacts_move): apply() evaluates the gaps and rows at the new
 // position u (g(u), L(u), T(u): CD-Lagrange's step 3, contacts at U_{k+1}) and H, W from
-// those rows (the entries between contacts that share a dof: p^2 products per step, on
-// storage sized once), then the same laws: g'_free, g'_prev, the slip and the impulses all
-// along the rows at u. Which contacts are coupled is decided from the rows' pattern.
+// those rows, then the same laws: g'_free, g'_prev, the slip and the impulses all along the
+// rows at u. Which contacts may be coupled is decided from the rows' pattern (the worst case
+// over configurations); the products are formed only where the step reads them: the diagonal
+// blocks of the contacts closed at u, and the pairs of closed contacts whose rows' nonzero
+// entries share a dof (each row's nonzeros gathered once per step, on storage sized once);
+// with friction the closed contacts' rates and impulses also run over those nonzeros.
 // Constant kinematics: the rows and H of the construction, as before.
 #include "solvers/coulomb.hpp"
 #include "integrators/integrator.hpp"
 #include "solvers/lcp.hpp"
 
 namespace nsb {
+
+// A_i M^{-1} B_j^T for rows i of A and j of B (row-major, sorted columns), M^{-1} = diag(minv).
+double weighted_row_dot(const RowSpMat& A, Index i, const RowSpMat& B, Index j, const Vec& minv);
 
 class ImpulseContact {
  public:
@@ -57,10 +63,17 @@ class ImpulseContact {
   bool is_closed(Index i) const { return offset_[i] + rows_.gap[i] <= 0.0 && h_diag_[i] != 0.0; }
   // Fills closed_ with the closed contacts, in order; returns how many.
   Index collect_closed();
-  // Moving contacts: rows_ at u, and h_diag_ (h_full_), w_nt_, w_tt_ (w_full_) from them.
+  // Moving contacts: rows_ at u, and h_diag_, w_nt_, w_tt_ of the contacts closed at u.
   void evaluate_at(ConstVecRef u);
-  // A_i M^{-1} B_j^T.
-  double weighted_dot(const RowSpMat& A, Index i, const RowSpMat& B, Index j) const;
+  // Moving contacts: h_full_ (w_full_) between the closed contacts of closed_.
+  void couple_closed();
+  // Row i's nonzero L and T entries at u, gathered into entries_ (moving contacts).
+  void gather(Index i);
+  // L_i M^{-1} L_j^T, L_i M^{-1} T_j^T, T_i M^{-1} L_j^T, T_i M^{-1} T_j^T from the gathered rows.
+  struct Products {
+    double nn = 0.0, nt = 0.0, tn = 0.0, tt = 0.0;
+  };
+  Products products(Index i, Index j) const;
 
   const Problem* problem_ = nullptr;
   Vec minv_;
@@ -83,6 +96,17 @@ class ImpulseContact {
   Vec mu_, w_, w_nt_, w_tt_;
   Eigen::MatrixXd w_full_;
   Vec mu_closed_;
+
+  // Moving contacts: row i's nonzero (column, L value, T value) at u, in column order, in
+  // entries_[entries_begin_[i], entries_end_[i]); capacity the row's pattern in L and T.
+  struct RowEntry {
+    Index col;
+    double l, t;
+  };
+  std::vector<RowEntry> entries_;
+  std::vector<Index> entries_begin_, entries_end_;
+  const RowEntry* gathered_begin(Index i) const { return entries_.data() + entries_begin_[static_cast<std::size_t>(i)]; }
+  const RowEntry* gathered_end(Index i) const { return entries_.data() + entries_end_[static_cast<std::size_t>(i)]; }
 };
 
 }  // namespace nsb

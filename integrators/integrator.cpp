@@ -15,6 +15,7 @@ void Integrator::bind(const Problem& problem, const State& initial) {
   state_ = initial;
   impulses_ = Vec::Zero(problem.ncontacts());
   tangential_impulses_ = Vec::Zero(problem.ncontacts());
+  tangential_impulses2_ = Vec::Zero(problem.ncontacts());
   work_ = WorkCounters{};
 }
 

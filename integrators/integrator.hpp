@@ -27,7 +27,9 @@
 //                 the end time computes it, state_.t + dt). impulses_ holds this step's normal
 //                 impulses, one Lambda_i >= 0 per contact, 0 on a contact open through the
 //                 step (zero it, then fill it: never left from an earlier step);
-//                 tangential_impulses_ likewise (0 without friction).
+//                 tangential_impulses_ likewise (0 without friction), and
+//                 tangential_impulses2_ for 3D contacts (the cone: capability "3D friction
+//                 cone").
 //   energy()      override when the scheme's own balance is another energy than
 //                 v^T M v / 2 + V(u) at state_ (a staggered scheme: the half-step energy).
 //   impact_accuracy()  override when one impact may lag more than 2 steps, or when the
@@ -151,6 +153,9 @@ class Integrator {
   const Vec& impulses() const { return impulses_; }
   // Tangential impulses Lambda_T (size p) of the last step, along +T; zero without friction.
   const Vec& tangential_impulses() const { return tangential_impulses_; }
+  // 3D contacts (Contacts::tangent2): the impulses along +T2 (size p) of the last step; zero
+  // for 2D contacts and without friction.
+  const Vec& tangential_impulses2() const { return tangential_impulses2_; }
   const WorkCounters& work() const { return work_; }
   const Params& parameters() const { return params_; }
 
@@ -167,6 +172,7 @@ class Integrator {
   State state_;
   Vec impulses_;
   Vec tangential_impulses_;
+  Vec tangential_impulses2_;
   WorkCounters work_;
   Params params_;
   // Set by a scheme whose work_.steps is another count than its calls of step(): the CVODE

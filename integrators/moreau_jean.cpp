@@ -39,6 +39,8 @@ void MoreauJean::init(const Problem& problem, const State& initial) {
   rows_ = problem.contact_geometry();
   responses_.bind(rows_.normal.rows());
   friction_ = problem.contacts().has_friction();
+  cone_ = problem.contacts().has_cone();
+  if (cone_) tangent2_responses_.bind(rows_.normal.rows());
   if (friction_) {
     tangent_responses_.bind(rows_.normal.rows());
     mu_active_ = Vec::Zero(rows_.normal.rows());
@@ -69,6 +71,7 @@ void MoreauJean::factorize(double h) {
   h_factored_ = h;
   responses_.invalidate();
   tangent_responses_.invalidate();
+  tangent2_responses_.invalidate();
 }
 
 const Vec& MoreauJean::contact_response(Index i) {
@@ -80,6 +83,13 @@ const Vec& MoreauJean::contact_response(Index i) {
 
 const Vec& MoreauJean::tangent_response(Index i) {
   return tangent_responses_.get(rows_.tangent, i, [this](Vec& r) {
+    chol_.solve(r, r);
+    ++work_.linear_solves;
+  });
+}
+
+const Vec& MoreauJean::tangent2_response(Index i) {
+  return tangent2_responses_.get(rows_.tangent2, i, [this](Vec& r) {
     chol_.solve(r, r);
     ++work_.linear_solves;
   });
@@ -103,8 +113,14 @@ LcpResult MoreauJean::solve_frictionless(Index a, double e) {
 }
 
 LcpResult MoreauJean::solve_with_friction() {
-  const FrictionalCorrection c{rows_.normal, rows_.tangent, problem_->contacts(), [this](Index i) -> const Vec& { return contact_response(i); },
-                               [this](Index i) -> const Vec& { return tangent_response(i); }};
+  const FrictionalCorrection c{rows_.normal,
+                               rows_.tangent,
+                               problem_->contacts(),
+                               [this](Index i) -> const Vec& { return contact_response(i); },
+                               [this](Index i) -> const Vec& { return tangent_response(i); },
+                               cone_ ? &rows_.tangent2 : nullptr,
+                               [this](Index i) -> const Vec& { return tangent2_response(i); },
+                               &tangential_impulses2_};
   return frictional_correction(c, restitution_rate_, v_next_, impulses_, tangential_impulses_, active_, lcp_,
                                lcp_storage_, mu_active_);
 }
@@ -139,6 +155,7 @@ StepInfo MoreauJean::advance(double h) {
     gap_ = rows_.gap;
     responses_.invalidate();
     tangent_responses_.invalidate();
+    tangent2_responses_.invalidate();
   } else {
     gap_.noalias() = rows_.normal * state_.u;
     gap_ += g0;
@@ -178,6 +195,6 @@ StepInfo MoreauJean::advance(double h) {
   return info;
 }
 
-NSBENCH_INTEGRATOR({"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false, false, {.friction = true, .moving_contacts = true}});
+NSBENCH_INTEGRATOR({"moreau-jean", "Moreau-Jean theta-method, velocity-level LCP with Newton restitution", &MoreauJean::parameters_spec, &make_from_params<Integrator, MoreauJean>, false, false, {.friction = true, .moving_contacts = true, .friction_cone = true}});
 
 }  // namespace nsb

@@ -36,6 +36,18 @@
 // and the Delassus matrix of the interleaved rows [L_i; T_i] W^{-1} [L_j; T_j]^T, solved by
 // nonsmooth Gauss–Seidel over contacts (coulomb.hpp: closed form per contact when they share
 // no dof of W^{-1}, i.e. W diagonal), then V_{k+1} = V_free + W^{-1} (L^T Lambda_N + T^T Lambda_T).
+// 3D contacts (Contacts::has_cone, capability "3D friction cone"; docs/three_d.md): the cone
+//     0 <= Lambda_N _|_ U_N >= 0,  |Lambda_T| <= mu Lambda_N,  U_T = 0 inside,
+//     Lambda_T = -mu Lambda_N U_T / |U_T| on the boundary (maximal dissipation),
+// U_T = (T, T2) V_{k+1} - (w, w2), with the 3x3 blocks of [L_i; T_i; T2_i] W^{-1} [L_j; T_j;
+// T2_j]^T, by the same nonsmooth Gauss–Seidel over contacts (solve_coulomb_cone) until a sweep
+// changes no impulse by more than lcp_tol (relative, velocity units); its local solver is
+// neither a projection iteration, Alart–Curnier nor Fischer–Burmeister but the exact solve of
+// coulomb_cone.hpp: the projection onto the disk where the block is diagonal with equal
+// tangent entries, else the tangential trust-region step (Moré–Sorensen secular equation,
+// Newton to round-off) inside an Illinois iteration on Lambda_N to 1e-15 relative (its
+// Alart–Curnier residual is the tests' measure of the law). Then
+// V_{k+1} = V_free + W^{-1} (L^T Lambda_N + T^T Lambda_T1 + T2^T Lambda_T2).
 // Massless dofs (the singular-mass bar's contact node): their rows of W are algebraic, and
 // theta = 1/2 only carries an algebraic error over from step to step with factor -1 (the
 // trapezoidal rule is not stiffly accurate). Measured on the bar bouncing under gravity
@@ -93,6 +105,7 @@ class MoreauJean final : public Integrator {
   void factorize(double h);
   const Vec& contact_response(Index contact);  // W^{-1} L_i^T, cached while W is unchanged
   const Vec& tangent_response(Index contact);  // W^{-1} T_i^T, likewise
+  const Vec& tangent2_response(Index contact);  // W^{-1} T2_i^T (3D contacts), likewise
   LcpResult solve_frictionless(Index a, double e);
   LcpResult solve_with_friction();  // on active_, b = e g'_k (restitution_rate_)
 
@@ -109,6 +122,8 @@ class MoreauJean final : public Integrator {
   ContactResponses responses_;  // W^{-1} L_i^T
   bool friction_ = false;
   ContactResponses tangent_responses_;  // W^{-1} T_i^T
+  bool cone_ = false;                    // 3D contacts with friction (Contacts::has_cone)
+  ContactResponses tangent2_responses_;  // W^{-1} T2_i^T
   Vec mu_active_, restitution_rate_;
   Vec f_int_, f_ext_now_, f_ext_next_, rhs_, v_next_, gap_, gdot_, nu_;
   LcpStorage lcp_storage_;  // the LCP on the active set

@@ -74,6 +74,13 @@ void Contacts::set_friction(SpMat tangent_rows, double mu_all, double w_all) {
   tangent_velocity = Vec::Constant(tangent.rows(), w_all);
 }
 
+void Contacts::set_cone(SpMat tangent_rows, SpMat tangent2_rows, double mu_all) {
+  set_friction(std::move(tangent_rows), mu_all, 0.0);
+  tangent2 = std::move(tangent2_rows);
+  tangent2.makeCompressed();
+  tangent2_velocity = Vec::Zero(tangent2.rows());
+}
+
 void Problem::evaluate_contacts(ConstVecRef u, ContactGeometry& out) const {
   const Contacts& c = contacts();
   out.gap.noalias() = c.normal * u;
@@ -84,9 +91,10 @@ void Problem::contact_slide(ConstVecRef u, VecRef s) const { s.noalias() = conta
 
 ContactGeometry Problem::contact_geometry() const {
   const Contacts& c = contacts();
-  ContactGeometry out{c.gap_offset, c.normal, c.tangent};
+  ContactGeometry out{c.gap_offset, c.normal, c.tangent, c.tangent2};
   out.normal.makeCompressed();
   out.tangent.makeCompressed();
+  out.tangent2.makeCompressed();
   return out;
 }
 
@@ -97,7 +105,10 @@ void check_contacts(const Contacts& c, Index ndof, const std::string& problem) {
   if (c.gap_offset.size() != p) fail(fmt::format("g0 has {} entries, expected one per contact ({})", c.gap_offset.size(), p));
   if (!(c.restitution >= 0.0 && c.restitution <= 1.0)) fail(fmt::format("restitution {} outside [0, 1]", c.restitution));
   const bool frictionless = c.tangent.rows() == 0 && c.mu.size() == 0 && c.tangent_velocity.size() == 0;
-  if (frictionless) return;
+  if (frictionless) {
+    if (c.tangent2.rows() > 0 || c.tangent2_velocity.size() > 0) fail("T2 given without T, mu and w (a 3D contact has both tangent rows)");
+    return;
+  }
   if (c.tangent.rows() != p || c.tangent.cols() != ndof)
     fail(fmt::format("T is {} x {}, expected {} x {} (one tangent row per contact)", c.tangent.rows(), c.tangent.cols(), p, ndof));
   if (c.mu.size() != p || c.tangent_velocity.size() != p)
@@ -106,6 +117,14 @@ void check_contacts(const Contacts& c, Index ndof, const std::string& problem) {
     if (!(c.mu[i] >= 0.0) || !std::isfinite(c.mu[i])) fail(fmt::format("mu of contact {} is {}; valid: finite, >= 0", i, c.mu[i]));
     if (!std::isfinite(c.tangent_velocity[i])) fail(fmt::format("w of contact {} is {}; valid: finite", i, c.tangent_velocity[i]));
   }
+  if (c.tangent2.rows() == 0 && c.tangent2_velocity.size() == 0) return;
+  if (c.tangent2.rows() != p || c.tangent2.cols() != ndof)
+    fail(fmt::format("T2 is {} x {}, expected {} x {} (3D contacts: a second tangent row per contact)", c.tangent2.rows(),
+                     c.tangent2.cols(), p, ndof));
+  if (c.tangent2_velocity.size() != p)
+    fail(fmt::format("w2 needs one entry per contact ({}); it has {}", p, c.tangent2_velocity.size()));
+  for (Index i = 0; i < p; ++i)
+    if (!std::isfinite(c.tangent2_velocity[i])) fail(fmt::format("w2 of contact {} is {}; valid: finite", i, c.tangent2_velocity[i]));
 }
 
 }  // namespace nsb

@@ -33,6 +33,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/parameters.hpp"
@@ -65,6 +66,15 @@ struct State {
 //
 // A frictionless problem leaves `tangent`, `mu` and `tangent_velocity` empty (mu = 0 on every
 // contact), which every scheme treats exactly as before friction existed.
+//
+// 3D contacts (docs/three_d.md, the cone): a second tangent row per contact, T2 (p x n), with
+// the obstacle's velocity w2 along it; the slip is u_T,i = (T_i, T2_i) M^{-1} P - (w_i, w2_i)
+// in R^2, the tangential impulse Lambda_T,i = (Lambda_T1, Lambda_T2) along (+T_i, +T2_i), and
+//     Coulomb cone  |Lambda_T,i| <= mu_i Lambda_N,i;  < : u_T,i(+) = 0 (stick);
+//                   = : Lambda_T,i = -mu_i Lambda_N,i u_T,i(+) / |u_T,i(+)| (maximal dissipation).
+// A 2D problem leaves `tangent2` and `tangent2_velocity` empty and pays nothing; a scheme runs
+// a problem with the cone (has_cone()) only when it declares the capability "3D friction cone"
+// (integrators/capabilities.hpp).
 struct Contacts {
   SpMat normal;             // L (p x n)
   Vec gap_offset;           // g0 (p)
@@ -72,13 +82,19 @@ struct Contacts {
   SpMat tangent;            // T (p x n), or 0 rows when frictionless
   Vec mu;                   // (p) friction coefficients >= 0, or empty
   Vec tangent_velocity;     // w (p), or empty
+  SpMat tangent2;           // T2 (p x n): 3D contacts' second tangent row, or 0 rows (2D)
+  Vec tangent2_velocity;    // w2 (p), or empty
 
   Index size() const { return normal.rows(); }
   // True when some contact has mu > 0: only then does a scheme need to treat friction.
   bool has_friction() const { return mu.size() > 0 && mu.maxCoeff() > 0.0; }
   double max_mu() const { return mu.size() > 0 ? mu.maxCoeff() : 0.0; }
+  // True when the contacts are 3D (a second tangent row) and some has mu > 0: the cone.
+  bool has_cone() const { return tangent2.rows() > 0 && has_friction(); }
   // Sets T, mu (the same on every contact) and w (the same on every contact).
   void set_friction(SpMat tangent_rows, double mu_all, double w_all);
+  // The same for 3D contacts: T, T2, mu (the same on every contact), w = w2 = 0.
+  void set_cone(SpMat tangent_rows, SpMat tangent2_rows, double mu_all);
 };
 
 // A problem's bodies as a mesh, for field output (ParaView) and pictures of the fields.
@@ -152,6 +168,7 @@ struct ContactGeometry {
   Vec gap;          // g(U) (p)
   RowSpMat normal;  // L(U) (p x n)
   RowSpMat tangent; // T(U) (p x n), or 0 rows when frictionless
+  RowSpMat tangent2; // T2(U) (p x n), or 0 rows (2D contacts)
 };
 
 // Throws InputError naming `problem` when the operators' shapes disagree (rows of T, sizes of
@@ -237,6 +254,10 @@ class Problem {
   virtual void observe_step(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
     observe(s, out);
   }
+
+  // Problem-specific figures of a run's summary.json (its "problem_summary" object, written
+  // only when this is not empty), e.g. an exact event time; a non-finite value is written null.
+  virtual std::vector<std::pair<std::string, double>> summary_values() const { return {}; }
 
   // The bodies' mesh (FieldMesh), for problems that describe one; nullopt otherwise.
   virtual std::optional<FieldMesh> field_mesh() const { return std::nullopt; }

@@ -134,6 +134,7 @@ SphereInclineExact::State SphereInclineExact::state(double t) const {
   const Eigen::Vector2d drift = r.path - w0_ * t;
   s.position = {v0_.x() * t + (5.0 / 14.0) * a_ * t * t + (2.0 / 7.0) * drift.x(),
                 v0_.y() * t + (2.0 / 7.0) * drift.y(), R_};
+  s.rotation = {omega0_.x() * t + c * drift.y(), omega0_.y() * t - c * (drift.x() - 0.5 * a_ * t * t), omega0_.z() * t};
   return s;
 }
 

@@ -14,7 +14,9 @@
 //     v(t)       = v0 + (5/7) a t e_x + (2/7) (w(t) - w0),
 //     omega_x(t) = omega_x0 + (5 / (7R)) (w_y(t) - w_y0),
 //     omega_y(t) = omega_y0 - (5 / (7R)) (w_x(t) - w_x0 - a t),   omega_z = omega_z0,
-//     centre(t)  = (0, 0, R) + v0 t + (5/14) a t^2 e_x + (2/7) (int_0^t w - w0 t).
+//     centre(t)  = (0, 0, R) + v0 t + (5/14) a t^2 e_x + (2/7) (int_0^t w - w0 t),
+//     int_0^t omega = (omega_x0 t + (5 / (7R)) (int w_y - w_y0 t),
+//                      omega_y0 t - (5 / (7R)) (int w_x - w_x0 t - a t^2 / 2),  omega_z0 t).
 // Invariants: the angular momentum about the contact point, L_P = I omega + m (0, 0, R) x v,
 // changes only by gravity's moment, L_P(t) = L_P(0) + (0, m g R sin(alpha) t, 0); the energy
 // E = m |v|^2 / 2 + I |omega|^2 / 2 - m a x falls by the friction work mu m g cos(alpha) int |w|.
@@ -61,6 +63,7 @@ class SphereInclineExact {
     Eigen::Vector3d position;  // the centre, (0, 0, R) at t = 0
     Eigen::Vector3d velocity;
     Eigen::Vector3d omega;
+    Eigen::Vector3d rotation;  // int_0^t omega (the sphere problem's rotation dofs)
   };
 
   explicit SphereInclineExact(const SphereInclineSpec& spec);  // InputError on bad input

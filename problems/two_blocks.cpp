@@ -48,6 +48,16 @@ void append(const SpMat& A, Index r0, Index c0, std::vector<Eigen::Triplet<doubl
     for (SpMat::InnerIterator it(A, j); it; ++it) t.emplace_back(r0 + it.row(), c0 + it.col(), it.value());
 }
 
+// Writes the weights w of a node-to-segment contact into row r of the worst-case pattern:
+// the top edge's dofs first (contiguous from first_top_dof, top_entries of them), then the
+// upper node's x and y (dofs[0], dofs[1]); every other entry of the row is zero.
+void write_segment_row(RowSpMat& rows, Index r, Index first_top_dof, Index top_entries, const Index (&dofs)[6],
+                       const double (&w)[6]) {
+  double* values = rows.valuePtr() + rows.outerIndexPtr()[r];
+  std::fill_n(values, top_entries + 2, 0.0);
+  for (int j = 0; j < 6; ++j) values[j < 2 ? top_entries + j : dofs[j] - first_top_dof] += w[j];
+}
+
 // The block-diagonal matrix diag(A, B).
 SpMat block_diagonal(const SpMat& A, const SpMat& B) {
   std::vector<Eigen::Triplet<double>> t;
@@ -69,6 +79,9 @@ ParamSpecs TwoBlocks::parameters_spec() {
   specs.push_back(ParamSpec::real("g", 9.81, 0.0, 1e308, "gravity [m/s^2] (0: off)"));
   specs.push_back(ParamSpec::real("e", 0.0, 0.0, 1.0, "Newton restitution coefficient (every contact)"));
   specs.push_back(ParamSpec::real("mu", 0.0, 0.0, 1e308, "Coulomb friction coefficient (every contact; 0: frictionless)"));
+  specs.push_back(ParamSpec::choice("sliding", "small", {"small", "large"},
+                                    "node-to-segment pairing: small (frozen in the reference configuration) or large "
+                                    "(found from the current positions at every evaluation)"));
   return specs;
 }
 
@@ -90,6 +103,7 @@ TwoBlocks::TwoBlocks(const Params& p) : params_(p) {
   lower_ = make_block(p, "lower_", lower_height);
   upper_ = make_block(p, "upper_", lower_height + p.real("lower_H") + p.real("upper_gap"));
   nl_ = lower_->ndof();
+  large_sliding_ = p.choice("sliding") == "large";
 
   // Contacts: the two floors, then node-to-segment.
   const Contacts& cl = lower_->contacts();
@@ -98,6 +112,9 @@ TwoBlocks::TwoBlocks(const Params& p) : params_(p) {
   const Index nyl = lower_->parameters().integer("ny");
   const Index top0 = (nxl + 1) * nyl;  // first node of the lower block's top edge
   const Index nts = nxu + 1;
+  top0_ = top0;
+  segments_ = nxl;
+  slaves_ = nts;
   const Index p_all = floor_contacts_ + nts;
   std::vector<Eigen::Triplet<double>> normal, tangent;
   append(cl.normal, 0, 0, normal);
@@ -105,7 +122,8 @@ TwoBlocks::TwoBlocks(const Params& p) : params_(p) {
   contacts_.gap_offset.resize(p_all);
   contacts_.gap_offset << cl.gap_offset, cu.gap_offset, Vec::Zero(nts);
   const double hx = Wl / double(nxl);
-  for (Index k = 0; k < nts; ++k) {
+  if (large_sliding_) add_large_sliding_rows(normal, tangent);
+  for (Index k = 0; k < nts && !large_sliding_; ++k) {
     const Index a = k;  // bottom row of the upper block
     const Eigen::Vector2d Xa = upper_->reference_position(a);
     const Index i = std::clamp<Index>(static_cast<Index>(std::floor((Xa.x() + 0.5 * Wl) / hx)), 0, nxl - 1);
@@ -133,6 +151,110 @@ TwoBlocks::TwoBlocks(const Params& p) : params_(p) {
     T.setFromTriplets(floor_t.begin(), floor_t.end());
     contacts_.set_friction(std::move(T), p.real("mu"), 0.0);
   }
+}
+
+Eigen::Vector2d TwoBlocks::lower_position(ConstVecRef u, Index b) const {
+  return lower_->reference_position(b) + u.segment<2>(2 * b);
+}
+
+TwoBlocks::SegmentContact TwoBlocks::segment_contact(ConstVecRef u, Index k) const {
+  const Index a = nl_ + 2 * k;  // node k of the upper block's bottom row: its x dof
+  const Eigen::Vector2d xa = upper_->reference_position(k) + u.segment<2>(a);
+  // The segment: the first whose bisector at its right vertex has the node on its left side.
+  Index i = 0;
+  Eigen::Vector2d x0 = lower_position(u, top0_), x1 = lower_position(u, top0_ + 1);
+  Eigen::Vector2d t = (x1 - x0).normalized();
+  for (; i + 1 < segments_; ++i) {
+    const Eigen::Vector2d x2 = lower_position(u, top0_ + i + 2);
+    const Eigen::Vector2d t_next = (x2 - x1).normalized();
+    if ((xa - x1).dot(t + t_next) < 0.0) break;
+    x0 = x1;
+    x1 = x2;
+    t = t_next;
+  }
+  const double l = (x1 - x0).norm();
+  const Eigen::Vector2d n(-t.y(), t.x());
+  const double xi = (xa - x0).dot(t) / l, line_gap = (xa - x0).dot(n);
+  const double X0 = lower_->reference_position(top0_ + i).x(), h = lower_->reference_position(top0_ + i + 1).x() - X0;
+  SegmentContact c;
+  c.segment = i;
+  c.xi = xi;
+  c.gap = line_gap;
+  c.slide = X0 + h * xi;
+  const Index b0 = 2 * (top0_ + i), b1 = b0 + 2;
+  const Index dofs[6] = {a, a + 1, b0, b0 + 1, b1, b1 + 1};
+  std::copy_n(dofs, 6, c.dofs);
+  // L: +n on a, -(1 - xi) n on b0, -xi n on b1; past an end of the edge, the end vertex's.
+  Eigen::Vector2d na = n, n0 = -(1.0 - xi) * n, n1 = -xi * n;
+  const bool past_left = i == 0 && xi < 0.0, past_right = i + 1 == segments_ && xi > 1.0;
+  if (past_left || past_right) {
+    const Eigen::Vector2d d = xa - (past_left ? x0 : x1);
+    c.gap = d.norm();
+    na = c.gap > 0.0 ? Eigen::Vector2d(d / c.gap) : n;
+    n0 = past_left ? Eigen::Vector2d(-na) : Eigen::Vector2d::Zero();
+    n1 = past_left ? Eigen::Vector2d::Zero() : Eigen::Vector2d(-na);
+  }
+  // T = h dxi = (h / l) [t . (dx_a - (1 - xi) dx_b0 - xi dx_b1) + (g / l) n . (dx_b1 - dx_b0)].
+  const double scale = h / l, w = line_gap / l;
+  const Eigen::Vector2d ta = scale * t, t0 = -scale * ((1.0 - xi) * t + w * n), t1 = scale * (-xi * t + w * n);
+  const Eigen::Vector2d* normal[3] = {&na, &n0, &n1};
+  const Eigen::Vector2d* tangent[3] = {&ta, &t0, &t1};
+  for (int j = 0; j < 6; ++j) {
+    c.normal[j] = (*normal[j / 2])[j % 2];
+    c.tangent[j] = (*tangent[j / 2])[j % 2];
+  }
+  return c;
+}
+
+void TwoBlocks::add_large_sliding_rows(std::vector<Eigen::Triplet<double>>& normal,
+                                       std::vector<Eigen::Triplet<double>>& tangent) {
+  const Vec u0 = initial_state().u;
+  for (Index k = 0; k < slaves_; ++k) {
+    const Index r = floor_contacts_ + k;
+    // The worst-case pattern: every top-edge node's x and y (explicit zeros off the segment).
+    for (Index dof = 2 * top0_; dof < 2 * (top0_ + segments_ + 1); ++dof) {
+      normal.emplace_back(r, dof, 0.0);
+      tangent.emplace_back(r, dof, 0.0);
+    }
+    const SegmentContact c = segment_contact(u0, k);
+    double row_u0 = 0.0;
+    for (int j = 0; j < 6; ++j) {
+      normal.emplace_back(r, c.dofs[j], c.normal[j]);
+      tangent.emplace_back(r, c.dofs[j], c.tangent[j]);
+      row_u0 += c.normal[j] * u0[c.dofs[j]];
+    }
+    contacts_.gap_offset[r] = c.gap - row_u0;
+  }
+}
+
+void TwoBlocks::evaluate_contacts(ConstVecRef u, ContactGeometry& out) const {
+  if (!large_sliding_) {
+    Problem::evaluate_contacts(u, out);
+    return;
+  }
+  for (Index r = 0; r < floor_contacts_; ++r) {  // the floor rows are constant
+    double gap = contacts_.gap_offset[r];
+    for (RowSpMat::InnerIterator it(out.normal, r); it; ++it) gap += it.value() * u[it.col()];
+    out.gap[r] = gap;
+  }
+  const Index top_entries = 2 * (segments_ + 1);
+  for (Index k = 0; k < slaves_; ++k) {
+    const Index r = floor_contacts_ + k;
+    const SegmentContact c = segment_contact(u, k);
+    out.gap[r] = c.gap;
+    write_segment_row(out.normal, r, 2 * top0_, top_entries, c.dofs, c.normal);
+    if (out.tangent.rows() > 0) write_segment_row(out.tangent, r, 2 * top0_, top_entries, c.dofs, c.tangent);
+  }
+}
+
+void TwoBlocks::contact_slide(ConstVecRef u, VecRef s) const {
+  if (contacts_.tangent.rows() == 0) {  // frictionless: no tangent rows to integrate
+    s.setZero();
+    return;
+  }
+  Problem::contact_slide(u, s);
+  if (large_sliding_)
+    for (Index k = 0; k < slaves_; ++k) s[floor_contacts_ + k] = segment_contact(u, k).slide;
 }
 
 SpMat TwoBlocks::mass_matrix() const { return block_diagonal(lower_->mass_matrix(), upper_->mass_matrix()); }
@@ -221,8 +343,13 @@ void TwoBlocks::observe(const State& s, std::span<double> out) const {
   part.u = s.u.tail(ndof() - nl_);
   part.v = s.v.tail(ndof() - nl_);
   upper_->observe(part, up);
-  const Vec g = contacts_.gap_offset + contacts_.normal * s.u;
-  const long between = (g.tail(g.size() - floor_contacts_).array() <= 0.0).count();
+  long between = 0;
+  if (large_sliding_) {
+    for (Index k = 0; k < slaves_; ++k) between += segment_contact(s.u, k).gap <= 0.0;
+  } else {
+    const Vec g = contacts_.gap_offset + contacts_.normal * s.u;
+    between = (g.tail(g.size() - floor_contacts_).array() <= 0.0).count();
+  }
   for (std::size_t c = 0; c < k; ++c) out[c] = lo[c] + up[c];
   out[k - 1] += static_cast<double>(between);  // closed_contacts: every contact
   out[k] = static_cast<double>(between);

@@ -27,7 +27,7 @@ const std::vector<std::string> kRunOptions = {"sample_every", "max_force_evaluat
 // u and v at every sample, row after row.
 class StateRows final : public StateSink {
  public:
-  void state(const State& s, const Vec&, const Vec&) override {
+  void state(const State& s, const Vec&, const Vec&, const Vec&) override {
     t.push_back(s.t);
     u.insert(u.end(), s.u.data(), s.u.data() + s.u.size());
     v.insert(v.end(), s.v.data(), s.v.data() + s.v.size());

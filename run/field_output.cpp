@@ -158,7 +158,8 @@ void FieldWriter::append_point_vector(const char* name, const Part& part, const 
   buffer_ += "</DataArray>\n";
 }
 
-void FieldWriter::state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses) {
+void FieldWriter::state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses,
+                        const Vec& tangential_impulses2) {
   const Contacts& c = problem_.contacts();
   if (problem_.contacts_move()) {
     // The rows at s.u, along which the impulses acted (schemes state their configuration).
@@ -166,10 +167,14 @@ void FieldWriter::state(const State& s, const Vec& normal_impulses, const Vec& t
     impulse_.noalias() = moving_.normal.transpose() * normal_impulses;
     if (moving_.tangent.rows() > 0 && tangential_impulses.size() == moving_.tangent.rows())
       impulse_.noalias() += moving_.tangent.transpose() * tangential_impulses;
+    if (moving_.tangent2.rows() > 0 && tangential_impulses2.size() == moving_.tangent2.rows())
+      impulse_.noalias() += moving_.tangent2.transpose() * tangential_impulses2;
   } else {
     impulse_.noalias() = c.normal.transpose() * normal_impulses;
     if (c.tangent.rows() > 0 && tangential_impulses.size() == c.tangent.rows())
       impulse_.noalias() += c.tangent.transpose() * tangential_impulses;
+    if (c.tangent2.rows() > 0 && tangential_impulses2.size() == c.tangent2.rows())
+      impulse_.noalias() += c.tangent2.transpose() * tangential_impulses2;
   }
   if (stress_.rows() > 0) problem_.cell_stress(s.u, stress_);
   if (body_.size() > 0) problem_.body_data(s, body_);

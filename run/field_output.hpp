@@ -68,7 +68,8 @@ class FieldWriter final : public StateSink {
 
   // One .vtu of state s, with the normal and tangential impulses (size p each; the
   // tangential ones may be empty) of the step that ended at s.t.
-  void state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses) override;
+  void state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses,
+             const Vec& tangential_impulses2) override;
   // Writes fields.pvd and swaps the directory into place.
   void commit();
   long files() const { return static_cast<long>(times_.size()); }

@@ -89,6 +89,13 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   // Moving contacts: the gaps g(u) themselves (g0 + L u is their linearisation at U0).
   ContactGeometry moving = problem.contacts_move() ? problem.contact_geometry() : ContactGeometry{};
 
+  // |Lambda_T| summed over the contacts: |(Lambda_T1, Lambda_T2)| on 3D contacts; the 2D sum
+  // of |Lambda_T| itself otherwise (the same bits as before 3D contacts).
+  const auto tangential_magnitude = [&]() {
+    const Vec &t1 = integrator.tangential_impulses(), &t2 = integrator.tangential_impulses2();
+    if (t2.size() == 0 || t2.isZero(0.0)) return t1.cwiseAbs().sum();
+    return (t1.array().square() + t2.array().square()).sqrt().sum();
+  };
   const auto min_gap = [&]() {
     if (problem.contacts_move()) {
       problem.evaluate_contacts(integrator.state().u, moving);
@@ -115,7 +122,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     row[5] = min_gap();
     row[6] = lambda.sum();
     row[7] = static_cast<double>((lambda.array() > 0.0).count());
-    row[8] = integrator.tangential_impulses().cwiseAbs().sum();
+    row[8] = tangential_magnitude();
     problem.observe_step(s, lambda, dt, std::span<double>(row).subspan(kGenericColumns.size()));
     if (options.series_sink)
       options.series_sink->row(row);
@@ -129,7 +136,8 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   long state_written = -1;  // the step of the last state given to the sink
   const auto write_state = [&]() {
     if (!options.state_sink || state_written == result.steps) return;
-    options.state_sink->state(integrator.state(), integrator.impulses(), integrator.tangential_impulses());
+    options.state_sink->state(integrator.state(), integrator.impulses(), integrator.tangential_impulses(),
+                              integrator.tangential_impulses2());
     state_written = result.steps;
   };
 
@@ -363,6 +371,11 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
       {"work", work},
       {"build", {{"version", b.version}, {"git_revision", b.git_revision}, {"build_type", b.build_type}, {"compiler", b.compiler}}},
   };
+  if (const auto figures = problem.summary_values(); !figures.empty()) {
+    json summary = json::object();
+    for (const auto& [name, value] : figures) summary[name] = std::isfinite(value) ? json(value) : json(nullptr);
+    j["problem_summary"] = summary;
+  }
   if (!loaded_plugins().empty()) {
     json plugins = json::array();
     for (const auto& p : loaded_plugins()) {

@@ -4,7 +4,8 @@
 //
 // Generic columns: t, dt, kinetic, potential, total_energy, min_gap, impulse (sum of the
 // contact impulses of the step), active_contacts (contacts with a positive impulse),
-// tangential_impulse (sum of |Lambda_T| of the step; 0 without friction).
+// tangential_impulse (sum of |Lambda_T| of the step, |(Lambda_T1, Lambda_T2)| for 3D contacts; 0
+// without friction).
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -30,11 +31,13 @@ class SeriesSink {
 // Where a run's states go (RunOptions::state_sink; field output, run/field_output.hpp):
 // the initial state, every state_every-th step's and the last one's (the state the summary
 // reports, also when the run stops early), with the impulses of the step that ended there
-// (zero for the initial state). It only reads: the run's numbers are the same without it.
+// (zero for the initial state; tangential_impulses2: along T2, zero for 2D contacts). It only
+// reads: the run's numbers are the same without it.
 class StateSink {
  public:
   virtual ~StateSink() = default;
-  virtual void state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses) = 0;
+  virtual void state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses,
+                     const Vec& tangential_impulses2) = 0;
 };
 
 struct RunOptions {

@@ -560,7 +560,59 @@ def draw_verdict_map(spec, reports, paper=False):
     save(fig, spec, meta, reports, paper)
 
 
-DRAWERS = {"space_time": draw_space_time, "deformed": draw_deformed, "verdict_map": draw_verdict_map}
+def bar_groups(spec, rows):
+    """The bars of each panel: {panel key: {category: {series: value}}}, categories (the `x`
+    column, the scheme) and series (the `series` columns' labels) in the table's order, the
+    value in `y`. A cell that is no number is no bar; a category without one in a panel is left
+    out of it."""
+    panels = {}
+    for row in rows:
+        value = number(row[spec["y"]])
+        if value is not None:
+            key = tuple(row[c] for c in spec["panels"])
+            panels.setdefault(key, {}).setdefault(row[spec["x"]], {})[label(row, spec["series"])] = value
+    return panels
+
+
+def draw_bars(spec, reports, paper=False):
+    """Grouped bars: per panel (the `panels` columns), one group per category (the `x` column,
+    the scheme), one bar per series, each labelled with its value (a 0 is a count too)."""
+    meta, rows = read_table(os.path.join(reports, spec["csv"]))
+    panels = bar_groups(spec, rows)
+    series = list(dict.fromkeys(name for groups in panels.values() for bars in groups.values() for name in bars))
+    colours = {name: plt.get_cmap("tab10")(i % 10) for i, name in enumerate(series)}
+    n = max(len(panels), 1)
+    width_in = (3.4 if n == 1 else 7.0) if paper else 5.5 * n
+    fig, axes = plt.subplots(1, n, figsize=(width_in, 2.6 if paper else 4.2), squeeze=False, layout="constrained")
+    width = 0.8 / max(len(series), 1)
+    font = 5 if paper else 7
+    for ax, (key, groups) in zip(axes.flat, panels.items()):
+        for i, (category, bars) in enumerate(groups.items()):
+            for j, name in enumerate(series):
+                if name not in bars:
+                    continue
+                x = i - 0.4 + width * (j + 0.5)
+                ax.bar(x, bars[name], width, color=colours[name], label=name)
+                ax.text(x, bars[name], f"{bars[name]:.3g}", ha="center", va="bottom", fontsize=font, rotation=90)
+        ax.set_xticks(range(len(groups)), list(groups), rotation=30, ha="right", fontsize=font + 2)
+        ax.set_ylabel(spec["y"])
+        ax.margins(y=0.25)
+        ax.grid(True, axis="y", alpha=0.4)
+        title = ", ".join(f"{short(c)} = {v}" for c, v in zip(spec["panels"], key))
+        if title:
+            ax.set_title(title, fontsize=7 if paper else 10)
+    if not panels:
+        axes[0][0].text(0.5, 0.5, "nothing to draw", ha="center", va="center", transform=axes[0][0].transAxes, color="0.4")
+    if not paper:
+        fig.suptitle(spec["title"], fontsize=12)
+    handles = [plt.Rectangle((0, 0), 1, 1, color=colours[name]) for name in series]
+    legend = fig.legend(handles, series, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=len(series),
+                        fontsize=font + 1, frameon=False) if series else None
+    save(fig, spec, meta, reports, paper, legend)
+
+
+DRAWERS = {"space_time": draw_space_time, "deformed": draw_deformed, "verdict_map": draw_verdict_map,
+           "bars": draw_bars}
 
 
 def save(fig, spec, meta, reports, paper, legend=None):

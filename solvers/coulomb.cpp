@@ -38,19 +38,20 @@ CoulombImpulse solve_coulomb_local(double w_nn, double w_nt, double w_tt, double
   return best;  // only reached through round-off at the stick/slip boundary
 }
 
+bool couples_blocks(const Eigen::MatrixXd& D, Eigen::Index block) {
+  for (Eigen::Index c = 0; c < D.cols(); ++c)
+    for (Eigen::Index r = 0; r < D.rows(); ++r)
+      if (r / block != c / block && D(r, c) != 0.0) return true;
+  return false;
+}
+
 LcpResult solve_coulomb(const Eigen::MatrixXd& D, const Eigen::VectorXd& q, Eigen::Ref<const Eigen::VectorXd> mu,
                         Eigen::VectorXd& x, const LcpOptions& options) {
   const Eigen::Index a = mu.size();
   if (x.size() != 2 * a) x = Eigen::VectorXd::Zero(2 * a);
   for (Eigen::Index i = 0; i < 2 * a; ++i)
     if (!(D(i, i) > 0.0)) throw std::runtime_error("Coulomb contact: Delassus operator has a non-positive diagonal");
-  bool coupled = false;  // any entry outside the contacts' own 2x2 blocks
-  for (Eigen::Index c = 0; c < 2 * a && !coupled; ++c)
-    for (Eigen::Index r = 0; r < 2 * a; ++r)
-      if (r / 2 != c / 2 && D(r, c) != 0.0) {
-        coupled = true;
-        break;
-      }
+  const bool coupled = couples_blocks(D, 2);
   const double scale = std::max(q.cwiseAbs().maxCoeff(), 1e-300);
   LcpResult result;
   const long cap = coupled ? options.max_iterations : 1;

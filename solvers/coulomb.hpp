@@ -38,6 +38,10 @@ struct CoulombImpulse {
   double tangential = 0.0;
 };
 
+// True when D has a nonzero entry outside its diagonal blocks of size `block` (the contacts
+// are coupled: Gauss–Seidel sweeps until they settle; otherwise one sweep is exact).
+bool couples_blocks(const Eigen::MatrixXd& D, Eigen::Index block);
+
 CoulombImpulse solve_coulomb_local(double w_nn, double w_nt, double w_tt, double q_n, double q_t, double mu);
 
 // D: 2a x 2a, q: 2a, mu: a; x (2a, interleaved N, T) in: warm start, out: the impulses.

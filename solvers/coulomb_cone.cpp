@@ -1,4 +1,5 @@
 #include "solvers/coulomb_cone.hpp"
+#include "solvers/coulomb.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -36,14 +37,53 @@ Eigen::Vector2d disk_minimiser(const Eigen::Matrix2d& S, const Eigen::Vector2d& 
 
 }  // namespace
 
-ConeImpulse solve_cone_isotropic(double w, const Eigen::Vector3d& q, double mu) {
+ConeImpulse solve_cone_isotropic(double w, const Eigen::Vector3d& q, double mu) { return solve_cone_decoupled(w, w, q, mu); }
+
+ConeImpulse solve_cone_decoupled(double w_n, double w_t, const Eigen::Vector3d& q, double mu) {
   if (q.x() >= 0.0) return {};
   ConeImpulse r;
-  r.normal = -q.x() / w;
-  r.tangential = -q.tail<2>() / w;
+  r.normal = -q.x() / w_n;
+  r.tangential = -q.tail<2>() / w_t;
   const double bound = mu * r.normal, length = r.tangential.norm();
   if (length > bound) r.tangential *= bound / length;
   return r;
+}
+
+ConeSolve solve_cone(const Eigen::Matrix3d& W, const Eigen::Vector3d& q, double mu, const ConeOptions& options) {
+  const bool decoupled = W(0, 1) == 0.0 && W(0, 2) == 0.0 && W(1, 2) == 0.0 && W(1, 0) == 0.0 && W(2, 0) == 0.0 &&
+                         W(2, 1) == 0.0 && W(1, 1) == W(2, 2);
+  if (decoupled) return {solve_cone_decoupled(W(0, 0), W(1, 1), q, mu), 0, true};
+  return solve_cone_local(W, q, mu, options);
+}
+
+LcpResult solve_coulomb_cone(const Eigen::MatrixXd& D, const Eigen::VectorXd& q, Eigen::Ref<const Eigen::VectorXd> mu,
+                             Eigen::VectorXd& x, const LcpOptions& options) {
+  const Eigen::Index a = mu.size();
+  if (x.size() != 3 * a) x = Eigen::VectorXd::Zero(3 * a);
+  const bool coupled = couples_blocks(D, 3);
+  const double scale = std::max(q.cwiseAbs().maxCoeff(), 1e-300);
+  LcpResult result;
+  const long cap = coupled ? options.max_iterations : 1;
+  for (result.iterations = 1; result.iterations <= cap; ++result.iterations) {
+    double change = 0.0;
+    for (Eigen::Index i = 0; i < a; ++i) {
+      const Eigen::Index n = 3 * i;
+      const Eigen::Matrix3d W = D.block<3, 3>(n, n);
+      Eigen::Vector3d local = q.segment<3>(n);
+      // The others' impulses enter as a shift of the local free velocities.
+      if (coupled) local += D.middleRows<3>(n) * x - W * x.segment<3>(n);
+      const ConeSolve r = solve_cone(W, local, mu[i]);
+      if (!r.converged) result.converged = false;
+      const Eigen::Vector3d next(r.impulse.normal, r.impulse.tangential.x(), r.impulse.tangential.y());
+      change = std::max(change, (W.diagonal().array() * (next - x.segment<3>(n)).array().abs()).maxCoeff());
+      x.segment<3>(n) = next;
+    }
+    result.residual = coupled ? change / scale : 0.0;  // uncoupled: one sweep is exact
+    if (result.residual <= options.tolerance) return result;
+  }
+  result.iterations = options.max_iterations;
+  result.converged = false;
+  return result;
 }
 
 ConeSolve solve_cone_local(const Eigen::Matrix3d& W, const Eigen::Vector3d& q, double mu, const ConeOptions& options) {

@@ -35,11 +35,28 @@
 // fixed-size. Beyond mu |W_NT| < W_NN the law may have several solutions; the first bracketed
 // is returned, converged = false when no bracket is found.
 //
+// solve_cone_decoupled: W = diag(w_n, w_t, w_t) (W_NT = 0, the tangent block isotropic: a
+// rigid sphere on a plane, whose tangent rows carry the rotation), the same closed form with
+// Lambda_N = -q_N / w_n and the trial -q_T / w_t; solve_cone_isotropic is its w_n = w_t case.
+// solve_cone: one contact of any SPD block, the closed form where W has that shape (exactly:
+// zero off-diagonal entries and equal tangent diagonal), solve_cone_local otherwise.
+//
+// solve_coulomb_cone: many contacts coupled through a full Delassus matrix D (3a x 3a, rows and
+// columns ordered N_1, T1_1, T2_1, N_2, ...): nonsmooth Gauss–Seidel over contacts (Jean 1999),
+// each contact solved by solve_cone against the others' latest impulses, warm-started from x,
+// until a sweep changes no impulse by more than
+//     r = max_i max(W_NN,i |dLambda_N,i|, W_T1T1,i |dLambda_T1,i|, W_T2T2,i |dLambda_T2,i|)
+//         / max(max |q|, tiny)  <= tolerance
+// (velocity units, relative: the 2D solve_coulomb's rule, coulomb.hpp). D block diagonal: one
+// sweep is exact. A local solve that does not converge marks the result unconverged.
+//
 // cone_law_residual: the Alart–Curnier natural map, in velocity units relative to max |q|,
 //     r = |(Lambda_N - max(0, Lambda_N - rho U_N),
 //           Lambda_T - proj_{|.| <= mu Lambda_N}(Lambda_T - rho U_T))| / (rho max(|q|, tiny)),
 // rho = 3 / trace(W): zero exactly when Lambda satisfies the law (for any rho > 0).
 #include <Eigen/Core>
+
+#include "solvers/lcp.hpp"
 
 namespace nsb {
 
@@ -60,6 +77,12 @@ struct ConeSolve {
 };
 
 ConeImpulse solve_cone_isotropic(double w, const Eigen::Vector3d& q, double mu);
+ConeImpulse solve_cone_decoupled(double w_n, double w_t, const Eigen::Vector3d& q, double mu);
+ConeSolve solve_cone(const Eigen::Matrix3d& W, const Eigen::Vector3d& q, double mu, const ConeOptions& options = {});
+
+// D: 3a x 3a, q: 3a, mu: a; x (3a, interleaved N, T1, T2) in: warm start, out: the impulses.
+LcpResult solve_coulomb_cone(const Eigen::MatrixXd& D, const Eigen::VectorXd& q, Eigen::Ref<const Eigen::VectorXd> mu,
+                             Eigen::VectorXd& x, const LcpOptions& options);
 
 ConeSolve solve_cone_local(const Eigen::Matrix3d& W, const Eigen::Vector3d& q, double mu,
                            const ConeOptions& options = {});

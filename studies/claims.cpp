@@ -32,7 +32,6 @@
 #include "run/run.hpp"
 #include "problems/registry.hpp"
 #include "problems/rolling_disk.hpp"
-#include "problems/signorini_bar.hpp"
 #include "studies/claims_conditions.hpp"
 #include "studies/hausdorff_study.hpp"
 
@@ -191,17 +190,8 @@ void chain_run(Work& work, Momentum& m) {
 }
 
 void bar_run(Work& work) {
-  const auto problem = problem_of("signorini-bar", {{"mass", "lumped"}, {"N", "100"}});
-  const auto& bar = dynamic_cast<const SignoriniBar&>(*problem);
-  auto it = make_integrator("cd-lagrange");
-  it->init(*problem, problem->initial_state());
-  long contacts = 0;
-  RunOptions o;
-  o.dt = 0.9 * problem->stable_step();
-  o.t_end = bar.contact_start() + 1.5 * bar.contact_duration();
-  o.record_series = false;
-  run(*problem, *it, o, [&](const Integrator& in, const StepInfo&) { contacts += in.impulses().sum() > 0.0; });
-  work.add(it->work(), contacts);
+  const RunWork bar = signorini_bar_work("cd-lagrange");
+  work.add(bar.work, bar.contact_steps);
 }
 
 std::string fmt_g(double v) { return std::isnan(v) ? "n/a" : fmt::format("{:.3g}", v); }
@@ -211,7 +201,7 @@ struct Conditions {
   std::vector<BarGraphFit> bars;
   ImpactEnergy singular, lumped_inelastic, lumped_elastic, consistent;
   SpinningBlock block;
-  BodiesCost bodies;
+  RunWork bodies;
   std::vector<AdaptiveSteps> adaptive;  // the talk's rule, then the energy balance
 };
 

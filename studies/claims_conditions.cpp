@@ -437,22 +437,42 @@ LongRun long_run(const std::string& integrator, long target) {
   return l;
 }
 
-BodiesCost bodies_contact_cost(const std::string& integrator) {
-  BodiesCost out;
-  const auto problem = make_problem("two-blocks", {{"g", "0"}, {"upper_vx", "0.5"}, {"upper_vy", "-1"}, {"e", "0"}});
+namespace {
+
+RunWork counted_run(const std::string& integrator, const Problem& problem, double dt, double t_end) {
+  RunWork out;
   auto it = make_integrator(integrator);
-  if (const auto why = init_or_decline(*it, *problem)) {
+  if (const auto why = init_or_decline(*it, problem)) {
     out.note = "declined: " + *why;
     return out;
   }
   RunOptions o;
-  o.dt = 1e-4;
-  o.t_end = 0.1;
+  o.dt = dt;
+  o.t_end = t_end;
   o.record_series = false;
-  const RunResult r = run(*problem, *it, o, [&](const Integrator& in, const StepInfo&) { out.contact_steps += in.impulses().sum() > 0.0; });
+  const RunResult r = run(problem, *it, o, [&](const Integrator& in, const StepInfo&) { out.contact_steps += in.impulses().sum() > 0.0; });
   out.work = it->work();
   if (r.status != RunStatus::Ok) out.note = std::string(status_name(r.status)) + ": " + r.message;
   return out;
+}
+
+}  // namespace
+
+RunWork signorini_bar_work(const std::string& integrator) {
+  const auto bar = make_bar("signorini-bar", {{"mass", "lumped"}, {"N", "100"}});
+  return counted_run(integrator, *bar, kBarStepFraction * bar->stable_step(), bar->contact_start() + 1.5 * bar->contact_duration());
+}
+
+RunWork bodies_contact_cost(const std::string& integrator) {
+  const auto problem = make_problem("two-blocks", {{"g", "0"}, {"upper_vx", "0.5"}, {"upper_vy", "-1"}, {"e", "0"}});
+  return counted_run(integrator, *problem, 1e-4, 0.1);
+}
+
+RunWork two_bars_contact_cost(const std::string& integrator) {
+  const auto problem = make_problem("two-bars", {});
+  const Params& p = problem->parameters();
+  return counted_run(integrator, *problem, kBarStepFraction * problem->stable_step(),
+                     2.0 * p.real("L2") / std::sqrt(p.real("E") / p.real("rho")));
 }
 
 }  // namespace nsb

@@ -133,14 +133,25 @@ struct LongRun {
 };
 LongRun long_run(const std::string& integrator, long target);
 
-// (6) Contact between two deformable bodies (H = L M^{-1} L^T not diagonal): two-blocks as the
-// bodies study runs it (no gravity, the upper block at (0.5, -1) m/s, e = 0, mu = 0), dt 1e-4 s
-// to t = 0.1 s (it lands at 0.05 s): work counters and the steps with a contact.
-struct BodiesCost {
+// A run's work: the scheme's work counters and its steps with a contact (an impulse > 0).
+struct RunWork {
   long contact_steps = 0;
   WorkCounters work;
-  std::string note;
+  std::string note;  // "declined: ..." or a failed run's status, else empty
 };
-BodiesCost bodies_contact_cost(const std::string& integrator);
+
+// (1) The Signorini bar as the claims study runs it for claim (1): lumped mass, N 100,
+// dt 0.9 h / c, to the contact's start + 1.5 contact durations 2 L / c (a linear bar against a
+// rigid wall: a diagonal Delassus operator).
+RunWork signorini_bar_work(const std::string& integrator);
+
+// (6) Contact between two deformable bodies (H = L M^{-1} L^T not diagonal): two-blocks as the
+// bodies study runs it (no gravity, the upper block at (0.5, -1) m/s, e = 0, mu = 0), dt 1e-4 s
+// to t = 0.1 s (it lands at 0.05 s).
+RunWork bodies_contact_cost(const std::string& integrator);
+// (6) Contact between two bodies through one contact row (H 1 x 1, so diagonal: the closed
+// form applies): two-bars with its defaults (L1 1, L2 2, N1 50, N2 100, lumped, v0 1, e = 0),
+// dt 0.9 x its stable step, to t = 2 L2 / c (bar 2's pulse back at the contact).
+RunWork two_bars_contact_cost(const std::string& integrator);
 
 }  // namespace nsb

@@ -17,6 +17,14 @@
 //                 bounded-without-drift rule; the adaptive step (cd-lagrange-adaptive) exact rule
 //   contact cost  LCP iterations per step with a contact, on the block's floor run (H diagonal)
 //                 and between two deformable blocks (two-blocks, H not diagonal) (reported)
+// and two tables whose figures go to the first page beside the claims':
+//   properties_explicit      claim (1): factorisations, linear solves and F_int evaluations per
+//                            step, on the Signorini bar of the claims study (linear, lumped, as
+//                            claimed) and the spinning block on the floor (nonlinear, beyond);
+//                            the suite's schemes only (the peers do not count their solves)
+//   properties_contact_cost  claim (6): LCP iterations per step with a contact, node on the rigid
+//                            floor (H diagonal), two bars through one contact row (H 1 x 1),
+//                            two blocks (H not diagonal)
 //   robustness    the claims study's long run (the bouncing mass, e = 1, dt 0.02 s, to its 1e5th
 //                 impact): finite states, |E_end - E_1| / E_1 <= 1e-2, penetration <= one step
 //                 of travel (robustness_verdict)
@@ -26,6 +34,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "integrators/registry.hpp"
 #include "studies/claims.hpp"
@@ -38,10 +48,28 @@ namespace {
 
 constexpr long kFreeSteps = 10'000, kFloorSteps = 2000, kLongRunImpacts = 100'000;
 
+// A row's measurements in four parts, each a case of its own so that the cores share one
+// scheme's work (one case per row left a core idle while the last rows ran: docs/measurements.md).
+// The case list starts with the long runs, the longest part.
+// Siconos models share one lock (peers/siconos/siconos_integrator.cpp: Debian's OpenBLAS is not
+// thread-safe), so two Siconos runs at once take as long as one after the other while a core
+// idles: the Siconos peers' long runs are one case, run one after the other while the other
+// core runs the rest. Each case's result holds its part of each row, by integrator; the table
+// merges them (the same numbers whatever the order the cases ran in).
+const std::vector<std::string> kParts = {"long-run", "bars", "block", "runs"};
+
+bool shares_siconos_lock(const std::string& integrator) { return integrator.rfind("siconos-", 0) == 0; }
+
 std::vector<Json> properties_cases(const StudyOptions&) {
-  std::vector<Json> cases;
+  std::vector<std::string> names, siconos;
   for (const auto& entry : integrator_registry())
-    if (!entry.reference) cases.push_back({{"integrator", entry.name}});
+    if (!entry.reference) (shares_siconos_lock(entry.name) ? siconos : names).push_back(entry.name);
+  std::vector<Json> cases;
+  if (!siconos.empty()) cases.push_back({{"integrators", siconos}, {"part", "long-run"}});
+  for (const auto& name : names) cases.push_back({{"integrators", {name}}, {"part", "long-run"}});
+  names.insert(names.end(), siconos.begin(), siconos.end());
+  for (const auto& name : names)
+    for (std::size_t p = 1; p < kParts.size(); ++p) cases.push_back({{"integrators", {name}}, {"part", kParts[p]}});
   return cases;
 }
 
@@ -70,22 +98,42 @@ Json impact_json(const ImpactEnergy& e, const std::string& which) {
   return j;
 }
 
-Json properties_case(const Json& c) {
-  const std::string name = c["integrator"];
+// The counters the figures of claims (1) and (6) show, raw (the tables divide).
+Json work_json(const WorkCounters& w, long contact_steps) {
+  return {{"steps", w.steps},           {"factorizations", w.factorizations}, {"solves", w.linear_solves},
+          {"forces", w.force_evaluations}, {"lcp", w.lcp_iterations},          {"contact_steps", contact_steps}};
+}
+Json run_work_json(const RunWork& r) { return r.note.empty() ? Json{{"work", work_json(r.work, r.contact_steps)}} : Json{{"note", r.note}}; }
+
+Json block_part(const std::string& name) {
   Json out;
   const SpinningBlock b = spinning_block(name, kFreeSteps, kFloorSteps);
   if (b.note.empty()) {
     const double steps = static_cast<double>(std::max(1L, b.work.steps));
     out["block"] = {{"factorizations_per_step", static_cast<double>(b.work.factorizations) / steps},
                     {"solves_per_step", static_cast<double>(b.work.linear_solves) / steps},
+                    {"work", work_json(b.work, b.contact_steps)},
                     {"lcp_per_contact_step", b.contact_steps > 0 ? real(static_cast<double>(b.work.lcp_iterations) / static_cast<double>(b.contact_steps)) : Json(nullptr)},
                     {"linear", real(b.free_linear)},
                     {"angular", real(std::max(b.free_angular, b.floor_angular))}};
   } else {
     out["block"] = {{"note", b.note}};
   }
+  return out;
+}
+
+Json bars_part(const std::string& name) {
+  Json out;
   const auto fits = bar_hausdorff(name, {"singular", "lumped"});
   out["hausdorff"] = {{"singular", bar_counts(fits, "singular")}, {"lumped", bar_counts(fits, "lumped")}};
+  out["impact"] = {{"singular", impact_json(bar_impact_energy(name, "singular", 0.0), "singular")},
+                   {"lumped", impact_json(bar_impact_energy(name, "lumped", 1.0), "lumped e=1")}};
+  out["bar_work"] = run_work_json(signorini_bar_work(name));
+  return out;
+}
+
+Json runs_part(const std::string& name) {
+  Json out;
   const EnergyFigures energy = energy_runs(name);
   if (!energy.note.empty())
     out["energy"] = {{"note", energy.note}};
@@ -93,19 +141,42 @@ Json properties_case(const Json& c) {
     out["energy"] = {{"adaptive", real(energy.adaptive)}, {"completed", energy.adaptive_ok}, {"cfl", real(energy.cfl)}};
   else
     out["energy"] = {{"first", real(energy.first)}, {"second", real(energy.second)}};
-  const BodiesCost bodies = bodies_contact_cost(name);
+  out["two_bars"] = run_work_json(two_bars_contact_cost(name));
+  const RunWork bodies = bodies_contact_cost(name);
   if (bodies.note.empty())
-    out["bodies"] = {{"lcp_per_contact_step", bodies.contact_steps > 0 ? real(static_cast<double>(bodies.work.lcp_iterations) / static_cast<double>(bodies.contact_steps)) : Json(nullptr)}};
+    out["bodies"] = {{"lcp_per_contact_step", bodies.contact_steps > 0 ? real(static_cast<double>(bodies.work.lcp_iterations) / static_cast<double>(bodies.contact_steps)) : Json(nullptr)},
+                     {"work", work_json(bodies.work, bodies.contact_steps)}};
   else
     out["bodies"] = {{"note", bodies.note}};
-  const LongRun l = long_run(name, kLongRunImpacts);
-  if (l.note.empty())
-    out["robust"] = {{"ok", l.ok}, {"impacts", l.impacts}, {"energy", real(l.energy)}, {"penetration", real(l.penetration)}};
-  else
-    out["robust"] = {{"note", l.note}};
-  out["impact"] = {{"singular", impact_json(bar_impact_energy(name, "singular", 0.0), "singular")},
-                   {"lumped", impact_json(bar_impact_energy(name, "lumped", 1.0), "lumped e=1")}};
   return out;
+}
+
+Json long_run_part(const std::string& name) {
+  const LongRun l = long_run(name, kLongRunImpacts);
+  if (!l.note.empty()) return {{"robust", {{"note", l.note}}}};
+  return {{"robust", {{"ok", l.ok}, {"impacts", l.impacts}, {"energy", real(l.energy)}, {"penetration", real(l.penetration)}}}};
+}
+
+// One case: its part of each of its integrators' rows, by integrator.
+Json properties_case(const Json& c) {
+  const std::string part = c["part"];
+  const auto measure = part == "long-run" ? &long_run_part : part == "bars" ? &bars_part : part == "block" ? &block_part : &runs_part;
+  Json out = Json::object();
+  for (const auto& name : c["integrators"]) out[name.get<std::string>()] = measure(name.get<std::string>());
+  return out;
+}
+
+// The rows, one per integrator in the order of the cases of one part (the registry's, the
+// Siconos peers last as before), each the union of its parts.
+using Rows = std::vector<std::pair<std::string, Json>>;
+Rows merged_rows(const std::vector<Json>& cases, const std::vector<Json>& results) {
+  Rows rows;
+  for (const auto& c : cases)
+    if (c["part"] == "bars") rows.emplace_back(c["integrators"][0].get<std::string>(), Json::object());
+  for (auto& [name, row] : rows)
+    for (std::size_t k = 0; k < cases.size(); ++k)
+      if (results[k].contains(name)) row.update(results[k][name]);
+  return rows;
 }
 
 // The reasons of the row's n/a cells, each once.
@@ -156,6 +227,85 @@ Cell impact_cell(const Json& e) { return e.contains("jump") ? Cell{real(e["jump"
 std::string impact_verdict_cell(const Json& e) {
   if (!e.contains("jump")) return "n/a";
   return impact_energy_kept(e["phases"], real(e["jump"])) ? "holds" : "fails";
+}
+
+// A run's counter `what` per `by` (steps, contact steps); n/a when it did not run or `by` is 0.
+Cell per(const Json& run, const char* what, const char* by) {
+  if (!run.contains("work") || run["work"][by].get<long>() == 0) return Cell{};
+  return Cell{static_cast<double>(run["work"][what].get<long>()) / static_cast<double>(run["work"][by].get<long>())};
+}
+Cell count(const Json& run, const char* what) { return run.contains("work") ? Cell{run["work"][what].get<long>()} : Cell{}; }
+std::string note_of(const Json& run) { return run.contains("note") ? run["note"].get<std::string>() : std::string(); }
+
+// Claim (1)'s figure: the work of a step per scheme, on a linear and a nonlinear problem.
+Table explicit_work_table(const Rows& rows) {
+  Table t;
+  t.id = "properties_explicit";
+  t.title = "Claim (1) per scheme: factorisations, linear solves and F_int evaluations per step";
+  t.caption = fmt::format(
+      "Work counters of each of the suite's schemes (the peers are left out: the Siconos and engine peers do not count "
+      "their factorisations and solves) over a run, per step. As claimed: the Signorini bar of the claims study's claim (1) "
+      "(linear, lumped mass, N 100, dt 0.9 h/c, to the contact's start + 1.5 contact durations; H diagonal). Beyond: the 2D "
+      "SVK block spinning at 3 rad/s dropped on the frictionless floor ({} steps of 0.5 x its stable step; nonlinear "
+      "F_int). An explicit step has 0 factorisations, 0 solves and 1 F_int evaluation (+ 1 at the start of the run); an "
+      "implicit scheme on the linear bar factorises once per run, on the nonlinear block once per Newton iteration.",
+      kFloorSteps);
+  t.columns = {{"integrator", "", "", ""},       {"problem", "", "", ""}, {"quantity", "", "", ""},
+               {"per step", "", "{:.3g}", ""},      {"count", "", "", "over the run"}, {"steps", "", "", ""},
+               {"note", "", "", "why a row is n/a"}};
+  Figure f{"properties_explicit", "Claim (1): work per step, per scheme", "integrator", "per step", {"quantity"}, {"problem"}};
+  f.kind = "bars";
+  f.caption = "Factorisations, linear solves and F_int evaluations per step of each scheme on the Signorini bar (linear, "
+              "lumped, N 100, dt 0.9 h/c: as claimed) and the spinning SVK block on the floor (nonlinear: beyond); "
+              "explicit: 0, 0 and 1. Counts, deterministic; the table properties_explicit has them with the steps.";
+  t.figures = {f};
+  t.lead_figures = true;
+  for (const auto& [name, r] : rows) {
+    if (find_integrator(name).peer) continue;
+    for (const auto& [problem, run] : {std::pair<const char*, const Json*>{"Signorini bar (as claimed)", &r["bar_work"]},
+                                       std::pair<const char*, const Json*>{"SVK block on the floor (beyond)", &r["block"]}})
+      for (const auto& [quantity, key] : {std::pair<const char*, const char*>{"factorisations", "factorizations"},
+                                          std::pair<const char*, const char*>{"linear solves", "solves"},
+                                          std::pair<const char*, const char*>{"F_int evaluations", "forces"}})
+        t.add_row({name, problem, quantity, per(*run, key, "steps"), count(*run, key), count(*run, "steps"), note_of(*run)});
+  }
+  return t;
+}
+
+// Claim (6)'s figure: LCP iterations per contact step, per scheme and kind of contact.
+Table contact_cost_table(const Rows& rows) {
+  Table t;
+  t.id = "properties_contact_cost";
+  t.title = "Claim (6) per scheme: LCP iterations per contact step, H diagonal and not";
+  t.caption = fmt::format(
+      "LCP iterations per step with a contact (an impulse > 0) of each scheme and peer, counted by the scheme (an LCP "
+      "with a diagonal Delassus operator H = L M^-1 L^T is solved in closed form: 0 iterations; otherwise projected "
+      "Gauss-Seidel to 1e-12, solvers/lcp.hpp; Siconos' Lemke pivots for its peers). Node on the rigid floor: the spinning "
+      "SVK block's floor run ({} steps; H diagonal). Two bars: two-bars with its defaults (L1 1, L2 2, N1 50, N2 100, "
+      "lumped, e = 0), dt 0.9 x its stable step, to t = 2 L2 / c: contact between two bodies through one contact row (H "
+      "1 x 1). Two blocks: two-blocks as the bodies study runs it (no gravity, upper block at (0.5, -1) m/s, e = 0, "
+      "mu = 0), dt 1e-4 s to 0.1 s: node-to-segment contacts between two deformable bodies (H not diagonal). n/a: the "
+      "scheme declined the problem (note).",
+      kFloorSteps);
+  t.columns = {{"integrator", "", "", ""},     {"contact", "", "", ""},       {"H", "", "", "Delassus operator"},
+               {"contact steps", "", "", ""}, {"LCP iterations", "", "", ""}, {"LCP it./contact step", "", "{:.3g}", ""},
+               {"note", "", "", "why a row is n/a"}};
+  Figure f{"properties_contact_cost", "Claim (6): LCP iterations per contact step, per scheme", "integrator",
+           "LCP it./contact step", {"contact"}, {}};
+  f.kind = "bars";
+  f.caption = "LCP iterations per step with a contact: a node on the rigid floor (the spinning SVK block: H diagonal), two "
+              "bars through one contact row (H 1 x 1), two deformable blocks in node-to-segment contact (H not diagonal). "
+              "Counts, deterministic; schemes that declined all three are left out (the table properties_contact_cost).";
+  t.figures = {f};
+  t.lead_figures = true;
+  for (const auto& [name, r] : rows) {
+    for (const auto& [contact, h, run] : {std::tuple<const char*, const char*, const Json*>{"node on the rigid floor", "diagonal", &r["block"]},
+                                          std::tuple<const char*, const char*, const Json*>{"two bars", "1 x 1", &r["two_bars"]},
+                                          std::tuple<const char*, const char*, const Json*>{"two blocks", "not diagonal", &r["bodies"]}})
+      t.add_row({name, contact, h, count(*run, "contact_steps"), count(*run, "lcp"),
+                 per(*run, "lcp", "contact_steps"), note_of(*run)});
+  }
+  return t;
 }
 
 std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::vector<Json>& results, const StudyOptions&) {
@@ -224,8 +374,8 @@ std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::
                 "The figures behind each cell are in the properties table.";
   t.figures = {map};
   t.lead = true;
-  for (std::size_t k = 0; k < cases.size(); ++k) {
-    const Json& r = results[k];
+  const Rows rows = merged_rows(cases, results);
+  for (const auto& [name, r] : rows) {
     const Json& b = r["block"];
     const bool block = !b.contains("note");
     const auto num = [&](const char* key) { return block && !b[key].is_null() ? Cell{real(b[key])} : Cell{}; };
@@ -236,7 +386,7 @@ std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::
     const std::string explicit_v =
         !block ? "n/a" : real(b["factorizations_per_step"]) == 0.0 && real(b["solves_per_step"]) == 0.0 ? "holds" : "fails";
     const std::string momentum_v = !block ? "n/a" : short_verdict(momentum_verdict(real(b["linear"]), real(b["angular"])));
-    t.add_row({cases[k]["integrator"].get<std::string>(), num("factorizations_per_step"), num("solves_per_step"), explicit_v,
+    t.add_row({name, num("factorizations_per_step"), num("solves_per_step"), explicit_v,
                hausdorff_cell(hs), hausdorff_verdict_cell(hs), hausdorff_cell(hl), hausdorff_verdict_cell(hl), num("linear"),
                num("angular"), momentum_v, impact_cell(is), impact_verdict_cell(is), impact_cell(il), impact_verdict_cell(il),
                field(r["energy"], "first"), field(r["energy"], "second"), drift_verdict_cell(r["energy"]), field(r["energy"], "adaptive"),
@@ -244,7 +394,7 @@ std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::
                num("lcp_per_contact_step"), bodies_cell(r["bodies"]), robust_impacts(r["robust"]), field(r["robust"], "energy"),
                field(r["robust"], "penetration"), robust_verdict_cell(r["robust"]), notes(r)});
   }
-  return {t};
+  return {t, explicit_work_table(rows), contact_cost_table(rows)};
 }
 
 }  // namespace

@@ -9,7 +9,9 @@
 //   impact-time  max over the first `count` impacts of |t_i (scheme) - t_i (exact)|, t_i the
 //                end of the first step with an impulse after a step without one [s].
 //   energy       (E - E0)/|E0| (E0 = 0: the problem's energy_scale(), run/run.hpp), E the scheme's own energy: max |.|, final, or drift (its
-//                least-squares slope in time, 1/s).
+//                least-squares slope in time, 1/s); with `every` T, at the first step past each
+//                from + k T (k = 1, 2, ... up to t_end, to half a step): count, first, final, or
+//                drift (the slope against k, per T).
 //   momentum     max over the samples of |P - P0 - sum_k (1^T F_ext(t_k) dt_k + 1^T L^T Lambda_k)|
 //                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
 //                balances momentum exactly when the internal forces sum to zero.
@@ -85,25 +87,55 @@ ReferenceRequest reference_request(const StudySpec& spec, const FileProblem& p) 
 // A reference run once per problem and cached (not the exact solution, not stepped in lockstep).
 bool cached(const FileReference* r) { return r && !r->exact && !r->lockstep; }
 
+// Whether an [[exclude]] rule removes the run of integrator `entry` on problem `p` at
+// `stable_steps` (NaN: a run not set as a fraction of the stable step).
+bool excluded(const FileExclusion& x, const IntegratorEntry& entry, const FileProblem& p, double stable_steps, bool full) {
+  if ((x.default_only && full) || (x.full_only && !full)) return false;
+  const std::string kind = entry.reference ? "references" : entry.peer ? "peers" : "schemes";
+  if (x.integrators != kind) return false;
+  if (!x.above.empty()) {
+    const Params params(find_problem(p.name).parameters(), p.parameters);
+    for (const auto& [name, value] : x.above)
+      if (!params.values().count(name) || !(params.real(name) > value)) return false;
+  }
+  return x.stable_steps_except.empty() ||
+         std::find(x.stable_steps_except.begin(), x.stable_steps_except.end(), stable_steps) == x.stable_steps_except.end();
+}
+
+// The runs of integrator i on problem p: its sweep's steps (or tolerances), then its stable-step
+// fractions, less those an [[exclude]] rule removes.
+void add_cases(const StudySpec& spec, std::size_t p, std::size_t i, bool full, std::vector<Json>& cases) {
+  const FileProblem& problem = spec.problems[p];
+  const IntegratorEntry& entry = find_integrator(spec.integrators[i].name);
+  const auto kept = [&](double stable_steps) {
+    return std::none_of(spec.exclusions.begin(), spec.exclusions.end(),
+                        [&](const FileExclusion& x) { return excluded(x, entry, problem, stable_steps, full); });
+  };
+  const FileSweep& s = spec.integrators[i].sweep_for(problem.label);
+  const bool tol = !s.tolerances.empty();
+  for (double x : tol ? s.tolerances : full && !s.full_steps.empty() ? s.full_steps : s.steps)
+    if (kept(kNaN))
+      cases.push_back({{"problem", p}, {"integrator", i}, {"dt", tol ? s.dt : x}, {"tol", tol ? Json(x) : Json(nullptr)},
+                       {"file_hash", spec.hash}});
+  if (s.stable_fractions.empty()) return;
+  const double stable = make_problem(problem.name, problem.parameters)->stable_step();
+  for (double f : s.stable_fractions)
+    if (kept(f))
+      cases.push_back({{"problem", p}, {"integrator", i}, {"dt", f * stable}, {"tol", nullptr}, {"stable_steps", f},
+                       {"file_hash", spec.hash}});
+}
+
 std::vector<Json> file_cases(const StudySpec& spec, bool full) {
   std::vector<Json> cases;
-  for (std::size_t p = 0; p < spec.problems.size(); ++p)
-    for (std::size_t i = 0; i < spec.integrators.size() && (full || !spec.problems[p].full_only); ++i) {
-      const FileSweep& s = spec.integrators[i].sweep_for(spec.problems[p].label);
-      const bool tol = !s.tolerances.empty();
-      for (double x : tol ? s.tolerances : full && !s.full_steps.empty() ? s.full_steps : s.steps)
-        cases.push_back({{"problem", p}, {"integrator", i}, {"dt", tol ? s.dt : x}, {"tol", tol ? Json(x) : Json(nullptr)},
-                         {"file_hash", spec.hash}});
-      if (!s.stable_fractions.empty()) {
-        const double stable = make_problem(spec.problems[p].name, spec.problems[p].parameters)->stable_step();
-        for (double f : s.stable_fractions)
-          cases.push_back({{"problem", p}, {"integrator", i}, {"dt", f * stable}, {"tol", nullptr}, {"stable_steps", f},
-                           {"file_hash", spec.hash}});
-      }
+  const std::size_t np = spec.problems.size(), ni = spec.integrators.size();
+  for (std::size_t outer = 0; outer < (spec.integrator_major ? ni : np); ++outer)
+    for (std::size_t inner = 0; inner < (spec.integrator_major ? np : ni); ++inner) {
+      const std::size_t p = spec.integrator_major ? inner : outer, i = spec.integrator_major ? outer : inner;
+      if (spec.runs(spec.problems[p], full)) add_cases(spec, p, i, full, cases);
     }
   // A reference integrator runs once per problem, here, before the cases that read it.
   for (const auto& p : spec.problems)
-    if (cached(spec.reference_of(p)) && (full || !p.full_only)) try {
+    if (cached(spec.reference_of(p)) && spec.runs(p, full)) try {
         cached_reference(reference_cache_dir(), reference_request(spec, p));
       } catch (const InputError& e) {
         throw InputError(fmt::format("study {}, reference run on {}: {}", spec.name, p.label, e.what()));
@@ -365,7 +397,28 @@ struct Accumulator {
   ContactPhases impacts;
   Polyline graph;  // Hausdorff: the run's samples
   std::optional<EventFigures> events;
+  std::vector<double> periodic;  // Energy with `every`: the error at each sample time from + k every
 };
+
+// An energy measure with `every` after a step ending at t (nominal step dt): its error e at each
+// sample time t_k = from + k every (k = 1, 2, ..., t_k <= t_end) the step reaches, to half a step
+// (t >= t_k - dt/2): several when a step spans more than one.
+void sample_periodic(const FileMeasure& m, Accumulator& a, double t, double dt, double t_end, double e) {
+  const auto next = [&] { return m.from + static_cast<double>(a.periodic.size() + 1) * m.every; };
+  while (next() <= t_end && t >= next() - 0.5 * dt) a.periodic.push_back(e);
+}
+
+// Its value: the number of samples, the first, the last (final), or the least-squares slope
+// against k (drift, per `every`); NaN without the samples it needs.
+double periodic_value(const std::string& norm, const std::vector<double>& e) {
+  if (norm == "count") return static_cast<double>(e.size());
+  if (e.empty()) return kNaN;
+  if (norm == "first") return e.front();
+  if (norm == "final") return e.back();
+  std::vector<double> k(e.size());
+  for (std::size_t i = 0; i < k.size(); ++i) k[i] = static_cast<double>(i + 1);
+  return fit_line(k, e).slope;
+}
 
 Json run_file_case(const StudySpec& spec, const Json& c) {
   const FileProblem& fp = spec.problems[c["problem"].get<std::size_t>()];
@@ -378,7 +431,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const double t_end = spec.t_end_of(fp);
   options.t_end = t_end;
   options.record_series = false;
-  options.max_force_evaluations = spec.budget_of(fp);
+  options.max_force_evaluations = spec.budget_of(fp, options.dt);
   options.sample_every = spec.check_every;  // the driver checks the state for NaN at its samples
   if (const FileReference* ref = spec.reference_of(fp); ref && ref->lockstep && fi.name == ref->integrator)  // its error is 0 by construction
     return not_run("the reference of this problem");
@@ -477,6 +530,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     growth.add(it, info.dt);
     if (stop) stop->add(s);
     if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(it.energy().total() - e0) / e_scale});
+    for (std::size_t m = 0; m < spec.measures.size(); ++m)
+      if (on[m] && spec.measures[m].kind == MeasureKind::Energy && spec.measures[m].every > 0.0)
+        sample_periodic(spec.measures[m], acc[m], s.t, options.dt, t_end, (it.energy().total() - e0) / e_scale);
     figures.add(it);
     if (++step % spec.sample_every == 0) sample(it);
     t_prev = s.t;
@@ -495,7 +551,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     out["status"] = "penetration";
     out["message"] = fmt::format("max penetration {:.3g} > {}", r.max_penetration, spec.max_penetration_of(fp));
   }
-  if (r.status != RunStatus::Ok) return out;
+  if (r.status != RunStatus::Ok && !(r.status == RunStatus::OverBudget && spec.measure_over_budget)) return out;
   if (step % spec.sample_every != 0) sample(*integrator);
   history.finish();
   Json values = Json::array();
@@ -521,6 +577,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         break;
       }
       case MeasureKind::Energy:
+        if (fm.every > 0.0) {
+          v = periodic_value(fm.norm, a.periodic);
+          break;
+        }
         v = fm.norm == "max" ? a.largest : fm.norm == "final" ? a.last : a.drift.slope();
         break;
       case MeasureKind::Momentum: v = a.largest / scale; break;
@@ -707,7 +767,7 @@ std::vector<Cell> run_cells(const StudySpec& spec, const Json& c, const Json& r)
   const auto value = [&](const char* key) { return f.contains(key) ? number_cell(f[key]) : Cell{}; };
   return {p.name, c.contains("stable_steps") ? Cell{c["stable_steps"].get<double>()} : Cell{}, spec.t_end_of(p),
           r["status"].get<std::string>(), value("t_reached"), f.contains("impacts") ? Cell{f["impacts"].get<long>()} : Cell{},
-          value("switches"), value("missed_switches"), spec.budget_of(p), value("max_penetration"), spec.max_penetration_of(p),
+          value("switches"), value("missed_switches"), spec.budget_of(p, c["dt"].get<double>()), value("max_penetration"), spec.max_penetration_of(p),
           value("energy_scale"), value("energy_growth"), spec.energy_blow_up_of(p), value("final_energy_error"),
           f.contains("note") ? Cell{f["note"].get<std::string>()} : Cell{}};
 }
@@ -719,6 +779,28 @@ const std::vector<Column>& history_columns() {
       {"energy deviation", "", "", "largest |E - E0| / E scale over the interval"},
       {"penetration", "m", "", "largest -min g over the interval (negative: every gap open)"}};
   return columns;
+}
+
+// The cells of the parameter columns `names` ("parameter NAME") for a run on p: its value
+// (integers and reals as numbers, choices as text), empty where p has no such parameter.
+std::vector<Cell> parameter_cells(const FileProblem& p, const std::vector<std::string>& names) {
+  const ParamSpecs specs = find_problem(p.name).parameters();
+  const Params params(specs, p.parameters);
+  std::vector<Cell> cells;
+  for (const std::string& name : names) {
+    const auto s = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& q) { return "parameter " + q.name == name; });
+    if (s == specs.end()) {
+      cells.emplace_back();
+    } else if (s->kind == ParamSpec::Kind::Integer) {
+      cells.emplace_back(params.integer(s->name));
+    } else if (s->kind == ParamSpec::Kind::Real) {
+      const auto v = params.optional_real(s->name);
+      cells.push_back(v ? Cell{*v} : Cell{});
+    } else {
+      cells.emplace_back(params.choice(s->name));
+    }
+  }
+  return cells;
 }
 
 // A declared figure's id: <name>_<id>, or <id> with study.figures = "declared".
@@ -810,7 +892,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
                {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
   for (const auto& m : spec.measures)
-    t.columns.push_back({m.label, is_event_time(m.kind) || m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" ? "1/s" : "",
+    t.columns.push_back({m.label, is_event_time(m.kind) || m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" && m.every == 0.0 ? "1/s" : "",
                          "{:.3e}", ""});
   t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", "", true}, {"steps", "", "", ""},
                                      {"F_int evals", "", "", "internal force evaluations"},
@@ -873,6 +955,8 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   for (const auto& m : spec.measures)
     if (measure_converges(m.kind)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
   counters.insert(counters.end(), run_columns().begin(), run_columns().end());
+  const std::vector<std::string> parameters = parameter_column_names(spec);
+  for (const auto& name : parameters) counters.push_back({name, "", "", "the problem's parameter"});
   std::vector<std::vector<Cell>> counter_rows;
   std::size_t k = 0;
   while (k < cases.size()) {
@@ -909,6 +993,8 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       }
       const std::vector<Cell> run = run_cells(spec, cases[k], r);
       more.insert(more.end(), run.begin(), run.end());
+      const std::vector<Cell> own = parameter_cells(spec.problems[pi], parameters);
+      more.insert(more.end(), own.begin(), own.end());
       counter_rows.push_back(std::move(more));
       // A declined run is no point; a run an outcome threshold removed (its values kept: energy
       // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
@@ -976,6 +1062,14 @@ const std::vector<std::string>& run_column_names() {
 
 const std::vector<std::string>& history_column_names() {
   static const std::vector<std::string> names = column_names(history_columns());
+  return names;
+}
+
+std::vector<std::string> parameter_column_names(const StudySpec& spec) {
+  std::vector<std::string> names;
+  for (const auto& p : spec.problems)
+    for (const auto& s : find_problem(p.name).parameters())
+      if (std::find(names.begin(), names.end(), "parameter " + s.name) == names.end()) names.push_back("parameter " + s.name);
   return names;
 }
 

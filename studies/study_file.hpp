@@ -44,6 +44,7 @@ struct FileProblem {
   // problem's energy_scale() when E0 = 0), and whether only `--full` runs it.
   double energy_blow_up = 0.0, max_penetration = 0.0, energy_scale = 0.0;
   bool full_only = false;
+  bool default_only = false;  // only a run without --full runs it (its --full counterpart: another problem)
   std::optional<FileReference> reference;  // its own reference (none: the study's [reference])
   // The sweep of every integrator that gives none of its own on this problem (and under --full).
   std::vector<double> steps, full_steps;
@@ -81,6 +82,9 @@ struct FileMeasure {
   std::string norm = "max";      // Error: final|max|l2; Energy: max|final|drift
   int count = 3;                 // ImpactTime: the first `count` impacts
   bool history = false;          // Energy: also a history table and figure
+  // Energy: > 0: sampled at the first step past each t_k = from + k every (k = 1, 2, ... while
+  // t_k <= t_end, to half a step), its norm count | first | final | drift (slope against k).
+  double every = 0.0, from = 0.0;
   double time_scale = 0.0;       // Hausdorff: T (0: t_end)
   double value_scale = 0.0;      // Hausdorff: V (0: the reference's largest |value|)
   std::vector<std::string> problems;  // the labels of the problems it is measured on (empty: all)
@@ -147,6 +151,17 @@ struct FileTable {
   std::optional<std::string> runs_format;
 };
 
+// [[exclude]]: runs the study does not make: those of the registered integrators of one kind
+// (schemes, peers, references) on a problem whose numeric parameters exceed the values of
+// `above` (a problem without such a parameter: not matched) and at a stable-step fraction not in `stable_steps_except`. Every condition given
+// must hold; default_only / full_only restrict the rule to runs without / with --full.
+struct FileExclusion {
+  std::string integrators;                     // "schemes" | "peers" | "references"
+  std::map<std::string, double> above;         // problem parameter > value
+  std::vector<double> stable_steps_except;     // the run's dt / stable step is none of these
+  bool default_only = false, full_only = false;
+};
+
 struct StudySpec {
   std::string file;   // as given
   std::string name;   // the file's stem, [a-z0-9_] only: table ids and shard files
@@ -158,6 +173,15 @@ struct StudySpec {
   long check_every = 1;  // the run driver checks the state for a non-finite value every k steps
   int cpu_repeats = 3;
   long max_force_evaluations = 10'000'000;
+  // > 0: each run's budget is floor(this x t_end / dt) F_int evaluations (a count per nominal
+  // step, so a slow scheme stops at the same step everywhere) instead of max_force_evaluations.
+  double force_evaluations_per_step = 0.0;
+  // study.case_order = "integrator": the runs integrator by integrator (each over the problems
+  // in their order); by default problem by problem (each over the integrators).
+  bool integrator_major = false;
+  // study.measure_over_budget: an over-budget run's measures up to its stop (default: none).
+  bool measure_over_budget = false;
+  std::vector<FileExclusion> exclusions;
   // Outcome thresholds: "energy blow-up" past energy_blow_up E scale (study_file.cpp),
   // "penetration" when max(0, -g) exceeds max_penetration (infinite: never).
   double energy_blow_up = 2.0;
@@ -177,7 +201,13 @@ struct StudySpec {
   double t_end_of(const FileProblem& p) const { return p.t_end > 0.0 ? p.t_end : t_end; }
   double energy_blow_up_of(const FileProblem& p) const { return p.energy_blow_up > 0.0 ? p.energy_blow_up : energy_blow_up; }
   double max_penetration_of(const FileProblem& p) const { return p.max_penetration > 0.0 ? p.max_penetration : max_penetration; }
-  long budget_of(const FileProblem& p) const { return p.max_force_evaluations > 0 ? p.max_force_evaluations : max_force_evaluations; }
+  // The F_int budget of a run of step dt on p: its own, else per step, else the study's.
+  long budget_of(const FileProblem& p, double dt) const {
+    if (p.max_force_evaluations > 0) return p.max_force_evaluations;
+    return force_evaluations_per_step > 0.0 ? static_cast<long>(force_evaluations_per_step * t_end_of(p) / dt) : max_force_evaluations;
+  }
+  // Whether a run of `full` (--full or not) makes the problem's runs.
+  bool runs(const FileProblem& p, bool full) const { return full ? !p.default_only : !p.full_only; }
   // The problem's own reference, else the study's; nullptr: none.
   const FileReference* reference_of(const FileProblem& p) const {
     return p.reference ? &*p.reference : has_reference ? &reference : nullptr;
@@ -193,6 +223,9 @@ bool measure_converges(MeasureKind kind);
 // work-precision ones), and the columns of a history table.
 const std::vector<std::string>& run_column_names();
 const std::vector<std::string>& history_column_names();
+// The problems' parameters a declared case table may show: "parameter NAME" for each parameter
+// of each problem (the first problem's order first); a problem without it shows an empty cell.
+std::vector<std::string> parameter_column_names(const StudySpec& spec);
 
 // Reads and checks a study file (.json: JSON, anything else: TOML).
 StudySpec read_study_file(const std::filesystem::path& path);

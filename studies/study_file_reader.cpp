@@ -540,6 +540,16 @@ bool is_file_stem(const std::string& id) {
   });
 }
 
+// An optional array of tables [[key]], each checked to be a table; empty when absent.
+const Json& optional_tables(const Checker& c, const Json& root, const char* key) {
+  static const Json none = Json::array();
+  const Json* list = c.find(root, key);
+  if (!list) return none;
+  c.expect(*list, key, list->is_array(), fmt::format("one or more [[{}]] tables", key));
+  for (std::size_t i = 0; i < list->size(); ++i) c.expect((*list)[i], element(key, i), (*list)[i].is_object(), "a table");
+  return *list;
+}
+
 // [[figure]]: drawn from the work-precision table, its columns named by their headers.
 std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const std::vector<FileMeasure>& measures, bool declared_only) {
   std::vector<FileFigure> figures;
@@ -595,7 +605,8 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const s
 }
 
 // The columns a declared table of `rows` may show, by source name.
-std::vector<std::string> table_sources(const std::string& rows, const std::vector<FileMeasure>& measures) {
+std::vector<std::string> table_sources(const std::string& rows, const StudySpec& spec) {
+  const std::vector<FileMeasure>& measures = spec.measures;
   std::vector<std::string> sources{"problem", "integrator"};
   if (rows == "case") {
     sources.insert(sources.end(), {"dt", "tol"});
@@ -605,6 +616,8 @@ std::vector<std::string> table_sources(const std::string& rows, const std::vecto
       if (measure_converges(m.kind)) sources.push_back("pairwise order of " + m.label);
     const auto& run = run_column_names();
     sources.insert(sources.end(), run.begin(), run.end());
+    const auto parameters = parameter_column_names(spec);
+    sources.insert(sources.end(), parameters.begin(), parameters.end());
   } else if (rows == "group") {
     for (const auto& m : measures)
       if (measure_converges(m.kind))
@@ -650,13 +663,11 @@ FileColumn read_column(const Checker& c, const Json& j, const std::string& path,
 // [[table]]: the tables the study writes instead of the engine's own.
 std::vector<FileTable> read_tables(const Checker& c, const Json& root, const StudySpec& spec) {
   std::vector<FileTable> tables;
-  const Json* list = c.find(root, "table");
-  if (!list) return tables;
-  c.expect(*list, "table", list->is_array(), "one or more [[table]] tables");
-  for (std::size_t i = 0; i < list->size(); ++i) {
-    const Json& j = (*list)[i];
+  if (!c.find(root, "table")) return tables;  // the engine's own tables, their figures unchecked here
+  const Json& list = optional_tables(c, root, "table");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Json& j = list[i];
     const std::string path = element("table", i);
-    c.expect(j, path, j.is_object(), "a table");
     c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
@@ -704,7 +715,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       const std::string at = child(path, "columns");
       const Json& cols = c.require(j, path, "columns");
       c.expect(cols, at, cols.is_array() && !cols.empty(), "a non-empty array of columns");
-      const auto sources = table_sources(t.rows, spec.measures);
+      const auto sources = table_sources(t.rows, spec);
       for (std::size_t k = 0; k < cols.size(); ++k) t.columns.push_back(read_column(c, cols[k], element(at, k), sources));
     }
     tables.push_back(t);
@@ -740,12 +751,15 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
 }
 
 // A problem's own outcome thresholds and energy scale (energy_blow_up, max_penetration,
-// energy_scale) and whether only --full runs it (full_only).
+// energy_scale) and whether only --full (full_only) or only a run without it (default_only) runs it.
 void read_problem_outcome(const Checker& c, const Json& j, const std::string& path, FileProblem& p) {
   if (const Json* v = c.find(j, "energy_blow_up")) p.energy_blow_up = c.positive(*v, child(path, "energy_blow_up"));
   if (const Json* v = c.find(j, "max_penetration")) p.max_penetration = c.positive(*v, child(path, "max_penetration"));
   if (const Json* v = c.find(j, "energy_scale")) p.energy_scale = c.positive(*v, child(path, "energy_scale"));
   if (const Json* v = c.find(j, "full_only")) p.full_only = c.boolean(*v, child(path, "full_only"));
+  if (const Json* v = c.find(j, "default_only")) p.default_only = c.boolean(*v, child(path, "default_only"));
+  if (p.full_only && p.default_only)
+    c.fail(child(path, "default_only"), "full_only and default_only both: the problem would never run", "at most one of them true");
 }
 
 // An integrator joins the study under a label no other has.
@@ -769,6 +783,84 @@ std::string stem_name(const std::string& file) {
   return name.empty() ? "study" : name;
 }
 
+
+// An energy measure's norm, history and sampling: every step, or with `every` (> 0) at the first
+// step past each from + k every (from >= 0; norms count, first, final, drift against k; no
+// window or history).
+void read_energy_sampling(const Checker& c, const Json& j, const std::string& path, FileMeasure& m) {
+  if (const Json* v = c.find(j, "every")) {
+    m.every = c.positive(*v, child(path, "every"));
+    for (const char* key : {"window", "history"})
+      if (c.find(j, key)) c.fail(child(path, key), "an energy sampled every period has no window or history", "one of every or window/history");
+    if (const Json* f = c.find(j, "from")) {
+      c.expect(*f, child(path, "from"), f->is_number(), "a number");
+      m.from = f->get<double>();
+      if (!(m.from >= 0.0) || !std::isfinite(m.from)) c.fail(child(path, "from"), fmt::format("{} is no start time", m.from), "[0, inf)");
+    }
+    m.norm = "final";
+    if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"count", "first", "final", "drift"});
+    m.label = fmt::format("energy err {}, every {:g} from {:g}", m.norm, m.every, m.from);
+    return;
+  }
+  if (c.find(j, "from")) c.fail(child(path, "from"), "from without every", "every = T beside it");
+  if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "final", "drift"});
+  if (const Json* v = c.find(j, "history")) m.history = c.boolean(*v, child(path, "history"));
+  m.label = fmt::format("energy err {}", m.norm);
+}
+
+// study.case_order and study.max_force_evaluations_per_step (a budget per nominal step: a run's
+// is floor(k t_end / dt); (0, 1e6], beside no max_force_evaluations).
+void read_study_order_and_budget(const Checker& c, const Json& study, StudySpec& spec) {
+  if (const Json* v = c.find(study, "measure_over_budget")) spec.measure_over_budget = c.boolean(*v, "study.measure_over_budget");
+  if (const Json* v = c.find(study, "case_order"))
+    spec.integrator_major = c.choice(*v, "study.case_order", {"problem", "integrator"}) == "integrator";
+  if (const Json* v = c.find(study, "max_force_evaluations_per_step")) {
+    const std::string at = "study.max_force_evaluations_per_step";
+    if (c.find(study, "max_force_evaluations")) c.fail(at, "given beside study.max_force_evaluations", "one of the two budgets");
+    spec.force_evaluations_per_step = c.positive(*v, at);
+    if (spec.force_evaluations_per_step > 1e6)
+      c.fail(at, fmt::format("{} F_int evaluations per step is no budget", spec.force_evaluations_per_step), "(0, 1e6]");
+  }
+}
+
+// [[exclude]] rules (study_file.hpp, FileExclusion), checked against the problems: `above`
+// names a numeric parameter of one or more of them, stable_steps_except a sweep of stable steps.
+std::vector<FileExclusion> read_exclusions(const Checker& c, const Json& root, const StudySpec& spec) {
+  std::vector<FileExclusion> rules;
+  const Json& list = optional_tables(c, root, "exclude");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Json& j = list[i];
+    const std::string path = element("exclude", i);
+    c.keys(j, path, {"integrators", "above", "stable_steps_except", "default_only", "full_only"});
+    FileExclusion x;
+    x.integrators = c.choice(c.require(j, path, "integrators"), child(path, "integrators"), {"schemes", "peers", "references"});
+    if (const Json* v = c.find(j, "above")) {
+      const std::string at = child(path, "above");
+      c.expect(*v, at, v->is_object() && !v->empty(), "a table of parameter = number");
+      for (const auto& [name, value] : v->items()) {
+        c.expect(value, child(at, name), value.is_number(), "a number");
+        const auto has = [&](const FileProblem& p, bool numeric) {
+          const ParamSpecs specs = find_problem(p.name).parameters();
+          const auto s = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& q) { return q.name == name; });
+          return s != specs.end() && (s->kind != ParamSpec::Kind::Choice) == numeric;
+        };
+        if (std::none_of(spec.problems.begin(), spec.problems.end(), [&](const FileProblem& p) { return has(p, true); }) ||
+            std::any_of(spec.problems.begin(), spec.problems.end(), [&](const FileProblem& p) { return has(p, false); }))
+          c.fail(child(at, name), fmt::format("'{}' is no numeric parameter of the study's problems", name),
+                 "a real or integer parameter of one or more problems (the rule applies to those)");
+        x.above[name] = value.get<double>();
+      }
+    }
+    if (const Json* v = c.find(j, "stable_steps_except")) x.stable_steps_except = stable_fractions(c, *v, child(path, "stable_steps_except"));
+    if (const Json* v = c.find(j, "default_only")) x.default_only = c.boolean(*v, child(path, "default_only"));
+    if (const Json* v = c.find(j, "full_only")) x.full_only = c.boolean(*v, child(path, "full_only"));
+    if (x.default_only && x.full_only) c.fail(child(path, "full_only"), "full_only and default_only both: the rule would never apply", "at most one of them true");
+    if (x.above.empty() && x.stable_steps_except.empty())
+      c.fail(path, "no condition: the rule would exclude every run of its integrators", "above = { PARAMETER = number } and/or stable_steps_except = [...]");
+    rules.push_back(std::move(x));
+  }
+  return rules;
+}
 }  // namespace
 
 bool FileMeasure::applies_to(const std::string& problem_label) const {
@@ -811,7 +903,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   }
   const Checker c(file, lines, json ? &text : nullptr);
   c.expect(root, "(file)", root.is_object(), "a table");
-  c.keys(root, "", {"study", "problem", "integrator", "reference", "measure", "figure", "table"});
+  c.keys(root, "", {"study", "problem", "integrator", "reference", "measure", "figure", "table", "exclude"});
 
   StudySpec spec;
   spec.file = file;
@@ -822,7 +914,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   const Json& study = c.require(root, "", "study");
   c.expect(study, "study", study.is_object(), "a table");
   c.keys(study, "study", {"title", "t_end", "sample_every", "check_every", "cpu_repeats", "max_force_evaluations", "targets",
-                          "rank_by", "energy_blow_up", "max_penetration", "integrators", "figures"});
+                          "rank_by", "energy_blow_up", "max_penetration", "integrators", "figures", "case_order",
+                          "max_force_evaluations_per_step", "measure_over_budget"});
   spec.title = c.string(c.require(study, "study", "title"), "study.title");
   spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
   if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
@@ -830,6 +923,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   if (const Json* v = c.find(study, "cpu_repeats")) spec.cpu_repeats = static_cast<int>(c.integer(*v, "study.cpu_repeats", 0, 100));
   if (const Json* v = c.find(study, "max_force_evaluations"))  // >= 1: no budget (0) would let a case run 2e8 steps
     spec.max_force_evaluations = c.integer(*v, "study.max_force_evaluations", 1, 1L << 50);
+  read_study_order_and_budget(c, study, spec);
   if (const Json* v = c.find(study, "targets")) spec.targets = c.positive_list(*v, "study.targets");
   if (const Json* v = c.find(study, "energy_blow_up")) {  // inf (TOML): no such status
     c.expect(*v, "study.energy_blow_up", v->is_number(), "a number");
@@ -853,7 +947,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     const Json& j = problems[i];
     const std::string path = element("problem", i);
     c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations", "steps", "full_steps", "stable_steps",
-                     "reference", "energy_blow_up", "max_penetration", "energy_scale", "full_only"});
+                     "reference", "energy_blow_up", "max_penetration", "energy_scale", "full_only", "default_only"});
     FileProblem p;
     p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
     p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
@@ -1021,10 +1115,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       }
       m.label = onset ? "onset time err" : "stop time err";
     } else if (m.kind == MeasureKind::Energy) {
-      keys({"norm", "history", "window"});
-      if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "final", "drift"});
-      if (const Json* v = c.find(j, "history")) m.history = c.boolean(*v, child(path, "history"));
-      m.label = fmt::format("energy err {}", m.norm);
+      keys({"norm", "history", "window", "every", "from"});
+      read_energy_sampling(c, j, path, m);
     } else {
       keys(kind == "momentum" ? std::vector<std::string>{"window"} : std::vector<std::string>{});
       m.label = kind == "momentum" ? "momentum residual" : "penetration";
@@ -1049,6 +1141,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       if (q.label == m.label) c.fail(path, fmt::format("a second measure labelled '{}'", m.label), "distinct labels (label = ...)");
     spec.measures.push_back(m);
   }
+  spec.exclusions = read_exclusions(c, root, spec);
   spec.ranked = ranked_measure(c, study, spec.measures);
   spec.figures = read_figures(c, root, spec.measures, spec.declared_figures_only);
   spec.tables = read_tables(c, root, spec);
@@ -1093,6 +1186,7 @@ StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, lo
   }
   spec.cpu_repeats = 0;
   spec.max_force_evaluations = budget;
+  spec.force_evaluations_per_step = 0.0;  // the budget above, whatever the step
   const auto cut = [&](FileSweep& s) {
     if (s.steps.size() > max_runs) s.steps.resize(max_runs);
     if (s.stable_fractions.size() > max_runs) s.stable_fractions.resize(max_runs);

@@ -153,6 +153,50 @@ TEST_CASE("every integrator on two blocks: momentum changes by the floor's impul
   }
 }
 
+TEST_CASE("two blocks, large sliding, launched sideways: momentum changes by the floor's impulses only",
+          "[integrators][bodies][two-blocks][large-sliding]") {
+  // No gravity, e = 0, mu = 0.3; the upper block at 1.5 m/s sideways: its bottom nodes cross
+  // the lower block's top-edge nodes (0.2 m apart) while it lands and slides.
+  const auto b = blocks({{"g", "0"}, {"mu", "0.3"}, {"upper_vx", "1.5"}, {"upper_vy", "-1"}, {"e", "0"}, {"sliding", "large"}});
+  REQUIRE(b.contacts_move());
+  const nsb::Index pf = b.floor_contacts(), slaves = b.ncontacts() - pf;
+  const double dt = 1e-4, t_end = 0.15;
+  for (const char* name : {"cd-lagrange", "moreau-jean"}) {
+    SECTION(name) {
+      auto integ = nsb::testing::init_or_decline(nsb::find_integrator(name), b);
+      REQUIRE(integ);
+      nsb::Vec v_prev = integ->state().v;
+      double p_scale = 0.0;
+      for (nsb::Index a = 0; a < b.ndof() / 2; ++a)
+        p_scale += b.mass_matrix().coeff(2 * a, 2 * a) * v_prev.segment<2>(2 * a).norm();
+      std::vector<nsb::Index> segment(static_cast<std::size_t>(slaves));
+      for (nsb::Index k = 0; k < slaves; ++k) segment[static_cast<std::size_t>(k)] = b.segment_contact(b.initial_state().u, k).segment;
+      long changes = 0;
+      double worst = 0.0, between = 0.0, friction = 0.0;
+      nsb::RunOptions options{dt, t_end, 1, false};
+      const auto r = nsb::run(b, *integ, options, [&](const nsb::Integrator& it, const nsb::StepInfo&) {
+        const Eigen::Vector2d dP = b.linear_momentum(it.state().v) - b.linear_momentum(v_prev);
+        const Eigen::Vector2d floor(it.tangential_impulses().head(pf).sum(), it.impulses().head(pf).sum());
+        worst = std::max(worst, (dP - floor).norm());
+        between += it.impulses().tail(slaves).sum();
+        friction += it.tangential_impulses().tail(slaves).cwiseAbs().sum();
+        for (nsb::Index k = 0; k < slaves; ++k) {
+          const nsb::Index now = b.segment_contact(it.state().u, k).segment;
+          changes += now != segment[static_cast<std::size_t>(k)];
+          segment[static_cast<std::size_t>(k)] = now;
+        }
+        v_prev = it.state().v;
+      });
+      INFO(r.message << "; " << changes << " segment changes, worst |dP - floor impulses| " << worst << " of " << p_scale);
+      REQUIRE(r.status == nsb::RunStatus::Ok);
+      REQUIRE(between > 1.0);   // the upper block did land on the lower one
+      REQUIRE(friction > 0.1);  // and slid on it under friction
+      REQUIRE(changes >= 4);    // while its nodes changed segment
+      CHECK(worst <= 1e-12 * p_scale);
+    }
+  }
+}
+
 TEST_CASE("impulse-contact: the LCP path (H not diagonal) agrees with the closed forms where both apply",
           "[integrators][bodies][lcp]") {
   const nsb::LcpOptions options{1e-14, 100000};

@@ -1,12 +1,17 @@
 // two-blocks: the contact rows (floor and node-to-segment) are what the header says, a
 // rigid translation of both blocks leaves the inter-body gaps unchanged, the assembled
 // operators are the blocks' (F_int sums to zero, K is the gradient of F_int), the
-// observables total both blocks, and bad placements and meshes are refused.
+// observables total both blocks, and bad placements and meshes are refused. Large sliding:
+// g, L, T against central differences (check/conformance.cpp's test), the rows at the flat
+// placement are small sliding's, a node changing segment keeps its gap and shifts its row's
+// pattern, the evaluation allocates nothing.
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "check/conformance.hpp"
 #include "problems/registry.hpp"
 #include "problems/two_blocks.hpp"
+#include "tests/support/allocation_counter.hpp"
 
 using Catch::Detail::Approx;
 
@@ -211,4 +216,128 @@ TEST_CASE("two-blocks: field mesh is the lower block's then the upper block's (d
   CHECK(sigma.topRows(cl) == sl);
   CHECK(sigma.bottomRows(su.rows()) == su);
   CHECK(sl.cwiseAbs().maxCoeff() > 0.0);
+}
+
+namespace {
+
+// The upper block translated by (dx, dy) on top of u.
+nsb::Vec upper_moved(const nsb::TwoBlocks& b, nsb::Vec u, double dx, double dy) {
+  for (nsb::Index j = b.lower_dofs(); j < b.ndof(); j += 2) {
+    u[j] += dx;
+    u[j + 1] += dy;
+  }
+  return u;
+}
+
+// First node of the lower block's top edge.
+nsb::Index top_edge(const nsb::TwoBlocks& b) {
+  return (b.lower().parameters().integer("nx") + 1) * b.lower().parameters().integer("ny");
+}
+
+// The columns of row r holding a nonzero value.
+std::vector<nsb::Index> nonzero_columns(const nsb::RowSpMat& rows, nsb::Index r) {
+  std::vector<nsb::Index> cols;
+  for (nsb::RowSpMat::InnerIterator it(rows, r); it; ++it)
+    if (it.value() != 0.0) cols.push_back(it.col());
+  return cols;
+}
+
+}  // namespace
+
+TEST_CASE("two-blocks, large sliding: g, L and T against central differences (nsbench check's test), over the edge "
+          "and past its end",
+          "[problems][two-blocks][large-sliding]") {
+  // Blocks apart, so that check_contact_rows' random configurations (every dof moved by up
+  // to 0.05 (1 + max|u0|)) are admissible: they kink the top edge and move every node.
+  const auto b = blocks({{"sliding", "large"}, {"mu", "0.3"}, {"lower_height", "0.2"}, {"upper_gap", "0.15"}});
+  REQUIRE(b.contacts_move());
+  // 0.3: the upper block's last bottom node (x = 0.55) past the lower block's end (x = 0.5).
+  for (const double shift : {0.0, 0.13, 0.3}) {
+    const nsb::Vec u0 = upper_moved(b, nsb::Vec::Zero(b.ndof()), shift, 0.0);
+    const nsb::Verdict v = nsb::check_contact_rows(b, u0);
+    INFO("upper block shifted by " << shift << ": " << v.figure);
+    CHECK(v.outcome == nsb::Verdict::Outcome::Pass);
+    CHECK_THAT(v.figure, Catch::Contains("moving, 6 configurations"));
+  }
+  const nsb::Index last = b.upper().parameters().integer("nx");
+  const auto past = b.segment_contact(upper_moved(b, nsb::Vec::Zero(b.ndof()), 0.3, 0.0), last);
+  CHECK(past.xi > 1.0);
+  CHECK(past.gap == Approx(std::hypot(0.05, 0.15)).epsilon(1e-14));  // the distance to the corner (0.5, 0.3 + 0.2)
+}
+
+TEST_CASE("two-blocks, large sliding: at the flat placement the rows and gaps are small sliding's",
+          "[problems][two-blocks][large-sliding]") {
+  const std::map<std::string, std::string> set = {{"mu", "0.3"}, {"upper_gap", "0"}};
+  auto with_large = set;
+  with_large["sliding"] = "large";
+  const auto small = blocks(set), large = blocks(with_large);
+  CHECK(!small.contacts_move());
+  CHECK(nsb::TwoBlocks::parameters_spec().back().default_value == "small");
+  const Eigen::MatrixXd dL = Eigen::MatrixXd(small.gap_operator()) - Eigen::MatrixXd(large.gap_operator());
+  const Eigen::MatrixXd dT = Eigen::MatrixXd(small.contacts().tangent) - Eigen::MatrixXd(large.contacts().tangent);
+  CHECK(dL.cwiseAbs().maxCoeff() <= 1e-15);
+  CHECK(dT.cwiseAbs().maxCoeff() <= 1e-15);
+  CHECK((small.gap_offset() - large.gap_offset()).cwiseAbs().maxCoeff() <= 1e-15);
+  // Away from it, small sliding is its linear rows and large sliding is not.
+  const nsb::Vec u = upper_moved(small, noise(small.ndof(), 1e-3, 5), 0.15, 0.0);
+  nsb::ContactGeometry gs = small.contact_geometry(), gl = large.contact_geometry();
+  small.evaluate_contacts(u, gs);
+  large.evaluate_contacts(u, gl);
+  CHECK((gs.gap - (small.gap_offset() + small.gap_operator() * u)).cwiseAbs().maxCoeff() <= 1e-15);
+  CHECK((gl.gap - gs.gap).head(large.floor_contacts()).cwiseAbs().maxCoeff() <= 1e-15);
+  CHECK((gl.gap - gs.gap).tail(large.ncontacts() - large.floor_contacts()).cwiseAbs().maxCoeff() >= 1e-4);
+}
+
+TEST_CASE("two-blocks, large sliding: a node crossing a segment boundary keeps its gap while its row's pattern "
+          "shifts by one node",
+          "[problems][two-blocks][large-sliding]") {
+  const auto b = blocks({{"sliding", "large"}, {"mu", "0.3"}});
+  const nsb::Index top0 = top_edge(b), k = 3, r = b.floor_contacts() + k;
+  // A kink at the top edge's node 2 (x = -0.1): node 3 raised by 0.05, so the boundary
+  // between segments 1 and 2 is the bisector there, leaning left, not the vertical.
+  nsb::Vec kinked = nsb::Vec::Zero(b.ndof());
+  kinked[2 * (top0 + 3) + 1] = 0.05;
+  // Node 3 of the upper block (x = -0.036) on segment 2; moved left, it crosses onto segment 1.
+  double lo = 0.0, hi = 0.15;
+  REQUIRE(b.segment_contact(upper_moved(b, kinked, -lo, 0.0), k).segment == 2);
+  REQUIRE(b.segment_contact(upper_moved(b, kinked, -hi, 0.0), k).segment == 1);
+  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (b.segment_contact(upper_moved(b, kinked, -mid, 0.0), k).segment == 2 ? lo : hi) = mid;
+  }
+  const nsb::Vec before = upper_moved(b, kinked, -lo, 0.0), after = upper_moved(b, kinked, -hi, 0.0);
+  nsb::ContactGeometry at_before = b.contact_geometry(), at_after = b.contact_geometry();
+  b.evaluate_contacts(before, at_before);
+  b.evaluate_contacts(after, at_after);
+  INFO("boundary crossed at dx = " << -lo << ", gaps " << at_before.gap[r] << " and " << at_after.gap[r]);
+  CHECK(lo > 0.068);  // past the vertical through the vertex (dx = -0.064): the bisector leans
+  CHECK(std::abs(at_before.gap[r] - at_after.gap[r]) <= 1e-14);
+  // The lower block's nodes in the row: segment 2's ends (2, 3) before, segment 1's (1, 2) after.
+  const auto lower_nodes = [&](const nsb::RowSpMat& rows) {
+    std::vector<nsb::Index> nodes;
+    for (const nsb::Index col : nonzero_columns(rows, r))
+      if (col < b.lower_dofs() && (nodes.empty() || nodes.back() != col / 2)) nodes.push_back(col / 2);
+    return nodes;
+  };
+  CHECK(lower_nodes(at_before.normal) == std::vector<nsb::Index>{top0 + 2, top0 + 3});
+  CHECK(lower_nodes(at_after.normal) == std::vector<nsb::Index>{top0 + 1, top0 + 2});
+  CHECK(lower_nodes(at_before.tangent) == std::vector<nsb::Index>{top0 + 2, top0 + 3});
+  CHECK(lower_nodes(at_after.tangent) == std::vector<nsb::Index>{top0 + 1, top0 + 2});
+  // The storage keeps its pattern: every top-edge node and the node, in both.
+  CHECK(at_before.normal.nonZeros() == b.contact_geometry().normal.nonZeros());
+  CHECK(at_after.tangent.nonZeros() == b.contact_geometry().tangent.nonZeros());
+}
+
+TEST_CASE("two-blocks, large sliding: contacts evaluated without allocating", "[problems][two-blocks][large-sliding][allocation]") {
+  const auto b = blocks({{"sliding", "large"}, {"mu", "0.3"}});
+  nsb::ContactGeometry at = b.contact_geometry();
+  const nsb::Vec u = upper_moved(b, noise(b.ndof(), 1e-3, 9), 0.2, -0.05);
+  long allocations = 0;
+  {
+    nsb::test::CountAllocations count;
+    b.evaluate_contacts(u, at);
+    allocations = count.count();
+  }
+  CHECK(allocations == 0);
+  CHECK(at.gap.tail(b.ncontacts() - b.floor_contacts()).minCoeff() < 0.0);  // moved into the lower block
 }

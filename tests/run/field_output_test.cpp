@@ -197,13 +197,13 @@ TEST_CASE("fields: writing a state allocates nothing; a problem that describes n
     nsb::State s = problem->initial_state();
     s.u = nsb::Vec::LinSpaced(problem->ndof(), -1e-3, 1e-3);
     const nsb::Vec normal = nsb::Vec::Ones(problem->ncontacts()), tangential = 0.5 * normal;
-    writer.state(s, normal, tangential);
+    writer.state(s, normal, tangential, tangential);
     long allocations = 0;
     {
       nsb::test::CountAllocations count;
-      writer.state(s, normal, tangential);
+      writer.state(s, normal, tangential, tangential);
       s.t = 1.0;
-      writer.state(s, normal, tangential);
+      writer.state(s, normal, tangential, tangential);
       allocations = count.count();
     }
     CHECK(allocations == 0);
@@ -257,9 +257,9 @@ TEST_CASE("fields: a bar and a striker are two parts, elements with stress and t
   {
     nsb::FieldWriter writer(*problem, dir, "--fields", 2);
     const nsb::Vec lambda = nsb::Vec::Constant(1, 2.0);
-    writer.state(s, lambda, nsb::Vec());
+    writer.state(s, lambda, nsb::Vec(), nsb::Vec());
     s.t = 0.25;
-    writer.state(s, lambda, nsb::Vec());
+    writer.state(s, lambda, nsb::Vec(), nsb::Vec());
     writer.commit();
   }
   std::vector<std::string> elements, bodies;
@@ -292,7 +292,7 @@ TEST_CASE("fields: a bar and a striker are two parts, elements with stress and t
   d.v << -1.0, 0.5, 3.0;
   {
     nsb::FieldWriter writer(*disk, dir, "--fields", 1);
-    writer.state(d, nsb::Vec::Zero(1), nsb::Vec::Zero(1));
+    writer.state(d, nsb::Vec::Zero(1), nsb::Vec::Zero(1), nsb::Vec());
     writer.commit();
   }
   std::vector<std::string> files;

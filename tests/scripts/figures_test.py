@@ -30,7 +30,7 @@ def check(condition, what):
 def registered(nsbench):
     """(name, kind) of every integrator `nsbench list` names; kind from its description."""
     out = subprocess.run([nsbench, "list"], check=True, capture_output=True, text=True).stdout
-    lines = out.split("\nintegrators")[1].splitlines()[1:]
+    lines = out.split("\nintegrators (")[1].splitlines()[1:]  # the section title, not a wrapped line of it
     found = []
     for line in lines:
         if line.startswith("  ") and not line.startswith("    ") and line.strip():
@@ -137,7 +137,16 @@ def write_report(root):
     with open(os.path.join(root, "verdicts.csv"), "w") as f:
         f.write("# git_revision: test\nintegrator,explicit,momentum\n")
         f.write("cd-lagrange,holds,conditional\nmoreau-jean,fails,n/a\n")
+    # Grouped bars (claims (1) and (6)): a bar per value of the series column, a panel per
+    # problem; n/a draws no bar.
+    with open(os.path.join(root, "work.csv"), "w") as f:
+        f.write("# git_revision: test\nintegrator,problem,quantity,per step\n")
+        f.write("cd-lagrange,bar,solves,0\nmoreau-jean,bar,solves,1\nmoreau-jean,bar,factorisations,0.01\n"
+                "cd-lagrange,block,solves,0\nmoreau-jean,block,solves,n/a\n")
     specs = [
+        {"id": "work", "title": "work", "csv": "work.csv", "x": "integrator", "y": "per step", "series": ["quantity"],
+         "panels": ["problem"], "log_x": False, "log_y": False, "kind": "bars", "values": [], "positions": [],
+         "value_label": ""},
         {"id": "traj", "title": "traj", "csv": "traj.csv", "x": "t [s]", "y": "x [m]", "series": ["integrator", "ball"],
          "panels": [], "log_x": False, "log_y": False, "small_multiples": True, "overlay": "exact"},
         {"id": "field", "title": "field", "csv": "field.csv", "x": "", "y": "t", "series": [], "panels": ["integrator", "mass"],
@@ -168,7 +177,7 @@ def test_figures():
         script = os.path.join(os.path.dirname(figures.__file__), "figures.py")
         for style, sub in (("screen", "figures"), ("paper", os.path.join("figures", "paper"))):
             subprocess.run(["/usr/bin/python3", script, root, "--style", style], check=True, capture_output=True)
-            for fid in ("conv", "evals", "hist", "traj", "field", "cells", "verdicts"):
+            for fid in ("conv", "evals", "hist", "traj", "field", "cells", "verdicts", "work"):
                 for ext in ("png", "pdf"):
                     path = os.path.join(root, sub, f"{fid}.{ext}")
                     check(os.path.getsize(path) > 1000, f"{path} missing or empty")
@@ -184,7 +193,7 @@ def test_figures():
                            env=dict(os.environ, NSBENCH_JOBS=jobs))
             drawn[jobs] = {name: open(os.path.join(root, "figures", name), "rb").read()
                            for name in sorted(os.listdir(os.path.join(root, "figures"))) if name.endswith((".png", ".pdf"))}
-        check(len(drawn["1"]) == 14 and drawn["1"] == drawn["3"], "figures differ between 1 and 3 processes")
+        check(len(drawn["1"]) == 16 and drawn["1"] == drawn["3"], "figures differ between 1 and 3 processes")
         for jobs in ("0", "two"):
             bad = subprocess.run(["/usr/bin/python3", script, root], capture_output=True, text=True,
                                  env=dict(os.environ, NSBENCH_JOBS=jobs))
@@ -219,7 +228,18 @@ def test_figures():
     cmap, lo, hi, extend = figures.colour_scale([-1.0] * 2000 + [0.5, 40.0])
     check(cmap == "RdBu_r" and lo == -hi and hi == 1.0 and extend == "both", f"colour scale {cmap} {lo} {hi} {extend}")
     check(sorted(line["pts"][0][1] for line in panels[("a",)].values()) == [-0.5, 0.5], "deviation not signed")
-
+    # Bars: one per value of the series column, a group per category, a panel per problem; a
+    # cell that is no number is no bar, a category with none in a panel no group; order kept.
+    spec = {"x": "integrator", "y": "n", "series": ["contact"], "panels": ["problem"]}
+    rows = [{"integrator": "b", "problem": "bar", "contact": "floor", "n": "0"},
+            {"integrator": "a", "problem": "bar", "contact": "floor", "n": "1"},
+            {"integrator": "a", "problem": "bar", "contact": "blocks", "n": "14.7"},
+            {"integrator": "b", "problem": "block", "contact": "floor", "n": "n/a"},
+            {"integrator": "a", "problem": "block", "contact": "floor", "n": "3"}]
+    groups = figures.bar_groups(spec, rows)
+    check(groups == {("bar",): {"b": {"floor": 0.0}, "a": {"floor": 1.0, "blocks": 14.7}}, ("block",): {"a": {"floor": 3.0}}},
+          f"bars {groups}")
+    check(list(groups[("bar",)]) == ["b", "a"], "bar categories not in the table's order")
 
 if __name__ == "__main__":
     test_style_map(sys.argv[1])

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "integrators/registry.hpp"
+#include "problems/bouncing_bar.hpp"
 #include "problems/registry.hpp"
 #include "studies/registry.hpp"
 #include "studies/study_file.hpp"
@@ -121,4 +122,43 @@ TEST_CASE("built-in study hard: every case run by every registered integrator at
   CHECK(std::count_if(spec.problems.begin(), spec.problems.end(), [](const nsb::FileProblem& p) { return p.full_only; }) == 1);
   CHECK(spec.problems[2].label == "10^4 impacts, e = 1");
   CHECK(spec.problems[2].full_only);
+}
+
+// The draft studies/builtin/drafts/bouncing-bar.toml against the C++ study it is to replace
+// (studies/bouncing_bar.cpp), default and --full: the same runs in the same order (integrator,
+// mass model, N, alpha = dt / stable step), each with the C++ study's dt, end time t1 + K P and
+// budget of 4 F_int evaluations per nominal step.
+TEST_CASE("draft bouncing-bar.toml: the C++ study bouncing-bar's runs, in its order, with its steps, end times and budgets",
+          "[studies]") {
+  const nsb::StudySpec spec =
+      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bouncing-bar.toml");
+  const auto& registry = nsb::study_registry();
+  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bouncing-bar"; });
+  REQUIRE(cpp != registry.end());
+  REQUIRE(cpp->source == "studies/bouncing_bar.cpp");
+  const nsb::ParamSpecs bar = nsb::find_problem("bouncing-bar").parameters();
+  for (const bool full : {false, true}) {
+    INFO("full " << full);
+    const auto expected = nsb::study_cases(*cpp, {full});
+    const auto cases = nsb::study_cases(nsb::file_study(spec), {full});
+    REQUIRE(cases.size() == expected.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const nsb::Json& e = expected[k];
+      INFO("case " << k << ": " << e.dump());
+      const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+      const nsb::Params params(bar, p.parameters);
+      CHECK(p.name == "bouncing-bar");
+      CHECK(spec.integrators[cases[k]["integrator"].get<std::size_t>()].name == e["integrator"].get<std::string>());
+      CHECK(params.choice("mass") == e["mass"].get<std::string>());
+      CHECK(params.integer("N") == e["N"].get<long>());
+      CHECK(cases[k]["stable_steps"].get<double>() == e["alpha"].get<double>());
+      const auto problem = nsb::make_problem("bouncing-bar", p.parameters);
+      const double dt = e["alpha"].get<double>() * problem->stable_step();
+      CHECK(cases[k]["dt"].get<double>() == dt);
+      const nsb::BouncingBarExact fall(params, 0.0);
+      const double t_end = fall.impact_time() + e["periods"].get<int>() * (16.0 * fall.wave_time());
+      CHECK(spec.t_end_of(p) == t_end);
+      CHECK(spec.budget_of(p, dt) == static_cast<long>(4.0 * t_end / dt));
+    }
+  }
 }

@@ -83,3 +83,36 @@ TEST_CASE("claims conditions: what explains a large impact jump is named, and no
   CHECK(mj.worst_jump > 1.0);
   CHECK(mj.remark.find("contact node's speed") != std::string::npos);
 }
+
+TEST_CASE("claims conditions: claim (1)'s bar run: cd-lagrange spends no factorisation or solve and one F_int per step, "
+          "moreau-jean factorises and solves",
+          "[claims][explicit]") {
+  const RunWork cd = signorini_bar_work("cd-lagrange");
+  REQUIRE(cd.note.empty());
+  REQUIRE(cd.work.steps > 0);
+  REQUIRE(cd.contact_steps > 0);
+  CHECK(cd.work.factorizations == 0);
+  CHECK(cd.work.linear_solves == 0);
+  CHECK(cd.work.force_evaluations <= cd.work.steps + 1);
+  // The figure tells the schemes apart: an implicit one on the same run is counted as such.
+  const RunWork mj = signorini_bar_work("moreau-jean");
+  REQUIRE(mj.note.empty());
+  CHECK(mj.work.steps == cd.work.steps);
+  CHECK(mj.work.factorizations >= 1);
+  CHECK(mj.work.linear_solves >= mj.work.steps);
+}
+
+TEST_CASE("claims conditions: claim (6)'s contact cost: cd-lagrange's LCP between two bodies is closed form through one "
+          "contact row, iterated between two blocks",
+          "[claims][contact-cost]") {
+  const RunWork bars = two_bars_contact_cost("cd-lagrange");
+  REQUIRE(bars.note.empty());
+  REQUIRE(bars.contact_steps > 0);
+  CHECK(bars.work.lcp_iterations == 0);  // H 1 x 1: diagonal, closed form
+  const RunWork blocks = bodies_contact_cost("cd-lagrange");
+  REQUIRE(blocks.note.empty());
+  REQUIRE(blocks.contact_steps > 0);
+  CHECK(blocks.work.lcp_iterations > blocks.contact_steps);  // H not diagonal: Gauss-Seidel sweeps, more than one a step
+  CHECK(blocks.work.factorizations == 0);
+  CHECK(blocks.work.linear_solves == 0);
+}

@@ -731,8 +731,8 @@ kind = "penetration"
   const nsb::StudySpec spec = nsb::parse_study_text(text, "w.toml", false);
   CHECK(spec.t_end_of(spec.problems[0]) == 0.3);
   CHECK(spec.t_end_of(spec.problems[1]) == 0.6);
-  CHECK(spec.budget_of(spec.problems[1]) == 5);
-  CHECK(spec.budget_of(spec.problems[0]) == spec.max_force_evaluations);
+  CHECK(spec.budget_of(spec.problems[1], 1e-2) == 5);
+  CHECK(spec.budget_of(spec.problems[0], 1e-2) == spec.max_force_evaluations);
   const auto cases = nsb::study_cases(nsb::file_study(spec), {});
   REQUIRE(cases.size() == 4);
   const double stable = nsb::make_problem("signorini-bar", {{"N", "10"}})->stable_step();
@@ -1306,4 +1306,192 @@ TEST_CASE("study file: a run without an error (over budget) is not reached, not 
   const auto tables = run_all(nsb::parse_study_text(text, "f.toml", false));
   const nsb::Table& rank = table(tables, "_ranking");
   CHECK(std::get<std::string>(rank.rows[0][2]) == "none");
+}
+
+TEST_CASE("study file: case_order, default_only, [[exclude]] rules by kind, parameter and stable step, a budget per step",
+          "[studies][study_file]") {
+  const std::string text = quick_study("0.6", "integrators = \"all\"\ncase_order = \"integrator\"\nmax_force_evaluations_per_step = 4\n") + R"(
+[[problem]]
+name = "bouncing-mass"
+label = "mass"
+steps = [1e-2]
+default_only = true
+[[problem]]
+name = "signorini-bar"
+label = "bar"
+grid = { N = [10, 20] }
+stable_steps = [0.5, 0.9]
+[[exclude]]
+integrators = "peers"
+above = { N = 10 }
+[[exclude]]
+integrators = "references"
+stable_steps_except = [0.9]
+full_only = true
+[[table]]
+id = "runs"
+title = "runs"
+columns = ["problem", "integrator", "dt", "budget"]
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "f.toml", false);
+  CHECK(spec.integrator_major);
+  const auto& registry = nsb::integrator_registry();
+  const nsb::StudyEntry entry = nsb::file_study(spec);
+  for (const bool full : {false, true}) {
+    INFO("full " << full);
+    const auto cases = nsb::study_cases(entry, {full});
+    // Integrator by integrator, each over the problems in their order and its sweep; the mass
+    // without --full only; peers not above N = 10; references at 0.9 stable steps only under --full.
+    std::vector<std::pair<std::size_t, std::string>> expected;  // (integrator, problem label)
+    for (std::size_t i = 0; i < registry.size(); ++i)
+      for (const auto& p : spec.problems) {
+        if (p.label == "mass") {
+          if (!full) expected.emplace_back(i, p.label);
+          continue;
+        }
+        if (registry[i].peer && p.label == "bar, N = 20") continue;
+        if (!(registry[i].reference && full)) expected.emplace_back(i, p.label);  // at 0.5 stable steps
+        expected.emplace_back(i, p.label);                                         // at 0.9
+      }
+    REQUIRE(cases.size() == expected.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+      CHECK(cases[k]["integrator"].get<std::size_t>() == expected[k].first);
+      CHECK(p.label == expected[k].second);
+      const double dt = cases[k]["dt"];
+      CHECK(spec.budget_of(p, dt) == static_cast<long>(4.0 * 0.6 / dt));  // floor(4 t_end / dt)
+    }
+  }
+  // The budget holds: at 0.5 evaluations per step, a run of 60 steps stops over budget past 30.
+  const std::string short_budget = quick_study("0.6", "max_force_evaluations_per_step = 0.5\n") + R"(
+[[problem]]
+name = "bouncing-mass"
+[[problem]]
+name = "signorini-bar"
+parameters = { N = 10 }
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2]
+[[table]]
+id = "runs"
+title = "runs"
+columns = ["status", "budget", "F_int evals", "parameter h0", "parameter N", { of = "parameter mass", header = "mass" }]
+)";
+  const auto tables = run_all(nsb::parse_study_text(short_budget, "f.toml", false));
+  const nsb::Table& runs = table(tables, "runs");
+  REQUIRE(runs.rows.size() == 2);
+  const auto& row = runs.rows[0];
+  CHECK_THAT(std::get<std::string>(row[0]), Catch::StartsWith("over budget"));
+  CHECK(std::get<long>(row[1]) == 30);  // floor(0.5 x 0.6 / 0.01)
+  CHECK(std::get<long>(row[2]) == 31);  // the run stops at the evaluation past the budget
+  // A problem's parameters as columns: reals and integers as numbers (defaults included),
+  // choices as text, empty where the problem has no such parameter.
+  CHECK(std::get<double>(row[3]) == 1.0);
+  CHECK(std::holds_alternative<std::monostate>(row[4]));
+  CHECK(std::holds_alternative<std::monostate>(row[5]));
+  CHECK(std::holds_alternative<std::monostate>(runs.rows[1][3]));
+  CHECK(std::get<long>(runs.rows[1][4]) == 10);
+  CHECK(std::get<std::string>(runs.rows[1][5]) == "lumped");
+  CHECK(runs.columns[5].name == "mass");
+}
+
+TEST_CASE("study file: case_order, default_only, [[exclude]] and a budget per step: bad input named", "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  const auto with_study = [](const std::string& line) { return replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\n" + line); };
+  CHECK_THAT(error_of(with_study("case_order = \"integrators\"")),
+             StartsWith("f.toml:4: study.case_order: 'integrators' is not valid (nearest: integrator); valid: problem, integrator"));
+  CHECK_THAT(error_of(with_study("max_force_evaluations_per_step = 0")),
+             StartsWith("f.toml:4: study.max_force_evaluations_per_step: 0 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(error_of(with_study("max_force_evaluations_per_step = 2e6")),
+             StartsWith("f.toml:4: study.max_force_evaluations_per_step: 2000000 F_int evaluations per step is no budget; valid: (0, 1e6]"));
+  CHECK_THAT(error_of(with_study("max_force_evaluations = 10\nmax_force_evaluations_per_step = 4")),
+             StartsWith("f.toml:5: study.max_force_evaluations_per_step: given beside study.max_force_evaluations; valid: one of the two budgets"));
+  const auto with_problem = [](const std::string& line) { return replaced(kMinimal, "parameters = { e = 0.5 }", "parameters = { e = 0.5 }\n" + line); };
+  CHECK_THAT(error_of(with_problem("default_only = true\nfull_only = true")),
+             StartsWith("f.toml:8: problem[0].default_only: full_only and default_only both: the problem would never run; valid: at most one of them true"));
+  const auto with_rule = [](const std::string& lines) { return kMinimal + "[[exclude]]\nintegrators = \"peers\"\n" + lines; };
+  CHECK(nsb::parse_study_text(with_rule("above = { e = 0.5 }\n"), "f.toml", false).exclusions.at(0).above.at("e") == 0.5);
+  CHECK_THAT(error_of(replaced(with_rule("above = { e = 0.5 }\n"), "\"peers\"", "\"peer\"")),
+             StartsWith("f.toml:19: exclude[0].integrators: 'peer' is not valid (nearest: peers); valid: schemes, peers, references"));
+  CHECK_THAT(error_of(with_rule("above = { N = 10 }\n")),
+             StartsWith("f.toml:20: exclude[0].above.N: 'N' is no numeric parameter of the study's problems; valid: a real or integer parameter of one or more problems (the rule applies to those)"));
+  CHECK_THAT(error_of(with_rule("above = { e = \"0.5\" }\n")), StartsWith("f.toml:20: exclude[0].above.e: expected a number, got a string"));
+  CHECK_THAT(error_of(with_rule("stable_steps_except = [0]\n")),
+             StartsWith("f.toml:20: exclude[0].stable_steps_except[0]: 0 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(error_of(with_rule("default_only = false\n")),
+             StartsWith("f.toml:18: exclude[0]: no condition: the rule would exclude every run of its integrators; valid: above = "));
+  CHECK_THAT(error_of(with_rule("above = { e = 0.5 }\ndefault_only = true\nfull_only = true\n")),
+             StartsWith("f.toml:22: exclude[0].full_only: full_only and default_only both: the rule would never apply; valid: at most one of them true"));
+  CHECK_THAT(error_of(kMinimal + "[[table]]\nid = \"r\"\ntitle = \"r\"\ncolumns = [\"parameter N\"]\n"),
+             StartsWith("f.toml:21: table[0].columns[0]: 'parameter N' is not valid (nearest: parameter "));
+  CHECK_THAT(error_of(with_rule("below = { e = 0.5 }\n")), StartsWith("f.toml:20: exclude[0].below: unknown key (nearest valid key: above)"));
+}
+
+TEST_CASE("study file: an energy error sampled every period (count, first, final, drift per period); over-budget runs measured",
+          "[studies][study_file]") {
+  // The bouncing mass (e = 1) to t = 1 at dt = 1e-2, sampled at 0.1 + 0.25 k: 0.35, 0.6, 0.85
+  // (1.1 is past t_end). Three points at k = 1, 2, 3: the least-squares slope is (e3 - e1) / 2.
+  const std::string text = quick_study("1.0") + R"(
+[[problem]]
+name = "bouncing-mass"
+parameters = { e = 1 }
+[[integrator]]
+name = "moreau-jean"
+steps = [1e-2]
+[[measure]]
+kind = "energy"
+every = 0.25
+from = 0.1
+norm = "count"
+[[measure]]
+kind = "energy"
+every = 0.25
+from = 0.1
+norm = "first"
+[[measure]]
+kind = "energy"
+every = 0.25
+from = 0.1
+[[measure]]
+kind = "energy"
+every = 0.25
+from = 0.1
+norm = "drift"
+label = "drift"
+)";
+  std::vector<nsb::Json> results;
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "f.toml", false);
+  CHECK(spec.measures[2].label == "energy err final, every 0.25 from 0.1");
+  run_all(spec, &results);
+  REQUIRE(results.size() == 1);
+  const nsb::Json& v = results[0]["values"];
+  CHECK(v[0].get<double>() == 3.0);
+  const double first = v[1], last = v[2];
+  CHECK(first != last);  // moreau-jean's energy changes at the impact near t = 0.45
+  CHECK(v[3].get<double>() == Approx((last - first) / 2.0).epsilon(1e-12));
+  // Over budget: no measures, unless study.measure_over_budget (then those up to the stop: one
+  // sample of three).
+  for (const bool measured : {false, true}) {
+    const std::string more = fmt::format("max_force_evaluations = 45\nmeasure_over_budget = {}\n", measured);
+    std::vector<nsb::Json> stopped;
+    run_all(nsb::parse_study_text(replaced(text, "targets = [1e-2]\n", "targets = [1e-2]\n" + more), "f.toml", false), &stopped);
+    CHECK(stopped[0]["status"] == "over budget");
+    CHECK(stopped[0].contains("values") == measured);
+    if (measured) CHECK(stopped[0]["values"][0].get<double>() == 1.0);
+  }
+}
+
+TEST_CASE("study file: an energy error sampled every period: bad input named", "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  const std::string energy = replaced(kMinimal, "kind = \"error\"", "kind = \"energy\"");
+  const auto with = [&](const std::string& lines) { return energy + lines; };
+  CHECK_THAT(error_of(with("every = 0\n")), StartsWith("f.toml:18: measure[0].every: 0 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(error_of(with("every = 0.1\nfrom = -1\n")), StartsWith("f.toml:19: measure[0].from: -1 is no start time; valid: [0, inf)"));
+  CHECK_THAT(error_of(with("from = 0.1\n")), StartsWith("f.toml:18: measure[0].from: from without every; valid: every = T beside it"));
+  CHECK_THAT(error_of(with("every = 0.1\nnorm = \"max\"\n")),
+             StartsWith("f.toml:19: measure[0].norm: 'max' is not valid (nearest: "));
+  CHECK_THAT(error_of(with("every = 0.1\nhistory = true\n")),
+             StartsWith("f.toml:19: measure[0].history: an energy sampled every period has no window or history; valid: one of every or window/history"));
+  CHECK_THAT(error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmeasure_over_budget = 1")),
+             StartsWith("f.toml:4: study.measure_over_budget: expected a boolean, got an integer"));
 }
