@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "integrators/integrator.hpp"
 #include "problems/painleve_rod.hpp"
@@ -130,9 +131,11 @@ bool ContactPhases::add(double t, bool contact) {
 }
 
 ContactImpacts::ContactImpacts(const Vec& initial_gaps, double initial_value) : previous_(initial_value) {
+  const double carrying = -std::numeric_limits<double>::infinity();
   for (Index i = 0; i < initial_gaps.size(); ++i) {
     carrying_.push_back(initial_gaps[i] <= 0.0);
-    open_.push_back(initial_gaps[i] > 0.0);
+    open_peak_.push_back(carrying_.back() ? carrying : initial_gaps[i]);
+    last_gap_.push_back(initial_gaps[i]);
   }
 }
 
@@ -141,9 +144,11 @@ void ContactImpacts::add(double t, const Vec& impulses, const Vec& gaps, double 
   for (std::size_t i = 0; i < carrying_.size(); ++i) {
     const auto k = static_cast<Index>(i);
     const bool carries = impulses[k] > 0.0;
-    struck = struck || (carries && !carrying_[i] && open_[i]);
+    const bool approached = open_peak_[i] > 0.0 && last_gap_[i] < open_peak_[i];
+    struck = struck || (carries && !carrying_[i] && approached);
     carrying_[i] = carries;
-    open_[i] = gaps[k] > 0.0;
+    open_peak_[i] = carries ? -std::numeric_limits<double>::infinity() : std::max(open_peak_[i], gaps[k]);
+    last_gap_[i] = gaps[k];
   }
   if (struck)
     impacts_.push_back({t, previous_, value, 0.0});
@@ -155,7 +160,16 @@ void ContactImpacts::add(double t, const Vec& impulses, const Vec& gaps, double 
 double rocking_law_ratio(const Problem& problem, ImpactLaw law) {
   const auto* block = dynamic_cast<const RockingBlock*>(&problem);
   if (!block) return kNaN;
-  return law == ImpactLaw::housner ? housner_ratio(block->exact().alpha()) : block->exact().impact_ratio();
+  if (law == ImpactLaw::housner) return housner_ratio(block->exact().alpha());
+  // Moreau's outcome as computed at the first impact: it stays the ratio of an impact that
+  // ends the rocking solution (the corner slips; impact_ratio() is NaN then).
+  const auto& first = block->exact().first_impact_outcome();
+  return first ? first->ratio : block->exact().impact_ratio();
+}
+
+std::size_t rocking_exact_impacts(const Problem& problem) {
+  const auto* block = dynamic_cast<const RockingBlock*>(&problem);
+  return block ? block->exact().impacts().size() : 0;
 }
 
 double rocking_amplitude_after(const Problem& problem, std::size_t k) {

@@ -463,6 +463,12 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
     if ((!m.law.empty() || (m.exact && kind != "peak-time")) && !rocking)
       c.fail(child(path, m.law.empty() ? "exact" : "law"), fmt::format("problem '{}' has no closed-form impacts", spec.problems[p].label),
              "rocking-block problems, or problems = [...]");
+    const auto last = static_cast<std::size_t>(std::max(m.impact, m.count));
+    if (rocking && (!m.law.empty() || (m.exact && kind == "amplitude")) && last > rocking_exact_impacts(problem))
+      c.fail(child(path, m.count > 0 ? "count" : "impact"),
+             fmt::format("the exact solution of problem '{}' has {} impact(s) (it leaves rocking or rests)", spec.problems[p].label,
+                         rocking_exact_impacts(problem)),
+             fmt::format("1..{}, or problems = [...]", rocking_exact_impacts(problem)));
     if (m.exact && kind == "rest-time" && !std::isfinite(rocking_rest_time(problem)))
       c.fail(child(path, "exact"), fmt::format("problem '{}' does not come to rest", spec.problems[p].label),
              "a rocking block that comes to rest (e = 0), or problems = [...]");

@@ -90,7 +90,7 @@ TEST_CASE("built-in study rigid: registered from its file, every integrator on e
   CHECK(declined["message"].get<std::string>().find("moving contacts") != std::string::npos);
 }
 
-TEST_CASE("ContactImpacts: an impact is a contact's impulse after a step without one; before, after and amplitude",
+TEST_CASE("ContactImpacts: an impact is a contact's impulse after steps without one in which its gap opened and fell; before, after and amplitude",
           "[studies][measures][rigid]") {
   // Contact 0 closed at t = 0 (it carries its load: no impact), contact 1 open.
   nsb::Vec gaps(2);
@@ -101,8 +101,10 @@ TEST_CASE("ContactImpacts: an impact is a contact's impulse after a step without
     v << a, b;
     return v;
   };
-  impacts.add(0.1, pair(0, 0), pair(-1e-6, 0.2), -1.0);  // the pivot without impulse for a step, still closed
-  impacts.add(0.15, pair(1, 0), pair(0, 0.1), -2.0);     // takes its load again: no impact
+  impacts.add(0.1, pair(0, 0), pair(5e-11, 0.25), -1.0);  // the pivot without impulse for a step, its gap drifted open
+  impacts.add(0.12, pair(1, 0), pair(0, 0.2), -1.5);      // takes its load again, the gap never fell: no impact
+  impacts.add(0.14, pair(0, 0), pair(-1e-6, 0.15), -1.0);  // without impulse, still closed
+  impacts.add(0.15, pair(1, 0), pair(0, 0.1), -2.0);       // no impact either
   impacts.add(0.2, pair(0, 1), pair(0.1, 0), 1.5);       // contact 1 struck: -2 -> 1.5
   impacts.add(0.3, pair(0, 1), pair(0.2, 0), 3.0);
   impacts.add(0.4, pair(0, 1), pair(0.1, 0), -4.0);  // amplitude 4 until the next impact
@@ -165,7 +167,7 @@ kind = "impact-count"
 [[measure]]
 kind = "amplitude"
 observable = "theta"
-impact = 2
+impact = 1
 exact = true
 [[measure]]
 kind = "value"
@@ -179,7 +181,7 @@ norm = "max"
   CHECK(v[1].get<double>() < 2e-3);
   CHECK(v[2].get<double>() < 2e-3);
   CHECK(v[3].get<double>() == 2.0);  // impacts near 0.50 and 1.36 s (exact solution)
-  CHECK(v[4].get<double>() < 2e-2);
+  CHECK(v[4].get<double>() < 2e-2);  // after impact 1, up to impact 2 (its turning point near 0.93 s)
   CHECK(v[5].get<double>() == Approx(0.1));  // theta0, the largest angle
   // Time to rest: long after it (t_end 15), the block is at rest; against the exact time.
   const nsb::Json rest = run_values(one_run("name = \"rocking-block\"", "15", "1e-3", R"(
@@ -224,6 +226,10 @@ TEST_CASE("rigid measures: bad input named FILE:LINE with the key and the valid 
   CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"impact-ratio\"\nobservable = \"phi\"\n")) ==
         "r.toml:12: measure[0].observable: 'phi' is not an observable of problem 'rocking-block'; valid: theta, omega, omega_exact, "
         "kinetic, potential, total_energy, min_gap (or name the problems it is measured on: problems = [...])");
+  CHECK(parse_error(one_run("name = \"rocking-block\"\nparameters = { mu = 0.1 }", "1", "1e-3",
+                           "[[measure]]\nkind = \"impact-ratio\"\nobservable = \"omega\"\nlaw = \"moreau\"\ncount = 2\n")) ==
+        "r.toml:15: measure[0].count: the exact solution of problem 'rocking-block' has 1 impact(s) (it leaves rocking or rests); "
+        "valid: 1..1, or problems = [...]");
   CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"rest-time\"\nobservable = \"omega\"\n")) ==
         "r.toml:10: measure[0]: missing key 'threshold'");
   CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"rest-time\"\nobservable = \"omega\"\nthreshold = 0\n")) ==
@@ -234,7 +240,7 @@ TEST_CASE("rigid measures: bad input named FILE:LINE with the key and the valid 
   CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"value\"\nobservable = \"omega\"\nnorm = \"l2\"\n")) ==
         "r.toml:13: measure[0].norm: 'l2' is not valid (nearest: max); valid: final, max, min");
   CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"amplitude\"\nobservable = \"theta\"\nthreshold = 1\n")) ==
-        "r.toml:13: measure[0].threshold: unknown key (nearest valid key: observable); valid: observable, impact, exact, kind, label, "
+        "r.toml:13: measure[0].threshold: unknown key (nearest valid key: label); valid: observable, impact, exact, kind, label, "
         "problems");
 }
 
