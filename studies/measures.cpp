@@ -160,11 +160,7 @@ void ContactImpacts::add(double t, const Vec& impulses, const Vec& gaps, double 
 double rocking_law_ratio(const Problem& problem, ImpactLaw law) {
   const auto* block = dynamic_cast<const RockingBlock*>(&problem);
   if (!block) return kNaN;
-  if (law == ImpactLaw::housner) return housner_ratio(block->exact().alpha());
-  // Moreau's outcome as computed at the first impact: it stays the ratio of an impact that
-  // ends the rocking solution (the corner slips; impact_ratio() is NaN then).
-  const auto& first = block->exact().first_impact_outcome();
-  return first ? first->ratio : block->exact().impact_ratio();
+  return law == ImpactLaw::housner ? housner_ratio(block->exact().alpha()) : block->exact().impact_ratio();
 }
 
 std::size_t rocking_exact_impacts(const Problem& problem) {

@@ -153,7 +153,10 @@ class ContactImpacts {
 
 // The closed forms the rigid study holds the schemes against, NaN on any other problem:
 // the rocking block's impact ratio omega+ / omega- under Housner's law, 1 - (3/2) sin^2(alpha),
-// or Moreau's (its exact solution's: Newton and Coulomb on both corners), its exact amplitude
+// or Moreau's (its exact solution's: Newton and Coulomb on both corners; NaN below mu_H, where
+// the corner would slip: rocking about a stuck pivot needs |F / N| = 3 sin(alpha) cos(alpha) /
+// (1 + 3 cos^2(alpha)) = mu_H at theta = 0 even at rest, so with mu < mu_H the pivot slides before
+// the impact and no rocking approach reaches the state the slip outcome starts from), its exact amplitude
 // |theta_max| after impact k (1-based; NaN past the impacts its exact solution marches) and
 // its exact time to rest (+inf when it never rests), the number of impacts its exact solution
 // describes (rocking_exact_impacts, 0 elsewhere: 1 when the corner slips at the first, whose

@@ -463,6 +463,11 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
     if ((!m.law.empty() || (m.exact && kind != "peak-time")) && !rocking)
       c.fail(child(path, m.law.empty() ? "exact" : "law"), fmt::format("problem '{}' has no closed-form impacts", spec.problems[p].label),
              "rocking-block problems, or problems = [...]");
+    if (rocking && m.law == "moreau" && std::isnan(rocking_law_ratio(problem, ImpactLaw::moreau)))
+      c.fail(child(path, "law"),
+             fmt::format("problem '{}' has no Moreau ratio of a rocking approach (mu below mu_H: its pivot slides before theta = 0)",
+                         spec.problems[p].label),
+             "law = \"housner\", a block with mu >= mu_H, or problems = [...]");
     const auto last = static_cast<std::size_t>(std::max(m.impact, m.count));
     if (rocking && (!m.law.empty() || (m.exact && kind == "amplitude")) && last > rocking_exact_impacts(problem))
       c.fail(child(path, m.count > 0 ? "count" : "impact"),
