@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
@@ -216,14 +218,6 @@ TEST_CASE("rigid measures: bad input named FILE:LINE with the key and the valid 
   const std::string block = "name = \"rocking-block\"";
   CHECK(parse_error(one_run(mass, "1", "1e-3", "[[measure]]\nkind = \"impact-ratio\"\nobservable = \"v\"\nlaw = \"housner\"\n")) ==
         "r.toml:13: measure[0].law: problem 'bouncing-mass' has no closed-form impacts; valid: rocking-block problems, or problems = [...]");
-  CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"impact-ratio\"\nobservable = \"omega\"\nlaw = \"newton\"\n")) ==
-        "r.toml:13: measure[0].law: 'newton' is not valid (nearest: moreau); valid: housner, moreau");
-  CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"impact-ratio\"\nobservable = \"omega\"\ncount = 3\n")) ==
-        "r.toml:13: measure[0].count: the largest difference over the first count impacts needs a law; valid: law = \"housner\" | "
-        "\"moreau\"");
-  CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"impact-ratio\"\nobservable = \"phi\"\n")) ==
-        "r.toml:12: measure[0].observable: 'phi' is not an observable of problem 'rocking-block'; valid: theta, omega, omega_exact, "
-        "kinetic, potential, total_energy, min_gap (or name the problems it is measured on: problems = [...])");
   // mu = 0.1, below mu_H: one impact in the exact solution, no Moreau ratio of a rocking approach.
   const auto slipping = [&](const std::string& law, const std::string& more) {
     return parse_error(one_run(block + "\nparameters = { mu = 0.1 }", "1", "1e-3",
@@ -236,18 +230,30 @@ TEST_CASE("rigid measures: bad input named FILE:LINE with the key and the valid 
   CHECK(slipping("moreau", "") ==
         "r.toml:14: measure[0].law: problem 'rocking-block' has no Moreau ratio of a rocking approach (mu below mu_H: its pivot "
         "slides before theta = 0); valid: law = \"housner\", a block with mu >= mu_H, or problems = [...]");
-  CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"rest-time\"\nobservable = \"omega\"\n")) ==
-        "r.toml:10: measure[0]: missing key 'threshold'");
-  CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"rest-time\"\nobservable = \"omega\"\nthreshold = 0\n")) ==
-        "r.toml:13: measure[0].threshold: 0 is not positive and finite; valid: (0, inf)");
-  CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"peak-time\"\nobservable = \"omega\"\nexact = true\n")) ==
-        "r.toml:13: measure[0].exact: problem 'rocking-block' has no exact dynamic jam; valid: painleve-rod problems whose sliding "
-        "phase ends in a jam, or problems = [...]");
-  CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"value\"\nobservable = \"omega\"\nnorm = \"l2\"\n")) ==
-        "r.toml:13: measure[0].norm: 'l2' is not valid (nearest: max); valid: final, max, min");
-  CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\nkind = \"amplitude\"\nobservable = \"theta\"\nthreshold = 1\n")) ==
-        "r.toml:13: measure[0].threshold: unknown key (nearest valid key: label); valid: observable, impact, exact, kind, label, "
-        "problems");
+  // A rocking block with one measure (its keys after [[measure]]) and the error it gets.
+  const std::vector<std::pair<std::string, std::string>> block_errors{
+      {"kind = \"impact-ratio\"\nobservable = \"omega\"\nlaw = \"newton\"\n",
+       "r.toml:13: measure[0].law: 'newton' is not valid (nearest: moreau); valid: housner, moreau"},
+      {"kind = \"impact-ratio\"\nobservable = \"omega\"\ncount = 3\n",
+       "r.toml:13: measure[0].count: the largest difference over the first count impacts needs a law; valid: law = \"housner\" | "
+         "\"moreau\""},
+      {"kind = \"impact-ratio\"\nobservable = \"phi\"\n",
+       "r.toml:12: measure[0].observable: 'phi' is not an observable of problem 'rocking-block'; valid: theta, omega, omega_exact, "
+         "kinetic, potential, total_energy, min_gap (or name the problems it is measured on: problems = [...])"},
+      {"kind = \"rest-time\"\nobservable = \"omega\"\n",
+       "r.toml:10: measure[0]: missing key 'threshold'"},
+      {"kind = \"rest-time\"\nobservable = \"omega\"\nthreshold = 0\n",
+       "r.toml:13: measure[0].threshold: 0 is not positive and finite; valid: (0, inf)"},
+      {"kind = \"peak-time\"\nobservable = \"omega\"\nexact = true\n",
+       "r.toml:13: measure[0].exact: problem 'rocking-block' has no exact dynamic jam; valid: painleve-rod problems whose sliding "
+         "phase ends in a jam, or problems = [...]"},
+      {"kind = \"value\"\nobservable = \"omega\"\nnorm = \"l2\"\n",
+       "r.toml:13: measure[0].norm: 'l2' is not valid (nearest: max); valid: final, max, min"},
+      {"kind = \"amplitude\"\nobservable = \"theta\"\nthreshold = 1\n",
+       "r.toml:13: measure[0].threshold: unknown key (nearest valid key: label); valid: observable, impact, exact, kind, label, "
+         "problems"},
+  };
+  for (const auto& [measure, error] : block_errors) CHECK(parse_error(one_run(block, "1", "1e-3", "[[measure]]\n" + measure)) == error);
 }
 
 TEST_CASE("study file: a case table shows the runs of the problems it names", "[studies][study_file][rigid]") {

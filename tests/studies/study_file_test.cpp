@@ -1111,8 +1111,8 @@ TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, c
   CHECK(nsb::parse_study_text(history, "f.toml", false).tables.at(0).rows == "history");
   CHECK_THAT(error_of(history + "problems = [\"nope\"]\n"),
              StartsWith("f.toml:23: table[0].problems[0]: 'nope' is not valid (nearest: bouncing-mass); valid: bouncing-mass"));
-  CHECK_THAT(error_of(replaced(history, "rows = \"history\"", "rows = \"case\"\nproblems = [\"bouncing-mass\"]")),
-             StartsWith("f.toml:22: table[0].problems: only a history table picks its problems; valid: rows = \"history\""));
+  CHECK_THAT(error_of(replaced(history, "rows = \"history\"", "rows = \"group\"\nproblems = [\"bouncing-mass\"]")),
+             StartsWith("f.toml:22: table[0].problems: only a case or history table picks its problems; valid: rows = \"case\" or \"history\""));
   CHECK_THAT(error_of(replaced(history, "\"penetration\"]", "\"steps\"]")),
              StartsWith("f.toml:22: table[0].columns[1]: 'steps' is not valid (nearest: "));
   const std::string figure = "[[figure]]\nid = \"d\"\ntitle = \"d\"\nx = \"t\"\ny = \"energy deviation\"\ntable = ";
