@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "integrators/integrator.hpp"
+#include "problems/painleve_rod.hpp"
+#include "problems/rocking_block.hpp"
 
 namespace nsb {
 
@@ -126,6 +129,60 @@ bool ContactPhases::add(double t, bool contact) {
   if (contact) last_contact_ = t;
   in_contact_ = contact;
   return starts;
+}
+
+ContactImpacts::ContactImpacts(const Vec& initial_gaps, double initial_value) : previous_(initial_value) {
+  const double carrying = -std::numeric_limits<double>::infinity();
+  for (Index i = 0; i < initial_gaps.size(); ++i) {
+    carrying_.push_back(initial_gaps[i] <= 0.0);
+    open_peak_.push_back(carrying_.back() ? carrying : initial_gaps[i]);
+    last_gap_.push_back(initial_gaps[i]);
+  }
+}
+
+void ContactImpacts::add(double t, const Vec& impulses, const Vec& gaps, double value) {
+  bool struck = false;
+  for (std::size_t i = 0; i < carrying_.size(); ++i) {
+    const auto k = static_cast<Index>(i);
+    const bool carries = impulses[k] > 0.0;
+    const bool approached = open_peak_[i] > 0.0 && last_gap_[i] < open_peak_[i];
+    struck = struck || (carries && !carrying_[i] && approached);
+    carrying_[i] = carries;
+    open_peak_[i] = carries ? -std::numeric_limits<double>::infinity() : std::max(open_peak_[i], gaps[k]);
+    last_gap_[i] = gaps[k];
+  }
+  if (struck)
+    impacts_.push_back({t, previous_, value, 0.0});
+  else if (!impacts_.empty())
+    impacts_.back().amplitude = std::max(impacts_.back().amplitude, std::abs(value));
+  previous_ = value;
+}
+
+double rocking_law_ratio(const Problem& problem, ImpactLaw law) {
+  const auto* block = dynamic_cast<const RockingBlock*>(&problem);
+  if (!block) return kNaN;
+  return law == ImpactLaw::housner ? housner_ratio(block->exact().alpha()) : block->exact().impact_ratio();
+}
+
+std::size_t rocking_exact_impacts(const Problem& problem) {
+  const auto* block = dynamic_cast<const RockingBlock*>(&problem);
+  return block ? block->exact().impacts().size() : 0;
+}
+
+double rocking_amplitude_after(const Problem& problem, std::size_t k) {
+  const auto* block = dynamic_cast<const RockingBlock*>(&problem);
+  if (!block || k == 0 || k > block->exact().impacts().size()) return kNaN;
+  return block->exact().impacts()[k - 1].amplitude_after;
+}
+
+double rocking_rest_time(const Problem& problem) {
+  const auto* block = dynamic_cast<const RockingBlock*>(&problem);
+  return block ? block->exact().rest_time() : kNaN;
+}
+
+double painleve_jam_time(const Problem& problem) {
+  const auto* rod = dynamic_cast<const PainleveRod*>(&problem);
+  return rod && rod->exact().ending() == PainleveRodExact::Ending::jam ? rod->exact().end_time() : kNaN;
 }
 
 Column cost_column() {

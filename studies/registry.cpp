@@ -65,6 +65,10 @@ const std::vector<StudyEntry>& study_registry() {
       cpp_study(hausdorff_study, "studies/hausdorff_study.cpp"),
       cpp_study(claims_study, "studies/claims.cpp"),
       cpp_study(properties_study, "studies/properties.cpp"),
+      builtin_file_study("rigid",
+                         "rigid bodies with moving contacts: the rocking block's impact ratios against Housner's and Moreau's "
+                         "laws, amplitude, time to rest, energy; the Painleve rod's dynamic jam per scheme and what follows",
+                         "studies/builtin/rigid.toml"),
   };
   return entries;
 }

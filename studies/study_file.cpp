@@ -55,6 +55,7 @@
 #include "problems/registry.hpp"
 #include "reference/cache.hpp"
 #include "studies/hausdorff_study.hpp"
+#include "studies/measures.hpp"
 #include "studies/parallel.hpp"
 #include "studies/ranking.hpp"
 #include "studies/report_index.hpp"
@@ -159,9 +160,21 @@ double state_observable(const Problem& problem, const SpMat& M, const State& s, 
     problem.observe_step(s, impulses, dt, buffer);
     return buffer[k - names.begin()];
   }
+  if (name == "min_gap" && problem.contacts_move()) {  // the gaps themselves, not their linearisation at U0
+    ContactGeometry moving = problem.contact_geometry();
+    problem.evaluate_contacts(s.u, moving);
+    return moving.gap.minCoeff();
+  }
   if (name == "min_gap") return (problem.gap_offset() + problem.gap_operator() * s.u).minCoeff();
   const Energy e = energy ? *energy : Energy{0.5 * s.v.dot(M * s.v), problem.potential(s.u)};
   return name == "kinetic" ? e.kinetic : name == "potential" ? e.potential : e.total();
+}
+
+// The observable of an event measure after a step of length dt (impact-count has none: 0).
+double event_observable(const Problem& problem, const SpMat& M, const Integrator& it, double dt, const FileMeasure& m,
+                        std::span<double> buffer, const Energy& energy) {
+  if (m.kind == MeasureKind::ImpactCount) return 0.0;
+  return state_observable(problem, M, it.state(), it.impulses(), dt, m.observable, buffer, &energy);
 }
 
 // The reference of one case: the exact solution, a reference integrator stepped with the run
@@ -365,6 +378,81 @@ class FlightEnergies {
   int count_ = 0;
 };
 
+// The running figures of a measure of an observable's events, fed the observable after every
+// step (README, "Studies from a file"):
+//   impact-ratio  o+ / o- across impact `impact` (ContactImpacts: a contact's impulse after a
+//                 step without one), or with `law` its difference from the law's ratio, there
+//                 or the largest over the first `count` impacts (as many as happen);
+//   amplitude     the largest |o| after impact `impact` (or the last that happens) up to the
+//                 next; `exact`: relative to the exact amplitude after the same impact;
+//   impact-count  the impacts seen;
+//   rest-time     the end of the last step with |o| > threshold (NaN while still above at the
+//                 run's end); `exact`: its distance to the exact time to rest [s];
+//   peak-time     the end of the step where o is largest; `exact`: its distance to the exact
+//                 dynamic jam [s];
+//   value         o at the last step, or its max or min over the steps.
+class EventFigures {
+ public:
+  EventFigures(const FileMeasure& m, const Problem& problem, double value0)
+      : m_(m), problem_(problem), geometry_(problem.contact_geometry()),
+        impacts_(gaps(problem.initial_state().u), value0), largest_(value0), smallest_(value0), last_(value0) {
+    add(0.0, Vec::Zero(problem.ncontacts()), problem.initial_state().u, value0);
+  }
+  // After a step ending at t with configuration u.
+  void add(double t, const Vec& impulses, const Vec& u, double value) {
+    if (t > 0.0) impacts_.add(t, impulses, gaps(u), value);
+    above_ = std::abs(value) > m_.threshold;
+    if (above_) last_above_ = t;
+    if (std::isnan(peak_t_) || value > largest_) peak_t_ = t;
+    largest_ = std::max(largest_, value);
+    smallest_ = std::min(smallest_, value);
+    last_ = value;
+  }
+  double result(const Problem& problem) const {
+    const auto& seen = impacts_.impacts();
+    const auto ratio = [&](std::size_t k) { return seen[k].after / seen[k].before; };
+    const double law = m_.law.empty() ? kNaN : rocking_law_ratio(problem, m_.law == "housner" ? ImpactLaw::housner : ImpactLaw::moreau);
+    switch (m_.kind) {
+      case MeasureKind::ImpactRatio: {
+        if (m_.count > 0 && m_.impact == 0) {
+          double worst = seen.empty() ? kNaN : 0.0;
+          for (std::size_t k = 0; k < seen.size() && k < static_cast<std::size_t>(m_.count); ++k) worst = std::max(worst, std::abs(ratio(k) - law));
+          return worst;
+        }
+        const auto k = static_cast<std::size_t>(m_.impact);
+        if (seen.size() < k) return kNaN;
+        return m_.law.empty() ? ratio(k - 1) : std::abs(ratio(k - 1) - law);
+      }
+      case MeasureKind::Amplitude: {
+        const std::size_t k = std::min(seen.size(), static_cast<std::size_t>(m_.impact));
+        if (k == 0) return kNaN;
+        const double exact = rocking_amplitude_after(problem, k);
+        return m_.exact ? std::abs(seen[k - 1].amplitude - exact) / exact : seen[k - 1].amplitude;
+      }
+      case MeasureKind::ImpactCount: return static_cast<double>(seen.size());
+      case MeasureKind::RestTime:
+        if (above_) return kNaN;
+        return m_.exact ? std::abs(last_above_ - rocking_rest_time(problem)) : last_above_;
+      case MeasureKind::PeakTime: return m_.exact ? std::abs(peak_t_ - painleve_jam_time(problem)) : peak_t_;
+      default: return m_.norm == "max" ? largest_ : m_.norm == "min" ? smallest_ : last_;
+    }
+  }
+
+ private:
+  // The gaps g(u) (moving contacts: evaluated, not linearised at U0).
+  const Vec& gaps(const Vec& u) {
+    problem_.evaluate_contacts(u, geometry_);
+    return geometry_.gap;
+  }
+
+  const FileMeasure& m_;
+  const Problem& problem_;
+  ContactGeometry geometry_;
+  ContactImpacts impacts_;
+  bool above_ = false;
+  double last_above_ = 0.0, peak_t_ = kNaN, largest_, smallest_, last_;
+};
+
 // One measure's running figures.
 struct Accumulator {
   double scale = 0.0, largest = 0.0, square = 0.0, last = kNaN, t_prev = 0.0;
@@ -372,6 +460,7 @@ struct Accumulator {
   ContactPhases impacts;
   Polyline graph;  // Hausdorff: the run's samples
   FlightEnergies flights;
+  std::optional<EventFigures> events;
   std::vector<double> periodic;  // Energy with `every`: the error at each sample time from + k every
 };
 
@@ -437,6 +526,12 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       const Energy energy = integrator->energy();
       const State& s = integrator->state();
       acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0, spec.measures[m].observable, obs, &energy));
+    }
+  for (std::size_t m = 0; m < spec.measures.size(); ++m)
+    if (on[m] && spec.measures[m].kind >= MeasureKind::ImpactRatio) {
+      const Energy energy = integrator->energy();
+      acc[m].events.emplace(spec.measures[m], *problem,
+                            event_observable(*problem, M, *integrator, 0.0, spec.measures[m], obs, energy));
     }
   const double e0 = integrator->energy().total();
   const double e_scale = fp.energy_scale > 0.0 ? fp.energy_scale : energy_error_scale(*problem, e0);
@@ -504,6 +599,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     const bool contact = it.impulses().sum() > 0.0;
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) acc[m].impacts.add(s.t, contact);
+      else if (acc[m].events) acc[m].events->add(s.t, it.impulses(), s.u, event_observable(*problem, M, it, info.dt, spec.measures[m], obs, it.energy()));
       if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights.add(s.t, it.energy().total());
       if (on[m] && spec.measures[m].kind == MeasureKind::Energy && spec.measures[m].every > 0.0)
         sample_periodic(spec.measures[m], acc[m], s.t, options.dt, t_end, energy_error(spec.measures[m], it.energy().total()));
@@ -570,6 +666,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         break;
       case MeasureKind::Momentum: v = a.largest / scale; break;
       case MeasureKind::Penetration: v = r.max_penetration; break;
+      default: v = a.events->result(*problem); break;
       case MeasureKind::StopTime:
       case MeasureKind::OnsetTime: {
         const ExactStop exact = exact_stop(*problem);
@@ -699,8 +796,9 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
     renamed[c.of] = out.columns.back().name;
   }
   const auto status = std::find_if(runs.columns.begin(), runs.columns.end(), [](const Column& c) { return c.name == "status"; });
+  const std::size_t problem = column_index(runs, "problem");
   for (const auto& row : runs.rows) {
-    if (const auto* label = std::get_if<std::string>(&row[0]); label && !d.applies_to(*label)) continue;
+    if (!d.applies_to(std::get<std::string>(row[problem]))) continue;
     const bool blank = d.declined_blank && status != runs.columns.end() && declined(row[static_cast<std::size_t>(status - runs.columns.begin())]);
     std::vector<Cell> cells;
     for (std::size_t i = 0; i < at.size(); ++i) cells.push_back(blank && !asked(d.columns[i].of) ? Cell{} : row[at[i]]);
@@ -969,7 +1067,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
                {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
   for (const auto& m : spec.measures)
-    t.columns.push_back({m.label, is_event_time(m.kind) ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" && m.every == 0.0 ? "1/s" : "",
+    t.columns.push_back({m.label, is_event_time(m.kind) || m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" && m.every == 0.0 ? "1/s" : "",
                          "{:.3e}", ""});
   t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", "", true}, {"steps", "", "", ""},
                                      {"F_int evals", "", "", "internal force evaluations"},

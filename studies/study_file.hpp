@@ -76,7 +76,8 @@ struct FileIntegrator {
   const FileSweep& sweep_for(const std::string& problem_label) const;
 };
 
-enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime, FlightEnergy };
+enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime, FlightEnergy,
+                         ImpactRatio, Amplitude, ImpactCount, RestTime, PeakTime, Value };
 
 struct FileMeasure {
   MeasureKind kind = MeasureKind::Error;
@@ -96,6 +97,14 @@ struct FileMeasure {
   double time_scale = 0.0;       // Hausdorff: T (0: t_end)
   double value_scale = 0.0;      // Hausdorff: V (0: the reference's largest |value|)
   std::vector<std::string> problems;  // the labels of the problems it is measured on (empty: all)
+  // The measures of an observable's events (README, "Studies from a file"): impact-ratio's
+  // law ("housner" | "moreau", "": the ratio itself), the impact it is taken at (impact-ratio,
+  // amplitude; 0: `count` for impact-ratio), rest-time's threshold, and `exact`: the difference
+  // from the problem's closed form (studies/measures.hpp) instead of the value.
+  std::string law;
+  int impact = 0;
+  double threshold = 0.0;
+  bool exact = false;
   // Error, energy, momentum: sampled on [window_start, window_end] only (the whole run by default),
   // or on a window of each problem's own (by label; a problem not named: the whole run).
   double window_start = 0.0;

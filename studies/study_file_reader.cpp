@@ -14,6 +14,7 @@
 #include "core/output.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
+#include "studies/measures.hpp"
 #include "studies/report_text.hpp"
 #include "studies/slip_stop.hpp"
 #include "studies/study_file.hpp"
@@ -433,6 +434,80 @@ void read_flight_energy(const Checker& c, const Json& j, const std::string& path
              "problems with known impacts and energies (bouncing-mass), a later t_end or end_at_impact, or problems = [...]");
   }
   m.label = m.norm == "count" ? "flights compared" : "flight energy err";
+}
+
+// The measures of an observable's events (impact-ratio, amplitude, impact-count, rest-time,
+// peak-time, value) into `m`: their keys, the observable of every problem `on`, and for `law`
+// or `exact` the problem's closed form (studies/measures.hpp).
+void read_event_measure(const Checker& c, const Json& j, const std::string& path, const std::string& kind, FileMeasure& m,
+                        const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances,
+                        const std::vector<std::size_t>& on) {
+  const std::map<std::string, std::vector<std::string>> own{
+      {"impact-ratio", {"observable", "impact", "count", "law"}}, {"amplitude", {"observable", "impact", "exact"}},
+      {"impact-count", {}}, {"rest-time", {"observable", "threshold", "exact"}}, {"peak-time", {"observable", "exact"}},
+      {"value", {"observable", "norm"}}};
+  std::vector<std::string> keys = own.at(kind);
+  keys.insert(keys.end(), {"kind", "label", "problems"});
+  c.keys(j, path, keys);
+  if (kind != "impact-count") {
+    m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
+    for (const std::size_t p : on) {
+      std::vector<std::string> valid = instances[p]->observable_names();
+      valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
+      if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
+      if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
+        c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'", m.observable, spec.problems[p].label),
+               fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
+    }
+  }
+  if (const Json* v = c.find(j, "exact")) m.exact = c.boolean(*v, child(path, "exact"));
+  if (const Json* v = c.find(j, "law")) m.law = c.choice(*v, child(path, "law"), {"housner", "moreau"});
+  if (const Json* v = c.find(j, "impact")) m.impact = static_cast<int>(c.integer(*v, child(path, "impact"), 1, 1000000));
+  m.count = 0;  // impact-time's default of 3 is not one here
+  if (const Json* v = c.find(j, "count")) {
+    if (c.find(j, "impact")) c.fail(child(path, "count"), "impact and count both given", "one of them");
+    if (m.law.empty()) c.fail(child(path, "count"), "the largest difference over the first count impacts needs a law", "law = \"housner\" | \"moreau\"");
+    m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000000));
+  } else if (m.impact == 0 && kind != "impact-count") {
+    m.impact = 1;
+  }
+  if (kind == "rest-time") m.threshold = c.positive(c.require(j, path, "threshold"), child(path, "threshold"));
+  m.norm = "final";
+  if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "min"});
+  // The closed form each problem must have.
+  for (const std::size_t p : on) {
+    const Problem& problem = *instances[p];
+    const bool rocking = !std::isnan(rocking_law_ratio(problem, ImpactLaw::housner));
+    if ((!m.law.empty() || (m.exact && kind != "peak-time")) && !rocking)
+      c.fail(child(path, m.law.empty() ? "exact" : "law"), fmt::format("problem '{}' has no closed-form impacts", spec.problems[p].label),
+             "rocking-block problems, or problems = [...]");
+    if (rocking && m.law == "moreau" && std::isnan(rocking_law_ratio(problem, ImpactLaw::moreau)))
+      c.fail(child(path, "law"),
+             fmt::format("problem '{}' has no Moreau ratio of a rocking approach (mu below mu_H: its pivot slides before theta = 0)",
+                         spec.problems[p].label),
+             "law = \"housner\", a block with mu >= mu_H, or problems = [...]");
+    const auto last = static_cast<std::size_t>(std::max(m.impact, m.count));
+    if (rocking && (!m.law.empty() || (m.exact && kind == "amplitude")) && last > rocking_exact_impacts(problem))
+      c.fail(child(path, m.count > 0 ? "count" : "impact"),
+             fmt::format("the exact solution of problem '{}' has {} impact(s) (it leaves rocking or rests)", spec.problems[p].label,
+                         rocking_exact_impacts(problem)),
+             fmt::format("1..{}, or problems = [...]", rocking_exact_impacts(problem)));
+    if (m.exact && kind == "rest-time" && !std::isfinite(rocking_rest_time(problem)))
+      c.fail(child(path, "exact"), fmt::format("problem '{}' does not come to rest", spec.problems[p].label),
+             "a rocking block that comes to rest (e = 0), or problems = [...]");
+    if (m.exact && kind == "peak-time" && std::isnan(painleve_jam_time(problem)))
+      c.fail(child(path, "exact"), fmt::format("problem '{}' has no exact dynamic jam", spec.problems[p].label),
+             "painleve-rod problems whose sliding phase ends in a jam, or problems = [...]");
+  }
+  const std::string o = m.observable;
+  m.label = kind == "impact-ratio" ? (m.law.empty()   ? fmt::format("{} ratio at impact {}", o, m.impact)
+                                      : m.count > 0   ? fmt::format("{} ratio err {}, impacts 1..{}", o, m.law, m.count)
+                                                      : fmt::format("{} ratio err {} at impact {}", o, m.law, m.impact))
+            : kind == "amplitude"  ? fmt::format("{}amplitude of {} after impact {}", m.exact ? "rel err " : "", o, m.impact)
+            : kind == "impact-count" ? std::string("impacts per contact")
+            : kind == "rest-time"  ? fmt::format("{} time |{}| <= {:g}", m.exact ? "err rest" : "rest", o, m.threshold)
+            : kind == "peak-time"  ? fmt::format("{}time of max {}", m.exact ? "err " : "", o)
+                                   : fmt::format("{} {}", o, m.norm);
 }
 
 // study.rank_by: the label of a measure the ranking can rank by; by default the first error.
@@ -879,7 +954,10 @@ std::pair<double, double> FileMeasure::window_for(const std::string& problem_lab
   return problem_windows.empty() ? std::pair{window_start, window_end} : std::pair{0.0, std::numeric_limits<double>::infinity()};
 }
 
-bool FileMeasure::rankable() const { return (kind != MeasureKind::Energy && kind != MeasureKind::FlightEnergy) || norm == "max"; }
+bool FileMeasure::rankable() const {
+  if (kind >= MeasureKind::ImpactRatio) return !law.empty() || exact;  // a difference from a closed form, not a value
+  return (kind != MeasureKind::Energy && kind != MeasureKind::FlightEnergy) || norm == "max";
+}
 
 const FileSweep& FileIntegrator::sweep_for(const std::string& problem_label) const {
   const auto it = per_problem.find(problem_label);
@@ -1048,8 +1126,9 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
 
   // A study of declared tables may show its runs' own figures alone (outcome, steps, histories).
   const Json& measures = c.find(root, "measure") || !c.find(root, "table") ? list("measure") : Json::array();
-  const std::vector<std::string> kinds{"error",     "impact-time", "energy",     "momentum",     "penetration",
-                                       "hausdorff", "stop-time",   "onset-time", "flight-energy"};
+  const std::vector<std::string> kinds{"error",        "impact-time", "energy",      "momentum",     "penetration",
+                                       "hausdorff",    "stop-time",   "onset-time",  "flight-energy", "impact-ratio",
+                                       "amplitude",    "impact-count", "rest-time",  "peak-time",    "value"};
   std::vector<std::string> problem_labels;
   for (const auto& p : spec.problems) problem_labels.push_back(p.label);
   for (std::size_t i = 0; i < measures.size(); ++i) {
@@ -1072,7 +1151,9 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     std::vector<std::size_t> on;
     for (std::size_t p = 0; p < instances.size(); ++p)
       if (m.applies_to(spec.problems[p].label)) on.push_back(p);
-    if (m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff) {
+    if (m.kind >= MeasureKind::ImpactRatio) {
+      read_event_measure(c, j, path, kind, m, spec, instances, on);
+    } else if (m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff) {
       const bool hausdorff = m.kind == MeasureKind::Hausdorff;
       if (hausdorff) {
         keys({"observable", "time_scale", "value_scale"});
