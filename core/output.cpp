@@ -118,8 +118,21 @@ void check_own_output(const std::filesystem::path& dir, const std::string& optio
   }
 }
 
+// Created in place, not through a temporary and a rename: the marker is the first entry of a
+// new output directory, so a run claiming it at the same time (the shards of one study on a
+// cluster) finds it empty or marked, never holding another run's temporary and unmarked.
+// Only its existence counts, so a reader may see it before its line is written.
 void mark_output(const std::filesystem::path& dir) {
-  write_file_atomic(dir / kOutputMarker, "nsbench output: replaced whole by the suite's next run into it\n");
+  const std::filesystem::path marker = dir / kOutputMarker;
+  const int fd = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    if (errno == EEXIST) return;  // another run marked it first
+    throw InputError(fmt::format("cannot write '{}': {}", marker.string(), std::strerror(errno)));
+  }
+  static constexpr char kText[] = "nsbench output: replaced whole by the suite's next run into it\n";
+  const bool written = ::write(fd, kText, sizeof kText - 1) == static_cast<ssize_t>(sizeof kText - 1);
+  ::close(fd);
+  if (!written) throw InputError(fmt::format("cannot write '{}'", marker.string()));
 }
 
 }  // namespace

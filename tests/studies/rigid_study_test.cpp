@@ -289,5 +289,5 @@ columns = ["problem", "integrator", "min_gap final"]
   std::string grouped = text;
   grouped.insert(grouped.find("problems = [\"painleve-rod\"]"), "rows = \"group\"\n");
   CHECK(parse_error(grouped) ==
-        "r.toml:19: table[0].problems: only a case or history table picks its problems; valid: rows = \"case\" or \"history\"");
+        "r.toml:19: table[0].problems: only a table of runs picks its problems; valid: rows = \"case\", \"history\" or \"samples\"");
 }
