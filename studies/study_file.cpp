@@ -251,7 +251,8 @@ class EnergyGrowth {
     const Vec& w = problem.contacts().tangent_velocity;
     if (w.size() && w.cwiseAbs().maxCoeff() > 0.0) obstacle_speed_ = w.cwiseAbs();
   }
-  void add(const Integrator& it, double dt) {
+  // After a step ending in state it.state() with total energy `energy`.
+  void add(const Integrator& it, double dt, double energy) {
     const State& s = it.state();
     if (obstacle_speed_.size() && it.tangential_impulses().size())
       work_ += obstacle_speed_.dot(it.tangential_impulses().cwiseAbs());
@@ -260,7 +261,7 @@ class EnergyGrowth {
       work_ += std::max(0.0, f_ext_.dot(s.u - u_prev_));
       u_prev_ = s.u;
     }
-    largest_ = std::max(largest_, it.energy().total() - e0_ - work_);
+    largest_ = std::max(largest_, energy - e0_ - work_);
   }
   double largest() const { return largest_; }
 
@@ -286,18 +287,18 @@ class RunFigures {
         history_(t_end, spec.history_intervals, 2),
         momentum_history_(t_end, spec.history_intervals, 1), keeps_history_(shows(spec, fp, "history", "")),
         keeps_momentum_(shows(spec, fp, "history", "momentum residual")), keeps_samples_(shows(spec, fp, "samples", "")) {}
-  void add(const Integrator& it, double dt, const MomentumBalance& momentum) {
+  void add(const Integrator& it, double dt, const MomentumBalance& momentum, double energy) {
     const double t = it.state().t;
     impacts_.add(t, it.impulses().sum() > 0.0);
     min_step_ = std::min(min_step_, dt);
     max_step_ = std::max(max_step_, dt);
     if (keeps_samples_ && t >= t_end_ * static_cast<double>(samples_t_.size()) / spec_.history_intervals) {
       samples_t_.push_back(t);
-      samples_e_.push_back(it.energy().total() / e0_);
+      samples_e_.push_back(energy / e0_);
     }
     if (!keeps_history_) return;
     const double gap = problem_.ncontacts() ? (problem_.gap_offset() + problem_.gap_operator() * it.state().u).minCoeff() : kNaN;
-    history_.add(t, {std::abs(it.energy().total() - e0_) / e_scale_, -gap});
+    history_.add(t, {std::abs(energy - e0_) / e_scale_, -gap});
     if (keeps_momentum_) momentum_history_.add(t, {momentum.residual(it.state().v) / momentum.speed_scale()});
   }
   Json result(const RunResult& r, double energy_growth) {
@@ -521,19 +522,17 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   // P0 and the speed scale from the problem's initial velocity, not the scheme's state after init
   // (modal-exact's passes through its modal basis: round-off in P0).
   MomentumBalance momentum(*problem, problem->initial_state().v);
+  const Energy energy0 = integrator->energy();
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (on[m] && spec.measures[m].kind == MeasureKind::Hausdorff) {
-      const Energy energy = integrator->energy();
       const State& s = integrator->state();
-      acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0, spec.measures[m].observable, obs, &energy));
+      acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0, spec.measures[m].observable, obs, &energy0));
     }
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
-    if (on[m] && spec.measures[m].kind >= MeasureKind::ImpactRatio) {
-      const Energy energy = integrator->energy();
+    if (on[m] && spec.measures[m].kind >= MeasureKind::ImpactRatio)
       acc[m].events.emplace(spec.measures[m], *problem,
-                            event_observable(*problem, M, *integrator, 0.0, spec.measures[m], obs, energy));
-    }
-  const double e0 = integrator->energy().total();
+                            event_observable(*problem, M, *integrator, 0.0, spec.measures[m], obs, energy0));
+  const double e0 = energy0.total();
   const double e_scale = fp.energy_scale > 0.0 ? fp.energy_scale : energy_error_scale(*problem, e0);
   double t_prev = 0.0;
   EnergyGrowth growth(*problem, integrator->state(), e0);
@@ -550,8 +549,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights = FlightEnergies(*problem, t_end, spec.measures[m].count);
 
-  // The measures at a sample: every sample_every steps, and the last step.
-  const auto sample = [&](const Integrator& it) {
+  // The measures at a sample: every sample_every steps, and the last step (`energy`: the state's).
+  const auto sample = [&](const Integrator& it, const Energy& energy) {
     const State& s = it.state();
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       const FileMeasure& fm = spec.measures[m];
@@ -565,17 +564,15 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
           e = (s.u - u_ref).lpNorm<Eigen::Infinity>();
           a.scale = std::max(a.scale, u_ref.lpNorm<Eigen::Infinity>());
         } else {
-          const Energy energy = it.energy();
           const double value = state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy);
           const double ref = reference.observable(s.t, fm.observable, obs_ref);
           e = std::abs(value - ref);
           a.scale = std::max(a.scale, std::abs(ref));
         }
       } else if (fm.kind == MeasureKind::Hausdorff) {
-        const Energy energy = it.energy();
         a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy));
       } else if (fm.kind == MeasureKind::Energy) {
-        e = energy_error(fm, it.energy().total());
+        e = energy_error(fm, energy.total());
         a.drift.add(s.t, e);
         e = fm.norm == "final" ? e : std::abs(e);
       } else if (fm.kind == MeasureKind::Momentum) {
@@ -593,22 +590,23 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   long step = 0;
   const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo& info) {
     const State& s = it.state();
+    const Energy energy = it.energy();  // once per step: every figure below reads it
     reference.advance(info.dt);
     momentum.add(it, info.dt);
-    if (step == 0) e1 = it.energy().total();
+    if (step == 0) e1 = energy.total();
     const bool contact = it.impulses().sum() > 0.0;
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) acc[m].impacts.add(s.t, contact);
-      else if (acc[m].events) acc[m].events->add(s.t, it.impulses(), s.u, event_observable(*problem, M, it, info.dt, spec.measures[m], obs, it.energy()));
-      if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights.add(s.t, it.energy().total());
+      else if (acc[m].events) acc[m].events->add(s.t, it.impulses(), s.u, event_observable(*problem, M, it, info.dt, spec.measures[m], obs, energy));
+      if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights.add(s.t, energy.total());
       if (on[m] && spec.measures[m].kind == MeasureKind::Energy && spec.measures[m].every > 0.0)
-        sample_periodic(spec.measures[m], acc[m], s.t, options.dt, t_end, energy_error(spec.measures[m], it.energy().total()));
+        sample_periodic(spec.measures[m], acc[m], s.t, options.dt, t_end, energy_error(spec.measures[m], energy.total()));
     }
-    growth.add(it, info.dt);
+    growth.add(it, info.dt, energy.total());
     if (stop) stop->add(s);
-    if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(it.energy().total() - e0) / e_scale});
-    figures.add(it, info.dt, momentum);
-    if (++step % spec.sample_every == 0) sample(it);
+    if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(energy.total() - e0) / e_scale});
+    figures.add(it, info.dt, momentum, energy.total());
+    if (++step % spec.sample_every == 0) sample(it, energy);
     t_prev = s.t;
   });
   Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps},
@@ -626,7 +624,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     out["message"] = fmt::format("max penetration {:.3g} > {}", r.max_penetration, spec.max_penetration_of(fp));
   }
   if (r.status != RunStatus::Ok && !(r.status == RunStatus::OverBudget && spec.measure_over_budget)) return out;
-  if (step % spec.sample_every != 0) sample(*integrator);
+  if (step % spec.sample_every != 0) sample(*integrator, integrator->energy());
   history.finish();
   Json values = Json::array();
   for (std::size_t m = 0; m < spec.measures.size(); ++m) {
