@@ -27,7 +27,7 @@ namespace {
 
 using nsb::test::Outcome;
 
-Outcome nsbench(const std::string& args) { return nsb::test::run_command(std::string(NSBENCH_CLI) + " " + args); }
+Outcome nsbench(const std::string& args) { return nsb::test::run_command(nsb::test::nsbench_command(args)); }
 
 std::string tmpdir(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("nsbench_cli_test_" + name)).string();

@@ -114,7 +114,7 @@ TEST_CASE("plugin: a bad plugin gives one line naming the file and the reason, e
        "clash_example.so: integrator 'symplectic-euler' is already registered by plugin "},
   };
   for (const auto& [plugin, message] : cases) {
-    for (const std::string& tool : {std::string(NSBENCH_CLI) + " list", std::string(NSBENCH_STUDY_CLI) + " bouncing",
+    for (const std::string& tool : {nsbench_command("list"), std::string(NSBENCH_STUDY_CLI) + " bouncing",
                                     std::string(NSBENCH_STUDY_CLI) + " list"}) {
       const auto r = run_command(tool + " --plugin " + plugin);
       INFO(tool << " --plugin " << plugin << "\n" << r.output);
