@@ -839,13 +839,15 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
   return out;
 }
 
-// rows = "group": one row per problem and integrator (in the order of the runs), the fitted
+// rows = "group": one row per problem (a joint refinement's family) and integrator of the
+// table's problems (in the order of the runs), the fitted
 // orders' columns ("order of <measure>", ...) side by side; n/a where no fit was made.
 Table group_table(const FileTable& d, const Table& orders) {
   Table out;
   std::vector<std::pair<Cell, Cell>> groups;  // (problem, integrator)
   for (const auto& row : orders.rows)
-    if (std::find(groups.begin(), groups.end(), std::pair{row[0], row[1]}) == groups.end()) groups.emplace_back(row[0], row[1]);
+    if (d.applies_to(std::get<std::string>(row[0])) && std::find(groups.begin(), groups.end(), std::pair{row[0], row[1]}) == groups.end())
+      groups.emplace_back(row[0], row[1]);
   for (const FileColumn& c : d.columns) {
     const auto of = c.of.find(" of ");
     out.columns.push_back(declared_column(orders.columns[column_index(orders, of == std::string::npos ? c.of : c.of.substr(0, of))], c));

@@ -170,7 +170,7 @@ struct FileTable {
   std::optional<std::string> caption;
   std::string rows = "case";
   std::vector<FileColumn> columns;
-  std::vector<std::string> problems;  // the labels of the problems whose runs it shows (empty: all)
+  std::vector<std::string> problems;  // the labels of the problems whose runs (group: fits, by family label too) it shows (empty: all)
   // A declined run's row (status n/a): its measured cells (counts, figures of the run) shown
   // as n/a, only what was asked kept (declined = "n/a"); by default as the run reports them (0).
   bool declined_blank = false;

@@ -659,6 +659,7 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const S
   std::vector<std::string> run_columns{"problem", "integrator", "dt", "tol"};
   for (const auto& m : measures) run_columns.push_back(m.label);
   run_columns.insert(run_columns.end(), {"CPU", "steps", "F_int evals"});
+  run_columns.insert(run_columns.end(), parameters.begin(), parameters.end());  // a problem parameter: e.g. a panel per mass model
   for (std::size_t i = 0; i < list->size(); ++i) {
     const Json& j = (*list)[i];
     const std::string path = element("figure", i);
@@ -788,11 +789,12 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     }
     if (const Json* v = c.find(j, "problems")) {
       const std::string at = child(path, "problems");
-      if (t.rows == "group" || t.rows == "ranking")
-        c.fail(at, "only a table of runs picks its problems", "rows = \"case\", \"history\" or \"samples\"");
+      if (t.rows == "ranking") c.fail(at, "a ranking ranks every problem of its measure", "rows = \"case\", \"group\", \"history\" or \"samples\"");
       c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more problem labels");
-      std::vector<std::string> labels;
+      std::vector<std::string> labels;  // a group's problem: a joint refinement's family label too
       for (const auto& p : spec.problems) labels.push_back(p.label);
+      for (const auto& p : spec.problems)
+        if (t.rows == "group" && !p.family.empty() && std::find(labels.begin(), labels.end(), p.family) == labels.end()) labels.push_back(p.family);
       for (std::size_t k = 0; k < v->size(); ++k) t.problems.push_back(c.choice((*v)[k], element(at, k), labels));
     }
     if (t.rows == "ranking") {
