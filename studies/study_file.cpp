@@ -1062,7 +1062,7 @@ std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, con
 // The runs of each sweep, in the order of the first: those of one integrator on one problem,
 // or on the problems of one joint refinement (FileProblem::family, refined along the grid's
 // key `refine`: the runs of every refinement, by the refinements' order).
-std::vector<std::vector<std::size_t>> sweeps(const StudySpec& spec, const std::vector<Json>& cases) {
+std::vector<std::vector<std::size_t>> sweep_runs(const StudySpec& spec, const std::vector<Json>& cases) {
   std::vector<std::vector<std::size_t>> out;
   std::vector<std::pair<std::string, std::size_t>> keys;  // (family label, integrator) of each sweep
   for (std::size_t k = 0; k < cases.size(); ++k) {
@@ -1186,7 +1186,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   const std::vector<Column> own = study_run_columns(spec);
   counters.insert(counters.end(), own.begin(), own.end());
   std::vector<std::vector<Cell>> counter_rows;
-  for (const std::vector<std::size_t>& sweep : sweeps(spec, cases)) {
+  for (const std::vector<std::size_t>& sweep : sweep_runs(spec, cases)) {
     const std::size_t begin = sweep.front();
     const std::size_t pi = cases[begin]["problem"], ii = cases[begin]["integrator"];
     const std::string plabel = spec.problems[pi].family_label();
