@@ -1257,7 +1257,9 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
                                                         ref.exact ? "" : " recorded by its reference run"),
                  fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
       }
-      m.label = hausdorff ? fmt::format("hausdorff {}", m.observable) : fmt::format("err {} {}", m.observable, m.norm);
+      m.label = hausdorff           ? fmt::format("hausdorff {}", m.observable)
+                : m.against.empty() ? fmt::format("err {} {}", m.observable, m.norm)
+                                    : fmt::format("err {} {} against {}", m.observable, m.norm, m.against);
     } else if (m.kind == MeasureKind::ImpactTime) {
       keys({"count"});
       if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));

@@ -154,7 +154,7 @@ against = "slip_speed_exact"
   CHECK(three_d_value(mj[0], 2) < 1e-12);
   CHECK(three_d_value(cd[0], 2) > 1e-5);
   // The exact slip speed as a reference and as the problem's own column: the same error.
-  CHECK(three_d_value(mj[0], 4) == Approx(three_d_value(mj[0], 3)).epsilon(1e-12));
+  CHECK(three_d_value(mj[0], 4) == Approx(three_d_value(mj[0], 3)).epsilon(0).margin(1e-12));  // two round-offs of one closed form
   CHECK(three_d_value(mj[0], 3) > 0.0);
 
   // Sliding for ever: t_roll_exact is +inf, refused as an exact time, shown as a summary.
