@@ -566,6 +566,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights = FlightEnergies(*problem, t_end, spec.measures[m].count);
 
+  // An error of "v": the velocities, unless the problem has an observable of that name (its own).
+  const auto& names = problem->observable_names();
+  const bool own_v = std::find(names.begin(), names.end(), "v") != names.end();
   // The measures at a sample: every sample_every steps, and the last step (`energy`: the state's).
   const auto sample = [&](const Integrator& it, const Energy& energy) {
     const State& s = it.state();
@@ -576,7 +579,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       Accumulator& a = acc[m];
       double e = kNaN;
       if (fm.kind == MeasureKind::Error) {
-        if (fm.observable == "u" || fm.observable == "v") {
+        if (fm.observable == "u" || (fm.observable == "v" && !own_v)) {
           const bool u = fm.observable == "u";
           const Vec ref = u ? reference.u(s.t) : reference.v(s.t);
           e = ((u ? s.u : s.v) - ref).lpNorm<Eigen::Infinity>();

@@ -1251,7 +1251,10 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         std::vector<std::string> valid = instances[p]->observable_names();
         valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
         if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
-        if ((ref.exact || ref.lockstep) && !hausdorff) valid.insert(valid.begin(), {"u", "v"});
+        if ((ref.exact || ref.lockstep) && !hausdorff) {  // the state's u and v (a problem's own v: its observable)
+          if (std::find(valid.begin(), valid.end(), "v") == valid.end()) valid.insert(valid.begin(), "v");
+          valid.insert(valid.begin(), "u");
+        }
         if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
           c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'{}", m.observable, spec.problems[p].label,
                                                         ref.exact ? "" : " recorded by its reference run"),
