@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include <fmt/format.h>
@@ -253,6 +254,11 @@ std::optional<State> Bar3d::exact_state(double t) const {
         s.v[x_dof(i, j, k)] = line->v[i];
       }
   return s;
+}
+
+std::vector<std::pair<std::string, double>> Bar3d::summary_values() const {
+  const bool dalembert = lateral_held() && gravity_ == 0.0 && v0_ > 0.0;
+  return {{"contact_end_exact", dalembert ? exact_->contact_start() + exact_->contact_duration() : std::numeric_limits<double>::quiet_NaN()}};
 }
 
 std::vector<std::string> Bar3d::observable_names() const { return exact_->observable_names(); }

@@ -52,7 +52,7 @@
 // lateral = held | free, N_side = 1 (elements along each side of the cross-section).
 // Observables: u_contact, v_contact (the wall face's mean x displacement and velocity),
 // contact_force (the step's impulses summed, over dt), their exact values, momentum (x,
-// sum of M's row sums times v_x) and its exact value.
+// sum of M's row sums times v_x) and its exact value. Summary: contact_end_exact.
 //
 // Bad input (InputError, one line, exit 2): nu outside [0, 0.5); a mesh whose memory (about
 // kBar3dBytesPerElementFree or ...Held per element, the assembled tangent included) exceeds the
@@ -100,6 +100,9 @@ class Bar3d final : public Problem {
   void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   // Held: node (i, j, k)'s u_x from the 1D exact solution at x = i h. Free: nothing.
   std::optional<State> exact_state(double t) const override;
+  // contact_end_exact: when the wall face leaves the wall for good, t0 + 2 L / c_p (held, g = 0,
+  // v0 > 0: the d'Alembert solution's one contact phase); NaN otherwise (free sides, or g > 0).
+  std::vector<std::pair<std::string, double>> summary_values() const override;
   // Field output: the nodes at their reference positions, the hexahedra in hex8 order (VTK's
   // hexahedron order); stress: the linear elastic Cauchy stress at the element's centre,
   // components xx, yy, zz, yz, xz, xy.

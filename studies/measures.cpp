@@ -123,6 +123,81 @@ void MomentumBalance::add(const Integrator& integrator, double dt) {
 
 double MomentumBalance::residual(const Vec& v) const { return std::abs(mass_row_.dot(v) - p0_ - impulse_sum_); }
 
+std::vector<std::string> MeshMomentum::components(const Problem& problem) {
+  const auto mesh = problem.field_mesh();
+  if (!mesh) return {};
+  std::vector<std::string> out;
+  for (int d = 0; d < mesh->dimension && d < 3; ++d) out.push_back(std::string("p") + "xyz"[d]);
+  if (mesh->dimension == 3) out.insert(out.end(), {"jx", "jy", "jz"});
+  return out;
+}
+
+MeshMomentum::MeshMomentum(const Problem& problem, const State& initial, const std::string& component)
+    : problem_(problem), M_(problem.mass_matrix()), axis_(component[1] - 'x'), angular_(component[0] == 'j'),
+      f_(problem.ndof()), f_ext_(problem.ndof()) {
+  const FieldMesh mesh = *problem.field_mesh();
+  points_ = mesh.points;
+  point_dofs_ = mesh.point_dofs;
+  const Vec p0 = M_ * initial.v;
+  if (angular_) {
+    previous_ = angular_momentum(initial);
+    for (Index a = 0; a < points_.rows(); ++a) {
+      Eigen::Vector3d x = points_.row(a).transpose(), pa = Eigen::Vector3d::Zero();
+      for (int d = 0; d < 3; ++d)
+        if (const int dof = point_dofs_(a, d); dof >= 0) {
+          x[d] += initial.u[dof];
+          pa[d] = p0[dof];
+        }
+      scale_ += x.norm() * pa.norm();
+    }
+  } else {
+    for (Index a = 0; a < points_.rows(); ++a)
+      if (const int dof = point_dofs_(a, axis_); dof >= 0) previous_ += p0[dof];
+    scale_ = M_.diagonal().cwiseProduct(initial.v).cwiseAbs().sum();
+  }
+}
+
+double MeshMomentum::angular_momentum(const State& s) const {
+  const Vec p = M_ * s.v;
+  return torque(s, p);
+}
+
+// sum_a (x_a x f_a)_axis with x_a = X_a + u_a and f_a the entries of f on point a's dofs.
+double MeshMomentum::torque(const State& s, const Vec& f) const {
+  const int i = (axis_ + 1) % 3, j = (axis_ + 2) % 3;
+  const auto position = [&](Index a, int d) { return points_(a, d) + (point_dofs_(a, d) >= 0 ? s.u[point_dofs_(a, d)] : 0.0); };
+  const auto entry = [&](Index a, int d) { return point_dofs_(a, d) >= 0 ? f[point_dofs_(a, d)] : 0.0; };
+  double sum = 0.0;
+  for (Index a = 0; a < points_.rows(); ++a) sum += position(a, i) * entry(a, j) - position(a, j) * entry(a, i);
+  return sum;
+}
+
+void MeshMomentum::add(const Integrator& integrator, double dt) {
+  const State& s = integrator.state();
+  const Contacts& c = problem_.contacts();
+  problem_.external_force(s.t - dt, f_ext_);
+  f_.noalias() = dt * f_ext_;
+  f_.noalias() += c.normal.transpose() * integrator.impulses();
+  if (c.tangent.rows() && integrator.tangential_impulses().size()) f_.noalias() += c.tangent.transpose() * integrator.tangential_impulses();
+  if (c.tangent2.rows() && integrator.tangential_impulses2().size()) f_.noalias() += c.tangent2.transpose() * integrator.tangential_impulses2();
+  ++steps_;
+  if (angular_) {
+    const double J = angular_momentum(s);
+    if (steps_ >= 2) largest_ = std::max(largest_, std::abs(J - previous_ - torque(s, f_)));
+    previous_ = J;
+    return;
+  }
+  double P = 0.0, impulse = 0.0;
+  const Vec p = M_ * s.v;
+  for (Index a = 0; a < points_.rows(); ++a)
+    if (const int dof = point_dofs_(a, axis_); dof >= 0) {
+      P += p[dof];
+      impulse += f_[dof];
+    }
+  if (steps_ >= 2) largest_ = std::max(largest_, std::abs(P - previous_ - impulse));
+  previous_ = P;
+}
+
 bool ContactPhases::add(double t, bool contact) {
   const bool starts = contact && !in_contact_ && t - last_contact_ > min_flight_;
   if (starts) starts_.push_back(t);
@@ -183,6 +258,12 @@ double rocking_rest_time(const Problem& problem) {
 double painleve_jam_time(const Problem& problem) {
   const auto* rod = dynamic_cast<const PainleveRod*>(&problem);
   return rod && rod->exact().ending() == PainleveRodExact::Ending::jam ? rod->exact().end_time() : kNaN;
+}
+
+double summary_value(const Problem& problem, const std::string& name) {
+  for (const auto& [key, value] : problem.summary_values())
+    if (key == name) return value;
+  return kNaN;
 }
 
 Column cost_column() {

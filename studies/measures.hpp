@@ -104,6 +104,46 @@ class MomentumBalance {
   double constant_force_sum_ = std::numeric_limits<double>::quiet_NaN();  // 1^T F_ext of a constant load
 };
 
+// Momentum identities of a 3D mesh problem (its field_mesh(): points and their dofs), one
+// component each: "px", "py", "pz" the linear momentum P_d = r_d^T M v (r_d: 1 on the dofs of
+// component d of every point) and "jx", "jy", "jz" the angular momentum about the origin
+// J = sum_a x_a x (M v)_a (x_a = X_a + u_a, (M v)_a the entries of M v on point a's dofs: the
+// continuum's int rho x x v for any mass matrix of the mesh's shape functions). What changes them
+// is every contact impulse (normal and both tangent rows) and the external force,
+// f_k = L^T Lambda_N + T^T Lambda_T + T2^T Lambda_T2 + dt F_ext(t_k - dt); the balance of each
+// step k from the second (a scheme's first step may start from a velocity at another time:
+// CD-Lagrange's half step):
+//   linear    |P_k - P_{k-1} - r_d^T f_k|  (the internal forces sum to zero);
+//   angular   |J_k - J_{k-1} - sum_a (x_a,k x f_a,k)_d|, the torques at the end-of-step
+//             positions (CD-Lagrange's exact discrete balance, as the block study measures it),
+//             the internal forces having no net torque at one configuration.
+// largest(): the largest residual so far; scale(): sum_i M_ii |v0_i| (linear) or
+// sum_a |x_a,0| |(M v0)_a| (angular), so that a residual relative to it is not 0 / 0 when the
+// momentum is. Contacts must not move (constant rows).
+class MeshMomentum {
+ public:
+  MeshMomentum(const Problem& problem, const State& initial, const std::string& component);
+  void add(const Integrator& integrator, double dt);  // after each step
+  double largest() const { return largest_; }
+  double scale() const { return scale_; }
+  // The components a problem's mesh allows: px, py, pz (as many as its dimension), jx, jy, jz in 3D.
+  static std::vector<std::string> components(const Problem& problem);
+
+ private:
+  double angular_momentum(const State& s) const;
+  double torque(const State& s, const Vec& f) const;
+  const Problem& problem_;
+  SpMat M_;
+  Eigen::MatrixXd points_;
+  Eigen::MatrixXi point_dofs_;
+  int axis_ = 0;
+  bool angular_ = false;
+  Vec f_, f_ext_;
+  double previous_ = 0.0;  // P or J at the last step
+  double largest_ = 0.0, scale_ = 0.0;
+  long steps_ = 0;
+};
+
 // Contact phases: a phase starts at a step with a contact impulse after a step without one,
 // more than `min_flight` after the last step with an impulse (a chattering contact is one
 // phase). Its start times are the impact times the studies compare with exact ones.
@@ -170,6 +210,9 @@ double rocking_amplitude_after(const Problem& problem, std::size_t k);
 double rocking_rest_time(const Problem& problem);
 std::size_t rocking_exact_impacts(const Problem& problem);
 double painleve_jam_time(const Problem& problem);
+// A problem's summary value of that name (Problem::summary_values: a closed-form figure such as
+// the sphere's exact roll-onset time t_roll_exact, +inf when it never rolls); NaN when it has none.
+double summary_value(const Problem& problem, const std::string& name);
 
 // ---- Cost --------------------------------------------------------------------------------
 

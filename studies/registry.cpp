@@ -69,6 +69,10 @@ const std::vector<StudyEntry>& study_registry() {
                          "rigid bodies with moving contacts: the rocking block's impact ratios against Housner's and Moreau's "
                          "laws, amplitude, time to rest, energy; the Painleve rod's dynamic jam per scheme and what follows",
                          "studies/builtin/rigid.toml"),
+      builtin_file_study("three-d",
+                         "three dimensions: bar-3d against its exact solution under joint refinement per mass model, the "
+                         "sphere's roll onset and final velocity per scheme, block-3d's momentum identities, energy and cost per step",
+                         "studies/builtin/three_d.toml"),
   };
   return entries;
 }

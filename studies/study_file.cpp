@@ -2,8 +2,10 @@
 //
 // Measures (each a column; a run's error against the reference, sampled every sample_every
 // steps and at the last step):
-//   error        u: ||u - u_ref||_inf, an observable: |o - o_ref|, divided by the largest
-//                |u_ref| (|o_ref|) over the run (absolute when that is 0); norm final (last
+//   error        u: ||u - u_ref||_inf (v: ||v - v_ref||_inf, the velocities), an observable:
+//                |o - o_ref|, divided by the largest |u_ref| (|v_ref|, |o_ref|) over the run
+//                (absolute when that is 0); with `against` = o_exact, o_ref is the problem's
+//                own observable o_exact at the run's state instead of the reference's; norm final (last
 //                step), max (over the samples) or l2 (sqrt of the time-weighted mean square).
 //                A reference integrator's samples are interpolated linearly in time.
 //   impact-time  max over the first `count` impacts of |t_i (scheme) - t_i (exact)|, t_i the
@@ -15,6 +17,9 @@
 //   momentum     max over the samples of |P - P0 - sum_k (1^T F_ext(t_k) dt_k + 1^T L^T Lambda_k)|
 //                / max |P| (P = 1^T M v, the momentum of a 1D problem): 0 for a scheme that
 //                balances momentum exactly when the internal forces sum to zero.
+//                With `component` (px, py, pz, jx, jy, jz) the identity of a 3D mesh problem
+//                instead (MeshMomentum, studies/measures.hpp: every impulse counted, angular
+//                per step), max over the steps, relative to its scale there.
 //   penetration  max over the steps of max(0, -g).
 // An error, energy or momentum measure with a `window` [t0, t1] is sampled there only (its l2
 // norm the mean over t1 - t0), e.g. a smooth window before the first impact.
@@ -173,7 +178,7 @@ double state_observable(const Problem& problem, const SpMat& M, const State& s, 
 // The observable of an event measure after a step of length dt (impact-count has none: 0).
 double event_observable(const Problem& problem, const SpMat& M, const Integrator& it, double dt, const FileMeasure& m,
                         std::span<double> buffer, const Energy& energy) {
-  if (m.kind == MeasureKind::ImpactCount) return 0.0;
+  if (m.kind == MeasureKind::ImpactCount || m.kind == MeasureKind::Summary) return 0.0;
   return state_observable(problem, M, it.state(), it.impulses(), dt, m.observable, buffer, &energy);
 }
 
@@ -221,6 +226,7 @@ class Reference {
     return (1 - w) * s.at(lo, col) + w * s.at(hi, col);
   }
   Vec u(double t) const { return lockstep_ ? lockstep_->state().u : problem_.exact_state(t)->u; }
+  Vec v(double t) const { return lockstep_ ? lockstep_->state().v : problem_.exact_state(t)->v; }
   // The reference's graph of an observable on [0, t_end].
   Polyline graph(const std::string& name, double t_end, std::span<double> buffer) const {
     if (exact_) {
@@ -391,7 +397,9 @@ class FlightEnergies {
 //                 run's end); `exact`: its distance to the exact time to rest [s];
 //   peak-time     the end of the step where o is largest; `exact`: its distance to the exact
 //                 dynamic jam [s];
-//   value         o at the last step, or its max or min over the steps.
+//   value         o at the last step, or its max or min over the steps;
+//   summary       the problem's summary value `summary` (no observable), e.g. an exact event
+//                 time; rest-time and peak-time with `exact` and `summary`: against that value.
 class EventFigures {
  public:
   EventFigures(const FileMeasure& m, const Problem& problem, double value0)
@@ -433,13 +441,19 @@ class EventFigures {
       case MeasureKind::ImpactCount: return static_cast<double>(seen.size());
       case MeasureKind::RestTime:
         if (above_) return kNaN;
-        return m_.exact ? std::abs(last_above_ - rocking_rest_time(problem)) : last_above_;
-      case MeasureKind::PeakTime: return m_.exact ? std::abs(peak_t_ - painleve_jam_time(problem)) : peak_t_;
+        return m_.exact ? std::abs(last_above_ - exact_time(problem, rocking_rest_time)) : last_above_;
+      case MeasureKind::PeakTime: return m_.exact ? std::abs(peak_t_ - exact_time(problem, painleve_jam_time)) : peak_t_;
+      case MeasureKind::Summary: return summary_value(problem, m_.summary);
       default: return m_.norm == "max" ? largest_ : m_.norm == "min" ? smallest_ : last_;
     }
   }
 
  private:
+  // The exact time of a rest-time or peak-time measure: the problem's summary value the
+  // measure names, else the closed form studies/measures.hpp gives.
+  double exact_time(const Problem& problem, double (*closed_form)(const Problem&)) const {
+    return m_.summary.empty() ? closed_form(problem) : summary_value(problem, m_.summary);
+  }
   // The gaps g(u) (moving contacts: evaluated, not linearised at U0).
   const Vec& gaps(const Vec& u) {
     problem_.evaluate_contacts(u, geometry_);
@@ -462,6 +476,7 @@ struct Accumulator {
   Polyline graph;  // Hausdorff: the run's samples
   FlightEnergies flights;
   std::optional<EventFigures> events;
+  std::optional<MeshMomentum> mesh_momentum;  // a momentum measure's component
   std::vector<double> periodic;  // Energy with `every`: the error at each sample time from + k every
 };
 
@@ -522,6 +537,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   // P0 and the speed scale from the problem's initial velocity, not the scheme's state after init
   // (modal-exact's passes through its modal basis: round-off in P0).
   MomentumBalance momentum(*problem, problem->initial_state().v);
+  for (std::size_t m = 0; m < spec.measures.size(); ++m)
+    if (on[m] && !spec.measures[m].component.empty()) acc[m].mesh_momentum.emplace(*problem, problem->initial_state(), spec.measures[m].component);
   const Energy energy0 = integrator->energy();
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (on[m] && spec.measures[m].kind == MeasureKind::Hausdorff) {
@@ -549,6 +566,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights = FlightEnergies(*problem, t_end, spec.measures[m].count);
 
+  // An error of "v": the velocities, unless the problem has an observable of that name (its own).
+  const auto& names = problem->observable_names();
+  const bool own_v = std::find(names.begin(), names.end(), "v") != names.end();
   // The measures at a sample: every sample_every steps, and the last step (`energy`: the state's).
   const auto sample = [&](const Integrator& it, const Energy& energy) {
     const State& s = it.state();
@@ -559,13 +579,15 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       Accumulator& a = acc[m];
       double e = kNaN;
       if (fm.kind == MeasureKind::Error) {
-        if (fm.observable == "u") {
-          const Vec u_ref = reference.u(s.t);
-          e = (s.u - u_ref).lpNorm<Eigen::Infinity>();
-          a.scale = std::max(a.scale, u_ref.lpNorm<Eigen::Infinity>());
+        if (fm.observable == "u" || (fm.observable == "v" && !own_v)) {
+          const bool u = fm.observable == "u";
+          const Vec ref = u ? reference.u(s.t) : reference.v(s.t);
+          e = ((u ? s.u : s.v) - ref).lpNorm<Eigen::Infinity>();
+          a.scale = std::max(a.scale, ref.lpNorm<Eigen::Infinity>());
         } else {
           const double value = state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy);
-          const double ref = reference.observable(s.t, fm.observable, obs_ref);
+          const double ref = fm.against.empty() ? reference.observable(s.t, fm.observable, obs_ref)
+                                                : state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.against, obs, &energy);
           e = std::abs(value - ref);
           a.scale = std::max(a.scale, std::abs(ref));
         }
@@ -575,7 +597,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         e = energy_error(fm, energy.total());
         a.drift.add(s.t, e);
         e = fm.norm == "final" ? e : std::abs(e);
-      } else if (fm.kind == MeasureKind::Momentum) {
+      } else if (fm.kind == MeasureKind::Momentum && fm.component.empty()) {
         e = momentum.residual(s.v);
         a.scale = fm.initial_speeds_scale ? momentum.speed_scale()
                                           : std::max({a.scale, std::abs(momentum.momentum(s.v)), std::abs(momentum.initial())});
@@ -599,6 +621,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) acc[m].impacts.add(s.t, contact);
       else if (acc[m].events) acc[m].events->add(s.t, it.impulses(), s.u, event_observable(*problem, M, it, info.dt, spec.measures[m], obs, energy));
       if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights.add(s.t, energy.total());
+      if (acc[m].mesh_momentum) acc[m].mesh_momentum->add(it, info.dt);
       if (on[m] && spec.measures[m].kind == MeasureKind::Energy && spec.measures[m].every > 0.0)
         sample_periodic(spec.measures[m], acc[m], s.t, options.dt, t_end, energy_error(spec.measures[m], energy.total()));
     }
@@ -662,7 +685,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       case MeasureKind::FlightEnergy:
         v = fm.norm == "count" ? static_cast<double>(a.flights.compared()) : a.flights.largest();
         break;
-      case MeasureKind::Momentum: v = a.largest / scale; break;
+      case MeasureKind::Momentum:
+        v = a.mesh_momentum ? a.mesh_momentum->largest() / a.mesh_momentum->scale() : a.largest / scale;
+        break;
       case MeasureKind::Penetration: v = r.max_penetration; break;
       default: v = a.events->result(*problem); break;
       case MeasureKind::StopTime:
@@ -696,11 +721,12 @@ bool FileTable::applies_to(const std::string& problem_label) const {
   return problems.empty() || std::find(problems.begin(), problems.end(), problem_label) != problems.end();
 }
 
-bool is_event_time(MeasureKind kind) {
-  return kind == MeasureKind::ImpactTime || kind == MeasureKind::StopTime || kind == MeasureKind::OnsetTime;
+bool is_event_time(const FileMeasure& m) {
+  return m.kind == MeasureKind::ImpactTime || m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime ||
+         ((m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime) && m.exact);
 }
-bool measure_converges(MeasureKind kind) {
-  return kind == MeasureKind::Error || kind == MeasureKind::Hausdorff || is_event_time(kind);
+bool measure_converges(const FileMeasure& m) {
+  return m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff || is_event_time(m);
 }
 
 std::string file_result_damage(const StudySpec& spec, const Json& r) {
@@ -816,13 +842,15 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
   return out;
 }
 
-// rows = "group": one row per problem and integrator (in the order of the runs), the fitted
+// rows = "group": one row per problem (a joint refinement's family) and integrator of the
+// table's problems (in the order of the runs), the fitted
 // orders' columns ("order of <measure>", ...) side by side; n/a where no fit was made.
 Table group_table(const FileTable& d, const Table& orders) {
   Table out;
   std::vector<std::pair<Cell, Cell>> groups;  // (problem, integrator)
   for (const auto& row : orders.rows)
-    if (std::find(groups.begin(), groups.end(), std::pair{row[0], row[1]}) == groups.end()) groups.emplace_back(row[0], row[1]);
+    if (d.applies_to(std::get<std::string>(row[0])) && std::find(groups.begin(), groups.end(), std::pair{row[0], row[1]}) == groups.end())
+      groups.emplace_back(row[0], row[1]);
   for (const FileColumn& c : d.columns) {
     const auto of = c.of.find(" of ");
     out.columns.push_back(declared_column(orders.columns[column_index(orders, of == std::string::npos ? c.of : c.of.substr(0, of))], c));
@@ -868,7 +896,8 @@ const std::vector<Column>& run_columns() {
       {"integrator name", "", "", "the registered integrator"},
       {"parameters", "", "", "the integrator's parameters set by the file (default: none)"},
       {"min step", "s", "{:.2e}", "smallest step taken"},
-      {"max step", "s", "{:.2e}", "largest step taken"}};
+      {"max step", "s", "{:.2e}", "largest step taken"},
+      {"CPU per step", "s", "{:.2e}", "CPU / steps: the cost of a step, observer excluded", true}};
   return columns;
 }
 
@@ -941,7 +970,8 @@ std::vector<Cell> run_cells(const StudySpec& spec, const Json& c, const Json& r)
           value("switches"), value("missed_switches"), spec.budget_of(p, c["dt"].get<double>(), t_end), value("max_penetration"), spec.max_penetration_of(p),
           value("energy_scale"), value("energy_growth"), spec.energy_blow_up_of(p), value("final_energy_error"),
           f.contains("note") ? Cell{f["note"].get<std::string>()} : Cell{}, fi.name, parameters_text(fi, p.label),
-          value("min_step"), value("max_step")};
+          value("min_step"), value("max_step"),
+          r["steps"].get<long>() > 0 ? number_cell(number(r, "cpu") / static_cast<double>(r["steps"].get<long>())) : Cell{}};
 }
 
 const std::vector<Column>& history_columns() {
@@ -1032,6 +1062,26 @@ std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, con
   return out;
 }
 
+// The runs of each sweep, in the order of the first: those of one integrator on one problem,
+// or on the problems of one joint refinement (FileProblem::family, refined along the grid's
+// key `refine`: the runs of every refinement, by the refinements' order).
+std::vector<std::vector<std::size_t>> sweep_runs(const StudySpec& spec, const std::vector<Json>& cases) {
+  std::vector<std::vector<std::size_t>> out;
+  std::vector<std::pair<std::string, std::size_t>> keys;  // (family label, integrator) of each sweep
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::pair<std::string, std::size_t> key{spec.problems[cases[k]["problem"].get<std::size_t>()].family_label(),
+                                                  cases[k]["integrator"].get<std::size_t>()};
+    const auto it = std::find(keys.begin(), keys.end(), key);
+    if (it == keys.end()) {
+      keys.push_back(key);
+      out.push_back({k});
+    } else {
+      out[static_cast<std::size_t>(it - keys.begin())].push_back(k);
+    }
+  }
+  return out;
+}
+
 std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& cases, const std::vector<Json>& results) {
   const std::vector<std::pair<std::string, std::string>> meta = {
       {"study", spec.name}, {"study_file", spec.file}, {"study_file_fnv1a64", spec.hash}, {"t_end", fmt::format("{}", spec.t_end)}};
@@ -1065,7 +1115,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
                {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
   for (const auto& m : spec.measures)
-    t.columns.push_back({m.label, is_event_time(m.kind) || m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" && m.every == 0.0 ? "1/s" : "",
+    t.columns.push_back({m.label, m.kind == MeasureKind::ImpactTime || m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime || m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" && m.every == 0.0 ? "1/s" : "",
                          "{:.3e}", ""});
   t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", "", true}, {"steps", "", "", ""},
                                      {"F_int evals", "", "", "internal force evaluations"},
@@ -1103,7 +1153,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                  {spec.name + "_work_precision_evals", spec.title + ": " + primary->label + " against F_int evaluations", "F_int evals", primary->label, {"integrator"}, {"problem"}, true, true}};
   }
   for (const auto& m : spec.measures)
-    if (measure_converges(m.kind) && !spec.declared_figures_only)
+    if (measure_converges(m) && !spec.declared_figures_only)
       t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
                            "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
 
@@ -1112,13 +1162,21 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       t.figures.push_back(declared_figure(spec, f));
 
   // Event times are against the problem's exact solution whatever the reference.
-  const bool exact_times = primary != spec.measures.end() && is_event_time(primary->kind);
+  const bool exact_times = primary != spec.measures.end() && is_event_time(*primary);
+  // One ranked problem per sweep's problem: a joint refinement's problems are one (its family).
   std::vector<RankingProblem> ranking;
+  std::vector<std::string> ranking_first;  // the label of each ranked problem's first problem
   for (const auto& p : spec.problems) {
+    if (std::any_of(ranking.begin(), ranking.end(), [&](const RankingProblem& r) { return r.label == p.family_label(); })) continue;
     const FileReference* ref = spec.reference_of(p);
-    ranking.push_back({p.label, exact_times ? "the exact solution" : against_text(ref), exact_times || !ref ? 0.0 : ref->floor,
+    ranking.push_back({p.family_label(), exact_times ? "the exact solution" : against_text(ref), exact_times || !ref ? 0.0 : ref->floor,
                        spec.targets, {}});
+    ranking_first.push_back(p.label);
   }
+  const auto ranked_index = [&](const FileProblem& p) {
+    return static_cast<std::size_t>(std::find_if(ranking.begin(), ranking.end(), [&](const RankingProblem& r) { return r.label == p.family_label(); }) -
+                                    ranking.begin());
+  };
   // The first declared ranking's error column and runs' number format.
   const auto ranking_declared = std::find_if(spec.tables.begin(), spec.tables.end(), [](const FileTable& d) { return d.rows == "ranking"; });
   const std::optional<std::string> runs_format = ranking_declared == spec.tables.end() ? std::nullopt : ranking_declared->runs_format;
@@ -1126,27 +1184,27 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   // run before it (the previous step or tolerance of the same sweep).
   std::vector<Column> counters = {{"factorizations", "", "", ""}, {"LCP its", "", "", "LCP iterations"}};
   for (const auto& m : spec.measures)
-    if (measure_converges(m.kind)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
+    if (measure_converges(m)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
   counters.insert(counters.end(), run_columns().begin(), run_columns().end());
   const std::vector<Column> own = study_run_columns(spec);
   counters.insert(counters.end(), own.begin(), own.end());
   std::vector<std::vector<Cell>> counter_rows;
-  std::size_t k = 0;
-  while (k < cases.size()) {
-    const std::size_t begin = k;
-    const std::size_t pi = cases[k]["problem"], ii = cases[k]["integrator"];
-    const std::string& plabel = spec.problems[pi].label;
+  for (const std::vector<std::size_t>& sweep : sweep_runs(spec, cases)) {
+    const std::size_t begin = sweep.front();
+    const std::size_t pi = cases[begin]["problem"], ii = cases[begin]["integrator"];
+    const std::string plabel = spec.problems[pi].family_label();
     const FileIntegrator& fi = spec.integrators[ii];
-    const std::string ilabel = shown_label(fi, plabel);
+    const std::string ilabel = shown_label(fi, spec.problems[pi].label);
     const IntegratorEntry& entry = find_integrator(fi.name);
     WorkCurve curve{ilabel, entry.reference, {}, entry.peer};
     std::vector<double> xs;
     std::vector<std::vector<double>> ys(spec.measures.size());
-    for (; k < cases.size() && cases[k]["problem"] == pi && cases[k]["integrator"] == ii; ++k) {
+    for (const std::size_t k : sweep) {
       const Json& r = results[k];
       const bool tol = !cases[k]["tol"].is_null();
       xs.push_back(tol ? cases[k]["tol"].get<double>() : cases[k]["dt"].get<double>());
-      std::vector<Cell> row = {plabel, ilabel, cases[k]["dt"].get<double>(), number_cell(cases[k]["tol"])};
+      std::vector<Cell> row = {spec.problems[cases[k]["problem"].get<std::size_t>()].label, ilabel, cases[k]["dt"].get<double>(),
+                               number_cell(cases[k]["tol"])};
       for (std::size_t m = 0; m < spec.measures.size(); ++m) {
         const double v = r.contains("values") ? real(r["values"][m]) : kNaN;
         ys[m].push_back(v);
@@ -1159,9 +1217,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       const auto count = [&](const char* key) { return r.contains(key) ? Cell{r[key].get<long>()} : Cell{}; };
       std::vector<Cell> more = {count("factorizations"), count("lcp_iterations")};
       for (std::size_t m = 0; m < spec.measures.size(); ++m) {
-        if (!measure_converges(spec.measures[m].kind)) continue;
+        if (!measure_converges(spec.measures[m])) continue;
         const std::size_t i = xs.size() - 1;
-        const auto e = [&](std::size_t j) { return is_event_time(spec.measures[m].kind) ? ys[m][j] : above_round_off(ys[m][j]); };
+        const auto e = [&](std::size_t j) { return is_event_time(spec.measures[m]) ? ys[m][j] : above_round_off(ys[m][j]); };
         more.push_back(i ? number_cell(observed_order(xs[i - 1], e(i - 1), xs[i], e(i))) : Cell{});
       }
       const std::vector<Cell> run = run_cells(spec, cases[k], r), study = study_run_cells(spec, cases[k], r);
@@ -1175,15 +1233,15 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                                 status != "ok" && r.contains("values") ? status : ""});
       if (r.contains("history"))
         for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
-          history.add_row({plabel, ilabel, run_label(cases[k]), number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
+          history.add_row({spec.problems[cases[k]["problem"].get<std::size_t>()].label, ilabel, run_label(cases[k]),
+                           number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
     }
-    ranking[pi].curves.push_back(curve);
+    ranking[ranked_index(spec.problems[pi])].curves.push_back(curve);
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
-      const MeasureKind kind = spec.measures[m].kind;
-      if (!measure_converges(kind) || !spec.measures[m].applies_to(plabel)) continue;
+      if (!measure_converges(spec.measures[m]) || !spec.measures[m].applies_to(spec.problems[pi].label)) continue;
       std::vector<double> e = ys[m];
       for (double& x : e)
-        if (!is_event_time(kind)) x = above_round_off(x);
+        if (!is_event_time(spec.measures[m])) x = above_round_off(x);
       const OrderFit fit = fit_order(xs, e);
       orders.add_row({plabel, ilabel, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
                       number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});
@@ -1193,8 +1251,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   const std::string runs_id = runs == spec.tables.end() ? t.id : runs->id;  // where the ranked errors are shown
   std::optional<Table> rank;
   if (primary != spec.measures.end()) {
-    std::erase_if(ranking, [&](const RankingProblem& p) { return !primary->applies_to(p.label); });
-    Column error{primary->label, is_event_time(primary->kind) ? "s" : "", "{:.1e}", primary->label + " of " + runs_id};
+    for (std::size_t r = ranking.size(); r-- > 0;)
+      if (!primary->applies_to(ranking_first[r])) ranking.erase(ranking.begin() + static_cast<long>(r));
+    Column error{primary->label, is_event_time(*primary) ? "s" : "", "{:.1e}", primary->label + " of " + runs_id};
     if (ranking_declared != spec.tables.end() && ranking_declared->error) error = declared_column(error, *ranking_declared->error);
     rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error", error, cpu, ranking);
     rank->metadata = meta;

@@ -37,6 +37,11 @@ struct FileReference {
 
 struct FileProblem {
   std::string name, label;
+  // A joint refinement (refine = KEY, a key of the problem's grid): the label without KEY's
+  // value, shared by the grid's problems that differ only in KEY, whose runs make one sweep
+  // (fitted orders, pairwise orders, one ranked problem); empty: none.
+  std::string family;
+  const std::string& family_label() const { return family.empty() ? label : family; }
   Overrides parameters;
   double t_end = 0.0;              // its own end time (0: study.t_end)
   long max_force_evaluations = 0;  // its own F_int budget per run (0: study.max_force_evaluations)
@@ -77,12 +82,16 @@ struct FileIntegrator {
 };
 
 enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime, FlightEnergy,
-                         ImpactRatio, Amplitude, ImpactCount, RestTime, PeakTime, Value };
+                         ImpactRatio, Amplitude, ImpactCount, RestTime, PeakTime, Value, Summary };
 
 struct FileMeasure {
   MeasureKind kind = MeasureKind::Error;
   std::string label;             // the column's name
-  std::string observable = "u";  // Error: "u" or one of the problem's observables; Hausdorff: an observable
+  std::string observable = "u";  // Error: "u", "v" or one of the problem's observables; Hausdorff: an observable
+  // Error of an observable: against the problem's own observable of this name at the run's state
+  // (its exact column, e.g. contact_force_exact: an impulse's force is no function of the exact
+  // state), not against the reference; "": the reference.
+  std::string against;
   std::string norm = "max";      // Error: final|max|l2; Energy: max|final|final abs|drift|offset; FlightEnergy: max|count
   int count = 3;                 // ImpactTime, FlightEnergy: the first `count` impacts (flights)
   // Energy: errors relative to the energy after the first step E_1 ((E - E_1) / |E_1|), not E0.
@@ -90,6 +99,9 @@ struct FileMeasure {
   // Momentum: the residual divided by sum_i m_i |v0_i| (nonzero when the total momentum is),
   // not by the largest |P|.
   bool initial_speeds_scale = false;
+  // Momentum of a mesh problem's component (px, py, pz, jx, jy, jz: studies/measures.hpp,
+  // MeshMomentum) instead of the 1D balance; "": the 1D balance.
+  std::string component;
   bool history = false;          // Energy: also a history table and figure
   // Energy: > 0: sampled at the first step past each t_k = from + k every (k = 1, 2, ... while
   // t_k <= t_end, to half a step), its norm count | first | final | drift (slope against k).
@@ -105,6 +117,10 @@ struct FileMeasure {
   int impact = 0;
   double threshold = 0.0;
   bool exact = false;
+  // rest-time, peak-time with `exact`: the exact time is the problem's summary value of this
+  // name (Problem::summary_values, e.g. a sphere's t_roll_exact), not its closed form of
+  // studies/measures.hpp; kind summary: that value itself, the same on every run of a problem.
+  std::string summary;
   // Error, energy, momentum: sampled on [window_start, window_end] only (the whole run by default),
   // or on a window of each problem's own (by label; a problem not named: the whole run).
   double window_start = 0.0;
@@ -154,7 +170,7 @@ struct FileTable {
   std::optional<std::string> caption;
   std::string rows = "case";
   std::vector<FileColumn> columns;
-  std::vector<std::string> problems;  // the labels of the problems whose runs it shows (empty: all)
+  std::vector<std::string> problems;  // the labels of the problems whose runs (group: fits, by family label too) it shows (empty: all)
   // A declined run's row (status n/a): its measured cells (counts, figures of the run) shown
   // as n/a, only what was asked kept (declined = "n/a"); by default as the run reports them (0).
   bool declined_blank = false;
@@ -233,10 +249,11 @@ struct StudySpec {
   }
 };
 
-// A time measured against the problem's exact event times [s] (impact, stop, onset times).
-bool is_event_time(MeasureKind kind);
+// A time measured against the problem's exact event times [s] (impact, stop, onset times; a
+// rest or peak time with exact = true).
+bool is_event_time(const FileMeasure& m);
 // An error that converges with dt: a convergence figure and fitted orders.
-bool measure_converges(MeasureKind kind);
+bool measure_converges(const FileMeasure& m);
 
 // The columns of a run's own figures a declared case table may show (besides the
 // work-precision ones), and the columns of a history table.

@@ -436,6 +436,59 @@ void read_flight_energy(const Checker& c, const Json& j, const std::string& path
   m.label = m.norm == "count" ? "flights compared" : "flight energy err";
 }
 
+// A momentum measure's component (MeshMomentum): one every problem `on` has (a mesh of its
+// dimension; jx, jy, jz in 3D), its contacts constant; no window or relative_to (its own scale).
+void read_momentum_component(const Checker& c, const Json& j, const std::string& path, const Json& v, FileMeasure& m,
+                             const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances,
+                             const std::vector<std::size_t>& on) {
+  const std::string at = child(path, "component");
+  m.component = c.choice(v, at, {"px", "py", "pz", "jx", "jy", "jz"});
+  for (const char* key : {"window", "relative_to"})
+    if (c.find(j, key)) c.fail(child(path, key), "not with component (the identity over every step, relative to its own scale)", "no " + std::string(key));
+  for (const std::size_t p : on) {
+    const auto valid = MeshMomentum::components(*instances[p]);
+    if (std::find(valid.begin(), valid.end(), m.component) == valid.end())
+      c.fail(at, fmt::format("problem '{}' has no mesh component {}", spec.problems[p].label, m.component),
+             valid.empty() ? std::string("a problem with a field mesh, or problems = [...]") : fmt::format("{} (or problems = [...])", fmt::join(valid, ", ")));
+    if (instances[p]->contacts_move())
+      c.fail(at, fmt::format("problem '{}' has contacts that move with it", spec.problems[p].label), "a problem with constant contact rows, or problems = [...]");
+  }
+  m.label += " " + m.component;
+}
+
+// An error measure's `against`: it and the measured observable both the problem's own
+// observables (not u, v or the generic columns), the two distinct.
+void check_against(const Checker& c, const std::string& path, const FileMeasure& m, const std::vector<std::string>& names,
+                   const std::string& label) {
+  for (const auto& [key, o] : {std::pair{"observable", m.observable}, std::pair{"against", m.against}})
+    if (std::find(names.begin(), names.end(), o) == names.end())
+      c.fail(child(path, key), fmt::format("'{}' is not an observable of problem '{}'", o, label),
+             fmt::format("{} (or problems = [...])", fmt::join(names, ", ")));
+  if (m.observable == m.against) c.fail(child(path, "against"), "the observable itself", "its exact column, e.g. o_exact");
+}
+
+// `summary` (kind summary, or rest-time and peak-time with exact = true) into `m`: the name of
+// a summary value every problem `on` has (Problem::summary_values); as an exact time, finite.
+void read_summary_name(const Checker& c, const Json& j, const std::string& path, const std::string& kind, FileMeasure& m,
+                       const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances,
+                       const std::vector<std::size_t>& on) {
+  const Json* v = kind == "summary" ? &c.require(j, path, "summary") : c.find(j, "summary");
+  if (!v) return;
+  m.summary = c.string(*v, child(path, "summary"));
+  if (kind != "summary" && !m.exact) c.fail(child(path, "summary"), "an exact time needs exact = true", "exact = true, or no summary");
+  for (const std::size_t p : on) {
+    std::vector<std::string> valid;
+    for (const auto& [name, value] : instances[p]->summary_values()) valid.push_back(name);
+    const double value = summary_value(*instances[p], m.summary);
+    if (std::find(valid.begin(), valid.end(), m.summary) == valid.end())
+      c.fail(child(path, "summary"), fmt::format("'{}' is not a summary value of problem '{}'", m.summary, spec.problems[p].label),
+             fmt::format("{} (or problems = [...])", valid.empty() ? std::string("none: the problem has no summary values") : fmt::format("{}", fmt::join(valid, ", "))));
+    if (kind != "summary" && !std::isfinite(value))
+      c.fail(child(path, "summary"), fmt::format("summary value '{}' of problem '{}' is not a finite time ({})", m.summary, spec.problems[p].label, value),
+             "a problem whose event happens (e.g. a sphere that rolls), or problems = [...]");
+  }
+}
+
 // The measures of an observable's events (impact-ratio, amplitude, impact-count, rest-time,
 // peak-time, value) into `m`: their keys, the observable of every problem `on`, and for `law`
 // or `exact` the problem's closed form (studies/measures.hpp).
@@ -444,12 +497,12 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
                         const std::vector<std::size_t>& on) {
   const std::map<std::string, std::vector<std::string>> own{
       {"impact-ratio", {"observable", "impact", "count", "law"}}, {"amplitude", {"observable", "impact", "exact"}},
-      {"impact-count", {}}, {"rest-time", {"observable", "threshold", "exact"}}, {"peak-time", {"observable", "exact"}},
-      {"value", {"observable", "norm"}}};
+      {"impact-count", {}}, {"rest-time", {"observable", "threshold", "exact", "summary"}},
+      {"peak-time", {"observable", "exact", "summary"}}, {"value", {"observable", "norm"}}, {"summary", {"summary"}}};
   std::vector<std::string> keys = own.at(kind);
   keys.insert(keys.end(), {"kind", "label", "problems"});
   c.keys(j, path, keys);
-  if (kind != "impact-count") {
+  if (kind != "impact-count" && kind != "summary") {
     m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
     for (const std::size_t p : on) {
       std::vector<std::string> valid = instances[p]->observable_names();
@@ -461,6 +514,7 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
     }
   }
   if (const Json* v = c.find(j, "exact")) m.exact = c.boolean(*v, child(path, "exact"));
+  read_summary_name(c, j, path, kind, m, spec, instances, on);
   if (const Json* v = c.find(j, "law")) m.law = c.choice(*v, child(path, "law"), {"housner", "moreau"});
   if (const Json* v = c.find(j, "impact")) m.impact = static_cast<int>(c.integer(*v, child(path, "impact"), 1, 1000000));
   m.count = 0;  // impact-time's default of 3 is not one here
@@ -478,7 +532,7 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
   for (const std::size_t p : on) {
     const Problem& problem = *instances[p];
     const bool rocking = !std::isnan(rocking_law_ratio(problem, ImpactLaw::housner));
-    if ((!m.law.empty() || (m.exact && kind != "peak-time")) && !rocking)
+    if ((!m.law.empty() || (m.exact && kind != "peak-time" && m.summary.empty())) && !rocking)
       c.fail(child(path, m.law.empty() ? "exact" : "law"), fmt::format("problem '{}' has no closed-form impacts", spec.problems[p].label),
              "rocking-block problems, or problems = [...]");
     if (rocking && m.law == "moreau" && std::isnan(rocking_law_ratio(problem, ImpactLaw::moreau)))
@@ -492,6 +546,7 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
              fmt::format("the exact solution of problem '{}' has {} impact(s) (it leaves rocking or rests)", spec.problems[p].label,
                          rocking_exact_impacts(problem)),
              fmt::format("1..{}, or problems = [...]", rocking_exact_impacts(problem)));
+    if (!m.summary.empty()) continue;  // its exact time checked by read_summary_name
     if (m.exact && kind == "rest-time" && !std::isfinite(rocking_rest_time(problem)))
       c.fail(child(path, "exact"), fmt::format("problem '{}' does not come to rest", spec.problems[p].label),
              "a rocking block that comes to rest (e = 0), or problems = [...]");
@@ -507,6 +562,7 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
             : kind == "impact-count" ? std::string("impacts per contact")
             : kind == "rest-time"  ? fmt::format("{} time |{}| <= {:g}", m.exact ? "err rest" : "rest", o, m.threshold)
             : kind == "peak-time"  ? fmt::format("{}time of max {}", m.exact ? "err " : "", o)
+            : kind == "summary"    ? m.summary
                                    : fmt::format("{} {}", o, m.norm);
 }
 
@@ -536,10 +592,16 @@ std::size_t ranked_measure(const Checker& c, const Json& study, const std::vecto
 // and its point's, labelled "label, key = value, ..."; no grid: the problem itself.
 constexpr std::size_t kMaxGridPoints = 1000;
 
+// refine = KEY (one of the grid's keys): a joint refinement along KEY, each problem's family
+// its label without KEY's value (FileProblem::family).
 std::vector<FileProblem> grid_points(const Checker& c, const Json& j, const std::string& path, const FileProblem& base,
                                      const ParamSpecs& specs) {
   std::vector<FileProblem> points{base};
   const Json* grid = c.find(j, "grid");
+  const Json* refine = c.find(j, "refine");
+  if (refine && !(grid && grid->is_object() && grid->contains(c.string(*refine, child(path, "refine")))))
+    c.fail(child(path, "refine"), "not a key of the problem's grid", "refine = KEY with grid = { KEY = [values, ...], ... }");
+  if (refine) points.front().family = base.label;
   if (!grid) return points;
   const std::string at = child(path, "grid");
   c.expect(*grid, at, grid->is_object() && !grid->empty(), "a table of parameter = [values, ...]");
@@ -554,6 +616,7 @@ std::vector<FileProblem> grid_points(const Checker& c, const Json& j, const std:
         FileProblem q = point;
         q.parameters[key] = one.at(key);
         q.label += fmt::format(", {} = {}", key, one.at(key));
+        if (!q.family.empty() && key != refine->get<std::string>()) q.family += fmt::format(", {} = {}", key, one.at(key));
         next.push_back(q);
       }
     if (next.size() > kMaxGridPoints)
@@ -596,6 +659,7 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const S
   std::vector<std::string> run_columns{"problem", "integrator", "dt", "tol"};
   for (const auto& m : measures) run_columns.push_back(m.label);
   run_columns.insert(run_columns.end(), {"CPU", "steps", "F_int evals"});
+  run_columns.insert(run_columns.end(), parameters.begin(), parameters.end());  // a problem parameter: e.g. a panel per mass model
   for (std::size_t i = 0; i < list->size(); ++i) {
     const Json& j = (*list)[i];
     const std::string path = element("figure", i);
@@ -652,13 +716,13 @@ std::vector<std::string> table_sources(const std::string& rows, const StudySpec&
     for (const auto& m : measures) sources.push_back(m.label);
     sources.insert(sources.end(), {"CPU", "steps", "F_int evals", "status", "factorizations", "LCP its"});
     for (const auto& m : measures)
-      if (measure_converges(m.kind)) sources.push_back("pairwise order of " + m.label);
+      if (measure_converges(m)) sources.push_back("pairwise order of " + m.label);
     const auto& run = run_column_names();
     sources.insert(sources.end(), run.begin(), run.end());
     sources.insert(sources.end(), spec.counters.begin(), spec.counters.end());
   } else if (rows == "group") {
     for (const auto& m : measures)
-      if (measure_converges(m.kind))
+      if (measure_converges(m))
         for (const char* what : {"order", "CI low", "CI high", "points"}) sources.push_back(fmt::format("{} of {}", what, m.label));
   } else if (rows == "history" || rows == "samples") {
     sources = rows == "history" ? history_column_names() : samples_column_names();
@@ -725,11 +789,12 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     }
     if (const Json* v = c.find(j, "problems")) {
       const std::string at = child(path, "problems");
-      if (t.rows == "group" || t.rows == "ranking")
-        c.fail(at, "only a table of runs picks its problems", "rows = \"case\", \"history\" or \"samples\"");
+      if (t.rows == "ranking") c.fail(at, "a ranking ranks every problem of its measure", "rows = \"case\", \"group\", \"history\" or \"samples\"");
       c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more problem labels");
-      std::vector<std::string> labels;
+      std::vector<std::string> labels;  // a group's problem: a joint refinement's family label too
       for (const auto& p : spec.problems) labels.push_back(p.label);
+      for (const auto& p : spec.problems)
+        if (t.rows == "group" && !p.family.empty() && std::find(labels.begin(), labels.end(), p.family) == labels.end()) labels.push_back(p.family);
       for (std::size_t k = 0; k < v->size(); ++k) t.problems.push_back(c.choice((*v)[k], element(at, k), labels));
     }
     if (t.rows == "ranking") {
@@ -1030,7 +1095,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   for (std::size_t i = 0; i < problems.size(); ++i) {
     const Json& j = problems[i];
     const std::string path = element("problem", i);
-    c.keys(j, path, {"name", "label", "parameters", "grid", "t_end", "max_force_evaluations", "steps", "full_steps", "stable_steps",
+    c.keys(j, path, {"name", "label", "parameters", "grid", "refine", "t_end", "max_force_evaluations", "steps", "full_steps", "stable_steps",
                      "reference", "energy_blow_up", "max_penetration", "energy_scale", "full_only", "default_only", "full_t_end",
                      "end_at_impact", "min_flight"});
     FileProblem p;
@@ -1128,7 +1193,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   const Json& measures = c.find(root, "measure") || !c.find(root, "table") ? list("measure") : Json::array();
   const std::vector<std::string> kinds{"error",        "impact-time", "energy",      "momentum",     "penetration",
                                        "hausdorff",    "stop-time",   "onset-time",  "flight-energy", "impact-ratio",
-                                       "amplitude",    "impact-count", "rest-time",  "peak-time",    "value"};
+                                       "amplitude",    "impact-count", "rest-time",  "peak-time",    "value",
+                                       "summary"};
   std::vector<std::string> problem_labels;
   for (const auto& p : spec.problems) problem_labels.push_back(p.label);
   for (std::size_t i = 0; i < measures.size(); ++i) {
@@ -1161,13 +1227,14 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
         if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
       } else {
-        keys({"observable", "norm", "window", "relative_to"});
+        keys({"observable", "norm", "window", "relative_to", "against"});
+        if (const Json* v = c.find(j, "against")) m.against = c.string(*v, child(path, "against"));
         if (const Json* v = c.find(j, "relative_to"))
           m.scale_over_run = c.choice(*v, child(path, "relative_to"), {"window", "run"}) == "run";
       }
       for (const std::size_t p : on) {
         const FileReference* ref = spec.reference_of(spec.problems[p]);
-        if (!ref) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
+        if (!ref && m.against.empty()) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
                          "[reference] solution = \"exact\" or integrator = NAME (or the problem's own reference = { ... })");
         if (hausdorff && ref->lockstep)
           c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",
@@ -1176,17 +1243,26 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2"});
       if (const Json* v = c.find(j, "observable")) m.observable = c.string(*v, child(path, "observable"));
       for (const std::size_t p : on) {
+        if (!m.against.empty()) {
+          check_against(c, path, m, instances[p]->observable_names(), spec.problems[p].label);
+          continue;
+        }
         const FileReference& ref = *spec.reference_of(spec.problems[p]);
         std::vector<std::string> valid = instances[p]->observable_names();
         valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
         if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
-        if ((ref.exact || ref.lockstep) && !hausdorff) valid.insert(valid.begin(), "u");
+        if ((ref.exact || ref.lockstep) && !hausdorff) {  // the state's u and v (a problem's own v: its observable)
+          if (std::find(valid.begin(), valid.end(), "v") == valid.end()) valid.insert(valid.begin(), "v");
+          valid.insert(valid.begin(), "u");
+        }
         if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
           c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'{}", m.observable, spec.problems[p].label,
                                                         ref.exact ? "" : " recorded by its reference run"),
                  fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
       }
-      m.label = hausdorff ? fmt::format("hausdorff {}", m.observable) : fmt::format("err {} {}", m.observable, m.norm);
+      m.label = hausdorff           ? fmt::format("hausdorff {}", m.observable)
+                : m.against.empty() ? fmt::format("err {} {}", m.observable, m.norm)
+                                    : fmt::format("err {} {} against {}", m.observable, m.norm, m.against);
     } else if (m.kind == MeasureKind::ImpactTime) {
       keys({"count"});
       if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));
@@ -1218,10 +1294,11 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       read_flight_energy(c, j, path, spec, on, instances, m);
       keys({"count", "norm"});
     } else {
-      keys(kind == "momentum" ? std::vector<std::string>{"window", "relative_to"} : std::vector<std::string>{});
+      keys(kind == "momentum" ? std::vector<std::string>{"window", "relative_to", "component"} : std::vector<std::string>{});
       if (const Json* v = c.find(j, "relative_to"))
         m.initial_speeds_scale = c.choice(*v, child(path, "relative_to"), {"momentum", "initial speeds"}) == "initial speeds";
       m.label = kind == "momentum" ? "momentum residual" : "penetration";
+      if (const Json* v = c.find(j, "component")) read_momentum_component(c, j, path, *v, m, spec, instances, on);
     }
     if (const Json* v = c.find(j, "window")) {
       const std::string at = child(path, "window");

@@ -287,7 +287,7 @@ columns = ["problem", "integrator", "min_gap final"]
   REQUIRE(rod->rows.size() == 1);
   CHECK(std::get<std::string>(rod->rows[0][0]) == "painleve-rod");
   std::string grouped = text;
-  grouped.insert(grouped.find("problems = [\"painleve-rod\"]"), "rows = \"group\"\n");
+  grouped.insert(grouped.find("problems = [\"painleve-rod\"]"), "rows = \"ranking\"\n");
   CHECK(parse_error(grouped) ==
-        "r.toml:19: table[0].problems: only a table of runs picks its problems; valid: rows = \"case\", \"history\" or \"samples\"");
+        "r.toml:19: table[0].problems: a ranking ranks every problem of its measure; valid: rows = \"case\", \"group\", \"history\" or \"samples\"");
 }

@@ -1105,8 +1105,8 @@ TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, c
   CHECK(nsb::parse_study_text(history, "f.toml", false).tables.at(0).rows == "history");
   CHECK_THAT(study_error_of(history + "problems = [\"nope\"]\n"),
              StartsWith("f.toml:23: table[0].problems[0]: 'nope' is not valid (nearest: bouncing-mass); valid: bouncing-mass"));
-  CHECK_THAT(study_error_of(replaced(history, "rows = \"history\"", "rows = \"group\"\nproblems = [\"bouncing-mass\"]")),
-             StartsWith("f.toml:22: table[0].problems: only a table of runs picks its problems; valid: rows = \"case\", \"history\" or \"samples\""));
+  CHECK_THAT(study_error_of(replaced(history, "rows = \"history\"", "rows = \"ranking\"\nproblems = [\"bouncing-mass\"]")),
+             StartsWith("f.toml:22: table[0].problems: a ranking ranks every problem of its measure; valid: rows = \"case\", \"group\", \"history\" or \"samples\""));
   CHECK_THAT(study_error_of(replaced(history, "\"penetration\"]", "\"steps\"]")),
              StartsWith("f.toml:22: table[0].columns[1]: 'steps' is not valid (nearest: "));
   const std::string figure = "[[figure]]\nid = \"d\"\ntitle = \"d\"\nx = \"t\"\ny = \"energy deviation\"\ntable = ";
@@ -1491,8 +1491,10 @@ kind = "energy"
              StartsWith("f.toml:22: table[0].declined: 'zero' is not valid (nearest: ") && Catch::Contains("valid: as run, n/a"));
   CHECK_THAT(study_error_of(declared + "rows = \"group\"\ndeclined = \"n/a\"\n"),
              StartsWith("f.toml:23: table[0].declined: only a table of one row per run shows declined runs; valid: rows = \"case\""));
-  CHECK_THAT(study_error_of(declared + "rows = \"group\"\nproblems = [\"bouncing-mass\"]\n"),
-             StartsWith("f.toml:23: table[0].problems: only a table of runs picks its problems"));
+  CHECK_THAT(study_error_of(declared + "rows = \"ranking\"\nproblems = [\"bouncing-mass\"]\n"),
+             StartsWith("f.toml:23: table[0].problems: a ranking ranks every problem of its measure"));
+  CHECK(nsb::parse_study_text(declared + "rows = \"group\"\nproblems = [\"bouncing-mass\"]\n", "f.toml", false).tables.at(0).problems ==
+        std::vector<std::string>{"bouncing-mass"});  // a group table picks its problems
   CHECK_THAT(study_error_of(replaced(declared, "columns = [\"problem\"]", "columns = [\"parameter wall\"]")),
              StartsWith("f.toml:21: table[0].columns[0]: 'parameter wall' is not valid (nearest: parameter "));
   const std::string figure = "[[figure]]\nid = \"f\"\ntitle = \"f\"\nx = \"dt\"\ny = \"steps\"\nsmall_multiples = 1\n";
