@@ -6,6 +6,7 @@
 #                            README's commands (among them the bouncing study verified against
 #                            reports/) and the out-of-tree plugin walkthrough (scripts/plugin-example.sh)
 #   scripts/run.sh sanitize  the test suite built with AddressSanitizer + UBSan (build-asan/)
+#   scripts/run.sh sanitize-build  that build alone, no tests (CI compiles it beside the tests)
 # Environment: BUILD_DIR (default build), JOBS (default: number of cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,10 +23,10 @@ case "$what" in
   # The Python module is left out: python3 itself is not built with ASan, so loading an
   # instrumented extension into it needs the ASan runtime preloaded (LD_PRELOAD) and reports
   # CPython's own allocations; its C++ side is the same core the sanitized tests cover.
-  sanitize) build="${BUILD_DIR:-build-asan}"
+  sanitize|sanitize-build) build="${BUILD_DIR:-build-asan}"
             config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
                     -DNSBENCH_SANITIZE=ON -DNSBENCH_BENCHMARKS=OFF -DNSBENCH_PYTHON=OFF -DNSBENCH_UNITY_BUILD=ON); targets=() ;;
-  *) echo "usage: scripts/run.sh studies|tests|sanitize" >&2; exit 2 ;;
+  *) echo "usage: scripts/run.sh studies|tests|sanitize|sanitize-build" >&2; exit 2 ;;
 esac
 jobs="${JOBS:-$(nproc)}"
 # Single-threaded BLAS for the cost tables (Siconos' dense algebra calls OpenBLAS).
@@ -35,6 +36,7 @@ export OPENBLAS_NUM_THREADS=1
 if [ "$what" = studies ]; then bash scripts/install-deps.sh; else bash scripts/install-deps.sh tests; fi
 cmake -S . -B "$build" "${config[@]}"
 cmake --build "$build" -j "$jobs" "${targets[@]}"
+if [ "$what" = sanitize-build ]; then exit 0; fi
 
 if [ "$what" != studies ]; then
   # The Slurm round trip (label slurm) runs in the tests stage only: it tests the job script

@@ -61,7 +61,7 @@ namespace nsb {
 namespace {
 
 const std::vector<double> kAlphas = {0.25, 0.5, 0.9, 1.0};
-const std::vector<std::string> kMasses = {"lumped", "consistent", "singular"};
+const std::vector<std::string> kBarMasses = {"lumped", "consistent", "singular"};
 constexpr double kHorizon = 1.5;  // t_end in contact durations
 // The runs whose contact-force history is kept.
 bool keeps_history(const Json& c) {
@@ -110,7 +110,7 @@ const std::vector<ErrorColumn> kErrors = {
 std::vector<Json> bar_cases(const StudyOptions& opt) {
   std::vector<Json> cases;
   for (const auto& entry : integrator_registry())
-    for (const auto& mass : kMasses)
+    for (const auto& mass : kBarMasses)
       for (double alpha : kAlphas)
         // A reference's accuracy is set by its tolerance, alpha only sets its output step:
         // one alpha (the largest) says all, and the others would cost as much again each.
@@ -237,7 +237,7 @@ std::vector<Table> bar_tables(const std::vector<Json>& cases, const std::vector<
       "run to t = 3; dt = alpha * stable step (h/c lumped and singular, h/(sqrt(3) c) consistent).";
   const auto metadata = std::vector<std::pair<std::string, std::string>>{
       {"study", "bar"}, {"N", fmt::format("{}", fmt::join(meshes, " "))},
-      {"alpha", fmt::format("{}", fmt::join(kAlphas, " "))}, {"mass", fmt::format("{}", fmt::join(kMasses, " "))}};
+      {"alpha", fmt::format("{}", fmt::join(kAlphas, " "))}, {"mass", fmt::format("{}", fmt::join(kBarMasses, " "))}};
 
   Table table;
   table.id = "bar";

@@ -57,11 +57,11 @@ namespace nsb {
 namespace {
 
 constexpr double kVx = 0.5;
-constexpr long kStepBudget = 20;  // F_int evaluations allowed per step of the requested size
-constexpr double kSample = 0.01;  // y_c sampling period [s]
+constexpr long kBlockStepBudget = 20;  // F_int evaluations allowed per step of the requested size
+constexpr double kBlockSamplePeriod = 0.01;  // y_c sampling period [s]
 const std::vector<double> kRankingTargets = {1e-3, 1e-4, 3e-5, 1e-5};  // y_c error [m]
 constexpr double kDetailDt = 1e-4;  // the step of the cost table and the momentum histories
-constexpr int kHistoryPoints = 150;
+constexpr int kBlockHistoryPoints = 150;
 // The runs pictured deformed: the scheme under study and the reference, on a mesh whose cells
 // can be seen, at the detail step.
 const std::vector<std::string> kSnapshotSchemes = {"cd-lagrange", "penalty-bdf"};
@@ -72,7 +72,7 @@ Block2d make_block(long n) {
                         {{"nx", fmt::format("{}", n)}, {"ny", fmt::format("{}", n)}, {"vx", fmt::format("{}", kVx)}}));
 }
 
-struct CaseResult {
+struct BlockCaseResult {
   bool diverged = false;  // or over budget: `status` says which
   std::string status = "ok", message;
   std::vector<double> yc;  // centre-of-mass height at t = j kSample
@@ -83,7 +83,7 @@ struct CaseResult {
   Json snapshots = Json::array();  // the deformed mesh at chosen instants (when asked for)
 };
 
-CaseResult run_case(const std::string& integrator_name, long n, double dt, double t_end, bool history, bool snapshots) {
+BlockCaseResult run_case(const std::string& integrator_name, long n, double dt, double t_end, bool history, bool snapshots) {
   const Block2d b = make_block(n);
   auto integ = make_integrator(integrator_name);
   const State s0 = b.initial_state();
@@ -102,13 +102,13 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
     return y / (m.sum() / 2);
   };
 
-  CaseResult c;
+  BlockCaseResult c;
   c.yc.push_back(centre_height(s0.u));
   const double px0 = b.linear_momentum(s0.v).x();
   double J_prev = b.angular_momentum(s0.u, s0.v);
   Vec lambda_prev = Vec::Zero(L.rows()), force(b.ndof());
   long k = 0;
-  c.history = IntervalMax(t_end, kHistoryPoints, 2);
+  c.history = IntervalMax(t_end, kBlockHistoryPoints, 2);
   std::optional<MeshSnapshots> pictures;
   if (snapshots) {
     pictures.emplace(b, "sigma_yy");
@@ -120,7 +120,7 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
   options.record_series = false;
   // Work budget: an adaptive scheme whose step collapses on the stiff block (1000x the
   // fixed scheme's steps) stops here, deterministically, and its row says so.
-  options.max_force_evaluations = kStepBudget * static_cast<long>(std::ceil(t_end / dt));
+  options.max_force_evaluations = kBlockStepBudget * static_cast<long>(std::ceil(t_end / dt));
   const RunResult r = run(b, *integ, options, [&](const Integrator& it, const StepInfo& info) {
     const State& s = it.state();
     const Vec& lambda = it.impulses();
@@ -147,7 +147,7 @@ CaseResult run_case(const std::string& integrator_name, long n, double dt, doubl
     }
     c.max_active = std::max(c.max_active, active);
     lambda_prev = lambda;
-    if (std::abs(s.t - kSample * static_cast<double>(c.yc.size())) < 0.5 * info.dt) c.yc.push_back(centre_height(s.u));
+    if (std::abs(s.t - kBlockSamplePeriod * static_cast<double>(c.yc.size())) < 0.5 * info.dt) c.yc.push_back(centre_height(s.u));
   });
   c.history.finish();
   if (pictures) c.snapshots = pictures->finish();
@@ -189,7 +189,7 @@ Reference penalty_reference(long n, double t_end, double stiffness, double rtol,
   const ReferenceRequest request{"block-2d", problem, "penalty-bdf",
                                  {{"stiffness", fmt::format("{}", stiffness)}, {"rtol", fmt::format("{}", rtol)},
                                   {"atol", fmt::format("{}", 1e-3 * rtol)}},
-                                 kSample, t_end, 1};
+                                 kBlockSamplePeriod, t_end, 1};
   Reference r{{}, cached_reference(reference_cache_dir(), request)};
   if (r.run.summary["status"] != "ok")
     throw std::runtime_error(fmt::format("block reference: penalty-bdf failed: {}", r.run.summary["message"].get<std::string>()));
@@ -250,7 +250,7 @@ Json block_case(const Json& c, const StudyOptions& opt) {
     }
     return {{"yc", r.yc}, {"summary", r.run.summary}, {"from_cache", r.run.from_cache}};
   }
-  CaseResult r;
+  BlockCaseResult r;
   try {
     const bool pictured = c["n"] == kSnapshotMesh && c["dt"] == kDetailDt &&
                           std::count(kSnapshotSchemes.begin(), kSnapshotSchemes.end(), c["integrator"]);
@@ -301,7 +301,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
       "against e = {:.2e}), {:.1e} m (mesh, against {}x{}). E err: (E - E0)/E0 of the integrator's energy. P_x "
       "err: max |P_x - P_x0| / sum m|v0|. J res.: angular momentum balance residual with torques at the "
       "end-of-step positions, relative to sum m|x0||v0|.",
-      kVx, t_end, kSample, n_ref, n_ref, kRefStiffness, kRefRtol, 1e-3 * kRefRtol, ref_cost, e_ref,
+      kVx, t_end, kBlockSamplePeriod, n_ref, n_ref, kRefStiffness, kRefRtol, 1e-3 * kRefRtol, ref_cost, e_ref,
       ref_penalty_error, ref_tolerance_error, ref_restitution_error, 2 * e_ref, ref_mesh_error, n_ref / 2, n_ref / 2);
   cases_table.columns = {
       {"integrator", "", "", ""},
@@ -344,7 +344,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
   momentum.id = "block_momentum_history";
   momentum.title = "2D block: momentum balance histories, dt = 1e-4 s";
   momentum.caption = fmt::format("The largest P_x error and J residual (as in the block table) over each of {} equal "
-                                 "intervals of [0, {}] s, at the interval's last step.", kHistoryPoints, t_end);
+                                 "intervals of [0, {}] s, at the interval's last step.", kBlockHistoryPoints, t_end);
   momentum.columns = {{"integrator", "", "", ""}, {"mesh", "", "", ""}, {"t", "s", "", "end of the interval"},
                       {"P_x err", "", "", "largest over the interval"}, {"J res.", "", "", "largest over the interval"}};
   momentum.csv_only = true;

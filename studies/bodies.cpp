@@ -65,17 +65,16 @@ namespace nsb {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr long kStepBudget = 20;
+constexpr long kBodiesStepBudget = 20;
 constexpr double kLawTol = 0.05;     // [v0]: a final velocity this close to a law reproduces it
 constexpr double kGap = 0.1;         // [m]: the cradle's gap when not touching
 const std::vector<double> kBarsTargets = {1e-1, 5e-2, 3e-2}, kStrikerTargets = {3e-1, 2e-1, 1e-1};
 
-enum class Group { Cradle, Blocks, Bars };
+enum class BodiesGroup { Cradle, Blocks, Bars };
 
 struct BodiesCase {
   std::string id;  // the case's name in the case list (tests run one by it)
-  Group group;
+  BodiesGroup group;
   std::string label;
   std::string problem;
   std::map<std::string, std::string> params;
@@ -84,9 +83,9 @@ struct BodiesCase {
 
 const std::vector<double> kRatios = {0.01, 0.1, 1, 10};
 // The run whose ball positions are kept, and the exact march's samples for its figure.
-const std::string kTrajectoryCase = "cradle-gap-e05";
+const std::string kBodiesTrajectoryCase = "cradle-gap-e05";
 constexpr double kTrajectoryRatio = 0.1;
-constexpr int kExactSamples = 600;
+constexpr int kBodiesExactSamples = 600;
 // The two-blocks runs pictured deformed: the scheme under study and the reference.
 const std::string kSnapshotCase = "blocks";
 const std::vector<std::string> kSnapshotSchemes = {"cd-lagrange", "penalty-bdf"};
@@ -100,19 +99,19 @@ std::map<std::string, std::string> with(std::map<std::string, std::string> p, co
   return p;
 }
 
-const std::vector<BodiesCase> kCases = {
-    {"cradle-touching-e1", Group::Cradle, "e 1, touching", "ball-chain", {{"n", "3"}, {"gap", "0"}, {"e", "1"}}, {1e-3}},
-    {"cradle-gap-e1", Group::Cradle, "e 1, gap 0.1", "ball-chain", {{"n", "3"}, {"gap", "0.1"}, {"e", "1"}}, kRatios},
-    {"cradle-touching-e05", Group::Cradle, "e 0.5, touching", "ball-chain", {{"n", "3"}, {"gap", "0"}, {"e", "0.5"}}, {1e-3}},
-    {"cradle-gap-e05", Group::Cradle, "e 0.5, gap 0.1", "ball-chain", {{"n", "3"}, {"gap", "0.1"}, {"e", "0.5"}}, kRatios},
-    {"blocks", Group::Blocks, "mu 0", "two-blocks", kBlocks, {1e-4}},
-    {"blocks-mu", Group::Blocks, "mu 0.3", "two-blocks", with(kBlocks, "mu", "0.3"), {1e-4}},
-    {"two-bars", Group::Bars, "two-bars, L1 1, L2 2, lumped", "two-bars", {{"L1", "1"}, {"L2", "2"}}, kMeshes},
-    {"mass-on-bar", Group::Bars, "mass-on-bar, M 1, lumped", "mass-on-bar", {{"M", "1"}}, kMeshes},
+const std::vector<BodiesCase> kBodiesCases = {
+    {"cradle-touching-e1", BodiesGroup::Cradle, "e 1, touching", "ball-chain", {{"n", "3"}, {"gap", "0"}, {"e", "1"}}, {1e-3}},
+    {"cradle-gap-e1", BodiesGroup::Cradle, "e 1, gap 0.1", "ball-chain", {{"n", "3"}, {"gap", "0.1"}, {"e", "1"}}, kRatios},
+    {"cradle-touching-e05", BodiesGroup::Cradle, "e 0.5, touching", "ball-chain", {{"n", "3"}, {"gap", "0"}, {"e", "0.5"}}, {1e-3}},
+    {"cradle-gap-e05", BodiesGroup::Cradle, "e 0.5, gap 0.1", "ball-chain", {{"n", "3"}, {"gap", "0.1"}, {"e", "0.5"}}, kRatios},
+    {"blocks", BodiesGroup::Blocks, "mu 0", "two-blocks", kBlocks, {1e-4}},
+    {"blocks-mu", BodiesGroup::Blocks, "mu 0.3", "two-blocks", with(kBlocks, "mu", "0.3"), {1e-4}},
+    {"two-bars", BodiesGroup::Bars, "two-bars, L1 1, L2 2, lumped", "two-bars", {{"L1", "1"}, {"L2", "2"}}, kMeshes},
+    {"mass-on-bar", BodiesGroup::Bars, "mass-on-bar, M 1, lumped", "mass-on-bar", {{"M", "1"}}, kMeshes},
 };
 
-const BodiesCase& find_case(const std::string& id) {
-  for (const auto& c : kCases)
+const BodiesCase& find_bodies_case(const std::string& id) {
+  for (const auto& c : kBodiesCases)
     if (c.id == id) return c;
   throw InputError(fmt::format("bodies study: no case {}", id));
 }
@@ -122,7 +121,7 @@ RunOptions options_for(double dt, double t_end) {
   options.dt = dt;
   options.t_end = t_end;
   options.record_series = false;
-  options.max_force_evaluations = kStepBudget * static_cast<long>(std::ceil(t_end / dt));
+  options.max_force_evaluations = kBodiesStepBudget * static_cast<long>(std::ceil(t_end / dt));
   return options;
 }
 
@@ -137,7 +136,7 @@ Json run_cradle(const BodiesCase& bc, const std::string& integrator_name, double
   auto integrator = make_integrator(integrator_name);
   if (const auto declined = init_or_decline(*integrator, chain)) return {{"status", "n/a"}, {"message", *declined}};
   const Vec v0 = chain.initial_state().v;
-  const bool trajectory = bc.id == kTrajectoryCase && knob == kTrajectoryRatio;
+  const bool trajectory = bc.id == kBodiesTrajectoryCase && knob == kTrajectoryRatio;
   std::vector<double> trajectory_t = {0.0}, trajectory_u(v0.size(), 0.0);
   const RunResult r = run(chain, *integrator, options_for(dt, std::max(3.0, 20 * dt)), [&](const Integrator& it, const StepInfo&) {
     if (!trajectory) return;
@@ -271,18 +270,18 @@ Json run_bars(const BodiesCase& bc, const std::string& integrator_name, double n
 std::vector<Json> bodies_cases(const StudyOptions&) {
   std::vector<Json> cases;
   for (const auto& entry : integrator_registry())
-    for (const auto& bc : kCases)
+    for (const auto& bc : kBodiesCases)
       for (double knob : bc.knobs) cases.push_back({{"case", bc.id}, {"integrator", entry.name}, {"knob", knob}});
   return cases;
 }
 
 Json bodies_case(const Json& c) {
-  const BodiesCase& bc = find_case(c["case"]);
+  const BodiesCase& bc = find_bodies_case(c["case"]);
   const double knob = c["knob"];
   switch (bc.group) {
-    case Group::Cradle: return run_cradle(bc, c["integrator"], knob);
-    case Group::Blocks: return run_blocks(bc, c["integrator"], knob);
-    case Group::Bars: return run_bars(bc, c["integrator"], knob);
+    case BodiesGroup::Cradle: return run_cradle(bc, c["integrator"], knob);
+    case BodiesGroup::Blocks: return run_blocks(bc, c["integrator"], knob);
+    case BodiesGroup::Bars: return run_bars(bc, c["integrator"], knob);
   }
   return {};
 }
@@ -290,13 +289,13 @@ Json bodies_case(const Json& c) {
 // The rows of one group's table, integrator by integrator, one per run (add_integrator_rows):
 // columns integrator, case, the group's own cells of run i (previous: the run of the same case
 // at the previous knob), steps, CPU and the note.
-void add_group_rows(Table& t, Group group, const std::vector<Json>& cases, const std::vector<Json>& results,
+void add_bodies_group_rows(Table& t, BodiesGroup group, const std::vector<Json>& cases, const std::vector<Json>& results,
                     const std::function<std::vector<Cell>(std::size_t i, std::optional<std::size_t> previous)>& own) {
   add_integrator_rows(
-      t, cases, results, [&](std::size_t k) { return find_case(cases[k]["case"]).group == group; },
+      t, cases, results, [&](std::size_t k) { return find_bodies_case(cases[k]["case"]).group == group; },
       [&](std::size_t i, std::optional<std::size_t> previous) {
         const Json& r = results[i];
-        std::vector<Cell> row = {cases[i]["integrator"].get<std::string>(), find_case(cases[i]["case"]).label};
+        std::vector<Cell> row = {cases[i]["integrator"].get<std::string>(), find_bodies_case(cases[i]["case"]).label};
         for (Cell& cell : own(i, previous)) row.push_back(std::move(cell));
         row.push_back(r.contains("steps") ? Cell{r["steps"].get<long>()} : Cell{});
         row.push_back(r.contains("cpu") ? Cell{r["cpu"].get<double>()} : Cell{});
@@ -305,7 +304,7 @@ void add_group_rows(Table& t, Group group, const std::vector<Json>& cases, const
       });
 }
 
-std::vector<Column> group_columns(const std::vector<Column>& own) {
+std::vector<Column> bodies_group_columns(const std::vector<Column>& own) {
   std::vector<Column> columns = {{"integrator", "", "", ""}, {"case", "", "", ""}};
   columns.insert(columns.end(), own.begin(), own.end());
   columns.insert(columns.end(), {{"steps", "", "", ""},
@@ -328,8 +327,8 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
   const std::vector<std::pair<std::string, std::string>> metadata = {{"study", "bodies"},
                                                                      {"law tolerance", fmt::format("{}", kLawTol)}};
   const std::string peers = peers_sentence();
-  const BallChain e1(Params(BallChain::parameters_spec(), find_case("cradle-gap-e1").params));
-  const BallChain e05(Params(BallChain::parameters_spec(), find_case("cradle-gap-e05").params));
+  const BallChain e1(Params(BallChain::parameters_spec(), find_bodies_case("cradle-gap-e1").params));
+  const BallChain e05(Params(BallChain::parameters_spec(), find_bodies_case("cradle-gap-e05").params));
   const auto vec = [](const Vec& v) { return fmt::format("({:.6g})", fmt::join(v.begin(), v.end(), ", ")); };
 
   Table cradle;
@@ -343,7 +342,7 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
       "energy of the final velocities). {}",
       kGap, vec(e1.sequential_outcome()), vec(e05.sequential_outcome()), vec(e1.simultaneous_outcome()),
       vec(e05.simultaneous_outcome()), kLawTol, peers);
-  cradle.columns = group_columns({{"dt v0/gap", "", "{}", "n/a: touching (gap = 0)"},
+  cradle.columns = bodies_group_columns({{"dt v0/gap", "", "{}", "n/a: touching (gap = 0)"},
                                   {"dt", "s", "{:.0e}", ""},
                                   {"d sequential", "", "{:.2e}", ""},
                                   {"d simultaneous", "", "{:.2e}", ""},
@@ -351,9 +350,9 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
                                   {"dP", "", "{:.1e}", ""},
                                   {"dK", "", "{:.2e}", ""}});
   cradle.metadata = metadata;
-  add_group_rows(cradle, Group::Cradle, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
+  add_bodies_group_rows(cradle, BodiesGroup::Cradle, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
     const Json& r = results[i];
-    const bool touching = find_case(cases[i]["case"]).params.at("gap") == "0";
+    const bool touching = find_bodies_case(cases[i]["case"]).params.at("gap") == "0";
     return std::vector<Cell>{touching ? Cell{} : Cell{cases[i]["knob"].get<double>()}, number_cell(real_or_nan(r, "dt")),
                              number_cell(real_or_nan(r, "d_sequential")), number_cell(real_or_nan(r, "d_simultaneous")),
                              r.contains("verdict") ? Cell{r["verdict"].get<std::string>()} : Cell{},
@@ -373,7 +372,7 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
       "on the floor alone: contact rows on one node each, H diagonal), summed; ratio = together / apart: the cost of "
       "the non-diagonal H (the verdict on CD-Lagrange's \"matrix-free explicit LCP\" is its ratio). {}",
       peers);
-  blocks.columns = group_columns({{"P res.", "", "{:.1e}", ""},
+  blocks.columns = bodies_group_columns({{"P res.", "", "{:.1e}", ""},
                                   {"step gain", "", "{:.1e}", ""},
                                   {"E gain", "", "{:.1e}", ""},
                                   {"CPU/step", "s", "{:.2e}", "", true},
@@ -382,7 +381,7 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
                                   {"apart LCP it./step", "", "{:.2f}", ""},
                                   {"ratio", "", "{:.2f}", "CPU/step together / apart", true}});
   blocks.metadata = metadata;
-  add_group_rows(blocks, Group::Blocks, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
+  add_bodies_group_rows(blocks, BodiesGroup::Blocks, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
     const Json& r = results[i];
     std::vector<Cell> cells;
     for (const char* key : {"p_residual", "step_gain", "e_gain", "cpu_step", "lcp_step", "cpu_apart", "lcp_apart"})
@@ -391,8 +390,8 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
     return cells;
   });
 
-  const TwoBars two_bars(Params(TwoBars::parameters_spec(), find_case("two-bars").params));
-  const MassOnBar striker(Params(MassOnBar::parameters_spec(), find_case("mass-on-bar").params));
+  const TwoBars two_bars(Params(TwoBars::parameters_spec(), find_bodies_case("two-bars").params));
+  const MassOnBar striker(Params(MassOnBar::parameters_spec(), find_bodies_case("mass-on-bar").params));
   Table bars;
   bars.id = "bodies_bars";
   bars.title = "Two bars and a mass on a bar: errors against the exact solutions and orders";
@@ -409,7 +408,7 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
   const auto order_column = [](const std::string& of) {
     return Column{"order", "", "{:.2f}", "log-log slope of " + of + " against the previous mesh"};
   };
-  bars.columns = group_columns({{"N", "", "", "elements (bar 1)"},
+  bars.columns = bodies_group_columns({{"N", "", "", "elements (bar 1)"},
                                 {"dt", "", "{:.3e}", ""},
                                 {"duration err", "", "{:.2e}", "two-bars"},
                                 order_column("duration err"),
@@ -418,7 +417,7 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
                                 {"force err", "", "{:.2e}", ""},
                                 order_column("force err")});
   bars.metadata = metadata;
-  add_group_rows(bars, Group::Bars, cases, results, [&](std::size_t i, std::optional<std::size_t> previous) {
+  add_bodies_group_rows(bars, BodiesGroup::Bars, cases, results, [&](std::size_t i, std::optional<std::size_t> previous) {
     const Json& r = results[i];
     std::vector<Cell> cells = {static_cast<long>(cases[i]["knob"].get<double>()), number_cell(real_or_nan(r, "dt"))};
     for (const char* key : {"duration_err", "exit_err", "force_err"}) {
@@ -446,7 +445,7 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
                              median_cpu_text(), ranking);
   rank.metadata = metadata;
 
-  const BallChain chain(Params(BallChain::parameters_spec(), find_case(kTrajectoryCase).params));
+  const BallChain chain(Params(BallChain::parameters_spec(), find_bodies_case(kBodiesTrajectoryCase).params));
   Table trajectory;
   trajectory.id = "bodies_cradle_trajectory";
   trajectory.title = fmt::format("Newton's cradle (3 balls, gap {} m, e = 0.5): ball positions against the exact ones, "
@@ -481,8 +480,8 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
                                                                       u.begin() + static_cast<long>((k + 1) * chain.ndof())));
     }
   const double t_end = 3.0;
-  for (int k = 0; k <= kExactSamples; ++k) {
-    const double t = t_end * k / kExactSamples;
+  for (int k = 0; k <= kBodiesExactSamples; ++k) {
+    const double t = t_end * k / kBodiesExactSamples;
     const Vec u = chain.exact_state(t)->u;
     std::vector<Json> exact(u.begin(), u.end());
     add_positions("exact", t, exact);

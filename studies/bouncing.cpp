@@ -17,7 +17,7 @@ namespace nsb {
 
 namespace {
 
-constexpr int kImpacts = 5;  // impacts compared one by one
+constexpr int kComparedImpacts = 5;  // impacts compared one by one
 constexpr double kG = 9.81;
 
 struct StepRecord {
@@ -25,9 +25,9 @@ struct StepRecord {
 };
 
 constexpr double kHistoryStep = 1e-3;  // the step whose energy history is drawn
-constexpr int kHistoryPoints = 400;
+constexpr int kEnergyHistoryPoints = 400;
 
-struct CaseResult {
+struct BouncingCaseResult {
   bool diverged = false;
   std::vector<double> history_t, history_energy;  // E/E0 at about kHistoryPoints times
   std::string message;
@@ -38,16 +38,16 @@ struct CaseResult {
   long steps = 0;
 };
 
-BouncingMass make_problem(double e) {
+BouncingMass make_bouncing_mass(double e) {
   return BouncingMass(Params(BouncingMass::parameters_spec(), {{"e", fmt::format("{}", e)}}));
 }
 
 double horizon(const BouncingMass& p, double e) {
-  return e < 1.0 ? p.zeno_time() + 0.5 : p.impact_time(kImpacts + 1) + 0.1;
+  return e < 1.0 ? p.zeno_time() + 0.5 : p.impact_time(kComparedImpacts + 1) + 0.1;
 }
 
-CaseResult simulate(const std::string& integrator_name, double e, double dt) {
-  const BouncingMass problem = make_problem(e);
+BouncingCaseResult simulate(const std::string& integrator_name, double e, double dt) {
+  const BouncingMass problem = make_bouncing_mass(e);
   auto integrator = make_integrator(integrator_name);
   integrator->init(problem, problem.initial_state());
   RunOptions options;
@@ -59,9 +59,9 @@ CaseResult simulate(const std::string& integrator_name, double e, double dt) {
   const RunResult r = run(problem, *integrator, options, [&](const Integrator& it, const StepInfo&) {
     steps.push_back({it.state().t, it.state().u[0], it.state().v[0], it.energy().total(), it.impulses()[0]});
   });
-  CaseResult c;
+  BouncingCaseResult c;
   if (dt == kHistoryStep) {
-    const std::size_t stride = std::max<std::size_t>(1, steps.size() / kHistoryPoints);
+    const std::size_t stride = std::max<std::size_t>(1, steps.size() / kEnergyHistoryPoints);
     for (std::size_t k = 0; k < steps.size(); k += stride) {
       c.history_t.push_back(steps[k].t);
       c.history_energy.push_back(steps[k].energy / problem.initial_energy());
@@ -81,7 +81,7 @@ CaseResult simulate(const std::string& integrator_name, double e, double dt) {
     if (steps[k].impulse > 0.0 && (k == 0 || steps[k - 1].impulse == 0.0)) starts.push_back(k);
   // Impacts compared: those whose exact flight lasts at least 10 steps (shorter flights are
   // below the step's resolution and belong to the Zeno phase).
-  for (int i = 1; i <= static_cast<int>(starts.size()) && i <= kImpacts; ++i) {
+  for (int i = 1; i <= static_cast<int>(starts.size()) && i <= kComparedImpacts; ++i) {
     if (problem.impact_time(i + 1) - problem.impact_time(i) < 10 * dt) break;
     c.impact_time_error.push_back(steps[starts[i - 1]].t - problem.impact_time(i));
     if (static_cast<std::size_t>(i) < starts.size())
@@ -114,7 +114,7 @@ std::vector<Json> bouncing_cases(const StudyOptions& opt) {
 }
 
 Json bouncing_case(const Json& c) {
-  CaseResult r;
+  BouncingCaseResult r;
   try {
     r = simulate(c["integrator"], c["e"], c["dt"]);
   } catch (const InputError& e) {  // the scheme declines the problem (e.g. newmark-lm at e > 0)
@@ -147,7 +147,7 @@ std::vector<Table> bouncing_tables(const std::vector<Json>& cases, const std::ve
       "detected as the first step after which |v| <= 2 g dt and q <= 2 g dt^2 for the rest of the run. "
       "Errors at or below {:.0e} are round-off and carry no order (n/a). "
       "n/a: the scheme declines the problem (its reason in the next cell).",
-      kImpacts, kRoundOffError);
+      kComparedImpacts, kRoundOffError);
   table.columns = {
       {"integrator", "", "", ""},
       {"e", "", "{}", "restitution"},
@@ -200,7 +200,7 @@ std::vector<Table> bouncing_tables(const std::vector<Json>& cases, const std::ve
   while (next < cases.size()) {
     const std::string integrator = cases[next]["integrator"];
     for (double e : restitutions) {
-      const BouncingMass problem = make_problem(e);
+      const BouncingMass problem = make_bouncing_mass(e);
       std::vector<double> t_err, e_err, z_err;
       for (std::size_t s = 0; s < steps.size(); ++s) {
         const double dt = steps[s];

@@ -39,7 +39,7 @@ namespace nsb {
 
 namespace {
 
-const std::vector<std::string> kMasses = {"lumped", "consistent", "singular"};
+const std::vector<std::string> kBouncingBarMasses = {"lumped", "consistent", "singular"};
 constexpr double kBudgetPerStep = 4.0;
 constexpr long kFigureN = 100;
 constexpr double kFigureAlpha = 0.9;
@@ -69,7 +69,7 @@ std::vector<Json> bouncing_bar_cases(const StudyOptions& opt) {
   }
   std::vector<Json> cases;
   for (const auto& entry : integrator_registry())
-    for (const auto& mass : kMasses)
+    for (const auto& mass : kBouncingBarMasses)
       for (const auto& [N, alpha] : grid)
         if ((!entry.reference && (!entry.peer || opt.full || N <= kPeerMaxN)) ||
             (entry.reference && alpha == kFigureAlpha && (opt.full || N <= kReferenceMaxN)))
@@ -188,7 +188,7 @@ std::vector<Table> bouncing_bar_tables(const std::vector<Json>& cases, const std
   dep.caption = setup + " DEP's finding: the singular (modified) mass keeps the energy, the lumped mass loses it. "
                         "Empty: n/a or the run stopped before the last period (table bouncing_bar).";
   dep.columns = {{"integrator", "", "", ""}};
-  for (const auto& m : kMasses) dep.columns.push_back({fmt::format("E err, {}", m), "", "{:.2e}", ""});
+  for (const auto& m : kBouncingBarMasses) dep.columns.push_back({fmt::format("E err, {}", m), "", "{:.2e}", ""});
   dep.metadata = metadata;
   dep.headline = false;
 
@@ -253,7 +253,7 @@ std::vector<Table> bouncing_bar_tables(const std::vector<Json>& cases, const std
   }
   for (const auto& name : dep_order) {
     std::vector<Cell> row = {name};
-    for (const auto& m : kMasses) {
+    for (const auto& m : kBouncingBarMasses) {
       const auto it = dep_rows[name].find(m);
       row.push_back(it == dep_rows[name].end() ? Cell("") : it->second);
     }

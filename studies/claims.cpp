@@ -34,6 +34,7 @@
 #include "problems/rolling_disk.hpp"
 #include "studies/claims_conditions.hpp"
 #include "studies/hausdorff_study.hpp"
+#include "studies/measures.hpp"
 
 namespace nsb {
 
@@ -99,7 +100,6 @@ Verdict robustness_verdict(bool completed, long impacts, long target, double ene
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct Work {
   long runs = 0, steps = 0, forces = 0, factorizations = 0, solves = 0, lcp = 0, contact_steps = 0;
@@ -205,7 +205,7 @@ struct Conditions {
   std::vector<AdaptiveSteps> adaptive;  // the talk's rule, then the energy balance
 };
 
-constexpr long kFreeFlightSteps = 100'000, kFloorSteps = 2000;
+constexpr long kFreeFlightSteps = 100'000, kClaimsFloorSteps = 2000;
 
 Conditions conditions_runs() {
   Conditions c;
@@ -214,7 +214,7 @@ Conditions conditions_runs() {
   c.lumped_inelastic = bar_impact_energy("cd-lagrange", "lumped", 0.0);
   c.lumped_elastic = bar_impact_energy("cd-lagrange", "lumped", 1.0);
   c.consistent = bar_impact_energy("cd-lagrange", "consistent", 1.0);
-  c.block = spinning_block("cd-lagrange", kFreeFlightSteps, kFloorSteps);
+  c.block = spinning_block("cd-lagrange", kFreeFlightSteps, kClaimsFloorSteps);
   c.bodies = bodies_contact_cost("cd-lagrange");
   c.adaptive = {adaptive_steps("talk"), adaptive_steps("energy-balance")};
   return c;
@@ -542,7 +542,7 @@ std::vector<Table> claims_tables(const StudyOptions& options) {
                          cond.block.impulse_moment, momentum.linear, momentum.angular),
              verdict_name(momentum_verdict(std::max(cond.block.free_linear, 0.0), std::max(cond.block.free_angular, cond.block.floor_angular))),
              fmt::format("a deformable body: the 2D SVK block spinning at 3 rad/s, in free flight for {} steps, then on the "
-                         "frictionless floor for {} steps", kFreeFlightSteps, kFloorSteps),
+                         "frictionless floor for {} steps", kFreeFlightSteps, kClaimsFloorSteps),
              verdict_name(momentum_verdict(momentum.linear, momentum.angular)),
              "rigid bodies and friction (the rolling disk, e 0.5, mu 0.3); a spring chain between walls",
              "[claims_measures](claims_measures.md), [block](block.md)"});

@@ -15,15 +15,12 @@
 #include "run/run.hpp"
 #include "studies/hausdorff.hpp"
 #include "studies/hausdorff_study.hpp"
+#include "studies/measures.hpp"
 
 namespace nsb {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kLevels = 4;
-constexpr std::size_t kExactSamples = 20000;
-constexpr double kJumpFraction = 0.02;
 constexpr double kBarStepFraction = 0.9;
 
 using Overrides = std::map<std::string, std::string>;
@@ -97,7 +94,7 @@ std::vector<BarGraphFit> bar_hausdorff(const std::string& integrator, const std:
     for (const auto& mass : masses) {
       const std::size_t first = out.size();
       for (const auto& obs : bar_graph_observables()) out.push_back({problem, mass, obs, {}, {}, {}, ""});
-      for (int level = 0; level < kLevels; ++level) {
+      for (int level = 0; level < kHausdorffLevels; ++level) {
         const auto bar = make_bar(problem, {{"mass", mass}, {"N", fmt::format("{}", 25L << level)}});
         const double dt = kBarStepFraction * bar->stable_step(), t_end = bar_horizon(*bar);
         std::array<Polyline, 4> graphs;
@@ -111,7 +108,7 @@ std::vector<BarGraphFit> bar_hausdorff(const std::string& integrator, const std:
             continue;
           }
           const auto exact = exact_value(*bar, k, t_end);
-          const Polyline reference = sampled_graph(exact, t_end, kExactSamples, bar->gravity() == 0.0 ? bar->impact_times(t_end) : std::vector<double>{}, kJumpFraction);
+          const Polyline reference = sampled_graph(exact, t_end, kHausdorffExactSamples, bar->gravity() == 0.0 ? bar->impact_times(t_end) : std::vector<double>{}, kHausdorffJumpFraction);
           f.distance.push_back(graph_errors(graphs[k], reference, exact, t_end).hausdorff);
         }
       }

@@ -68,20 +68,19 @@ namespace nsb {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr long kStepBudget = 20;   // F_int evaluations allowed per step of the requested size
+constexpr long kFrictionStepBudget = 20;   // F_int evaluations allowed per step of the requested size
 constexpr double kHardStep = 1e-3;
 const std::vector<double> kRankingTargets = {1e-2, 1e-3, 1e-4};  // [s]
 // The disk's slip history: the coarsest step, where the schemes' steps are told apart.
-const std::string kTrajectoryCase = "disk";
+const std::string kFrictionTrajectoryCase = "disk";
 constexpr double kTrajectoryStep = 1e-2;
-constexpr int kExactSamples = 500;
+constexpr int kFrictionExactSamples = 500;
 
-enum class Group { Sliding, Disk, Block, Hard };
+enum class FrictionGroup { Sliding, Disk, Block, Hard };
 
 struct FrictionCase {
   std::string id;  // the case's name in the case list (tests run one by it)
-  Group group;
+  FrictionGroup group;
   std::string label;
   std::string problem;
   std::map<std::string, std::string> params;
@@ -96,31 +95,31 @@ const std::vector<double> kFullSteps = {1e-2, 1e-3, 1e-4, 1e-5};
 // mu = tan(30 deg) to the last digit (the sliding mass takes it as tan alpha).
 const std::string kTan30 = fmt::format("{:.17g}", std::tan(std::numbers::pi / 6));
 
-const std::vector<FrictionCase> kCases = {
-    {"slide-stop", Group::Sliding, "alpha 30, mu 0.8, v0 2: stops, sticks", "sliding-mass",
+const std::vector<FrictionCase> kFrictionCases = {
+    {"slide-stop", FrictionGroup::Sliding, "alpha 30, mu 0.8, v0 2: stops, sticks", "sliding-mass",
      {{"alpha", "30"}, {"mu", "0.8"}, {"v0", "2"}}, kSteps, kFullSteps, 2.0, true},
-    {"slide-on", Group::Sliding, "alpha 30, mu 0.3, v0 2: slides on", "sliding-mass",
+    {"slide-on", FrictionGroup::Sliding, "alpha 30, mu 0.3, v0 2: slides on", "sliding-mass",
      {{"alpha", "30"}, {"mu", "0.3"}, {"v0", "2"}}, kSteps, kFullSteps, 2.0},
-    {"disk", Group::Disk, "h0 0, v0 1, omega0 0, mu 0.3, kappa 1/2", "rolling-disk",
+    {"disk", FrictionGroup::Disk, "h0 0, v0 1, omega0 0, mu 0.3, kappa 1/2", "rolling-disk",
      {{"h0", "0"}, {"v0", "1"}, {"omega0", "0"}, {"mu", "0.3"}, {"kappa", "0.5"}}, kSteps, kFullSteps, 0.5, true},
-    {"block", Group::Block, "block-2d 8x4, mu 0.5, vx 1", "block-2d", {{"mu", "0.5"}, {"vx", "1"}}, {1e-4},
+    {"block", FrictionGroup::Block, "block-2d 8x4, mu 0.5, vx 1", "block-2d", {{"mu", "0.5"}, {"vx", "1"}}, {1e-4},
      {1e-4, 5e-5}, 0.3},
-    {"stick", Group::Hard, "stick below the friction angle (alpha 20, mu 0.5, v0 0), 10^5 steps", "sliding-mass",
+    {"stick", FrictionGroup::Hard, "stick below the friction angle (alpha 20, mu 0.5, v0 0), 10^5 steps", "sliding-mass",
      {{"alpha", "20"}, {"mu", "0.5"}, {"v0", "0"}}, {kHardStep}, {kHardStep}, 1e5 * kHardStep},
-    {"tan-alpha", Group::Hard, "mu = tan alpha (alpha 30, v0 1): slides at v0", "sliding-mass",
+    {"tan-alpha", FrictionGroup::Hard, "mu = tan alpha (alpha 30, v0 1): slides at v0", "sliding-mass",
      {{"alpha", "30"}, {"mu", kTan30}, {"v0", "1"}}, {kHardStep}, {kHardStep}, 2.0},
-    {"reversal", Group::Hard, "reversal (alpha 30, mu 0.3, v0 -2 up the slope): stops, slides down", "sliding-mass",
+    {"reversal", FrictionGroup::Hard, "reversal (alpha 30, mu 0.3, v0 -2 up the slope): stops, slides down", "sliding-mass",
      {{"alpha", "30"}, {"mu", "0.3"}, {"v0", "-2"}}, {kHardStep}, {kHardStep}, 2.0},
-    {"mu-10", Group::Hard, "mu 10 (alpha 30, v0 2)", "sliding-mass", {{"alpha", "30"}, {"mu", "10"}, {"v0", "2"}},
+    {"mu-10", FrictionGroup::Hard, "mu 10 (alpha 30, v0 2)", "sliding-mass", {{"alpha", "30"}, {"mu", "10"}, {"v0", "2"}},
      {kHardStep}, {kHardStep}, 2.0},
-    {"drop-e0", Group::Hard, "disk dropped with spin (h0 0.1, omega0 20, v0 0), e 0", "rolling-disk",
+    {"drop-e0", FrictionGroup::Hard, "disk dropped with spin (h0 0.1, omega0 20, v0 0), e 0", "rolling-disk",
      {{"h0", "0.1"}, {"omega0", "20"}, {"v0", "0"}, {"e", "0"}}, {kHardStep}, {kHardStep}, 1.0},
-    {"drop-e05", Group::Hard, "disk dropped with spin (h0 0.1, omega0 20, v0 0), e 0.5", "rolling-disk",
+    {"drop-e05", FrictionGroup::Hard, "disk dropped with spin (h0 0.1, omega0 20, v0 0), e 0.5", "rolling-disk",
      {{"h0", "0.1"}, {"omega0", "20"}, {"v0", "0"}, {"e", "0.5"}}, {kHardStep}, {kHardStep}, 1.0},
 };
 
-const FrictionCase& find_case(const std::string& id) {
-  for (const auto& c : kCases)
+const FrictionCase& find_friction_case(const std::string& id) {
+  for (const auto& c : kFrictionCases)
     if (c.id == id) return c;
   throw InputError(fmt::format("friction study: no case {}", id));
 }
@@ -158,7 +157,7 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
   const Vec m = diagonal_mass(problem->mass_matrix()).value();
   const double p_scale = m.dot(s0.v.cwiseAbs());
 
-  const bool trajectory = fc.id == kTrajectoryCase && dt == kTrajectoryStep;
+  const bool trajectory = fc.id == kFrictionTrajectoryCase && dt == kTrajectoryStep;
   std::vector<double> trajectory_t, trajectory_slip;
   Observables obs(*problem);
   const std::size_t ix = obs.index("x"), iv = obs.index("v"), iv_exact = obs.index("v_exact"), ipx = obs.index("px");
@@ -186,7 +185,7 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
   options.dt = dt;
   options.t_end = fc.t_end;
   options.record_series = false;
-  options.max_force_evaluations = kStepBudget * static_cast<long>(std::ceil(fc.t_end / dt));
+  options.max_force_evaluations = kFrictionStepBudget * static_cast<long>(std::ceil(fc.t_end / dt));
   const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo& info) {
     const State& s = it.state();
     const Vec& normal = it.impulses();
@@ -259,13 +258,13 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
 std::vector<Json> friction_cases(const StudyOptions& opt) {
   std::vector<Json> cases;
   for (const auto& entry : integrator_registry())
-    for (const auto& fc : kCases)
+    for (const auto& fc : kFrictionCases)
       for (double dt : opt.full ? fc.full_steps : fc.steps)
         cases.push_back({{"case", fc.id}, {"integrator", entry.name}, {"dt", dt}});
   return cases;
 }
 
-Json friction_case(const Json& c) { return measure(find_case(c["case"]), c["integrator"], c["dt"]); }
+Json friction_case(const Json& c) { return measure(find_friction_case(c["case"]), c["integrator"], c["dt"]); }
 
 // A measured error with its order against the previous step of the same case.
 struct Measure {
@@ -274,7 +273,7 @@ struct Measure {
 };
 
 // Why a run is n/a, diverged or over budget, or that it stopped where the exact solution never does.
-std::string note_of(const Json& r) {
+std::string friction_note(const Json& r) {
   if (r["status"] != "ok") return status_note(r);
   if (r["never_stops"].get<bool>() && !r["t_stop"].is_null())
     return fmt::format("stops at {:.4g} s; the exact solution never does", r["t_stop"].get<double>());
@@ -283,7 +282,7 @@ std::string note_of(const Json& r) {
 
 // The columns of every table: integrator, case, dt, the group's own, then the run's largest
 // energy gain and when, steps, CPU time and the note.
-std::vector<Column> group_columns(const std::vector<Column>& own) {
+std::vector<Column> friction_group_columns(const std::vector<Column>& own) {
   std::vector<Column> columns = {{"integrator", "", "", ""}, {"case", "", "", ""}, {"dt", "s", "{:.0e}", "step"}};
   columns.insert(columns.end(), own.begin(), own.end());
   columns.insert(columns.end(), {{"max E gain", "", "{:.1e}", "max over steps of (E_{k+1} - E_k) / E scale"},
@@ -297,23 +296,23 @@ std::vector<Column> group_columns(const std::vector<Column>& own) {
 
 // The rows of one group's table (columns from group_columns), integrator by integrator, one per
 // run (add_integrator_rows): `own` gives the group's own cells of run i.
-void add_group_rows(Table& t, Group group, const std::vector<Json>& cases, const std::vector<Json>& results,
+void add_friction_group_rows(Table& t, FrictionGroup group, const std::vector<Json>& cases, const std::vector<Json>& results,
                     const std::function<std::vector<Cell>(std::size_t i, std::optional<std::size_t> previous)>& own) {
   add_integrator_rows(
-      t, cases, results, [&](std::size_t k) { return find_case(cases[k]["case"]).group == group; },
+      t, cases, results, [&](std::size_t k) { return find_friction_case(cases[k]["case"]).group == group; },
       [&](std::size_t i, std::optional<std::size_t> previous) {
         const Json& r = results[i];
-        std::vector<Cell> row = {cases[i]["integrator"].get<std::string>(), find_case(cases[i]["case"]).label,
+        std::vector<Cell> row = {cases[i]["integrator"].get<std::string>(), find_friction_case(cases[i]["case"]).label,
                                  cases[i]["dt"].get<double>()};
         for (Cell& cell : own(i, previous)) row.push_back(std::move(cell));
         row.insert(row.end(), {number_cell(real_or_nan(r, "energy_gain")), number_cell(real_or_nan(r, "energy_gain_t")),
-                               r["steps"].get<long>(), r["cpu"].get<double>(), note_of(r)});
+                               r["steps"].get<long>(), r["cpu"].get<double>(), friction_note(r)});
         return row;
       });
 }
 
 // The table of a convergence group: each measure and its order.
-Table convergence_table(const std::string& id, const std::string& title, const std::string& caption, Group group,
+Table convergence_table(const std::string& id, const std::string& title, const std::string& caption, FrictionGroup group,
                         const std::vector<Measure>& measures, const std::vector<Json>& cases,
                         const std::vector<Json>& results) {
   Table t;
@@ -325,8 +324,8 @@ Table convergence_table(const std::string& id, const std::string& title, const s
     own.push_back(m.column);
     own.push_back({"order", "", "{:.2f}", "log-log slope of " + m.column.name + " against the previous dt"});
   }
-  t.columns = group_columns(own);
-  add_group_rows(t, group, cases, results, [&](std::size_t i, std::optional<std::size_t> previous) {
+  t.columns = friction_group_columns(own);
+  add_friction_group_rows(t, group, cases, results, [&](std::size_t i, std::optional<std::size_t> previous) {
     std::vector<Cell> cells;
     for (const auto& m : measures) {
       const double e = real_or_nan(results[i], m.key);
@@ -360,7 +359,7 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
       "max |v - v_exact|: largest over the steps of the reported velocity (CD-Lagrange: v = M^-1 P_{k+3/2}, half a step "
       "ahead) against the exact one";
 
-  const SlidingMass stopping(Params(SlidingMass::parameters_spec(), find_case("slide-stop").params));
+  const SlidingMass stopping(Params(SlidingMass::parameters_spec(), find_friction_case("slide-stop").params));
   Table sliding = convergence_table(
       "friction_sliding", "Sliding mass on a slope with Coulomb friction: stop time, stop distance, velocity",
       fmt::format("m = 1 kg, g = 9.81 m/s^2, alpha = 30 deg, v0 = 2 m/s down the slope, to t = 2 s. Exact: while "
@@ -369,12 +368,12 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
                   "d_stop: the contact's tangential path sum |T (U_k+1 - U_k)| up to t_stop. {}. {}. {}. n/a: the "
                   "scheme declines friction (its reason in the note), or the measure does not apply.",
                   stopping.stop_time(), stopping.stop_distance(), stop_rule, v_rule, energy_rule, order_rule),
-      Group::Sliding,
+      FrictionGroup::Sliding,
       {{"t_stop_err", {"t_stop err", "s", "{:.2e}", "|t_stop - t_s|"}},
        {"d_stop_err", {"d_stop err", "m", "{:.2e}", "|d_stop - d_s|"}},
        {"v_err", {"max |v - v_exact|", "m/s", "{:.2e}", "along the slope"}}},
       cases, results);
-  const RollingDisk disk(Params(RollingDisk::parameters_spec(), find_case("disk").params));
+  const RollingDisk disk(Params(RollingDisk::parameters_spec(), find_friction_case("disk").params));
   Table rolling = convergence_table(
       "friction_disk", "Rolling disk on the floor: rolling onset and final speed",
       fmt::format("m = 1 kg, R = 0.1 m, kappa = 1/2 (inertia kappa m R^2), g = 9.81 m/s^2, on the floor (h0 = 0) at "
@@ -384,7 +383,7 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
                   "kappa R omega0) / (1 + kappa) = {:.6f} m/s. t_roll: as t_stop of friction_sliding ({}). v_f err: "
                   "|v - v_exact| at t = 0.5 s. {}. {}. {}.",
                   disk.parameters().real("e"), disk.rolling_onset_time(), disk.final_velocity(), stop_rule, v_rule, energy_rule, order_rule),
-      Group::Disk,
+      FrictionGroup::Disk,
       {{"t_stop_err", {"t_roll err", "s", "{:.2e}", "|t_roll - t*|"}},
        {"v_final_err", {"v_f err", "m/s", "{:.2e}", "|v(t_end) - v_f|"}},
        {"v_err", {"max |v - v_exact|", "m/s", "{:.2e}", "centre velocity"}}},
@@ -402,12 +401,12 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
       "velocity), max |Delta P_x + s mu sum Lambda_N| / sum m |v0| (round-off expected). {}; E includes the elastic "
       "energy, which the schemes' discretisation changes with or without friction.",
       kSlipTol, energy_rule);
-  block.columns = group_columns(
+  block.columns = friction_group_columns(
       {{"P_x res.", "", "{:.1e}", "P_x balance with the tangential impulses, relative"},
        {"sliding steps", "", "", "steps where every closed contact slides the same way"},
        {"slide res.", "", "{:.1e}", "Delta P_x + s mu sum Lambda_N on those steps, relative"}});
   block.metadata = metadata;
-  add_group_rows(block, Group::Block, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
+  add_friction_group_rows(block, FrictionGroup::Block, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
     const Json& r = results[i];
     return std::vector<Cell>{number_cell(real_or_nan(r, "px_residual")),
                              r.contains("slide_steps") ? Cell{r["slide_steps"].get<long>()} : Cell{},
@@ -430,7 +429,7 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
       "comes to lie on the floor, which the exact solution does not time). {}. n/a: the scheme declines friction "
       "(reason in the note) or the measure does not apply.",
       kHardStep, v_rule, energy_rule);
-  hard.columns = group_columns(
+  hard.columns = friction_group_columns(
       {{"t_end", "s", "{}", ""},
        {"t_stop err", "s", "{:.2e}", "|t_stop - exact| (disk: rolling onset)"},
        {"creep", "m/s", "{:.2e}", "|x(t_end) - x(0)| / t_end where the exact mass rests throughout"},
@@ -439,8 +438,8 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
        {"v after impact 1 err", "m/s", "{:.2e}", ""},
        {"v_f err", "m/s", "{:.2e}", "|v - v_exact| at t_end"}});
   hard.metadata = metadata;
-  add_group_rows(hard, Group::Hard, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
-    std::vector<Cell> cells = {find_case(cases[i]["case"]).t_end};
+  add_friction_group_rows(hard, FrictionGroup::Hard, cases, results, [&](std::size_t i, std::optional<std::size_t>) {
+    std::vector<Cell> cells = {find_friction_case(cases[i]["case"]).t_end};
     for (const char* key : {"t_stop_err", "creep", "late_creep", "v_err", "v_impact_err", "v_final_err"})
       cells.push_back(number_cell(real_or_nan(results[i], key)));
     return cells;
@@ -448,12 +447,12 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
 
   // Ranking: one curve per integrator and ranked case; a declined integrator's curve is empty.
   std::vector<RankingProblem> ranking;
-  for (const auto& fc : kCases)
+  for (const auto& fc : kFrictionCases)
     if (fc.ranked)
-      ranking.push_back({fc.problem + ", " + fc.label + (fc.group == Group::Disk ? ": rolling onset" : ": stop time"),
+      ranking.push_back({fc.problem + ", " + fc.label + (fc.group == FrictionGroup::Disk ? ": rolling onset" : ": stop time"),
                          "the exact solution", 0.0, kRankingTargets, {}});
   std::vector<std::string> ranked;
-  for (const auto& fc : kCases)
+  for (const auto& fc : kFrictionCases)
     if (fc.ranked) ranked.push_back(fc.id);
   add_ranking_curves(ranking, ranked, cases, results, [&](std::size_t i) {
     return WorkPoint{fmt::format("dt = {:.0e}", cases[i]["dt"].get<double>()), real_or_nan(results[i], "cpu_median"),
@@ -483,9 +482,9 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
       for (std::size_t k = 0; k < t.size(); ++k)
         trajectory.add_row({cases[i]["integrator"].get<std::string>(), t[k], number_cell(results[i]["trajectory_slip"][k])});
     }
-  const double t_end = find_case(kTrajectoryCase).t_end;
-  for (int k = 0; k <= kExactSamples; ++k) {
-    const double t = t_end * k / kExactSamples;
+  const double t_end = find_friction_case(kFrictionTrajectoryCase).t_end;
+  for (int k = 0; k <= kFrictionExactSamples; ++k) {
+    const double t = t_end * k / kFrictionExactSamples;
     trajectory.add_row({std::string("exact"), t, (disk.contacts().tangent * disk.exact_state(t)->v)(0)});
   }
   return {sliding, rolling, block, hard, rank, trajectory};

@@ -71,4 +71,10 @@ double hausdorff(const Polyline& a, const Polyline& b, HausdorffTolerance tol = 
 Polyline sampled_graph(const std::function<double(double)>& value, double t_end, std::size_t n,
                        const std::vector<double>& jump_times, double jump_fraction);
 
+// The settings the Hausdorff measurements share (the hausdorff study, claim (3)'s conditions):
+// refinement levels, samples of an exact graph, and the jump threshold of sampled_graph.
+inline constexpr int kHausdorffLevels = 4;
+inline constexpr std::size_t kHausdorffExactSamples = 20000;
+inline constexpr double kHausdorffJumpFraction = 0.02;
+
 }  // namespace nsb

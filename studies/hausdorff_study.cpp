@@ -41,10 +41,7 @@ namespace nsb {
 
 namespace {
 
-constexpr std::size_t kExactSamples = 20000;
 constexpr double kModalOutputStep = 2e-5;
-constexpr double kJumpFraction = 0.02;
-constexpr int kLevels = 4;
 
 using Overrides = std::map<std::string, std::string>;
 
@@ -119,8 +116,8 @@ Polyline run_graph(const Problem& problem, Integrator& integrator, double dt, do
 }
 
 Polyline exact_graph(const Problem& problem, const std::function<double(const State&)>& value, double t_end) {
-  return sampled_graph([&](double t) { return value(*problem.exact_state(t)); }, t_end, kExactSamples,
-                       problem.impact_times(t_end), kJumpFraction);
+  return sampled_graph([&](double t) { return value(*problem.exact_state(t)); }, t_end, kHausdorffExactSamples,
+                       problem.impact_times(t_end), kHausdorffJumpFraction);
 }
 
 double interpolate(const Polyline& g, double t) {
@@ -153,7 +150,7 @@ std::vector<Json> hausdorff_cases(const StudyOptions&) {
   for (std::size_t s = 0; s < subjects().size(); ++s)
     for (const auto& entry : integrator_registry())
       if (!entry.reference && !entry.peer)
-        for (int level = 0; level < kLevels; ++level) cases.push_back({{"subject", s}, {"integrator", entry.name}, {"level", level}});
+        for (int level = 0; level < kHausdorffLevels; ++level) cases.push_back({{"subject", s}, {"integrator", entry.name}, {"level", level}});
   return cases;
 }
 
@@ -183,7 +180,7 @@ Json hausdorff_case(const Json& c) {
   } else if (s.problem == "bouncing-bar") {
     const BouncingBarExact exact(problem->parameters(), t_end);
     reference_at = [exact](double t) { return exact.velocity(0.0, t); };
-    reference = sampled_graph(reference_at, t_end, kExactSamples, {}, kJumpFraction);
+    reference = sampled_graph(reference_at, t_end, kHausdorffExactSamples, {}, kHausdorffJumpFraction);
   } else {
     const auto exact_value = [&](const State& st) { return observed(*problem, s, st, Vec::Zero(problem->ncontacts()), 0.0); };
     reference = exact_graph(*problem, exact_value, t_end);
@@ -194,8 +191,6 @@ Json hausdorff_case(const Json& c) {
               {"from_reference", real(e.from_reference)}, {"value_scale", e.value_scale}});
   return out;
 }
-
-double number(const Json& r, const char* key) { return r.contains(key) ? real(r[key]) : std::numeric_limits<double>::quiet_NaN(); }
 
 std::vector<Table> hausdorff_tables(const std::vector<Json>& cases, const std::vector<Json>& results, const StudyOptions&) {
   Table t;
@@ -232,15 +227,15 @@ std::vector<Table> hausdorff_tables(const std::vector<Json>& cases, const std::v
       const Json& r = results[k];
       const std::string status = r["status"];
       t.add_row({subjects()[s].problem, name, r["dt"].get<double>(), r["N"].is_null() ? Cell{} : Cell{r["N"].get<long>()},
-                 r["t_end"].get<double>(), number_cell(number(r, "value_scale")), number_cell(number(r, "max_error")),
-                 number_cell(number(r, "hausdorff")), number_cell(number(r, "to_reference")),
-                 number_cell(number(r, "from_reference")), r["steps"].get<long>(),
+                 r["t_end"].get<double>(), number_cell(real_or_nan(r, "value_scale")), number_cell(real_or_nan(r, "max_error")),
+                 number_cell(real_or_nan(r, "hausdorff")), number_cell(real_or_nan(r, "to_reference")),
+                 number_cell(real_or_nan(r, "from_reference")), r["steps"].get<long>(),
                  status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
       if (status != "ok" && note.empty()) note = status == "n/a" ? "declined" : status;
       h.push_back(r["dt"]);
       const auto clean = [](double x) { return x > 1e-11 ? x : std::numeric_limits<double>::quiet_NaN(); };
-      emax.push_back(clean(number(r, "max_error")));
-      eh.push_back(clean(number(r, "hausdorff")));
+      emax.push_back(clean(real_or_nan(r, "max_error")));
+      eh.push_back(clean(real_or_nan(r, "hausdorff")));
     }
     const OrderFit fm = fit_order(h, emax), fh = fit_order(h, eh);
     o.add_row({subjects()[s].problem, name, number_cell(fm.order), number_cell(fm.low), number_cell(fm.high),

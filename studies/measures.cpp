@@ -12,8 +12,6 @@
 namespace nsb {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-bool usable(double e) { return e > 0.0 && std::isfinite(e); }
 }  // namespace
 
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {

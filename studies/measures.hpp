@@ -16,6 +16,7 @@
 //     RunResult::step_cpu_seconds; median_cpu_seconds in studies/study.hpp for timed runs);
 //   - stop and onset times of a slip (studies/slip_stop.hpp) and the Hausdorff distance between
 //     graphs (studies/hausdorff.hpp) are the measures of those headers.
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -26,6 +27,11 @@
 namespace nsb {
 
 class Integrator;
+
+// A measure with no value (n/a): not measured, not defined, or the run diverged.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// True for a value a log-log fit or a ranking can use: positive and finite.
+inline bool usable(double x) { return x > 0.0 && std::isfinite(x); }
 
 // ---- Least-squares fits ----------------------------------------------------------------
 

@@ -64,7 +64,7 @@ struct PeerPair {
   std::vector<std::string> only = {};  // the problems (registered names) it runs on; empty: all
 };
 
-const std::vector<std::string> kImpacts = {"bouncing-mass", "signorini-bar", "spring-chain", "rolling-disk"};
+const std::vector<std::string> kPeerImpactProblems = {"bouncing-mass", "signorini-bar", "spring-chain", "rolling-disk"};
 
 // moreau-jean: gamma unset is 1 - theta in ours, 1/2 in Siconos' (the "theta = 1" rows).
 // Schatzman-Paoli: theta = 0 on both sides (the explicit central difference: Siconos' theta
@@ -75,11 +75,11 @@ const std::vector<PeerPair> kPairs = {
     // The same gamma on both sides: on the problems with impacts, where the forecast matters
     // (the sliding mass' contact never opens).
     {"moreau-jean", "siconos-moreau-jean", {{"theta", "0.5"}, {"gamma", "0"}}, {{"theta", "0.5"}, {"gamma", "0"}},
-     "theta = 1/2, gamma = 0", kImpacts},
+     "theta = 1/2, gamma = 0", kPeerImpactProblems},
     {"moreau-jean", "siconos-moreau-jean", {{"theta", "1"}, {"gamma", "0"}}, {{"theta", "1"}, {"gamma", "0"}},
-     "theta = 1, gamma = 0", kImpacts},
+     "theta = 1, gamma = 0", kPeerImpactProblems},
     {"moreau-jean", "siconos-moreau-jean", {{"theta", "1"}, {"gamma", "0.5"}}, {{"theta", "1"}, {"gamma", "0.5"}},
-     "theta = 1, gamma = 1/2", kImpacts},
+     "theta = 1, gamma = 1/2", kPeerImpactProblems},
     {"schatzman-paoli", "siconos-schatzman-paoli", {{"theta", "0"}}, {{"theta", "0"}}, "theta = 0"},
     {"d1-minus-linear", "siconos-d1-minus-linear", {}, {}, "defaults"},
 };

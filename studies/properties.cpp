@@ -46,7 +46,7 @@ namespace nsb {
 
 namespace {
 
-constexpr long kFreeSteps = 10'000, kFloorSteps = 2000, kLongRunImpacts = 100'000;
+constexpr long kFreeSteps = 10'000, kPropertiesFloorSteps = 2000, kLongRunImpacts = 100'000;
 
 // A row's measurements in four parts, each a case of its own so that the cores share one
 // scheme's work (one case per row left a core idle while the last rows ran: docs/measurements.md).
@@ -107,7 +107,7 @@ Json run_work_json(const RunWork& r) { return r.note.empty() ? Json{{"work", wor
 
 Json block_part(const std::string& name) {
   Json out;
-  const SpinningBlock b = spinning_block(name, kFreeSteps, kFloorSteps);
+  const SpinningBlock b = spinning_block(name, kFreeSteps, kPropertiesFloorSteps);
   if (b.note.empty()) {
     const double steps = static_cast<double>(std::max(1L, b.work.steps));
     out["block"] = {{"factorizations_per_step", static_cast<double>(b.work.factorizations) / steps},
@@ -235,7 +235,7 @@ Cell per(const Json& run, const char* what, const char* by) {
   return Cell{static_cast<double>(run["work"][what].get<long>()) / static_cast<double>(run["work"][by].get<long>())};
 }
 Cell count(const Json& run, const char* what) { return run.contains("work") ? Cell{run["work"][what].get<long>()} : Cell{}; }
-std::string note_of(const Json& run) { return run.contains("note") ? run["note"].get<std::string>() : std::string(); }
+std::string run_note(const Json& run) { return run.contains("note") ? run["note"].get<std::string>() : std::string(); }
 
 // Claim (1)'s figure: the work of a step per scheme, on a linear and a nonlinear problem.
 Table explicit_work_table(const Rows& rows) {
@@ -249,7 +249,7 @@ Table explicit_work_table(const Rows& rows) {
       "SVK block spinning at 3 rad/s dropped on the frictionless floor ({} steps of 0.5 x its stable step; nonlinear "
       "F_int). An explicit step has 0 factorisations, 0 solves and 1 F_int evaluation (+ 1 at the start of the run); an "
       "implicit scheme on the linear bar factorises once per run, on the nonlinear block once per Newton iteration.",
-      kFloorSteps);
+      kPropertiesFloorSteps);
   t.columns = {{"integrator", "", "", ""},       {"problem", "", "", ""}, {"quantity", "", "", ""},
                {"per step", "", "{:.3g}", ""},      {"count", "", "", "over the run"}, {"steps", "", "", ""},
                {"note", "", "", "why a row is n/a"}};
@@ -267,7 +267,7 @@ Table explicit_work_table(const Rows& rows) {
       for (const auto& [quantity, key] : {std::pair<const char*, const char*>{"factorisations", "factorizations"},
                                           std::pair<const char*, const char*>{"linear solves", "solves"},
                                           std::pair<const char*, const char*>{"F_int evaluations", "forces"}})
-        t.add_row({name, problem, quantity, per(*run, key, "steps"), count(*run, key), count(*run, "steps"), note_of(*run)});
+        t.add_row({name, problem, quantity, per(*run, key, "steps"), count(*run, key), count(*run, "steps"), run_note(*run)});
   }
   return t;
 }
@@ -286,7 +286,7 @@ Table contact_cost_table(const Rows& rows) {
       "1 x 1). Two blocks: two-blocks as the bodies study runs it (no gravity, upper block at (0.5, -1) m/s, e = 0, "
       "mu = 0), dt 1e-4 s to 0.1 s: node-to-segment contacts between two deformable bodies (H not diagonal). n/a: the "
       "scheme declined the problem (note).",
-      kFloorSteps);
+      kPropertiesFloorSteps);
   t.columns = {{"integrator", "", "", ""},     {"contact", "", "", ""},       {"H", "", "", "Delassus operator"},
                {"contact steps", "", "", ""}, {"LCP iterations", "", "", ""}, {"LCP it./contact step", "", "{:.3g}", ""},
                {"note", "", "", "why a row is n/a"}};
@@ -303,7 +303,7 @@ Table contact_cost_table(const Rows& rows) {
                                           std::tuple<const char*, const char*, const Json*>{"two bars", "1 x 1", &r["two_bars"]},
                                           std::tuple<const char*, const char*, const Json*>{"two blocks", "not diagonal", &r["bodies"]}})
       t.add_row({name, contact, h, count(*run, "contact_steps"), count(*run, "lcp"),
-                 per(*run, "lcp", "contact_steps"), note_of(*run)});
+                 per(*run, "lcp", "contact_steps"), run_note(*run)});
   }
   return t;
 }
@@ -338,7 +338,7 @@ std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::
       "velocity-level impact law acts on it at the next impact). The long-time energy errors are of the reported energy at "
       "every step, contact steps included: schatzman-paoli's falls to about 0 and cd-penalty's by about half within an impact step (between "
       "impacts both keep it), which the bound of the no-drift rule counts.",
-      kFloorSteps, kHausdorffMinOrder, 2 * bar_graph_observables().size(), kFreeSteps, kMomentumTolerance, kImpactEnergy,
+      kPropertiesFloorSteps, kHausdorffMinOrder, 2 * bar_graph_observables().size(), kFreeSteps, kMomentumTolerance, kImpactEnergy,
       kEnergyBounded, kEnergyDriftFactor, kEnergyRoundOff, kEnergyExact, kLongRunImpacts, kRobustEnergy);
   t.columns = {{"integrator", "", "", ""},
                {"factorisations/step", "", "{:.3g}", "spinning block on the floor"},

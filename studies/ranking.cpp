@@ -9,11 +9,11 @@
 #include <limits>
 #include <tuple>
 
+#include "studies/measures.hpp"
+
 namespace nsb {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-bool usable(double x) { return x > 0.0 && std::isfinite(x); }
 // "none", and which rule removed which runs: "none (removed: energy blow-up: A dt = 1e-2, A dt =
 // 5e-3; diverged: B dt = 1e-1)".
 std::string none_text(const RankingProblem& p, const std::function<std::string(const WorkCurve&)>& name) {

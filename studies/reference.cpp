@@ -29,7 +29,7 @@ namespace nsb {
 namespace {
 
 const std::map<std::string, std::string> kProblemParams = {{"e", "0.9"}};
-constexpr double kSample = 1e-3, kEnd = 3.0;
+constexpr double kReferenceSample = 1e-3, kReferenceEnd = 3.0;
 const std::vector<double> kTolerances = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
 const std::vector<double> kStiffness = {1e6, 1e7, 1e8, 1e9, 1e10};
 
@@ -54,8 +54,8 @@ Json reference_case(const Json& c) {
   auto problem = make_problem("bouncing-mass", kProblemParams);
   const auto params = c["params"].get<std::map<std::string, std::string>>();
   RunOptions options;
-  options.dt = kSample;
-  options.t_end = kEnd;
+  options.dt = kReferenceSample;
+  options.t_end = kReferenceEnd;
   options.record_series = false;
   auto integrator = make_integrator(c["integrator"], params);
   integrator->init(*problem, problem->initial_state());
@@ -80,7 +80,7 @@ Json reference_case(const Json& c) {
     out["err_t"] = t_err;
   }
   if (c["sweep"] == "stiffness") {
-    ReferenceRequest req{"bouncing-mass", kProblemParams, "event-driven", {{"rtol", "1e-12"}, {"atol", "1e-14"}}, kSample, kEnd, 1};
+    ReferenceRequest req{"bouncing-mass", kProblemParams, "event-driven", {{"rtol", "1e-12"}, {"atol", "1e-14"}}, kReferenceSample, kReferenceEnd, 1};
     const CachedReference ref = cached_reference(reference_cache_dir(), req);
     const std::size_t col = ref.series.column("q");
     double d = 0.0;

@@ -4,11 +4,11 @@
 
 #include "problems/rolling_disk.hpp"
 #include "problems/sliding_mass.hpp"
+#include "studies/measures.hpp"
 
 namespace nsb {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 double finite_or_nan(double x) { return std::isfinite(x) ? x : kNaN; }
 }  // namespace
 

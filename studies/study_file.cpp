@@ -70,7 +70,6 @@ namespace nsb {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kHistoryIntervals = 200;
 
 // The integrator's label, marked " (python)" for a class written in Python, with the parameters
@@ -751,7 +750,6 @@ std::string file_result_damage(const StudySpec& spec, const Json& r) {
 
 namespace {
 
-double number(const Json& r, const char* key) { return r.contains(key) ? real(r[key]) : kNaN; }
 
 
 // "dt = ..." or "tol = ...", the number in `format` (default {:.2e} for dt, {:.1e} for tol).
@@ -1211,7 +1209,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
         row.push_back(number_cell(v));
       }
       const std::string status = r["status"];
-      row.insert(row.end(), {number_cell(number(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
+      row.insert(row.end(), {number_cell(real_or_nan(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
                              status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
       t.add_row(std::move(row));
       const auto count = [&](const char* key) { return r.contains(key) ? Cell{r[key].get<long>()} : Cell{}; };
@@ -1229,7 +1227,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       // A declined run is no point; a run an outcome threshold removed (its values kept: energy
       // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
       if (primary != spec.measures.end() && status != "n/a")
-        curve.points.push_back({run_label(cases[k], runs_format), number(r, "cpu"), ys[primary - spec.measures.begin()].back(),
+        curve.points.push_back({run_label(cases[k], runs_format), real_or_nan(r, "cpu"), ys[primary - spec.measures.begin()].back(),
                                 status != "ok" && r.contains("values") ? status : ""});
       if (r.contains("history"))
         for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
