@@ -969,7 +969,7 @@ std::vector<Cell> run_cells(const StudySpec& spec, const Json& c, const Json& r)
           value("energy_scale"), value("energy_growth"), spec.energy_blow_up_of(p), value("final_energy_error"),
           f.contains("note") ? Cell{f["note"].get<std::string>()} : Cell{}, fi.name, parameters_text(fi, p.label),
           value("min_step"), value("max_step"),
-          r["steps"].get<long>() > 0 ? number_cell(number(r, "cpu") / static_cast<double>(r["steps"].get<long>())) : Cell{}};
+          r["steps"].get<long>() > 0 ? number_cell(real_or_nan(r, "cpu") / static_cast<double>(r["steps"].get<long>())) : Cell{}};
 }
 
 const std::vector<Column>& history_columns() {
