@@ -13,11 +13,11 @@
 // Stiff/soft bar (hard cases): the elements of the half at the wall (centre x < L/2) have
 // Young's modulus r E. The stable step is then set by the stiffer half and the slow
 // dynamics by the softer one, a contrast of max(r, 1/r) in M^{-1} K. For r != 1 waves
-// reflect at x = L/2 and the d'Alembert solution below no longer holds: exact_state()
+// reflect at x = L/2 and the d'Alembert solution below no longer holds: the exact state()
 // gives nothing and the exact observables are NaN (exact_* describe the bar with r = 1).
 //
 // Exact solution: with g > 0 it is BouncingBarExact (problems/bouncing_bar.hpp), which
-// exact_state() and the *_exact observables use (the exact_* functions below describe g = 0
+// the exact state() and the *_exact observables use (the exact_* functions below describe g = 0
 // only). For g = 0 (d'Alembert), s = t - t0 (contact starts at t0 and lasts exactly T):
 //     s <= x/c                 u = -v0 t                          v = -v0   sigma = 0
 //     x/c < s < (2L - x)/c     u = -g0 - v0 x / c                 v = 0     sigma = -rho c v0
@@ -89,7 +89,7 @@ namespace nsb {
 
 class BouncingBarExact;
 
-class SignoriniBar final : public Problem {
+class SignoriniBar final : public Problem, public ExactSolution {
  public:
   using MassModel = BarMassModel;
 
@@ -125,9 +125,12 @@ class SignoriniBar final : public Problem {
   // u_contact, v_contact, contact_force (impulse / dt of the step), their exact values,
   // momentum (sum of M's row sums times v) and its exact value.
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
+  // contact_start (contact_start()) and contact_duration (contact_duration()).
+  std::optional<double> event_time(ExactEvent event) const override;
+  std::optional<double> value(ExactValue what) const override;
   // Field output: the bar's nodes x_i = i h (dof i) and elements; one stress component,
   // sigma = E_e (u_{i+1} - u_i) / h on element i (nodes i, i + 1), constant over it (so the
   // exact piecewise-constant sigma of a wave front is met element by element). The same for
@@ -174,7 +177,7 @@ class SignoriniBar final : public Problem {
   Vec mass_rows_;
   Contacts contacts_;
   // g > 0: the exact solution, marched on demand up to the latest time asked (observe and
-  // exact_state are const and may be called from several threads).
+  // state() are const and may be called from several threads).
   const BouncingBarExact& bouncing_exact(double t) const;
   void check_representable() const;  // InputError when derived quantities overflow
   mutable std::mutex bouncing_mutex_;

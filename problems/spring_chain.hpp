@@ -44,7 +44,7 @@ class SpringChain final : public Problem {
   State initial_state() const override;
   double stable_step() const override { return stable_step_; }
   std::vector<std::string> observable_names() const override { return {"momentum"}; }
-  void observe(const State& s, std::span<double> out) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   std::optional<FieldMesh> field_mesh() const override;
   void cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const override;
 

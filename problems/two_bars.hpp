@@ -51,7 +51,7 @@
 
 namespace nsb {
 
-class TwoBars final : public Problem {
+class TwoBars final : public Problem, public ExactSolution {
  public:
   // Defaults: L1 = 1, L2 = 2, N1 = 50, N2 = 100 (h1 = h2), E = rho = A = v0 = 1, g0 = 0, lumped.
   explicit TwoBars(const Params& params);
@@ -73,9 +73,9 @@ class TwoBars final : public Problem {
   // v1_mean, v2_mean, contact_force (impulse / dt), their exact values, momentum (1^T M v)
   // and its exact value, gap.
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;
   // Field output: bar 1 (body 0) then bar 2 (body 1) at their reference positions, node i
   // of a bar on dof(bar, i); sigma = E (u_{i+1} - u_i) / h on each element, constant over it.
