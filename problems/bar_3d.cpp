@@ -1,4 +1,5 @@
 #include "problems/bar_3d.hpp"
+#include "problems/linear_problem.hpp"
 #include "problems/registry.hpp"
 
 #include <Eigen/Eigenvalues>

@@ -55,11 +55,11 @@
 #include <vector>
 
 #include "problems/bar_elements.hpp"
-#include "problems/problem.hpp"
+#include "problems/linear_problem.hpp"
 
 namespace nsb {
 
-class MassOnBar final : public Problem, public ExactSolution {
+class MassOnBar final : public LinearProblem, public ExactSolution {
  public:
   explicit MassOnBar(const Params& params);
   static ParamSpecs parameters_spec();
@@ -67,14 +67,9 @@ class MassOnBar final : public Problem, public ExactSolution {
   std::string name() const override { return "mass-on-bar"; }
   const Params& parameters() const override { return params_; }
   Index ndof() const override { return n_ + 1; }
-  SpMat mass_matrix() const override { return M_; }
-  void internal_force(ConstVecRef u, VecRef f) const override { f.noalias() = K_ * u; }
-  void tangent_stiffness(ConstVecRef, SpMat& K) const override { copy_stiffness(K_, K); }
-  bool is_linear() const override { return true; }
   void external_force(double, VecRef f) const override { f.setZero(); }
   double strain_energy(ConstVecRef u) const override;
   double load_potential(ConstVecRef) const override { return 0.0; }
-  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
   double stable_step() const override;
   // contact_force (impulse / dt), v_mass and their exact values.
@@ -124,8 +119,6 @@ class MassOnBar final : public Problem, public ExactSolution {
   std::vector<double> ke_;
   std::vector<Segment> segments_;  // from t = 0 on; the last one free, for ever
   double first_separation_ = 0.0;
-  SpMat M_, K_;
-  Contacts contacts_;
 };
 
 }  // namespace nsb

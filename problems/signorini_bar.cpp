@@ -145,8 +145,6 @@ void SignoriniBar::internal_force(ConstVecRef u, VecRef f) const {
   });
 }
 
-void SignoriniBar::tangent_stiffness(ConstVecRef, SpMat& K) const { copy_stiffness(K_, K); }
-
 double SignoriniBar::strain_energy(ConstVecRef u) const { return bar_strain_energy(u, 0, ke_); }
 
 State SignoriniBar::initial_state() const {

@@ -83,13 +83,13 @@
 #include <vector>
 
 #include "problems/bar_elements.hpp"
-#include "problems/problem.hpp"
+#include "problems/linear_problem.hpp"
 
 namespace nsb {
 
 class BouncingBarExact;
 
-class SignoriniBar final : public Problem, public ExactSolution {
+class SignoriniBar final : public LinearProblem, public ExactSolution {
  public:
   using MassModel = BarMassModel;
 
@@ -108,10 +108,8 @@ class SignoriniBar final : public Problem, public ExactSolution {
   std::string name() const override { return name_; }
   const Params& parameters() const override { return params_; }
   Index ndof() const override { return n_ + 1; }
-  SpMat mass_matrix() const override { return M_; }
+  // K u element by element, the nodes split over threads.
   void internal_force(ConstVecRef u, VecRef f) const override;
-  void tangent_stiffness(ConstVecRef u, SpMat& K) const override;
-  bool is_linear() const override { return true; }
   void external_force(double, VecRef f) const override { f = -gravity_ * mass_rows_; }
   double strain_energy(ConstVecRef u) const override;
   double load_potential(ConstVecRef u) const override { return gravity_ * mass_rows_.dot(u); }
@@ -119,7 +117,6 @@ class SignoriniBar final : public Problem, public ExactSolution {
   // the dropped bar's energy errors are relative to what the drop gives it).
   double energy_scale() const override { return 0.5 * total_mass() * (v0_ * v0_ + 2.0 * gravity_ * gap0_); }
   std::string energy_scale_text() const override { return "kinetic energy at the first impact, rho A L (v0^2 + 2 g g0) / 2"; }
-  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
   double stable_step() const override;
   // u_contact, v_contact, contact_force (impulse / dt of the step), their exact values,
@@ -173,9 +170,7 @@ class SignoriniBar final : public Problem, public ExactSolution {
   double stiff_ratio_;
   double c_, t0_;  // wave speed (of E), contact start
   std::vector<double> ke_;  // element stiffnesses E_e A / h
-  SpMat M_, K_;
   Vec mass_rows_;
-  Contacts contacts_;
   // g > 0: the exact solution, marched on demand up to the latest time asked (observe and
   // state() are const and may be called from several threads).
   const BouncingBarExact& bouncing_exact(double t) const;
