@@ -112,7 +112,7 @@ State BallChain::initial_state() const {
 
 double BallChain::stable_step() const { return std::numeric_limits<double>::infinity(); }
 
-std::optional<State> BallChain::exact_state(double t) const {
+std::optional<State> BallChain::state(double t) const {
   if (gap_ == 0.0) return std::nullopt;
   // The last collision at or before t (post-collision velocities at a collision time).
   const auto after = std::upper_bound(events_.begin(), events_.end(), t,
@@ -137,8 +137,8 @@ std::vector<std::string> BallChain::observable_names() const {
   return names;
 }
 
-void BallChain::observe(const State& s, std::span<double> out) const {
-  const Vec exact = gap_ > 0.0 ? exact_state(s.t)->v : (s.t > 0.0 ? simultaneous_ : initial_state().v);
+void BallChain::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
+  const Vec exact = gap_ > 0.0 ? state(s.t)->v : (s.t > 0.0 ? simultaneous_ : initial_state().v);
   for (Index i = 0; i < n_; ++i) {
     out[static_cast<std::size_t>(i)] = s.v[i];
     out[static_cast<std::size_t>(n_ + i)] = exact[i];

@@ -41,7 +41,7 @@
 // Exact state (gap > 0): the march's piecewise-linear motion. Observables: the velocities
 // v1 .. vn and v1_exact .. vn_exact: for gap > 0 the march's velocities at t (the sequential
 // outcome once it ends), for gap = 0 Moreau's outcome for t > 0 (the law, not a unique
-// answer: exact_state() is then empty).
+// answer: the exact state() is then empty).
 //
 // Field output (`--fields`): along x, ball i a vertex at its reference position (i - 1) gap,
 // dof i - 1, body i - 1. The balls are points (the model has no radii): with gap = 0 they
@@ -56,7 +56,7 @@
 
 namespace nsb {
 
-class BallChain final : public Problem {
+class BallChain final : public Problem, public ExactSolution {
  public:
   explicit BallChain(const Params& params);
   static ParamSpecs parameters_spec();
@@ -75,8 +75,9 @@ class BallChain final : public Problem {
   State initial_state() const override;
   double stable_step() const override;  // no stiffness: unbounded
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;
   std::optional<FieldMesh> field_mesh() const override;
 

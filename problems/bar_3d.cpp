@@ -1,4 +1,5 @@
 #include "problems/bar_3d.hpp"
+#include "problems/linear_problem.hpp"
 #include "problems/registry.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -239,9 +240,9 @@ State Bar3d::initial_state() const {
   return s;
 }
 
-std::optional<State> Bar3d::exact_state(double t) const {
+std::optional<State> Bar3d::state(double t) const {
   if (!lateral_held()) return std::nullopt;
-  const auto line = exact_->exact_state(t);
+  const auto line = exact_->state(t);
   if (!line) return std::nullopt;
   State s;
   s.t = t;
@@ -263,7 +264,7 @@ std::vector<std::pair<std::string, double>> Bar3d::summary_values() const {
 
 std::vector<std::string> Bar3d::observable_names() const { return exact_->observable_names(); }
 
-void Bar3d::observe(const State& s, std::span<double> out) const {
+void Bar3d::observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
   double u = 0.0, v = 0.0;
   for (Index k = 0; k <= side_; ++k)
     for (Index j = 0; j <= side_; ++j) {
@@ -272,10 +273,6 @@ void Bar3d::observe(const State& s, std::span<double> out) const {
     }
   const double faces = static_cast<double>((side_ + 1) * (side_ + 1));
   exact_->write_observables(s.t, u / faces, v / faces, momentum(s.v), lateral_held(), out);
-}
-
-void Bar3d::observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
-  observe(s, out);
   if (dt > 0.0) out[2] = impulses.sum() / dt;
 }
 

@@ -17,7 +17,7 @@
 // oedometric modulus M = E (1 - nu) / ((1 + nu)(1 - 2 nu)), c_p = sqrt(M / rho): contact force
 // A rho c_p v0 for 2 L / c_p from t0 = g0 / v0, the bar leaving the wall with +v0. With the
 // sides free the bar bulges under the impact (a Pochhammer–Chree wave), no closed form: the
-// exact columns are NaN and exact_state() gives nothing.
+// exact columns are NaN and the exact state() gives nothing.
 //
 // Discretisation: N x N_side x N_side trilinear hexahedra (hex8_elements.hpp), h = L / N
 // along x, a / N_side across; node (i, j, k) at (i h, j a / N_side, k a / N_side) has index
@@ -74,7 +74,7 @@ class SignoriniBar;
 // and a run's vectors): 3 dofs per node (free) and 1 (held).
 inline constexpr double kBar3dBytesPerElementFree = 20480.0, kBar3dBytesPerElementHeld = 3072.0;
 
-class Bar3d final : public Problem {
+class Bar3d final : public Problem, public ExactSolution {
  public:
   explicit Bar3d(const Params& params);
   ~Bar3d() override;
@@ -96,10 +96,10 @@ class Bar3d final : public Problem {
   State initial_state() const override;
   double stable_step() const override { return stable_step_; }
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   // Held: node (i, j, k)'s u_x from the 1D exact solution at x = i h. Free: nothing.
-  std::optional<State> exact_state(double t) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
   // contact_end_exact: when the wall face leaves the wall for good, t0 + 2 L / c_p (held, g = 0,
   // v0 > 0: the d'Alembert solution's one contact phase); NaN otherwise (free sides, or g > 0).
   std::vector<std::pair<std::string, double>> summary_values() const override;

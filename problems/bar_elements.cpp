@@ -46,13 +46,6 @@ void make_node_massless(SpMat& M, Index node, Index neighbour) {
   M.coeffRef(node, node) = 0.0;
 }
 
-void copy_stiffness(const SpMat& from, SpMat& K) {
-  if (K.rows() == from.rows() && K.cols() == from.cols() && K.isCompressed() && K.nonZeros() == from.nonZeros())
-    std::copy(from.valuePtr(), from.valuePtr() + from.nonZeros(), K.valuePtr());
-  else
-    K = from;
-}
-
 double bar_strain_energy(ConstVecRef u, Index first_dof, std::span<const double> ke) {
   double s = 0.0;
   for (std::size_t e = 0; e < ke.size(); ++e) {

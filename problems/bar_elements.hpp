@@ -40,9 +40,6 @@ void add_bar_triplets(Index first_dof, std::span<const double> ke, double me, Ba
 // (the total mass is kept) and node keeps an explicit zero entry.
 void make_node_massless(SpMat& M, Index node, Index neighbour);
 
-// K = from, refilling only the values when K already holds from's pattern (compressed).
-void copy_stiffness(const SpMat& from, SpMat& K);
-
 // sum over the bar's elements of ke[e] (u_{e+1} - u_e)^2 / 2, nodes from first_dof.
 double bar_strain_energy(ConstVecRef u, Index first_dof, std::span<const double> ke);
 

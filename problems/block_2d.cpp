@@ -425,7 +425,7 @@ std::vector<std::string> Block2d::observable_names() const {
   return {"strain_energy", "gravity_energy", "px", "py", "angular_momentum", "closed_contacts"};
 }
 
-void Block2d::observe(const State& s, std::span<double> out) const {
+void Block2d::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
   const Eigen::Vector2d p = linear_momentum(s.v);
   long closed = 0;
   for (Index r = 0; r < contacts_.normal.rows(); ++r) closed += (contacts_.gap_offset[r] + s.u[2 * boundary_[r] + 1] <= 0.0);

@@ -80,7 +80,7 @@ class Block2d final : public Problem {
   State initial_state() const override;
   double stable_step() const override { return stable_step_; }
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   // Field output: the nodes at their reference positions (node a on dofs 2a, 2a + 1), the
   // Q4 elements counter-clockwise; stress: the Cauchy stress sigma = F S F^T / J (plane
   // strain, in-plane components xx, yy, xy) averaged over the element's 2x2 Gauss points.

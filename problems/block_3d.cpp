@@ -324,7 +324,7 @@ std::vector<std::string> Block3d::observable_names() const {
   return {"strain_energy", "gravity_energy", "px", "py", "pz", "xc", "yc", "zc", "jx", "jy", "jz", "closed_contacts"};
 }
 
-void Block3d::observe(const State& s, std::span<double> out) const {
+void Block3d::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
   const Eigen::Vector3d p = linear_momentum(s.v), c = centre_of_mass(s.u), J = angular_momentum(s.u, s.v);
   out[0] = strain_energy(s.u);
   out[1] = load_potential(s.u);

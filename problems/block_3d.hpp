@@ -84,7 +84,7 @@ class Block3d final : public Problem {
   State initial_state() const override;
   double stable_step() const override { return stable_step_; }
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   // Field output: the nodes at their reference positions, the hexahedra in hex8 (VTK) order;
   // stress: the Cauchy stress sigma = F S F^T / J at the element's centre, components xx, yy,
   // zz, yz, xz, xy.

@@ -69,7 +69,7 @@ double BouncingMass::energy_after_impact(int i) const {
   return initial_energy() * std::pow(e_, 2 * i);
 }
 
-std::optional<State> BouncingMass::exact_state(double t) const {
+std::optional<State> BouncingMass::state(double t) const {
   State s;
   s.t = t;
   s.u.resize(1);
@@ -103,8 +103,8 @@ std::vector<std::string> BouncingMass::observable_names() const {
   return {"q", "v", "q_exact", "v_exact"};
 }
 
-void BouncingMass::observe(const State& s, std::span<double> out) const {
-  const State ex = *exact_state(s.t);
+void BouncingMass::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
+  const State ex = *state(s.t);
   out[0] = s.u[0];
   out[1] = s.v[0];
   out[2] = ex.u[0];

@@ -22,7 +22,7 @@
 
 namespace nsb {
 
-class BouncingMass final : public RigidProblem {
+class BouncingMass final : public RigidProblem, public ExactSolution {
  public:
   explicit BouncingMass(const Params& params);
   static ParamSpecs parameters_spec();
@@ -31,8 +31,9 @@ class BouncingMass final : public RigidProblem {
   const Params& parameters() const override { return params_; }
   State initial_state() const override;
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;  // up to 1000, before the Zeno time
   std::vector<double> energies_after_impacts(double t_end) const override;  // E0 e^{2i}, of those impacts
   std::optional<FieldMesh> field_mesh() const override;

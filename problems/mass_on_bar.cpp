@@ -262,16 +262,11 @@ std::vector<std::string> MassOnBar::observable_names() const {
   return {"contact_force", "v_mass", "contact_force_exact", "v_mass_exact"};
 }
 
-void MassOnBar::observe(const State& s, std::span<double> out) const {
-  out[0] = 0.0;  // no step, no impulse
+void MassOnBar::observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
+  out[0] = dt > 0.0 ? impulses[0] / dt : 0.0;  // dt = 0: no step, no impulse
   out[1] = s.v[n_];
   out[2] = exact_contact_force(s.t);
   out[3] = exact_mass_velocity(s.t);
-}
-
-void MassOnBar::observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
-  observe(s, out);
-  if (dt > 0.0) out[0] = impulses[0] / dt;
 }
 
 NSBENCH_PROBLEM({"mass-on-bar", "rigid mass striking the free end of a clamped elastic bar (Saint-Venant; contact row on two bodies); mass lumped|consistent|singular (exact piecewise force)", &MassOnBar::parameters_spec, &make_from_params<Problem, MassOnBar>});

@@ -44,7 +44,7 @@
 // second interval); the tests also take M = 4 rho A L (alpha = 1/4, several reflections) and
 // M = rho A L / 4 (alpha = 4).
 // Momentum: M v0 = M V(t) + int_0^t F; energy M v0^2 / 2 = kinetic + strain at all times.
-// No exact field in the bar is provided (exact_state: none); the observables carry F and V.
+// No exact field in the bar is provided (the exact state(): none); the observables carry F and V.
 //
 // Discretisation (problems/bar_elements.hpp): nodes x_i = i h, h = L/N; dofs 0..N-1 are the
 // bar's nodes 0..N-1 (node N is clamped and removed), dof N is X. Contact row: +1 on dof 0,
@@ -55,11 +55,11 @@
 #include <vector>
 
 #include "problems/bar_elements.hpp"
-#include "problems/problem.hpp"
+#include "problems/linear_problem.hpp"
 
 namespace nsb {
 
-class MassOnBar final : public Problem {
+class MassOnBar final : public LinearProblem, public ExactSolution {
  public:
   explicit MassOnBar(const Params& params);
   static ParamSpecs parameters_spec();
@@ -67,20 +67,16 @@ class MassOnBar final : public Problem {
   std::string name() const override { return "mass-on-bar"; }
   const Params& parameters() const override { return params_; }
   Index ndof() const override { return n_ + 1; }
-  SpMat mass_matrix() const override { return M_; }
-  void internal_force(ConstVecRef u, VecRef f) const override { f.noalias() = K_ * u; }
-  void tangent_stiffness(ConstVecRef, SpMat& K) const override { copy_stiffness(K_, K); }
-  bool is_linear() const override { return true; }
   void external_force(double, VecRef f) const override { f.setZero(); }
   double strain_energy(ConstVecRef u) const override;
   double load_potential(ConstVecRef) const override { return 0.0; }
-  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
   double stable_step() const override;
   // contact_force (impulse / dt), v_mass and their exact values.
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double) const override { return std::nullopt; }  // no exact field
   std::vector<double> impact_times(double t_end) const override;
   // Field output: the bar (body 0), nodes x_i = i h on dof i, the clamped node N on none (its
   // displacement is 0); sigma = E (u_{i+1} - u_i) / h on each element, constant over it. The
@@ -123,8 +119,6 @@ class MassOnBar final : public Problem {
   std::vector<double> ke_;
   std::vector<Segment> segments_;  // from t = 0 on; the last one free, for ever
   double first_separation_ = 0.0;
-  SpMat M_, K_;
-  Contacts contacts_;
 };
 
 }  // namespace nsb

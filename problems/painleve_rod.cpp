@@ -51,9 +51,14 @@ void PainleveRod::evaluate_contacts(ConstVecRef u, ContactGeometry& out) const {
 
 void PainleveRod::contact_slide(ConstVecRef u, VecRef s) const { s[0] = u[0] + s_ * std::cos(u[2]); }
 
-State PainleveRod::initial_state() const { return *exact_state(0.0); }
+State PainleveRod::initial_state() const { return *state(0.0); }
 
-std::optional<State> PainleveRod::exact_state(double t) const {
+std::optional<double> PainleveRod::event_time(ExactEvent event) const {
+  if (event == ExactEvent::jam && exact_.ending() == PainleveRodExact::Ending::jam) return exact_.end_time();
+  return std::nullopt;
+}
+
+std::optional<State> PainleveRod::state(double t) const {
   const auto s = exact_.state(t);
   if (!s) return std::nullopt;
   State out;
@@ -69,9 +74,7 @@ std::vector<std::string> PainleveRod::observable_names() const {
   return {"phi", "x_end", "normal_force", "normal_force_exact"};
 }
 
-void PainleveRod::observe(const State& s, std::span<double> out) const { observe_step(s, Vec(), 0.0, out); }
-
-void PainleveRod::observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
+void PainleveRod::observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
   const auto ex = exact_.state(s.t);
   out[0] = s.u[2];
   out[1] = s.u[0] + s_ * std::cos(s.u[2]);

@@ -20,7 +20,7 @@
 // integrated to round-off up to its end: for the defaults the dynamic jam (D -> 0 with the
 // normal force growing without bound, an impact without collision) at t* = 0.8145 s; lift-off,
 // the slip stopping or phi leaving (0, 90) degrees for other data. Nothing after the end:
-// exact_state has no value there, and what each scheme does from the jam on is its own (the
+// the exact state() has no value there, and what each scheme does from the jam on is its own (the
 // suite reports it, it does not pick a winner).
 //
 // Observables: phi (rad), x_end (x of end A), normal_force (the step's normal impulse / dt, 0
@@ -42,7 +42,7 @@
 
 namespace nsb {
 
-class PainleveRod final : public RigidProblem {
+class PainleveRod final : public RigidProblem, public ExactSolution {
  public:
   explicit PainleveRod(const Params& params);
   static ParamSpecs parameters_spec();
@@ -55,13 +55,15 @@ class PainleveRod final : public RigidProblem {
   void contact_slide(ConstVecRef u, VecRef s) const override;
   State initial_state() const override;
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
+  // jam: PainleveRodExact::end_time() when the sliding phase ends in the jam.
+  std::optional<double> event_time(ExactEvent event) const override;
   std::optional<FieldMesh> field_mesh() const override;
   void body_data(const State& s, Eigen::Ref<Eigen::MatrixXd> out) const override;
 
-  const PainleveRodExact& exact() const { return exact_; }
+  const PainleveRodExact& closed_form() const { return exact_; }
 
  private:
   PointContact end_contact(ConstVecRef u) const { return exact_.end_contact(Eigen::Vector3d(u[0], u[1], u[2])); }

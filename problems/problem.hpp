@@ -20,38 +20,28 @@
 // step), tangent_stiffness its Jacobian, strain_energy V_int with F_int = dV_int/du, and
 // load_potential -F_ext . u for a constant load; contacts() describes every contact once
 // (Contacts below; check_contacts() holds its shapes and ranges) and keeps g0 + L U0 >= 0;
-// stable_step() the explicit central-difference limit 2 / omega_max; exact_state() and
-// impact_times() only where the solution is known exactly (derived and tested on its own).
-// field_mesh() describes the bodies once as a mesh (FieldMesh below: bar and plane elements,
-// springs, point masses and rigid bodies as vertices); cell_stress(u, out) writes each
-// element's stress and body_data(s, out) each vertex body's arrays (no allocation: `nsbench
-// run --fields` calls them at every written step). Every built-in problem has a mesh; a
-// plugin's problem that keeps the default (none) has no field output.
+// stable_step() the explicit central-difference limit 2 / omega_max. Where the solution is
+// known exactly (derived and tested on its own), exact() hands out its ExactSolution
+// (problems/exact_solution.hpp: the state at t, impact times, event times). Its output is the
+// ProblemOutput it inherits (problems/problem_output.hpp): observable_names() and observe()
+// for the series, summary_values(); field_mesh() describes the bodies once as a mesh
+// (FieldMesh: bar and plane elements, springs, point masses and rigid bodies as vertices);
+// cell_stress(u, out) writes each element's stress and body_data(s, out) each vertex body's
+// arrays (no allocation: `nsbench run --fields` calls them at every written step). Every
+// built-in problem has a mesh; a plugin's problem that keeps the default (none) has no field
+// output.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-#include <initializer_list>
 #include <optional>
-#include <span>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "core/parameters.hpp"
+#include "problems/exact_solution.hpp"
+#include "problems/problem_output.hpp"
+#include "problems/state.hpp"
 
 namespace nsb {
-
-using Vec = Eigen::VectorXd;
-using SpMat = Eigen::SparseMatrix<double>;
-using Index = Eigen::Index;
-using VecRef = Eigen::Ref<Vec>;
-using ConstVecRef = Eigen::Ref<const Vec>;
-
-// Displacement and velocity at time t. Staggered schemes document what their `v` means.
-struct State {
-  double t = 0.0;
-  Vec u;
-  Vec v;
-};
 
 // Every contact of a problem, described once (docs/method.md sections 1 and 6); row i of each
 // operator belongs to contact i:
@@ -97,63 +87,6 @@ struct Contacts {
   void set_cone(SpMat tangent_rows, SpMat tangent2_rows, double mu_all);
 };
 
-// A problem's bodies as a mesh, for field output (ParaView) and pictures of the fields.
-// Displacement and velocity are point values taken from the dofs; element cells carry one
-// value per cell and stress component, vertex cells the body arrays.
-//
-//     point a          reference position points.row(a) (z = 0, y = 0 for bars; 3D: x, y, z)
-//     its component k  displacement u[point_dofs(a, k)], 0 where point_dofs(a, k) = -1 (a
-//                      clamped node, a direction the body does not move in)
-//     cell c           points cells(c, 0 ..), padded with -1 past its last point (cells has
-//                      as many columns as the widest cell); its number of points is its type:
-//                      1  a vertex: a point mass or the centre of a rigid body ("body cell")
-//                      2  a line along +x of the reference: a bar element or a spring
-//                      4  a bilinear quad, counter-clockwise: a plane element
-//                      8  a hexahedron in VTK_HEXAHEDRON's (hex8_elements.hpp's) order: a solid
-//                      cell_body[c] is its body id (0 when there is one body)
-//     element cells    cells of 2, 4 or 8 points, in order: cell_stress() rows, a column per stress component
-//     body cells       the vertex cells, in their order: body_data() writes one row each,
-//                      the components of the body_arrays in order (e.g. a rigid body's angle)
-//
-// What the stress is (which measure, where in the cell) is stated by each problem's
-// cell_stress(); what a body array is, by its body_data(). Vertex cells have no stress and
-// element cells no body arrays: a field is written only where it means something
-// (run/field_output.hpp writes the two kinds as two datasets of one series).
-// A degree of freedom that is no translation of a point (a rigid body's rotation) reaches
-// the picture through a body array, not through point_dofs (which maps components linearly
-// to dofs).
-struct FieldArray {
-  std::string name;
-  int components = 1;  // 1 (scalar) or 3 (a vector, x y z)
-};
-
-struct FieldMesh {
-  int dimension = 1;                           // 1: along x (bars, chains); 2: in (x, y); 3: solids
-  Eigen::MatrixXd points;                      // npoints x 2 (x 3 in 3D), reference coordinates
-  Eigen::MatrixXi point_dofs;                  // npoints x dimension, dof of each component or -1
-  Eigen::MatrixXi cells;                       // ncells x (widest cell), point indices, -1 padded
-  std::vector<int> cell_body;                  // ncells, body id
-  std::vector<std::string> stress_components;  // the columns of cell_stress()
-  std::vector<FieldArray> body_arrays;         // the column groups of body_data()
-
-  Index npoints() const { return points.rows(); }
-  Index ncells() const { return cells.rows(); }
-  // Number of points of cell c (1 vertex, 2 line, 4 quad, 8 hexahedron).
-  int cell_size(Index c) const;
-  // Number of element cells (cells of 2 or more points): the rows of cell_stress().
-  Index nelements() const;
-  // Number of vertex cells: the rows of body_data().
-  Index nbodies() const { return ncells() - nelements(); }
-  // Total components of the body arrays: the columns of body_data().
-  int body_columns() const;
-  // Appends `part` (a mesh of the same dimension, stress components and body arrays) with
-  // its dofs shifted by dof_offset and its cells given body id `body`.
-  void append(const FieldMesh& part, Index dof_offset, int body);
-  // Appends a vertex cell (a point mass, a rigid body's centre) at reference position (x, y),
-  // its components on `dofs` (dimension entries, -1 where fixed), of body `body`.
-  void add_vertex(double x, double y, std::initializer_list<int> dofs, int body);
-};
-
 // Contacts whose geometry moves with the bodies (docs/contacts.md): the gaps g(U), normal
 // rows L(U) = dg/dU and tangent rows T(U) at one configuration, as a scheme reads them:
 //
@@ -175,7 +108,10 @@ struct ContactGeometry {
 // g0, mu and w against L's rows, columns against ndof) or a value is outside its range.
 void check_contacts(const Contacts& c, Index ndof, const std::string& problem);
 
-class Problem {
+// The model. Its output (observables, summary figures, field mesh) is the ProblemOutput it
+// inherits (problems/problem_output.hpp); its exact solution is a separate interface that
+// exact() hands out (problems/exact_solution.hpp).
+class Problem : public ProblemOutput {
  public:
   virtual ~Problem() = default;
 
@@ -245,37 +181,9 @@ class Problem {
   // problems override it; a linear problem's stable step does not depend on u).
   virtual double stable_step_at(ConstVecRef /*u*/) const { return stable_step(); }
 
-  // Problem-specific columns of series.csv (e.g. q, v, q_exact for the bouncing mass).
-  virtual std::vector<std::string> observable_names() const { return {}; }
-  virtual void observe(const State& /*s*/, std::span<double> /*out*/) const {}
-  // The same columns after a step, for those that need the step's contact impulses (size p)
-  // and its length dt (0 for the initial sample), e.g. a contact force impulse / dt. The
-  // run driver calls this one; the default forwards to observe().
-  virtual void observe_step(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
-    observe(s, out);
-  }
-
-  // Problem-specific figures of a run's summary.json (its "problem_summary" object, written
-  // only when this is not empty), e.g. an exact event time; a non-finite value is written null.
-  virtual std::vector<std::pair<std::string, double>> summary_values() const { return {}; }
-
-  // The bodies' mesh (FieldMesh), for problems that describe one; nullopt otherwise.
-  virtual std::optional<FieldMesh> field_mesh() const { return std::nullopt; }
-  // The stress of each element cell of field_mesh() at u, written into out (nelements() x
-  // stress_components.size()) without allocating. Only called when field_mesh() has a value.
-  virtual void cell_stress(ConstVecRef /*u*/, Eigen::Ref<Eigen::MatrixXd> /*out*/) const {}
-  // The body arrays of each vertex cell of field_mesh() in state s, written into out
-  // (nbodies() x body_columns()) without allocating. Only called when body_arrays is not empty.
-  virtual void body_data(const State& /*s*/, Eigen::Ref<Eigen::MatrixXd> /*out*/) const {}
-
-  // Exact solution where one is known.
-  virtual std::optional<State> exact_state(double /*t*/) const { return std::nullopt; }
-  // Exact times of the impacts in [0, t_end], in order, where the problem knows them
-  // (impact-time errors of study files); empty otherwise.
-  virtual std::vector<double> impact_times(double /*t_end*/) const { return {}; }
-  // The exact energy after each of those impacts (the flight that follows it), where the
-  // problem knows it; empty otherwise.
-  virtual std::vector<double> energies_after_impacts(double /*t_end*/) const { return {}; }
+  // The exact solution where one is known (problems/exact_solution.hpp), nullptr otherwise;
+  // it lives as long as the problem.
+  virtual const ExactSolution* exact() const { return nullptr; }
 };
 
 // The diagonal of M when M is diagonal; nullopt otherwise.

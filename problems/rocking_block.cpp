@@ -68,9 +68,9 @@ void RockingBlock::contact_slide(ConstVecRef u, VecRef s) const {
   s[1] = u[0] - b_ * c + h_ * sn;  // (-b, -h)
 }
 
-State RockingBlock::initial_state() const { return *exact_state(0.0); }
+State RockingBlock::initial_state() const { return *state(0.0); }
 
-std::optional<State> RockingBlock::exact_state(double t) const {
+std::optional<State> RockingBlock::state(double t) const {
   const auto s = exact_.state(t);
   if (!s) return std::nullopt;
   State out;
@@ -89,9 +89,25 @@ std::vector<double> RockingBlock::impact_times(double t_end) const {
   return times;
 }
 
+std::vector<double> RockingBlock::amplitudes_after_impacts() const {
+  std::vector<double> amplitudes;
+  for (const auto& im : exact_.impacts()) amplitudes.push_back(im.amplitude_after);
+  return amplitudes;
+}
+
+std::optional<double> RockingBlock::event_time(ExactEvent event) const {
+  return event == ExactEvent::rest ? std::optional<double>(exact_.rest_time()) : std::nullopt;
+}
+
+std::optional<double> RockingBlock::value(ExactValue what) const {
+  if (what == ExactValue::impact_ratio) return exact_.impact_ratio();
+  if (what == ExactValue::housner_ratio) return housner_ratio(exact_.alpha());
+  return std::nullopt;
+}
+
 std::vector<std::string> RockingBlock::observable_names() const { return {"theta", "omega", "omega_exact"}; }
 
-void RockingBlock::observe(const State& s, std::span<double> out) const {
+void RockingBlock::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
   const auto ex = exact_.state(s.t);
   out[0] = s.u[2];
   out[1] = s.v[2];

@@ -28,7 +28,7 @@
 //     omega+ / omega- = 1 - (3/2) sin^2(alpha)
 // for e = 0, mu >= mu_H = 3 sin(alpha) cos(alpha) / (1 + 3 cos^2(alpha)), alpha below 54.7
 // degrees (the defaults); e > 0 gives flight, mu < mu_H slip, and the exact solution ends
-// there (exact_state has nothing after it). It assumes no slip and no lift-off of the pivot
+// there (the exact state() has nothing after it). It assumes no slip and no lift-off of the pivot
 // between impacts (|F| <= mu N, N >= 0: RockingBlockExact::pivot_force), which the defaults
 // satisfy. impact_times: the marched impacts.
 //
@@ -48,7 +48,7 @@
 
 namespace nsb {
 
-class RockingBlock : public RigidProblem {
+class RockingBlock : public RigidProblem, public ExactSolution {
  public:
   explicit RockingBlock(const Params& params);
   static ParamSpecs parameters_spec();
@@ -61,13 +61,20 @@ class RockingBlock : public RigidProblem {
   void contact_slide(ConstVecRef u, VecRef s) const override;
   State initial_state() const override;
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;
+  // The marched impacts' amplitude_after.
+  std::vector<double> amplitudes_after_impacts() const override;
+  // rest (RockingBlockExact::rest_time(), +inf unless it comes to rest).
+  std::optional<double> event_time(ExactEvent event) const override;
+  // impact_ratio (Moreau's, RockingBlockExact::impact_ratio()) and housner_ratio.
+  std::optional<double> value(ExactValue what) const override;
   std::optional<FieldMesh> field_mesh() const override;
   void body_data(const State& s, Eigen::Ref<Eigen::MatrixXd> out) const override;
 
-  const RockingBlockExact& exact() const { return exact_; }
+  const RockingBlockExact& closed_form() const { return exact_; }
   // The corners' gaps and rows at u (contact 0 right, 1 left).
   BlockCorners corners(ConstVecRef u) const;
 

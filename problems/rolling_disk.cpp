@@ -148,7 +148,18 @@ void RollingDisk::floor_motion(const Impact& start, double t, State& s) const {
   s.v[2] = omega;
 }
 
-std::optional<State> RollingDisk::exact_state(double t) const {
+std::optional<double> RollingDisk::event_time(ExactEvent event) const {
+  if (event == ExactEvent::rest) return t_rest_;
+  if (event == ExactEvent::roll_onset) return t_roll_;
+  return std::nullopt;
+}
+
+std::optional<double> RollingDisk::value(ExactValue what) const {
+  if (what == ExactValue::first_rebound_speed && !impacts_.empty()) return impacts_.front().v;
+  return std::nullopt;
+}
+
+std::optional<State> RollingDisk::state(double t) const {
   State s;
   s.t = t;
   s.u = Vec::Zero(3);
@@ -188,8 +199,8 @@ std::vector<std::string> RollingDisk::observable_names() const {
   return {"x", "v", "omega", "x_exact", "v_exact", "omega_exact", "slip", "slip_exact"};
 }
 
-void RollingDisk::observe(const State& s, std::span<double> out) const {
-  const State ex = *exact_state(s.t);
+void RollingDisk::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
+  const State ex = *state(s.t);
   out[0] = s.u[0];
   out[1] = s.v[0];
   out[2] = s.v[2];

@@ -54,7 +54,7 @@
 
 namespace nsb {
 
-class RollingDisk final : public RigidProblem {
+class RollingDisk final : public RigidProblem, public ExactSolution {
  public:
   // What one impact did; (x, theta, v, omega) is the state just after it.
   struct Impact {
@@ -75,9 +75,14 @@ class RollingDisk final : public RigidProblem {
   const Params& parameters() const override { return params_; }
   State initial_state() const override;
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;  // the marched impacts
+  // rest and roll_onset (rest_time(), rolling_onset_time()).
+  std::optional<double> event_time(ExactEvent event) const override;
+  // first_rebound_speed: impacts()[0].v.
+  std::optional<double> value(ExactValue what) const override;
   std::optional<FieldMesh> field_mesh() const override;
   void body_data(const State& s, Eigen::Ref<Eigen::MatrixXd> out) const override;
 

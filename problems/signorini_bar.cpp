@@ -145,8 +145,6 @@ void SignoriniBar::internal_force(ConstVecRef u, VecRef f) const {
   });
 }
 
-void SignoriniBar::tangent_stiffness(ConstVecRef, SpMat& K) const { copy_stiffness(K_, K); }
-
 double SignoriniBar::strain_energy(ConstVecRef u) const { return bar_strain_energy(u, 0, ke_); }
 
 State SignoriniBar::initial_state() const {
@@ -202,7 +200,15 @@ const BouncingBarExact& SignoriniBar::bouncing_exact(double t) const {
   return *bouncing_;
 }
 
-std::optional<State> SignoriniBar::exact_state(double t) const {
+std::optional<double> SignoriniBar::event_time(ExactEvent event) const {
+  return event == ExactEvent::contact_start ? std::optional<double>(contact_start()) : std::nullopt;
+}
+
+std::optional<double> SignoriniBar::value(ExactValue what) const {
+  return what == ExactValue::contact_duration ? std::optional<double>(contact_duration()) : std::nullopt;
+}
+
+std::optional<State> SignoriniBar::state(double t) const {
   if (stiff_ratio_ != 1.0 || !(t >= 0.0)) return std::nullopt;
   const BouncingBarExact* bouncing = gravity_ > 0.0 ? &bouncing_exact(t) : nullptr;
   State s;
@@ -245,12 +251,8 @@ void SignoriniBar::write_observables(double t, double u_contact, double v_contac
   }
 }
 
-void SignoriniBar::observe(const State& s, std::span<double> out) const {
+void SignoriniBar::observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
   write_observables(s.t, s.u[0], s.v[0], momentum(s.v), true, out);
-}
-
-void SignoriniBar::observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
-  observe(s, out);
   if (dt > 0.0) out[2] = impulses[0] / dt;
 }
 

@@ -13,11 +13,11 @@
 // Stiff/soft bar (hard cases): the elements of the half at the wall (centre x < L/2) have
 // Young's modulus r E. The stable step is then set by the stiffer half and the slow
 // dynamics by the softer one, a contrast of max(r, 1/r) in M^{-1} K. For r != 1 waves
-// reflect at x = L/2 and the d'Alembert solution below no longer holds: exact_state()
+// reflect at x = L/2 and the d'Alembert solution below no longer holds: the exact state()
 // gives nothing and the exact observables are NaN (exact_* describe the bar with r = 1).
 //
 // Exact solution: with g > 0 it is BouncingBarExact (problems/bouncing_bar.hpp), which
-// exact_state() and the *_exact observables use (the exact_* functions below describe g = 0
+// the exact state() and the *_exact observables use (the exact_* functions below describe g = 0
 // only). For g = 0 (d'Alembert), s = t - t0 (contact starts at t0 and lasts exactly T):
 //     s <= x/c                 u = -v0 t                          v = -v0   sigma = 0
 //     x/c < s < (2L - x)/c     u = -g0 - v0 x / c                 v = 0     sigma = -rho c v0
@@ -83,13 +83,13 @@
 #include <vector>
 
 #include "problems/bar_elements.hpp"
-#include "problems/problem.hpp"
+#include "problems/linear_problem.hpp"
 
 namespace nsb {
 
 class BouncingBarExact;
 
-class SignoriniBar final : public Problem {
+class SignoriniBar final : public LinearProblem, public ExactSolution {
  public:
   using MassModel = BarMassModel;
 
@@ -108,10 +108,8 @@ class SignoriniBar final : public Problem {
   std::string name() const override { return name_; }
   const Params& parameters() const override { return params_; }
   Index ndof() const override { return n_ + 1; }
-  SpMat mass_matrix() const override { return M_; }
+  // K u element by element, the nodes split over threads.
   void internal_force(ConstVecRef u, VecRef f) const override;
-  void tangent_stiffness(ConstVecRef u, SpMat& K) const override;
-  bool is_linear() const override { return true; }
   void external_force(double, VecRef f) const override { f = -gravity_ * mass_rows_; }
   double strain_energy(ConstVecRef u) const override;
   double load_potential(ConstVecRef u) const override { return gravity_ * mass_rows_.dot(u); }
@@ -119,15 +117,17 @@ class SignoriniBar final : public Problem {
   // the dropped bar's energy errors are relative to what the drop gives it).
   double energy_scale() const override { return 0.5 * total_mass() * (v0_ * v0_ + 2.0 * gravity_ * gap0_); }
   std::string energy_scale_text() const override { return "kinetic energy at the first impact, rho A L (v0^2 + 2 g g0) / 2"; }
-  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
   double stable_step() const override;
   // u_contact, v_contact, contact_force (impulse / dt of the step), their exact values,
   // momentum (sum of M's row sums times v) and its exact value.
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
+  // contact_start (contact_start()) and contact_duration (contact_duration()).
+  std::optional<double> event_time(ExactEvent event) const override;
+  std::optional<double> value(ExactValue what) const override;
   // Field output: the bar's nodes x_i = i h (dof i) and elements; one stress component,
   // sigma = E_e (u_{i+1} - u_i) / h on element i (nodes i, i + 1), constant over it (so the
   // exact piecewise-constant sigma of a wave front is met element by element). The same for
@@ -170,11 +170,9 @@ class SignoriniBar final : public Problem {
   double stiff_ratio_;
   double c_, t0_;  // wave speed (of E), contact start
   std::vector<double> ke_;  // element stiffnesses E_e A / h
-  SpMat M_, K_;
   Vec mass_rows_;
-  Contacts contacts_;
   // g > 0: the exact solution, marched on demand up to the latest time asked (observe and
-  // exact_state are const and may be called from several threads).
+  // state() are const and may be called from several threads).
   const BouncingBarExact& bouncing_exact(double t) const;
   void check_representable() const;  // InputError when derived quantities overflow
   mutable std::mutex bouncing_mutex_;

@@ -70,7 +70,17 @@ State SlidingMass::initial_state() const {
   return s;
 }
 
-std::optional<State> SlidingMass::exact_state(double t) const {
+std::optional<double> SlidingMass::event_time(ExactEvent event) const {
+  return event == ExactEvent::slip_stop ? std::optional<double>(t_stop_) : std::nullopt;
+}
+
+std::optional<double> SlidingMass::value(ExactValue what) const {
+  if (what == ExactValue::stop_distance) return d_stop_;
+  if (what == ExactValue::stays_stopped) return sticks_ ? 1.0 : 0.0;
+  return std::nullopt;
+}
+
+std::optional<State> SlidingMass::state(double t) const {
   State s;
   s.t = t;
   s.u = Vec::Zero(2);
@@ -90,8 +100,8 @@ std::optional<State> SlidingMass::exact_state(double t) const {
 
 std::vector<std::string> SlidingMass::observable_names() const { return {"x", "v", "x_exact", "v_exact"}; }
 
-void SlidingMass::observe(const State& s, std::span<double> out) const {
-  const State ex = *exact_state(s.t);
+void SlidingMass::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
+  const State ex = *state(s.t);
   out[0] = s.u[0];
   out[1] = s.v[0];
   out[2] = ex.u[0];

@@ -36,7 +36,7 @@
 
 namespace nsb {
 
-class SlidingMass final : public RigidProblem {
+class SlidingMass final : public RigidProblem, public ExactSolution {
  public:
   explicit SlidingMass(const Params& params);
   static ParamSpecs parameters_spec();
@@ -45,8 +45,12 @@ class SlidingMass final : public RigidProblem {
   const Params& parameters() const override { return params_; }
   State initial_state() const override;
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
+  // slip_stop (stop_time()); stop_distance and stays_stopped (sticks()).
+  std::optional<double> event_time(ExactEvent event) const override;
+  std::optional<double> value(ExactValue what) const override;
   std::optional<FieldMesh> field_mesh() const override;
 
   // Acceleration along the slope while sliding down (a_down above); 0 at mu = tan(alpha).

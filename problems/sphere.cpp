@@ -78,7 +78,12 @@ State Sphere::initial_state() const {
 
 double Sphere::roll_time() const { return h0_ > 0.0 ? std::numeric_limits<double>::quiet_NaN() : exact_.roll_time(); }
 
-std::optional<State> Sphere::exact_state(double t) const {
+std::optional<double> Sphere::event_time(ExactEvent event) const {
+  if (event == ExactEvent::roll_onset && h0_ <= 0.0) return exact_.roll_time();
+  return std::nullopt;
+}
+
+std::optional<State> Sphere::state(double t) const {
   if (h0_ > 0.0) return std::nullopt;
   const SphereInclineExact::State e = exact_.state(t);
   State s;
@@ -92,7 +97,7 @@ std::optional<State> Sphere::exact_state(double t) const {
 
 std::vector<std::string> Sphere::observable_names() const { return {"slip_speed", "slip_speed_exact"}; }
 
-void Sphere::observe(const State& s, std::span<double> out) const {
+void Sphere::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
   const double R = spec_.R;
   out[0] = std::hypot(s.v[0] - R * s.v[4], s.v[1] + R * s.v[3]);
   out[1] = h0_ > 0.0 ? std::numeric_limits<double>::quiet_NaN() : exact_.slip_speed(s.t);

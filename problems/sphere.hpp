@@ -22,7 +22,7 @@
 // there) for a sphere released on the plane (h0 = 0): the sliding phase in closed form, rolling
 // from t_roll on iff mu > (2/7) tan(alpha) (or launched straight up the slope with mu >= (2/7)
 // tan alpha), else sliding for ever. Dropped (h0 > 0: the rotating bouncing ball in 3D) there
-// is no exact solution here: exact_state() is empty and the *_exact observables NaN.
+// is no exact solution here: the exact state() is empty and the *_exact observables NaN.
 //
 // Observables: slip_speed |w| = |(T U', T2 U')|, slip_speed_exact; summary figure t_roll_exact
 // (the exact roll-onset time; +inf when it slides for ever, written as null; NaN for h0 > 0).
@@ -39,7 +39,7 @@
 
 namespace nsb {
 
-class Sphere final : public RigidProblem {
+class Sphere final : public RigidProblem, public ExactSolution {
  public:
   explicit Sphere(const Params& params);
   static ParamSpecs parameters_spec();
@@ -48,15 +48,18 @@ class Sphere final : public RigidProblem {
   const Params& parameters() const override { return params_; }
   State initial_state() const override;
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
+  // roll_onset: roll_time(), where it is known (released on the incline).
+  std::optional<double> event_time(ExactEvent event) const override;
   std::vector<std::pair<std::string, double>> summary_values() const override;
   std::optional<FieldMesh> field_mesh() const override;
   void body_data(const State& s, Eigen::Ref<Eigen::MatrixXd> out) const override;
 
   // The exact roll-onset time: +inf if it slides for ever, NaN when dropped (h0 > 0).
   double roll_time() const;
-  const SphereInclineExact& exact() const { return exact_; }
+  const SphereInclineExact& closed_form() const { return exact_; }
 
  private:
   Params params_;

@@ -27,10 +27,13 @@ SpringChain::SpringChain(const Params& params)
       e_(params.real("e")),
       v0_(params.real("v0")),
       a_(params.real("a")),
-      m_(n_),
-      K_(n_, n_) {
+      m_(n_) {
   const double m = params.real("m"), ratio = params.real("mass_ratio");
   for (Index i = 0; i < n_; ++i) m_[i] = (i % 2 == 0) ? m : ratio * m;
+  M_.resize(n_, n_);
+  M_.reserve(Eigen::VectorXi::Constant(n_, 1));
+  for (Index i = 0; i < n_; ++i) M_.insert(i, i) = m_[i];
+  M_.makeCompressed();
 
   std::vector<Eigen::Triplet<double>> t;
   for (Index i = 0; i + 1 < n_; ++i) {
@@ -39,6 +42,7 @@ SpringChain::SpringChain(const Params& params)
     t.emplace_back(i, i + 1, -k_);
     t.emplace_back(i + 1, i, -k_);
   }
+  K_.resize(n_, n_);
   K_.setFromTriplets(t.begin(), t.end());
 
   const std::string& wall = params.choice("wall");
@@ -57,17 +61,6 @@ SpringChain::SpringChain(const Params& params)
   stable_step_ = 2.0 / std::sqrt(lambda_max);
 }
 
-SpMat SpringChain::mass_matrix() const {
-  SpMat M(n_, n_);
-  M.reserve(Eigen::VectorXi::Constant(n_, 1));
-  for (Index i = 0; i < n_; ++i) M.insert(i, i) = m_[i];
-  M.makeCompressed();
-  return M;
-}
-
-void SpringChain::internal_force(ConstVecRef u, VecRef f) const { f.noalias() = K_ * u; }
-
-void SpringChain::tangent_stiffness(ConstVecRef, SpMat& K) const { K = K_; }
 
 double SpringChain::strain_energy(ConstVecRef u) const {
   double w = 0.0;
@@ -83,7 +76,7 @@ State SpringChain::initial_state() const {
   return s;
 }
 
-void SpringChain::observe(const State& s, std::span<double> out) const { out[0] = momentum(s.v); }
+void SpringChain::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const { out[0] = momentum(s.v); }
 
 std::optional<FieldMesh> SpringChain::field_mesh() const {
   // Mass i is point i; the springs (element cells) first, then a vertex cell on each mass.

@@ -21,11 +21,11 @@
 //
 // Stable step of the central difference scheme: 2 / omega_max, omega_max^2 the largest
 // eigenvalue of M^{-1} K (computed once, dense, hence n <= 200).
-#include "problems/problem.hpp"
+#include "problems/linear_problem.hpp"
 
 namespace nsb {
 
-class SpringChain final : public Problem {
+class SpringChain final : public LinearProblem {
  public:
   explicit SpringChain(const Params& params);
   static ParamSpecs parameters_spec();
@@ -33,18 +33,13 @@ class SpringChain final : public Problem {
   std::string name() const override { return "spring-chain"; }
   const Params& parameters() const override { return params_; }
   Index ndof() const override { return n_; }
-  SpMat mass_matrix() const override;
-  void internal_force(ConstVecRef u, VecRef f) const override;
-  void tangent_stiffness(ConstVecRef u, SpMat& K) const override;
-  bool is_linear() const override { return true; }
   void external_force(double, VecRef f) const override { f.setZero(); }
   double strain_energy(ConstVecRef u) const override;
   double load_potential(ConstVecRef) const override { return 0.0; }
-  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
   double stable_step() const override { return stable_step_; }
   std::vector<std::string> observable_names() const override { return {"momentum"}; }
-  void observe(const State& s, std::span<double> out) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   std::optional<FieldMesh> field_mesh() const override;
   void cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const override;
 
@@ -56,8 +51,6 @@ class SpringChain final : public Problem {
   Index n_;
   double k_, e_, v0_, a_;
   Vec m_;
-  SpMat K_;
-  Contacts contacts_;
   double stable_step_;
 };
 

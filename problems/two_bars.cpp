@@ -148,7 +148,7 @@ double TwoBars::mean_velocity(int bar, ConstVecRef v) const {
   return mass_rows_.segment(first, count).dot(v.segment(first, count)) / bar_mass(bar);
 }
 
-std::optional<State> TwoBars::exact_state(double t) const {
+std::optional<State> TwoBars::state(double t) const {
   State s;
   s.t = t;
   s.u.resize(ndof());
@@ -175,21 +175,16 @@ std::vector<std::string> TwoBars::observable_names() const {
           "momentum", "momentum_exact", "gap"};
 }
 
-void TwoBars::observe(const State& s, std::span<double> out) const {
+void TwoBars::observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
   out[0] = mean_velocity(1, s.v);
   out[1] = mean_velocity(2, s.v);
-  out[2] = 0.0;  // no step, no impulse
+  out[2] = dt > 0.0 ? impulses[0] / dt : 0.0;  // dt = 0: no step, no impulse
   out[3] = exact_mean_velocity(1, s.t);
   out[4] = exact_mean_velocity(2, s.t);
   out[5] = exact_contact_force(s.t);
   out[6] = momentum(s.v);
   out[7] = exact_momentum();
   out[8] = gap0_ + s.u[dof(2, 0)] - s.u[dof(1, n1_)];
-}
-
-void TwoBars::observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
-  observe(s, out);
-  if (dt > 0.0) out[2] = impulses[0] / dt;
 }
 
 NSBENCH_PROBLEM({"two-bars", "1D elastic bar striking an equal-material bar at rest (contact row on two bodies); mass lumped|consistent|singular (exact d'Alembert solution)", &TwoBars::parameters_spec, &make_from_params<Problem, TwoBars>});

@@ -47,11 +47,11 @@
 #include <vector>
 
 #include "problems/bar_elements.hpp"
-#include "problems/problem.hpp"
+#include "problems/linear_problem.hpp"
 
 namespace nsb {
 
-class TwoBars final : public Problem {
+class TwoBars final : public LinearProblem, public ExactSolution {
  public:
   // Defaults: L1 = 1, L2 = 2, N1 = 50, N2 = 100 (h1 = h2), E = rho = A = v0 = 1, g0 = 0, lumped.
   explicit TwoBars(const Params& params);
@@ -60,22 +60,17 @@ class TwoBars final : public Problem {
   std::string name() const override { return "two-bars"; }
   const Params& parameters() const override { return params_; }
   Index ndof() const override { return n1_ + n2_ + 2; }
-  SpMat mass_matrix() const override { return M_; }
-  void internal_force(ConstVecRef u, VecRef f) const override { f.noalias() = K_ * u; }
-  void tangent_stiffness(ConstVecRef, SpMat& K) const override { copy_stiffness(K_, K); }
-  bool is_linear() const override { return true; }
   void external_force(double, VecRef f) const override { f.setZero(); }
   double strain_energy(ConstVecRef u) const override;
   double load_potential(ConstVecRef) const override { return 0.0; }
-  const Contacts& contacts() const override { return contacts_; }
   State initial_state() const override;
   double stable_step() const override;
   // v1_mean, v2_mean, contact_force (impulse / dt), their exact values, momentum (1^T M v)
   // and its exact value, gap.
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
-  void observe_step(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
-  std::optional<State> exact_state(double t) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
+  const ExactSolution* exact() const override { return this; }
+  std::optional<State> state(double t) const override;
   std::vector<double> impact_times(double t_end) const override;
   // Field output: bar 1 (body 0) then bar 2 (body 1) at their reference positions, node i
   // of a bar on dof(bar, i); sigma = E (u_{i+1} - u_i) / h on each element, constant over it.
@@ -118,9 +113,7 @@ class TwoBars final : public Problem {
   BarMassModel model_;
   double c_, tc_;
   std::vector<double> ke1_, ke2_;
-  SpMat M_, K_;
   Vec mass_rows_;
-  Contacts contacts_;
 };
 
 }  // namespace nsb

@@ -331,18 +331,19 @@ std::vector<std::string> TwoBlocks::observable_names() const {
   return names;
 }
 
-void TwoBlocks::observe(const State& s, std::span<double> out) const {
-  // block-2d's columns are additive (energies, momenta, closed floor contacts).
+void TwoBlocks::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
+  // block-2d's columns are additive (energies, momenta, closed floor contacts) and read no
+  // impulse: each block is observed as at a sample without a step.
   const std::size_t k = lower_->observable_names().size();
   std::vector<double> lo(k), up(k);
   State part;
   part.t = s.t;
   part.u = s.u.head(nl_);
   part.v = s.v.head(nl_);
-  lower_->observe(part, lo);
+  lower_->observe(part, Vec(), 0.0, lo);
   part.u = s.u.tail(ndof() - nl_);
   part.v = s.v.tail(ndof() - nl_);
-  upper_->observe(part, up);
+  upper_->observe(part, Vec(), 0.0, up);
   long between = 0;
   if (large_sliding_) {
     for (Index k = 0; k < slaves_; ++k) between += segment_contact(s.u, k).gap <= 0.0;

@@ -98,7 +98,7 @@ class TwoBlocks final : public Problem {
   State initial_state() const override;
   double stable_step() const override;
   std::vector<std::string> observable_names() const override;
-  void observe(const State& s, std::span<double> out) const override;
+  void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   // Field output: the lower block's mesh (body 0), then the upper block's (body 1, dofs
   // shifted by lower_dofs()); stress as block-2d's (Cauchy, Gauss-point mean).
   std::optional<FieldMesh> field_mesh() const override;

@@ -124,8 +124,11 @@ void bind_problem(py::module_& m) {
                              "tangential velocity) and e (restitution); gap g = g0 + L u >= 0.")
       .def("initial_state", &Problem::initial_state)
       .def("stable_step", &Problem::stable_step, "2 / omega_max of the explicit central-difference scheme.")
-      .def("exact_state", &Problem::exact_state, "t"_a, "The exact State at t, or None where none is known.")
-      .def("impact_times", &Problem::impact_times, "t_end"_a, "Exact impact times in [0, t_end] where known.")
+      .def("exact_state", [](const Problem& p, double t) { return p.exact() ? p.exact()->state(t) : std::nullopt; }, "t"_a,
+           "The exact State at t (the problem's exact solution), or None where none is known.")
+      .def("impact_times", [](const Problem& p, double t_end) {
+        return p.exact() ? p.exact()->impact_times(t_end) : std::vector<double>{};
+      }, "t_end"_a, "Exact impact times in [0, t_end] where known (the problem's exact solution).")
       .def_property_readonly("observables", &Problem::observable_names, "The problem's own columns of a run's series.")
       .def("__repr__", [](const Problem& p) { return fmt::format("Problem('{}', ndof={})", p.name(), p.ndof()); });
 }

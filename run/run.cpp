@@ -123,7 +123,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     row[6] = lambda.sum();
     row[7] = static_cast<double>((lambda.array() > 0.0).count());
     row[8] = tangential_magnitude();
-    problem.observe_step(s, lambda, dt, std::span<double>(row).subspan(kGenericColumns.size()));
+    problem.observe(s, lambda, dt, std::span<double>(row).subspan(kGenericColumns.size()));
     if (options.series_sink)
       options.series_sink->row(row);
     else

@@ -31,7 +31,6 @@
 #include "integrators/registry.hpp"
 #include "run/run.hpp"
 #include "problems/registry.hpp"
-#include "problems/rolling_disk.hpp"
 #include "studies/claims_conditions.hpp"
 #include "studies/hausdorff_study.hpp"
 #include "studies/measures.hpp"
@@ -124,7 +123,7 @@ std::unique_ptr<Problem> problem_of(const std::string& name, const std::map<std:
 void disk_run(Work& work, Momentum& m) {
   const auto problem = problem_of("rolling-disk", {{"h0", "0.05"}, {"omega0", "20"}, {"e", "0.5"}, {"mu", "0.3"}});
   const double R = problem->parameters().real("R");
-  const double t_end = 1.2 * dynamic_cast<const RollingDisk&>(*problem).rest_time();
+  const double t_end = 1.2 * problem->exact()->event_time(ExactEvent::rest).value();
   const Vec M = problem->mass_matrix().diagonal();
   auto it = make_integrator("cd-lagrange");
   it->init(*problem, problem->initial_state());

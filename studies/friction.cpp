@@ -25,7 +25,7 @@
 // - max |v - v_exact| over the steps; the final speed error |v - v_exact| at t_end (for the
 //   disk v_exact(t_end) = v_f = (v0 - kappa R omega0) / (1 + kappa), rolling by then); the
 //   speed just after the first impact (end of the first step with a normal impulse) against
-//   RollingDisk::impacts()[0].v.
+//   RollingDisk::impacts()[0].v (ExactValue::first_rebound_speed).
 // - energy gain: max over steps of (E_{k+1} - E_k) / E scale, E the integrator's own energy,
 //   E scale = |E0| (m g (1 m) when E0 = 0): no case has an energy source, so a positive gain
 //   beyond round-off is the scheme's.
@@ -126,15 +126,15 @@ const FrictionCase& find_friction_case(const std::string& id) {
 
 // The speed just after the disk's first impact (NaN: no disk, or no impact).
 double first_impact_speed(const Problem& p) {
-  const auto* d = dynamic_cast<const RollingDisk*>(&p);
-  return d && !d->impacts().empty() ? d->impacts().front().v : kNaN;
+  const ExactSolution* exact = p.exact();
+  return exact ? exact->value(ExactValue::first_rebound_speed).value_or(kNaN) : kNaN;
 }
 
 // The problem's observables after a step, by name; NaN for a name it does not have.
 class Observables {
  public:
   explicit Observables(const Problem& p) : problem_(p), names_(p.observable_names()), values_(names_.size(), kNaN) {}
-  void update(const State& s, const Vec& impulses, double dt) { problem_.observe_step(s, impulses, dt, values_); }
+  void update(const State& s, const Vec& impulses, double dt) { problem_.observe(s, impulses, dt, values_); }
   std::size_t index(const std::string& name) const {
     return static_cast<std::size_t>(std::find(names_.begin(), names_.end(), name) - names_.begin());
   }
@@ -485,7 +485,7 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
   const double t_end = find_friction_case(kFrictionTrajectoryCase).t_end;
   for (int k = 0; k <= kFrictionExactSamples; ++k) {
     const double t = t_end * k / kFrictionExactSamples;
-    trajectory.add_row({std::string("exact"), t, (disk.contacts().tangent * disk.exact_state(t)->v)(0)});
+    trajectory.add_row({std::string("exact"), t, (disk.contacts().tangent * disk.state(t)->v)(0)});
   }
   return {sliding, rolling, block, hard, rank, trajectory};
 }

@@ -29,9 +29,6 @@
 #include "run/run.hpp"
 #include "problems/bouncing_bar.hpp"
 #include "problems/registry.hpp"
-#include "problems/rolling_disk.hpp"
-#include "problems/signorini_bar.hpp"
-#include "problems/sliding_mass.hpp"
 #include "reference/modal_exact.hpp"
 #include "studies/hausdorff.hpp"
 #include "studies/hausdorff_study.hpp"
@@ -75,17 +72,16 @@ double level_step(const Subject& s, const Problem& problem, int level) {
 }
 
 double horizon(const Subject& s, const Problem& problem) {
-  if (s.problem == "bouncing-mass") return problem.impact_times(1e3).at(2) + 0.2;
-  if (s.problem == "signorini-bar") {
-    const auto& bar = dynamic_cast<const SignoriniBar&>(problem);
-    return bar.contact_start() + 1.5 * bar.contact_duration();
-  }
+  const ExactSolution* exact = problem.exact();
+  if (s.problem == "bouncing-mass") return exact->impact_times(1e3).at(2) + 0.2;
+  if (s.problem == "signorini-bar")
+    return exact->event_time(ExactEvent::contact_start).value() + 1.5 * exact->value(ExactValue::contact_duration).value();
   if (s.problem == "bouncing-bar") {
-    const BouncingBarExact exact(problem.parameters(), 1e3);
-    return exact.impact_time() + 16.0 * exact.wave_time();
+    const BouncingBarExact bouncing(problem.parameters(), 1e3);
+    return bouncing.impact_time() + 16.0 * bouncing.wave_time();
   }
-  if (s.problem == "sliding-mass") return 1.5 * dynamic_cast<const SlidingMass&>(problem).stop_time();
-  if (s.problem == "rolling-disk") return 1.2 * dynamic_cast<const RollingDisk&>(problem).rest_time();
+  if (s.problem == "sliding-mass") return 1.5 * exact->event_time(ExactEvent::slip_stop).value();
+  if (s.problem == "rolling-disk") return 1.2 * exact->event_time(ExactEvent::rest).value();
   return 2.0;
 }
 
@@ -94,7 +90,7 @@ double observed(const Problem& problem, const Subject& s, const State& state, co
   if (s.observable.empty()) return state.v[0];
   const auto& names = problem.observable_names();
   std::vector<double> buffer(names.size());
-  problem.observe_step(state, impulses, dt, buffer);
+  problem.observe(state, impulses, dt, buffer);
   return buffer[static_cast<std::size_t>(std::find(names.begin(), names.end(), s.observable) - names.begin())];
 }
 
@@ -116,8 +112,9 @@ Polyline run_graph(const Problem& problem, Integrator& integrator, double dt, do
 }
 
 Polyline exact_graph(const Problem& problem, const std::function<double(const State&)>& value, double t_end) {
-  return sampled_graph([&](double t) { return value(*problem.exact_state(t)); }, t_end, kHausdorffExactSamples,
-                       problem.impact_times(t_end), kHausdorffJumpFraction);
+  const ExactSolution& exact = *problem.exact();
+  return sampled_graph([&](double t) { return value(*exact.state(t)); }, t_end, kHausdorffExactSamples, exact.impact_times(t_end),
+                       kHausdorffJumpFraction);
 }
 
 double interpolate(const Polyline& g, double t) {
@@ -184,7 +181,7 @@ Json hausdorff_case(const Json& c) {
   } else {
     const auto exact_value = [&](const State& st) { return observed(*problem, s, st, Vec::Zero(problem->ncontacts()), 0.0); };
     reference = exact_graph(*problem, exact_value, t_end);
-    reference_at = [&](double t) { return exact_value(*problem->exact_state(t)); };
+    reference_at = [&](double t) { return exact_value(*problem->exact()->state(t)); };
   }
   const GraphErrors e = graph_errors(graph, reference, reference_at, t_end);
   out.update({{"max_error", real(e.max_error)}, {"hausdorff", real(e.hausdorff)}, {"to_reference", real(e.to_reference)},

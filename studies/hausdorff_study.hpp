@@ -14,7 +14,7 @@ namespace nsb {
 // in *result when given.
 Polyline run_graph(const Problem& problem, Integrator& integrator, double dt, double t_end,
                    const std::function<double(const State&, const Vec&, double)>& value, RunResult* result);
-// The graph of value(exact_state(t)) on [0, t_end]: sampled_graph with 20000 samples, the
+// The graph of value(the exact state at t) on [0, t_end]: sampled_graph with 20000 samples, the
 // problem's impact times and jumps of more than 2% of the largest |value| made vertical.
 Polyline exact_graph(const Problem& problem, const std::function<double(const State&)>& value, double t_end);
 // Linear interpolation of a graph at t (its end values outside it).

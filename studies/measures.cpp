@@ -6,8 +6,6 @@
 #include <limits>
 
 #include "integrators/integrator.hpp"
-#include "problems/painleve_rod.hpp"
-#include "problems/rocking_block.hpp"
 
 namespace nsb {
 
@@ -232,30 +230,26 @@ void ContactImpacts::add(double t, const Vec& impulses, const Vec& gaps, double 
 }
 
 double rocking_law_ratio(const Problem& problem, ImpactLaw law) {
-  const auto* block = dynamic_cast<const RockingBlock*>(&problem);
-  if (!block) return kNaN;
-  return law == ImpactLaw::housner ? housner_ratio(block->exact().alpha()) : block->exact().impact_ratio();
+  const ExactSolution* exact = problem.exact();
+  const ExactValue ratio = law == ImpactLaw::housner ? ExactValue::housner_ratio : ExactValue::impact_ratio;
+  return (exact ? exact->value(ratio) : std::nullopt).value_or(kNaN);
 }
 
 std::size_t rocking_exact_impacts(const Problem& problem) {
-  const auto* block = dynamic_cast<const RockingBlock*>(&problem);
-  return block ? block->exact().impacts().size() : 0;
+  return problem.exact() ? problem.exact()->amplitudes_after_impacts().size() : 0;
 }
 
 double rocking_amplitude_after(const Problem& problem, std::size_t k) {
-  const auto* block = dynamic_cast<const RockingBlock*>(&problem);
-  if (!block || k == 0 || k > block->exact().impacts().size()) return kNaN;
-  return block->exact().impacts()[k - 1].amplitude_after;
+  const std::vector<double> amplitudes = problem.exact() ? problem.exact()->amplitudes_after_impacts() : std::vector<double>{};
+  return k == 0 || k > amplitudes.size() ? kNaN : amplitudes[k - 1];
 }
 
 double rocking_rest_time(const Problem& problem) {
-  const auto* block = dynamic_cast<const RockingBlock*>(&problem);
-  return block ? block->exact().rest_time() : kNaN;
+  return (problem.exact() ? problem.exact()->event_time(ExactEvent::rest) : std::nullopt).value_or(kNaN);
 }
 
 double painleve_jam_time(const Problem& problem) {
-  const auto* rod = dynamic_cast<const PainleveRod*>(&problem);
-  return rod && rod->exact().ending() == PainleveRodExact::Ending::jam ? rod->exact().end_time() : kNaN;
+  return (problem.exact() ? problem.exact()->event_time(ExactEvent::jam) : std::nullopt).value_or(kNaN);
 }
 
 double summary_value(const Problem& problem, const std::string& name) {

@@ -199,7 +199,8 @@ class ContactImpacts {
   std::vector<Impact> impacts_;
 };
 
-// The closed forms the rigid study holds the schemes against, NaN on any other problem:
+// The closed forms the rigid study holds the schemes against, asked of the problem's exact
+// solution (problems/exact_solution.hpp), NaN where it does not give them:
 // the rocking block's impact ratio omega+ / omega- under Housner's law, 1 - (3/2) sin^2(alpha),
 // or Moreau's (its exact solution's: Newton and Coulomb on both corners; NaN below mu_H, where
 // the corner would slip: rocking about a stuck pivot needs |F / N| = 3 sin(alpha) cos(alpha) /

@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "problems/rolling_disk.hpp"
-#include "problems/sliding_mass.hpp"
 #include "studies/measures.hpp"
 
 namespace nsb {
@@ -13,12 +11,14 @@ double finite_or_nan(double x) { return std::isfinite(x) ? x : kNaN; }
 }  // namespace
 
 ExactStop exact_stop(const Problem& problem) {
-  if (const auto* s = dynamic_cast<const SlidingMass*>(&problem))
-    return {finite_or_nan(s->stop_time()), finite_or_nan(s->stop_distance()), s->sticks(), std::isinf(s->stop_time()), false};
-  if (const auto* d = dynamic_cast<const RollingDisk*>(&problem)) {
-    const double onset = d->rolling_onset_time(), rest = d->rest_time();
-    return {onset > rest || rest == 0.0 ? finite_or_nan(onset) : kNaN, kNaN, true, std::isinf(onset), true};
+  const ExactSolution* exact = problem.exact();
+  if (!exact) return {};
+  if (const auto stop = exact->event_time(ExactEvent::slip_stop)) {
+    const double distance = exact->value(ExactValue::stop_distance).value_or(kNaN);
+    return {finite_or_nan(*stop), finite_or_nan(distance), exact->value(ExactValue::stays_stopped) == 1.0, std::isinf(*stop), false};
   }
+  const auto onset = exact->event_time(ExactEvent::roll_onset), rest = exact->event_time(ExactEvent::rest);
+  if (onset && rest) return {*onset > *rest || *rest == 0.0 ? finite_or_nan(*onset) : kNaN, kNaN, true, std::isinf(*onset), true};
   return {};
 }
 

@@ -21,8 +21,8 @@ namespace nsb {
 
 inline constexpr double kSlipTol = 1e-9;  // [m/s]: at rest or rolling (the problems move at ~1 m/s)
 
-// What a problem's exact solution says of its stop (NaN: nothing, the problem is neither a
-// SlidingMass nor a RollingDisk, or it never stops).
+// What a problem's exact solution says of its stop (NaN: nothing, the solution times neither
+// a slip stop nor a rolling onset after rest, or it never stops).
 struct ExactStop {
   double stop_time = std::numeric_limits<double>::quiet_NaN();      // sliding mass: stop; disk: rolling onset
   double stop_distance = std::numeric_limits<double>::quiet_NaN();  // sliding mass only
@@ -30,10 +30,11 @@ struct ExactStop {
   bool never_stops = false;  // it slides on for ever
   bool rolling = false;      // the stop is a disk's rolling onset
 };
-// SlidingMass: stop_time() and stop_distance(). RollingDisk: the rolling onset as the slip sees
-// it, from its rest time on (the disk lies on the floor) or later; when the onset equals a
-// rest time > 0 the slip may have ended in a bounce before it, which the problem does not
-// time: NaN.
+// A solution that times ExactEvent::slip_stop (sliding-mass): that time, ExactValue::stop_distance
+// and stays_stopped. One that times roll_onset and rest (rolling-disk): the rolling onset as
+// the slip sees it, from its rest time on (the disk lies on the floor) or later; when the onset
+// equals a rest time > 0 the slip may have ended in a bounce before it, which the problem does
+// not time: NaN.
 ExactStop exact_stop(const Problem& problem);
 
 class SlipStop {

@@ -161,7 +161,7 @@ double state_observable(const Problem& problem, const SpMat& M, const State& s, 
                         const std::string& name, std::span<double> buffer, const Energy* energy) {
   const auto& names = problem.observable_names();
   if (const auto k = std::find(names.begin(), names.end(), name); k != names.end()) {
-    problem.observe_step(s, impulses, dt, buffer);
+    problem.observe(s, impulses, dt, buffer);
     return buffer[k - names.begin()];
   }
   if (name == "min_gap" && problem.contacts_move()) {  // the gaps themselves, not their linearisation at U0
@@ -210,7 +210,7 @@ class Reference {
       return state_observable(problem_, M_, lockstep_->state(), lockstep_->impulses(), 0.0, name, buffer, &energy);
     }
     if (exact_) {
-      const State exact = *problem_.exact_state(t);
+      const State exact = *problem_.exact()->state(t);
       return state_observable(problem_, M_, exact, Vec::Zero(problem_.ncontacts()), 0.0, name, buffer, nullptr);
     }
     const Series& s = run_.series;
@@ -224,8 +224,8 @@ class Reference {
     const double t0 = s.at(lo, t_), t1 = s.at(hi, t_), w = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
     return (1 - w) * s.at(lo, col) + w * s.at(hi, col);
   }
-  Vec u(double t) const { return lockstep_ ? lockstep_->state().u : problem_.exact_state(t)->u; }
-  Vec v(double t) const { return lockstep_ ? lockstep_->state().v : problem_.exact_state(t)->v; }
+  Vec u(double t) const { return lockstep_ ? lockstep_->state().u : problem_.exact()->state(t)->u; }
+  Vec v(double t) const { return lockstep_ ? lockstep_->state().v : problem_.exact()->state(t)->v; }
   // The reference's graph of an observable on [0, t_end].
   Polyline graph(const std::string& name, double t_end, std::span<double> buffer) const {
     if (exact_) {
@@ -365,7 +365,9 @@ class FlightEnergies {
  public:
   FlightEnergies() = default;
   FlightEnergies(const Problem& problem, double t_end, int count)
-      : impacts_(problem.impact_times(t_end)), energies_(problem.energies_after_impacts(t_end)), count_(count) {}
+      : impacts_(problem.exact() ? problem.exact()->impact_times(t_end) : std::vector<double>{}),
+        energies_(problem.exact() ? problem.exact()->energies_after_impacts(t_end) : std::vector<double>{}),
+        count_(count) {}
   void add(double t, double energy) {
     const std::size_t i = errors_.size();  // flight i + 1, after impact i + 1
     if (static_cast<int>(i) < count_ && i + 1 < impacts_.size() && t >= 0.5 * (impacts_[i] + impacts_[i + 1]))
@@ -663,7 +665,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         v = (fm.norm == "final" ? a.last : fm.norm == "max" ? a.largest : std::sqrt(a.square / (std::min(t_end, windows[m].second) - windows[m].first))) / scale;
         break;
       case MeasureKind::ImpactTime: {
-        const auto exact = problem->impact_times(t_end);
+        const auto exact = problem->exact() ? problem->exact()->impact_times(t_end) : std::vector<double>{};
         const std::size_t n = std::min<std::size_t>(fm.count, exact.size());
         const std::vector<double>& impacts = a.impacts.starts();
         v = impacts.size() < n ? kNaN : 0.0;  // an impact missed: no error to report

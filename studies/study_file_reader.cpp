@@ -367,7 +367,7 @@ FileReference read_reference(const Checker& c, const Json& r, const std::string&
   if (const Json* v = c.find(r, "solution")) {
     c.choice(*v, child(path, "solution"), {"exact"});
     for (const std::size_t i : served)
-      if (!instances[i]->exact_state(0.0))
+      if (const ExactSolution* exact = instances[i]->exact(); !exact || !exact->state(0.0))
         c.fail(child(path, "solution"), fmt::format("problem '{}' ({}) has no exact solution", spec.problems[i].label, spec.problems[i].name),
                "integrator = a reference integrator");
   } else {
@@ -427,7 +427,8 @@ void read_flight_energy(const Checker& c, const Json& j, const std::string& path
   if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "count"});
   for (const std::size_t p : on) {
     const double t_end = spec.t_end_of(spec.problems[p]);
-    const std::size_t known = std::min(instances[p]->impact_times(t_end).size(), instances[p]->energies_after_impacts(t_end).size());
+    const ExactSolution* exact = instances[p]->exact();
+    const std::size_t known = exact ? std::min(exact->impact_times(t_end).size(), exact->energies_after_impacts(t_end).size()) : 0;
     if (known < static_cast<std::size_t>(m.count) + 1)
       c.fail(child(path, "count"), fmt::format("problem '{}' knows {} exact impacts and energies by t_end, not count + 1 = {}",
                                                spec.problems[p].label, known, m.count + 1),
@@ -886,7 +887,7 @@ void read_end_at_impact(const Checker& c, const Json& j, const std::string& path
   const std::string at = child(path, "end_at_impact");
   if (c.find(j, "t_end") || c.find(j, "full_t_end")) c.fail(at, "the run's end given twice", "one of t_end (with full_t_end) or end_at_impact");
   const long n = c.integer(*v, at, 1, 1000);
-  const auto times = instance.impact_times(std::numeric_limits<double>::infinity());
+  const auto times = instance.exact() ? instance.exact()->impact_times(std::numeric_limits<double>::infinity()) : std::vector<double>{};
   if (static_cast<std::size_t>(n) > times.size())
     c.fail(at, fmt::format("problem '{}' knows {} exact impact times", p.label, times.size()),
            times.empty() ? "problems with known impacts (bouncing-mass)" : fmt::format("[1, {}]", times.size()));
@@ -1267,7 +1268,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       keys({"count"});
       if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));
       for (const std::size_t p : on)
-        if (instances[p]->impact_times(spec.t_end_of(spec.problems[p])).empty())
+        if (!instances[p]->exact() || instances[p]->exact()->impact_times(spec.t_end_of(spec.problems[p])).empty())
           c.fail(child(path, "kind"), fmt::format("problem '{}' knows no impact times before t_end", spec.problems[p].label),
                  "problems with known impacts (bouncing-mass, rolling-disk dropped from h0 > 0), or problems = [...]");
       m.label = "impact time err";

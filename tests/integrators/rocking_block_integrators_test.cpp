@@ -37,7 +37,7 @@ FirstImpact first_impact(const nsb::RockingBlock& p, nsb::Integrator& integ, dou
     for (int j = 0; j < after; ++j) integ.step(dt);
     out.omega_plus = integ.state().v[2];
     out.ratio = out.omega_plus / out.omega_minus;
-    out.omega_exact = p.exact_state(integ.state().t)->v[2];
+    out.omega_exact = p.state(integ.state().t)->v[2];
     return out;
   }
   FAIL("no impact within 2 s");
@@ -60,8 +60,8 @@ FirstImpact first_impact(const nsb::RockingBlock& p, nsb::Integrator& integ, dou
 TEST_CASE("cd-lagrange and moreau-jean on the rocking block: first impact ratio within O(dt) of Housner's law",
           "[integrators][rocking_block]") {
   const auto p = make_rocking();
-  const double law = nsb::housner_ratio(p.exact().alpha());
-  REQUIRE(p.exact().impact_ratio() == Catch::Detail::Approx(law).epsilon(1e-14));  // Moreau's = Housner's here
+  const double law = nsb::housner_ratio(p.closed_form().alpha());
+  REQUIRE(p.closed_form().impact_ratio() == Catch::Detail::Approx(law).epsilon(1e-14));  // Moreau's = Housner's here
   for (const char* name : {"cd-lagrange", "moreau-jean"}) {
     for (const double dt : {4e-4, 1e-4}) {
       auto integ = nsb::testing::init_or_decline(nsb::find_integrator(name), p);
@@ -69,7 +69,7 @@ TEST_CASE("cd-lagrange and moreau-jean on the rocking block: first impact ratio 
       const FirstImpact im = first_impact(p, *integ, dt, 3);
       INFO(name << ", dt = " << dt << ": omega- " << im.omega_minus << ", omega+ " << im.omega_plus << ", ratio "
                 << im.ratio << " against " << law);
-      CHECK(im.omega_minus == Catch::Detail::Approx(p.exact().impacts().front().omega_before).epsilon(0.02));
+      CHECK(im.omega_minus == Catch::Detail::Approx(p.closed_form().impacts().front().omega_before).epsilon(0.02));
       CHECK(std::abs(im.ratio - law) <= 24.0 * dt);
       CHECK(std::abs(im.omega_plus - im.omega_exact) / std::abs(im.omega_minus) <= 12.0 * dt);
     }
@@ -94,14 +94,14 @@ TEST_CASE("every other integrator declines the rocking block with the moving-con
 //     build/tests/nsbench_tests "[rocking_numbers]"
 TEST_CASE("rocking block: first impact ratio per scheme and step (prints)", "[.][rocking_numbers]") {
   const auto p = make_rocking();
-  const double law = nsb::housner_ratio(p.exact().alpha());
+  const double law = nsb::housner_ratio(p.closed_form().alpha());
   for (const char* name : {"cd-lagrange", "moreau-jean"})
     for (const double dt : {1e-3, 4e-4, 1e-4, 2.5e-5}) {
       auto integ = nsb::testing::init_or_decline(nsb::find_integrator(name), p);
       const FirstImpact im = first_impact(p, *integ, dt, 3);
       std::printf("%-12s dt %-8g omega- %.6f (exact %.6f) omega+ %.6f ratio %.6f Housner %.6f error %+.3e (%+.1f dt/s); "
                   "omega+ against exact %+.3e (%+.1f dt/s)\n", name, dt, im.omega_minus,
-                  p.exact().impacts().front().omega_before, im.omega_plus, im.ratio, law, im.ratio - law, (im.ratio - law) / dt,
+                  p.closed_form().impacts().front().omega_before, im.omega_plus, im.ratio, law, im.ratio - law, (im.ratio - law) / dt,
                   (im.omega_plus - im.omega_exact) / std::abs(im.omega_minus),
                   (im.omega_plus - im.omega_exact) / std::abs(im.omega_minus) / dt);
     }
@@ -138,7 +138,7 @@ TEST_CASE("cd-lagrange on the rocking block with frozen contacts misses Housner'
     bool contacts_move() const override { return false; }
   };
   const Frozen p(nsb::Params(nsb::RockingBlock::parameters_spec()));
-  const double law = nsb::housner_ratio(p.exact().alpha()), dt = 1e-4;
+  const double law = nsb::housner_ratio(p.closed_form().alpha()), dt = 1e-4;
   auto integ = nsb::testing::init_or_decline(nsb::find_integrator("cd-lagrange"), p);
   REQUIRE(integ);
   const FirstImpact im = first_impact(p, *integ, dt, 3);

@@ -25,8 +25,8 @@ SlidingMass make_slider(double alpha, double mu, double v0, double m = 1.0) {
 
 double rad(double deg) { return deg * std::numbers::pi / 180.0; }
 
-double x_at(const SlidingMass& p, double t) { return p.exact_state(t)->u[0]; }
-double v_at(const SlidingMass& p, double t) { return p.exact_state(t)->v[0]; }
+double x_at(const SlidingMass& p, double t) { return p.state(t)->u[0]; }
+double v_at(const SlidingMass& p, double t) { return p.state(t)->v[0]; }
 
 // Trapezoid rule on [a, b] with n panels: exact (to round-off) for a linear integrand.
 template <class F>
@@ -71,11 +71,11 @@ TEST_CASE("sliding mass exact: x is the integral of v, v is continuous", "[probl
       CHECK(std::abs(v_at(p, t + eps) - v_at(p, t - eps)) <= 2 * eps * a_max + 1e-14);
       CHECK(std::abs(x_at(p, t + eps) - x_at(p, t - eps)) <= 2 * eps * (std::abs(v_at(p, t)) + 1e-6));
     }
-    const auto s0 = *p.exact_state(0.0);
+    const auto s0 = *p.state(0.0);
     CHECK(s0.u[0] == 0.0);
     CHECK(s0.v[0] == c.v0);
-    CHECK(p.exact_state(1.3)->u[1] == 0.0);
-    CHECK(p.exact_state(1.3)->v[1] == 0.0);
+    CHECK(p.state(1.3)->u[1] == 0.0);
+    CHECK(p.state(1.3)->v[1] == 0.0);
   }
 }
 
@@ -154,7 +154,7 @@ TEST_CASE("sliding mass exact: the energy falls by the friction work mu m g cos(
     const double m = 2.5;
     const auto p = make_slider(c.alpha, c.mu, c.v0, m);
     const auto energy = [&](double t) {
-      const auto s = *p.exact_state(t);
+      const auto s = *p.state(t);
       return 0.5 * m * s.v.squaredNorm() + p.load_potential(s.u);
     };
     const double normal = m * g * std::cos(rad(c.alpha));
@@ -224,7 +224,7 @@ TEST_CASE("sliding mass: model data and contacts", "[problems][exact][friction]"
     CHECK(s.v[0] == 2.0);
     std::vector<double> out(p.observable_names().size());
     REQUIRE(out.size() == 4);
-    p.observe(*p.exact_state(10.0), out);
+    p.observe(*p.state(10.0), nsb::Vec(), 0.0, out);
     for (double o : out) CHECK(std::isfinite(o));
     CHECK(out[0] == out[2]);
   }

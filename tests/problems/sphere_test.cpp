@@ -46,18 +46,18 @@ TEST_CASE("sphere: the exact state solves u' = v and keeps the energy balance", 
   REQUIRE(t_roll == Approx(0.238575312993057).epsilon(1e-12));  // docs/three_d.md
   for (const double t : {0.3 * t_roll, 0.9 * t_roll, 1.5 * t_roll}) {
     const double h = 1e-5;
-    const nsb::State a = *s.exact_state(t - h), b = *s.exact_state(t + h), x = *s.exact_state(t);
+    const nsb::State a = *s.state(t - h), b = *s.state(t + h), x = *s.state(t);
     const Eigen::VectorXd rate = (b.u - a.u) / (2.0 * h);
     CHECK((rate - x.v).lpNorm<Eigen::Infinity>() < 1e-8 * x.v.lpNorm<Eigen::Infinity>());
     // Kinetic + load potential is the exact solution's energy, which falls by the friction work.
     const double energy = 0.5 * x.v.dot(s.mass_matrix() * x.v) + s.load_potential(x.u);
-    const nsb::SphereInclineExact::State e = s.exact().state(t);
-    CHECK(energy == Approx(s.exact().energy(e)).epsilon(1e-14));
-    const double friction_work = 0.3 * 9.81 * std::cos(20.0 * M_PI / 180.0) * s.exact().slip_path_length(t);
+    const nsb::SphereInclineExact::State e = s.closed_form().state(t);
+    CHECK(energy == Approx(s.closed_form().energy(e)).epsilon(1e-14));
+    const double friction_work = 0.3 * 9.81 * std::cos(20.0 * M_PI / 180.0) * s.closed_form().slip_path_length(t);
     const nsb::State x0 = s.initial_state();
     CHECK(energy == Approx(0.5 * x0.v.dot(s.mass_matrix() * x0.v) - friction_work).epsilon(1e-13));
     double slip[2];
-    s.observe(x, slip);
+    s.observe(x, nsb::Vec(), 0.0, slip);
     CHECK(slip[0] == Approx(slip[1]).margin(1e-13));
   }
   const auto figures = s.summary_values();
@@ -66,7 +66,7 @@ TEST_CASE("sphere: the exact state solves u' = v and keeps the energy balance", 
   CHECK(figures[0].second == t_roll);
   // Dropped: no exact solution here.
   const Sphere dropped = make_sphere({{"h0", "0.1"}});
-  CHECK_FALSE(dropped.exact_state(0.1));
+  CHECK_FALSE(dropped.state(0.1));
   CHECK(std::isnan(dropped.roll_time()));
   // mu below (2/7) tan(alpha): it slides for ever.
   CHECK(std::isinf(make_sphere({{"mu", "0.1"}}).roll_time()));
@@ -92,7 +92,7 @@ TEST_CASE("sphere: the field mesh is one 3D vertex with the body arrays", "[sphe
   CHECK(mesh.nbodies() == 1);
   CHECK(mesh.body_columns() == 7);
   Eigen::MatrixXd out(1, 7);
-  const nsb::State x = *s.exact_state(0.1);
+  const nsb::State x = *s.state(0.1);
   s.body_data(x, out);
   CHECK(out(0, 0) == 0.1);
   CHECK(out.block<1, 3>(0, 1).transpose().isApprox(x.v.tail<3>()));

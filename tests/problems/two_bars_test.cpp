@@ -178,7 +178,7 @@ TEST_CASE("two bars: discrete operators, mass models, contact row on both bodies
   CHECK(p.momentum(s.v) == Approx(p.exact_momentum()));
   CHECK(p.impact_times(10.0) == std::vector<double>{0.0});
   CHECK(bars({{"g0", "0.5"}, {"v0", "2"}}).impact_times(0.2).empty());
-  const auto e = p.exact_state(0.7);
+  const auto e = p.state(0.7);
   REQUIRE(e);
   CHECK(e->u.size() == p.ndof());
   CHECK(e->v[p.dof(1, 0)] == Approx(1.0));  // the front has not reached bar 1's far end
@@ -193,7 +193,7 @@ TEST_CASE("two bars: registry, observables and bad input", "[problems][two-bars]
     CHECK(std::find(names.begin(), names.end(), n) != names.end());
   std::vector<double> out(names.size());
   nsb::Vec impulse = nsb::Vec::Constant(1, 0.05);
-  p->observe_step(p->initial_state(), impulse, 0.1, out);
+  p->observe(p->initial_state(), impulse, 0.1, out);
   CHECK(out[2] == Approx(0.5));
   try {
     nsb::make_problem("two-bars", {{"L1", "2"}, {"L2", "1"}});
@@ -230,7 +230,7 @@ TEST_CASE("two bars: field mesh (two bodies) and element stress against the exac
   // Between the fronts the exact u is linear: the element stress is the exact one.
   Eigen::MatrixXd sigma(mesh->ncells(), 1);
   const double t = p.contact_start() + 0.73, h = p.element_size(1), c = p.wave_speed();
-  const auto s = p.exact_state(t);
+  const auto s = p.state(t);
   REQUIRE(s.has_value());
   p.cell_stress(s->u, sigma);
   int compared = 0, loaded = 0;

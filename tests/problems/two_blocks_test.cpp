@@ -154,7 +154,7 @@ TEST_CASE("two-blocks: energies, mass and observables total both blocks", "[prob
   REQUIRE(names == std::vector<std::string>{"strain_energy", "gravity_energy", "px", "py", "angular_momentum",
                                             "closed_contacts", "closed_between"});
   std::vector<double> out(names.size());
-  b.observe(s0, out);
+  b.observe(s0, nsb::Vec(), 0.0, out);
   const double mu_total = b.upper().lumped_mass().sum() / 2;
   CHECK(out[2] == Approx(0.3 * mu_total));
   CHECK(out[3] == Approx(-1.0 * mu_total));
@@ -164,7 +164,7 @@ TEST_CASE("two-blocks: energies, mass and observables total both blocks", "[prob
   // Upper block pressed onto the lower top: every node-to-segment contact closed.
   nsb::State s = s0;
   for (nsb::Index j = nl + 1; j < b.ndof(); j += 2) s.u[j] = -0.06;
-  b.observe(s, out);
+  b.observe(s, nsb::Vec(), 0.0, out);
   CHECK(out[6] == b.upper().parameters().integer("nx") + 1);
 }
 

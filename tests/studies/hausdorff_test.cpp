@@ -135,10 +135,10 @@ TEST_CASE("Hausdorff: sampled_graph makes a jump vertical, at a known time or lo
 
 TEST_CASE("Hausdorff: order about 1 on the bouncing mass for cd-lagrange and moreau-jean, where the max norm stalls", "[hausdorff]") {
   const auto problem = make_problem("bouncing-mass", {{"e", "0.9"}, {"h0", "1"}});
-  const double t_end = problem->impact_times(1e3).at(2) + 0.2;
+  const double t_end = problem->exact()->impact_times(1e3).at(2) + 0.2;
   const auto v = [](const State& s) { return s.v[0]; };
   const Polyline exact = exact_graph(*problem, v, t_end);
-  const auto exact_at = [&](double t) { return problem->exact_state(t)->v[0]; };
+  const auto exact_at = [&](double t) { return problem->exact()->state(t)->v[0]; };
   for (const std::string name : {"cd-lagrange", "moreau-jean"}) {
     std::vector<double> h, emax, eh;
     for (double dt : {4e-3, 2e-3, 1e-3, 5e-4}) {

@@ -1375,7 +1375,7 @@ TEST_CASE("study file: errors from the first step, flight energies, a momentum s
           "momentum histories and samples", "[studies][study_file]") {
   const nsb::StudySpec spec = nsb::parse_study_text(kLongTime, "f.toml", false);
   const auto target = nsb::make_problem("bouncing-mass", {{"e", "0.9"}});
-  CHECK(spec.problems[0].t_end == target->impact_times(10.0).at(2));  // end_at_impact = 3
+  CHECK(spec.problems[0].t_end == target->exact()->impact_times(10.0).at(2));  // end_at_impact = 3
   std::vector<nsb::Json> results;
   const auto tables = run_all(spec, &results);
   const nsb::Table& runs = table_ending(tables, "runs");
