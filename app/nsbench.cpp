@@ -155,7 +155,11 @@ int run_case(const RunArgs& a) {
   const std::filesystem::path& dir = out.path();
   nsb::CsvSeriesFile series(dir / "series.csv");  // streamed: memory bounded whatever the length
   options.series_sink = &series;
-  const nsb::RunResult result = nsb::run(*problem, *integrator, options);
+  // Bodies that turn in 3D: their orientation is followed after every step (it depends on the path).
+  nsb::StepObserver follow_rotations;
+  if (fields && fields->follows_rotations())
+    follow_rotations = [&](const nsb::Integrator& i, const nsb::StepInfo&) { fields->follow(i.state()); };
+  const nsb::RunResult result = nsb::run(*problem, *integrator, options, follow_rotations);
   series.commit();
   nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));
   if (!integrator->events().empty())  // the references' located events

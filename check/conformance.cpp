@@ -387,8 +387,8 @@ void field_mesh(const Problem& p, const State& s0, std::vector<CheckVerdict>& ou
 CheckVerdict check_contact_rows(const Problem& p, const Vec& u0) {
   const Index n = p.ndof(), nc = p.ncontacts();
   if (nc == 0) return {"contact rows", Outcome::Pass, "0 contacts: no rows to test"};
-  ContactGeometry at = p.contact_geometry(), plus = p.contact_geometry(), minus = p.contact_geometry();
-  const bool friction = at.tangent.rows() > 0;
+  ContactGeometry at = p.contact_geometry(), plus = p.contact_geometry();
+  const bool friction = at.tangent.rows() > 0, three_d = at.tangent2.rows() > 0;
   Vec s_plus = Vec::Zero(nc), s_minus = Vec::Zero(nc);
   std::mt19937_64 rng(20261125);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
@@ -400,32 +400,36 @@ CheckVerdict check_contact_rows(const Problem& p, const Vec& u0) {
     p.evaluate_contacts(u, at);
     if (at.gap.minCoeff() >= 0.0) configurations.push_back(u);
   }
-  double worst_normal = 0.0, worst_tangent = 0.0;
+  double worst_normal = 0.0, worst_tangent = 0.0, worst_tangent2 = 0.0;
   for (const Vec& u : configurations) {
     p.evaluate_contacts(u, at);
     for (int k = 0; k < 3; ++k) {
       const Vec d = random_vector();
       const double eps = 1e-6 * scale;
-      p.evaluate_contacts(u + eps * d, plus);
-      p.evaluate_contacts(u - eps * d, minus);
-      const auto error = [&](double fd, const RowSpMat& rows, Index i) {
-        const double along = rows.row(i).dot(d), size = rows.row(i).norm() * d.norm();
-        return std::abs(fd - along) / std::max(size, 1e-300);
+      // Central difference of one coordinate of the contacts (g, s or s2) along d against its row . d.
+      const auto worst_row_error = [&](const RowSpMat& rows, const auto& coordinate, double worst) {
+        coordinate(u + eps * d, s_plus);
+        coordinate(u - eps * d, s_minus);
+        for (Index i = 0; i < nc; ++i) {
+          const double along = rows.row(i).dot(d), size = rows.row(i).norm() * d.norm();
+          worst = std::max(worst, std::abs((s_plus[i] - s_minus[i]) / (2.0 * eps) - along) / std::max(size, 1e-300));
+        }
+        return worst;
       };
-      if (friction) {
-        p.contact_slide(u + eps * d, s_plus);
-        p.contact_slide(u - eps * d, s_minus);
-      }
-      for (Index i = 0; i < nc; ++i) {
-        worst_normal = std::max(worst_normal, error((plus.gap[i] - minus.gap[i]) / (2.0 * eps), at.normal, i));
-        if (friction) worst_tangent = std::max(worst_tangent, error((s_plus[i] - s_minus[i]) / (2.0 * eps), at.tangent, i));
-      }
+      worst_normal = worst_row_error(at.normal, [&](const Vec& x, Vec& g) { p.evaluate_contacts(x, plus); g = plus.gap; },
+                                     worst_normal);
+      if (friction)
+        worst_tangent = worst_row_error(at.tangent, [&](const Vec& x, Vec& s) { p.contact_slide(x, s); }, worst_tangent);
+      if (three_d)
+        worst_tangent2 = worst_row_error(at.tangent2, [&](const Vec& x, Vec& s) { p.contact_slide2(x, s); }, worst_tangent2);
     }
   }
-  return verdict("contact rows", worst_normal <= 1e-5 && worst_tangent <= 1e-5,
-                 fmt::format("{} contacts {}, {} configurations: L against d g, worst {:.3g}; T against d s, {} (<= 1e-5)",
+  const double worst = std::max({worst_normal, worst_tangent, worst_tangent2});
+  return verdict("contact rows", worst <= 1e-5,
+                 fmt::format("{} contacts {}, {} configurations: L against d g, worst {:.3g}; T against d s, {}{} (<= 1e-5)",
                              nc, p.contacts_move() ? "moving" : "constant", configurations.size(), worst_normal,
-                             friction ? fmt::format("worst {:.3g}", worst_tangent) : std::string("frictionless")));
+                             friction ? fmt::format("worst {:.3g}", worst_tangent) : std::string("frictionless"),
+                             three_d ? fmt::format("; T2 against d s2, worst {:.3g}", worst_tangent2) : std::string()));
 }
 
 std::vector<CheckVerdict> check_integrator(const IntegratorEntry& entry) {

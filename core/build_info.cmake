@@ -14,6 +14,9 @@ endif()
 if(SANITIZE)
   set(BUILD_TYPE "${BUILD_TYPE}+asan+ubsan")
 endif()
+if(NATIVE)
+  set(BUILD_TYPE "${BUILD_TYPE}+native")
+endif()
 set(CONTENT "#include \"core/build_info.hpp\"
 namespace nsb {
 const BuildInfo& build_info() {

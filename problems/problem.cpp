@@ -40,6 +40,13 @@ int FieldMesh::body_columns() const {
 }
 
 void FieldMesh::append(const FieldMesh& part, Index dof_offset, int body) {
+  if (!body_rotation_dofs.empty() || !part.body_rotation_dofs.empty()) {  // -1 for the bodies that do not turn
+    body_rotation_dofs.resize(static_cast<std::size_t>(nbodies()), -1);
+    for (Index b = 0; b < part.nbodies(); ++b) {
+      const int r = part.body_rotation_dofs.empty() ? -1 : part.body_rotation_dofs[static_cast<std::size_t>(b)];
+      body_rotation_dofs.push_back(r < 0 ? -1 : r + static_cast<int>(dof_offset));
+    }
+  }
   const Index p0 = npoints(), c0 = ncells(), width = std::max(cells.cols(), part.cells.cols());
   points.conservativeResize(p0 + part.npoints(), part.points.cols());
   points.bottomRows(part.npoints()) = part.points;
@@ -88,6 +95,7 @@ void Problem::evaluate_contacts(ConstVecRef u, ContactGeometry& out) const {
 }
 
 void Problem::contact_slide(ConstVecRef u, VecRef s) const { s.noalias() = contacts().tangent * u; }
+void Problem::contact_slide2(ConstVecRef u, VecRef s2) const { s2.noalias() = contacts().tangent2 * u; }
 
 ContactGeometry Problem::contact_geometry() const {
   const Contacts& c = contacts();

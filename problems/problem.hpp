@@ -172,6 +172,9 @@ class Problem : public ProblemOutput {
   // default, for constant kinematics: T u. A problem with moving contacts and friction
   // overrides it.
   virtual void contact_slide(ConstVecRef u, VecRef s) const;
+  // The same along the second tangent of 3D contacts: s2(u) with T2(u) = ds2/du (the default,
+  // for constant kinematics: T2 u). A problem whose 3D contacts move overrides it.
+  virtual void contact_slide2(ConstVecRef u, VecRef s2) const;
 
   virtual State initial_state() const = 0;
   // Largest stable step of the explicit central-difference scheme, 2 / omega_max (an

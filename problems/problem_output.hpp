@@ -59,6 +59,11 @@ struct FieldMesh {
   std::vector<int> cell_body;                  // ncells, body id
   std::vector<std::string> stress_components;  // the columns of cell_stress()
   std::vector<FieldArray> body_arrays;         // the column groups of body_data()
+  // 3D bodies that turn (optional; empty: none): per body cell, the first of its three dofs
+  // whose increments over a step are that step's rotation vector in world axes (theta' = omega,
+  // as the sphere's), or -1. The orientation is not a function of the state (it depends on the
+  // path of omega), so the field writer follows it step by step (run/field_output.hpp).
+  std::vector<int> body_rotation_dofs;
 
   Index npoints() const { return points.rows(); }
   Index ncells() const { return cells.rows(); }

@@ -113,6 +113,7 @@ std::optional<FieldMesh> Sphere::field_mesh() const {
   mesh.cells = Eigen::MatrixXi::Zero(1, 1);
   mesh.cell_body = {0};
   mesh.body_arrays = {{"radius", 1}, {"angular_velocity", 3}, {"rotation_integral", 3}};
+  mesh.body_rotation_dofs = {3};
   return mesh;
 }
 

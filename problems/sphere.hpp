@@ -28,8 +28,10 @@
 // (the exact roll-onset time; +inf when it slides for ever, written as null; NaN for h0 > 0).
 //
 // Field output: a vertex at the centre (3D), displacement (x, y, z); body arrays radius,
-// angular_velocity (omega, 3) and rotation_integral (theta = int omega, 3). No orientation
-// array: it is not a function of the state (see above).
+// angular_velocity (omega, 3) and rotation_integral (theta = int omega, 3). The orientation is
+// not a function of the state (see above): the rotation dofs are declared
+// (FieldMesh::body_rotation_dofs) and the field writer follows it step by step
+// (orientation_x, orientation_z: the body's axes, run/field_output.hpp).
 //
 // Bad input (one line naming the parameter and its range, exit 2): alpha outside [0, 90)
 // degrees, mu < 0, h0 < 0 (the sphere would start in penetration), R, m, g not > 0, e outside

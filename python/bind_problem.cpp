@@ -44,12 +44,27 @@ std::unique_ptr<Problem> make(const std::string& name, const py::kwargs& kwargs)
   return make_problem(name, overrides);
 }
 
+// Rows of `rows`, or p x n zeros where a problem leaves them empty (frictionless, 2D).
+py::object rows_or_zeros(const SpMat& rows, Index p, Index n) { return to_scipy(rows.rows() ? rows : SpMat(p, n)); }
+Vec values_or_zeros(const Vec& values, Index p) { return values.size() ? values : Vec(Vec::Zero(p)); }
+
 py::dict contacts_dict(const Contacts& c) {
-  const Index p = c.size();
+  const Index p = c.size(), n = c.normal.cols();
   return py::dict("L"_a = to_scipy(c.normal), "g0"_a = Vec(c.gap_offset), "e"_a = c.restitution,
-                  "T"_a = c.tangent.rows() ? to_scipy(c.tangent) : to_scipy(SpMat(p, c.normal.cols())),
-                  "mu"_a = c.mu.size() ? Vec(c.mu) : Vec(Vec::Zero(p)),
-                  "w"_a = c.tangent_velocity.size() ? Vec(c.tangent_velocity) : Vec(Vec::Zero(p)));
+                  "T"_a = rows_or_zeros(c.tangent, p, n), "mu"_a = values_or_zeros(c.mu, p),
+                  "w"_a = values_or_zeros(c.tangent_velocity, p), "T2"_a = rows_or_zeros(c.tangent2, p, n),
+                  "w2"_a = values_or_zeros(c.tangent2_velocity, p), "cone"_a = c.has_cone());
+}
+
+// g(u), L(u), T(u), T2(u) of a problem whose contacts move (Problem::evaluate_contacts); for
+// constant kinematics the same as g0 + L u and the constant rows.
+py::dict contact_geometry_dict(const Problem& p, const Eigen::Ref<const Vec>& u) {
+  check_size(p, u.size(), "u");
+  ContactGeometry at = p.contact_geometry();
+  p.evaluate_contacts(u, at);
+  const Index m = p.ncontacts(), n = p.ndof();
+  return py::dict("g"_a = Vec(at.gap), "L"_a = to_scipy(SpMat(at.normal)), "T"_a = rows_or_zeros(SpMat(at.tangent), m, n),
+                  "T2"_a = rows_or_zeros(SpMat(at.tangent2), m, n));
 }
 
 }  // namespace
@@ -121,7 +136,14 @@ void bind_problem(py::module_& m) {
       }, "v"_a, "v^T M v / 2.")
       .def_property_readonly("contacts", [](const Problem& p) { return contacts_dict(p.contacts()); },
                              "dict: L (p x n, csc), g0, T (p x n, csc; zero without friction), mu, w (the obstacle's\n"
-                             "tangential velocity) and e (restitution); gap g = g0 + L u >= 0.")
+                             "tangential velocity), e (restitution); 3D contacts: T2 and w2 along the second tangent\n"
+                             "(zero in 2D), cone (True when the Coulomb cone applies). Constant kinematics: the gap is\n"
+                             "g = g0 + L u >= 0; where contacts_move, the rows at the initial configuration\n"
+                             "(evaluate_contacts gives them at any u).")
+      .def_property_readonly("contacts_move", &Problem::contacts_move,
+                             "True when the contacts follow the configuration (g(u), L(u), T(u) not constant).")
+      .def("evaluate_contacts", &contact_geometry_dict, "u"_a,
+           "dict: g (the gaps g(u)), L, T and T2 (p x n, csc; zero where a problem has none) at u.")
       .def("initial_state", &Problem::initial_state)
       .def("stable_step", &Problem::stable_step, "2 / omega_max of the explicit central-difference scheme.")
       .def("exact_state", [](const Problem& p, double t) { return p.exact() ? p.exact()->state(t) : std::nullopt; }, "t"_a,

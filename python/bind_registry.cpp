@@ -87,10 +87,11 @@ py::list integrator_list() {
   py::list list;
   for (const auto& e : integrator_registry()) {
     const DeclaredCapabilities declared = e.declared();
-    const bool friction = declared.resolved(Params(e.parameters())).friction;
+    const Capabilities& can = declared.resolved(Params(e.parameters()));
     list.append(py::dict("name"_a = e.name, "description"_a = e.description, "parameters"_a = parameter_list(e.parameters()),
-                         "reference"_a = e.reference, "peer"_a = e.peer, "friction"_a = friction, "needs"_a = declared.text(),
-                         "origin"_a = integrator_origin(e.name)));
+                         "reference"_a = e.reference, "peer"_a = e.peer, "friction"_a = can.friction,
+                         "friction_cone"_a = can.friction_cone, "moving_contacts"_a = can.moving_contacts,
+                         "needs"_a = declared.text(), "origin"_a = integrator_origin(e.name)));
   }
   return list;
 }
@@ -104,7 +105,8 @@ void bind_registry(py::module_& m) {
         "or choices).");
   m.def("integrators", &integrator_list,
         "The integrators (as `nsbench list`): name, description, parameters (as problems()), reference, peer,\n"
-        "friction (treats Coulomb friction), needs (its other declared capabilities, as `nsbench list` shows them)\n"
+        "friction (treats Coulomb friction), friction_cone (the 3D Coulomb cone), moving_contacts (contacts that\n"
+        "follow the configuration), needs (its other declared capabilities, as `nsbench list` shows them)\n"
         "and origin ('' built in, a plugin's file, or 'python:MODULE.CLASS').");
   m.def("load_plugin", &load_plugin, "path"_a,
         "Loads a plugin module (core/plugin.hpp; as `--plugin FILE`): its problems and integrators join the\n"

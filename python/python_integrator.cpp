@@ -145,6 +145,8 @@ void register_python_integrator(const std::string& name, const py::object& cls, 
     register_as_plugin(source, [&] {
       Capabilities capabilities;
       capabilities.friction = py::getattr(cls, "treats_friction", py::bool_(false)).cast<bool>();
+      capabilities.friction_cone = py::getattr(cls, "treats_friction_cone", py::bool_(false)).cast<bool>();
+      capabilities.moving_contacts = py::getattr(cls, "treats_moving_contacts", py::bool_(false)).cast<bool>();
       capabilities.explicit_step = py::getattr(cls, "conditionally_stable", py::bool_(false)).cast<bool>();
       register_integrator({name, description, kSlotFunctions[k].parameters, kSlotFunctions[k].make, reference, false, capabilities},
                           NSBENCH_PLUGIN_ABI);
@@ -179,6 +181,8 @@ void bind_integrator(py::module_& m) {
       .def_property_readonly("impulses", [](py::object self) { return vector_view(self.cast<PythonIntegrator&>().live_impulses(), self); })
       .def_property_readonly("tangential_impulses",
                              [](py::object self) { return vector_view(self.cast<PythonIntegrator&>().live_tangential_impulses(), self); })
+      .def_property_readonly("tangential_impulses2",
+                             [](py::object self) { return vector_view(self.cast<PythonIntegrator&>().live_tangential_impulses2(), self); })
       .def_property_readonly("work", &PythonIntegrator::live_work, py::return_value_policy::reference_internal)
       .def_property_readonly("mass", [](const PythonIntegrator& i) { return to_scipy(i.mass()); })
       .def_property_readonly("problem", &PythonIntegrator::problem, py::return_value_policy::reference);

@@ -8,8 +8,9 @@
 // contract of integrators/integrator.hpp: init calls self.bind(problem, initial) first, step
 // advances self.state's u and v (views of this object's state_) and adds to self.work; this
 // object's advance() calls it, and Integrator::step around it keeps the time and the step
-// count. Its class attributes conditionally_stable and treats_friction are read once, at
-// registration, into the registry entry's capabilities. This C++
+// count. Its class attributes conditionally_stable, treats_friction, treats_friction_cone and
+// treats_moving_contacts are read once, at registration, into the registry entry's
+// capabilities. This C++
 // object holds the state, impulses and counters the run driver reads; the Python object reaches
 // them through its `_core` attribute (this object, bound as nsbench._IntegratorCore), so there is
 // no copy between the two. (Not a pybind11 trampoline: the registry's factories return a
@@ -42,6 +43,7 @@ class PythonIntegrator final : public Integrator {
   State& live_state() { return state_; }
   Vec& live_impulses() { return impulses_; }
   Vec& live_tangential_impulses() { return tangential_impulses_; }
+  Vec& live_tangential_impulses2() { return tangential_impulses2_; }
   WorkCounters& live_work() { return work_; }
   const SpMat& mass() const { return mass_; }
   const Problem* problem() const { return problem_; }

@@ -51,6 +51,13 @@ void check_field_mesh(const FieldMesh& m, const Problem& p, const std::string& c
   for (const FieldArray& a : m.body_arrays)
     if (a.components != 1 && a.components != 3)
       fail(fmt::format("body array {}: {} components; valid: 1 or 3", a.name, a.components));
+  if (!m.body_rotation_dofs.empty()) {
+    if (m.dimension != 3 || m.body_rotation_dofs.size() != static_cast<std::size_t>(m.nbodies()))
+      fail(fmt::format("body_rotation_dofs: {} entries; valid: none, or one per body cell ({}) of a 3D mesh",
+                       m.body_rotation_dofs.size(), m.nbodies()));
+    for (const int r : m.body_rotation_dofs)
+      if (r < -1 || r + 3 > p.ndof()) fail(fmt::format("body_rotation_dofs: {} outside -1 or [0, ndof - 3 = {}]", r, p.ndof() - 3));
+  }
 }
 
 FieldWriter::Part FieldWriter::make_part(bool elements) const {
@@ -133,13 +140,16 @@ FieldWriter::FieldWriter(const Problem& problem, const std::filesystem::path& di
   body_.resize(mesh_.nbodies(), mesh_.body_columns());
   impulse_.resize(problem.ndof());
   if (problem.contacts_move()) moving_ = problem.contact_geometry();
+  orientation_.assign(mesh_.body_rotation_dofs.size(), Eigen::Quaterniond::Identity());
+  rotation_seen_ = Vec::Zero(3 * static_cast<Index>(mesh_.body_rotation_dofs.size()));
   // At most 25 characters a number (shortest round-trip form, and a separator): 9 per point
   // (three vectors) and the body arrays, one per cell and component. No write grows the
   // buffer again.
   std::size_t largest = 0;
   for (const Part& part : parts_)
     largest = std::max(largest, part.head.size() + part.tail.size() +
-                                    25 * (9 * part.points.size() + static_cast<std::size_t>(stress_.size() + body_.size())));
+                                    25 * (9 * part.points.size() + static_cast<std::size_t>(stress_.size() + body_.size()) +
+                                          6 * orientation_.size()));
   buffer_.reserve(largest + 4096);
   prefix_ = dir_.path().string() + "/";
   path_.reserve(prefix_.size() + 32);
@@ -158,8 +168,35 @@ void FieldWriter::append_point_vector(const char* name, const Part& part, const 
   buffer_ += "</DataArray>\n";
 }
 
+void FieldWriter::follow(const State& s) {
+  for (std::size_t b = 0; b < orientation_.size(); ++b) {
+    const int r = mesh_.body_rotation_dofs[b];
+    if (r < 0) continue;
+    auto seen = rotation_seen_.segment<3>(3 * static_cast<Index>(b));
+    const Eigen::Vector3d turn = s.u.segment<3>(r) - seen;  // this step's rotation vector (0 at the first state)
+    seen = s.u.segment<3>(r);
+    if (!followed_) continue;
+    if (const double angle = turn.norm(); angle > 0.0)
+      orientation_[b] = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, turn / angle)) * orientation_[b]).normalized();
+  }
+  followed_ = true;
+}
+
+void FieldWriter::append_orientations() {
+  auto out = std::back_inserter(buffer_);
+  for (int axis : {0, 2}) {
+    open_array(buffer_, "Float64", axis == 0 ? "orientation_x" : "orientation_z", 3);
+    for (const Eigen::Quaterniond& q : orientation_) {
+      const Eigen::Vector3d e = q * Eigen::Vector3d::Unit(axis);
+      fmt::format_to(out, "{} {} {}\n", e[0], e[1], e[2]);
+    }
+    buffer_ += "</DataArray>\n";
+  }
+}
+
 void FieldWriter::state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses,
                         const Vec& tangential_impulses2) {
+  follow(s);
   const Contacts& c = problem_.contacts();
   if (problem_.contacts_move()) {
     // The rows at s.u, along which the impulses acted (schemes state their configuration).
@@ -199,6 +236,7 @@ void FieldWriter::state(const State& s, const Vec& normal_impulses, const Vec& t
         buffer_ += "</DataArray>\n";
         column += a.components;
       }
+      if (!orientation_.empty()) append_orientations();
     }
     buffer_ += "</PointData>\n";
     if (elements && !mesh_.stress_components.empty()) {

@@ -25,7 +25,14 @@
 //                                         0 in the first file). The part of an impulse on a
 //                                         dof that is no point component (a rotation) is not
 //                                         shown.
-//                bodies_ only: the body arrays (FieldMesh::body_arrays, Problem::body_data)
+//                bodies_ only: the body arrays (FieldMesh::body_arrays, Problem::body_data);
+//                                         bodies that turn in 3D (FieldMesh::body_rotation_dofs)
+//                                         also orientation_x and orientation_z, the body's
+//                                         x and z axes in world axes: its orientation as the
+//                                         product of every followed step's rotation
+//                                         q <- exp(dtheta / 2) q (dtheta the step's increment of
+//                                         the rotation dofs), from the first state written
+//                                         (identity: the reference axes)
 //     CellData   fields_ only: one Float64 array per stress component
 //                (FieldMesh::stress_components; each problem's cell_stress() says which
 //                stress, or a spring's force)
@@ -41,6 +48,8 @@
 // swapped in by commit() when the run ends; a killed run leaves the old one. Earlier
 // fields_*.vtu and bodies_*.vtu files of the directory are not kept. state() allocates
 // nothing (the buffers are sized once, the files written with POSIX calls).
+#include <Eigen/Geometry>
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -70,6 +79,13 @@ class FieldWriter final : public StateSink {
   // tangential ones may be empty) of the step that ended at s.t.
   void state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses,
              const Vec& tangential_impulses2) override;
+  // Follows the orientation of the bodies that turn (FieldMesh::body_rotation_dofs) to state s:
+  // call it after every step (nsbench run passes it as the run's observer when
+  // follows_rotations()), since the orientation depends on the path; state() follows the
+  // state it writes too (with states further apart, the orientation is the product of their
+  // rotations instead). Allocates nothing.
+  void follow(const State& s);
+  bool follows_rotations() const { return !orientation_.empty(); }
   // Writes fields.pvd and swaps the directory into place.
   void commit();
   long files() const { return static_cast<long>(times_.size()); }
@@ -84,6 +100,7 @@ class FieldWriter final : public StateSink {
   };
   Part make_part(bool elements) const;
   void append_point_vector(const char* name, const Part& part, const Vec& dof_values);
+  void append_orientations();
   void flush(const std::string& path);
 
   const Problem& problem_;
@@ -94,6 +111,9 @@ class FieldWriter final : public StateSink {
   Eigen::MatrixXd stress_, body_;  // cell_stress() and body_data() of the state written
   Vec impulse_;  // L^T Lambda_N + T^T Lambda_T, per dof
   ContactGeometry moving_;  // moving contacts: the rows at the written state
+  std::vector<Eigen::Quaterniond> orientation_;  // per body cell, of the bodies that turn
+  Vec rotation_seen_;       // their rotation dofs at the last followed state
+  bool followed_ = false;   // a state was followed: the next one's increments are rotations
   std::vector<double> times_;
 };
 

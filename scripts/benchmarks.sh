@@ -2,7 +2,8 @@
 # The benchmarks behind the `performance` report: every nsbench-bench-* binary of BUILD_DIR
 # (default build, already built) with JSON output into OUT/benchmarks (default
 # reports/benchmarks), the block and the hex8 bar (bar3d) also on one thread for the
-# speed-up and the one-thread kernel against the peak rate, then
+# speed-up and the one-thread kernel against the peak rate, the moving-contact steps (rocking,
+# sliding) on one thread, then
 # `nsbench-study performance` writes OUT/performance.{csv,md,tex}, and scripts/python_bench.py
 # OUT/python_overhead.md where the Python module is built. Run on a quiet machine:
 # the table reads the least of the repetitions (3 of at least 0.1 s each). About 3 minutes on
@@ -27,6 +28,9 @@ run block 1
 run bar3d 1
 [ "$cores" -eq 1 ] || run bar3d "$cores"
 run implicit "$cores"
+# Moving contacts against the same step with constant rows: small problems, one thread.
+run rocking 1
+run sliding 1
 # The memory bound: one run per length is enough (the peak RSS does not vary), 20 s at 1e6 steps.
 echo "benchmarks: nsbench-bench-memory" >&2
 "$build/studies/nsbench-bench-memory" --benchmark_out_format=json --benchmark_out="$out/benchmarks/memory-1.json" > /dev/null

@@ -130,7 +130,7 @@ std::vector<std::string> MeshMomentum::components(const Problem& problem) {
 
 MeshMomentum::MeshMomentum(const Problem& problem, const State& initial, const std::string& component)
     : problem_(problem), M_(problem.mass_matrix()), axis_(component[1] - 'x'), angular_(component[0] == 'j'),
-      f_(problem.ndof()), f_ext_(problem.ndof()) {
+      f_(problem.ndof()), f_ext_(problem.ndof()), p_(problem.ndof()) {
   const FieldMesh mesh = *problem.field_mesh();
   points_ = mesh.points;
   point_dofs_ = mesh.point_dofs;
@@ -153,9 +153,9 @@ MeshMomentum::MeshMomentum(const Problem& problem, const State& initial, const s
   }
 }
 
-double MeshMomentum::angular_momentum(const State& s) const {
-  const Vec p = M_ * s.v;
-  return torque(s, p);
+double MeshMomentum::angular_momentum(const State& s) {
+  p_.noalias() = M_ * s.v;
+  return torque(s, p_);
 }
 
 // sum_a (x_a x f_a)_axis with x_a = X_a + u_a and f_a the entries of f on point a's dofs.
@@ -184,10 +184,10 @@ void MeshMomentum::add(const Integrator& integrator, double dt) {
     return;
   }
   double P = 0.0, impulse = 0.0;
-  const Vec p = M_ * s.v;
+  p_.noalias() = M_ * s.v;
   for (Index a = 0; a < points_.rows(); ++a)
     if (const int dof = point_dofs_(a, axis_); dof >= 0) {
-      P += p[dof];
+      P += p_[dof];
       impulse += f_[dof];
     }
   if (steps_ >= 2) largest_ = std::max(largest_, std::abs(P - previous_ - impulse));

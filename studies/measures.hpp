@@ -136,7 +136,8 @@ class MeshMomentum {
   static std::vector<std::string> components(const Problem& problem);
 
  private:
-  double angular_momentum(const State& s) const;
+  // M v into p_ (no allocation per step) and its moment about the origin.
+  double angular_momentum(const State& s);
   double torque(const State& s, const Vec& f) const;
   const Problem& problem_;
   SpMat M_;
@@ -144,7 +145,7 @@ class MeshMomentum {
   Eigen::MatrixXi point_dofs_;
   int axis_ = 0;
   bool angular_ = false;
-  Vec f_, f_ext_;
+  Vec f_, f_ext_, p_;
   double previous_ = 0.0;  // P or J at the last step
   double largest_ = 0.0, scale_ = 0.0;
   long steps_ = 0;

@@ -94,14 +94,20 @@ class Integrator:
                   non-finite state or step, ends the run as diverged with its message.
       energy(self)  optional: (kinetic, potential) of the scheme's own balance.
     Class attributes: conditionally_stable (explicit scheme), treats_friction (fills
-    self.tangential_impulses; otherwise problems with mu > 0 are declined) are read when the
-    class is registered (its capabilities, integrators/capabilities.hpp); impact_lag_steps and
+    self.tangential_impulses; otherwise problems with mu > 0 are declined),
+    treats_friction_cone (3D contacts with friction, problem.contacts["cone"]: also fills
+    self.tangential_impulses2, along T2; otherwise such problems are declined) and
+    treats_moving_contacts (reads the contacts through problem.evaluate_contacts(u) where
+    problem.contacts_move; otherwise such problems are declined) are read when the class is
+    registered (its capabilities, integrators/capabilities.hpp); impact_lag_steps and
     restitution_exact (integrators/integrator.hpp, ImpactAccuracy).
     self.state.u, .v, self.impulses are views of the C++ integrator's own vectors: no copy.
     """
 
     conditionally_stable = False
     treats_friction = False
+    treats_friction_cone = False
+    treats_moving_contacts = False
     impact_lag_steps = 2.0
     restitution_exact = True
 
@@ -134,6 +140,10 @@ class Integrator:
     @property
     def tangential_impulses(self):
         return self._core.tangential_impulses
+
+    @property
+    def tangential_impulses2(self):
+        return self._core.tangential_impulses2
 
     @property
     def work(self):

@@ -14,6 +14,7 @@
 #include "core/threads.hpp"
 #include "integrators/registry.hpp"
 #include "problems/block_3d.hpp"
+#include "tests/problems/forwarding_problem.hpp"
 #include "run/run.hpp"
 #include "tests/support/input_error.hpp"
 
@@ -126,10 +127,11 @@ TEST_CASE("block-3d: the contact rows L, T1, T2 are the node's z, x, y against d
   REQUIRE(c.has_cone());
   CHECK(c.size() == static_cast<nsb::Index>(b.contact_nodes().size()));
   CHECK(c.size() == b.nodes() - 2);  // the 3 x 2 x 2 mesh has 2 interior nodes
-  // L and T1 by the conformance check (gaps and slides at random admissible configurations).
+  // L, T1 and T2 by the conformance check (gaps and slides at random admissible configurations).
   const nsb::CheckVerdict rows = nsb::check_contact_rows(b, nsb::Vec::Zero(b.ndof()));
   INFO(rows.figure);
   CHECK(rows.outcome == nsb::CheckVerdict::Outcome::Pass);
+  CHECK(rows.figure.find("T2 against d s2") != std::string::npos);
   // All three against the node positions x_a = X_a + u_a along a random direction.
   std::mt19937_64 rng(7);
   const nsb::Vec u = 0.01 * random_vector(b.ndof(), rng), d = random_vector(b.ndof(), rng);
@@ -151,6 +153,22 @@ TEST_CASE("block-3d: the contact rows L, T1, T2 are the node's z, x, y against d
   CHECK(frictionless.contacts().tangent.rows() == 0);
   CHECK(frictionless.contacts().tangent2.rows() == 0);
   CHECK(!frictionless.contacts().has_friction());
+}
+
+// block-3d whose second tangential coordinate is twice what T2 says: the check must see it.
+class WrongSecondTangent final : public ForwardingProblem {
+ public:
+  using ForwardingProblem::ForwardingProblem;
+  void contact_slide2(nsb::ConstVecRef u, nsb::VecRef s2) const override { s2.noalias() = 2.0 * (contacts().tangent2 * u); }
+};
+
+TEST_CASE("block-3d: the conformance check fails a T2 row that is not d s2 / du", "[problems][block-3d][contact]") {
+  const std::map<std::string, std::string> values = {{"nx", "3"}, {"ny", "2"}, {"nz", "2"}, {"tilt", "20"}, {"mu", "0.4"}};
+  const WrongSecondTangent wrong(std::make_unique<nsb::Block3d>(nsb::Params(nsb::Block3d::parameters_spec(), values)));
+  const nsb::CheckVerdict rows = nsb::check_contact_rows(wrong, nsb::Vec::Zero(wrong.ndof()));
+  INFO(rows.figure);
+  CHECK(rows.outcome == nsb::CheckVerdict::Outcome::Fail);
+  CHECK(rows.figure.find("T2 against d s2, worst") != std::string::npos);
 }
 
 TEST_CASE("block-3d: in free flight (mu = 0) the momentum changes by gravity only, the angular momentum not at all",

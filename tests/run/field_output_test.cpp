@@ -370,3 +370,78 @@ TEST_CASE("fields: bar-3d's hexahedra, VTK_HEXAHEDRON in VTK's node order, 3D po
   CHECK(sigma.col(0).minCoeff() < 0.0);  // the wall compresses the bar
   fs::remove_all(dir);
 }
+
+TEST_CASE("fields: a turning body's orientation is the product of its steps' rotations, in their order",
+          "[integrators][fields][sphere]") {
+  const auto problem = nsb::make_problem("sphere", {});
+  const double a = 0.7, b = -1.1;  // a turn about x, then one about y
+  const auto orientation_after = [&](bool x_first) {
+    const fs::path dir = scratch(x_first ? "turn_xy" : "turn_yx");
+    nsb::FieldWriter writer(*problem, dir, "--fields", 2);
+    REQUIRE(writer.follows_rotations());
+    nsb::State s = problem->initial_state();
+    const nsb::Vec none = nsb::Vec::Zero(problem->ncontacts());
+    writer.state(s, none, none, none);
+    s.u[x_first ? 3 : 4] += x_first ? a : b;
+    writer.follow(s);
+    s.u[x_first ? 4 : 3] += x_first ? b : a;
+    s.t = 1.0;
+    writer.state(s, none, none, none);
+    writer.commit();
+    std::vector<std::string> files;
+    REQUIRE(pvd_times(slurp(dir / "fields.pvd"), files).size() == 2);
+    const std::string first = slurp(dir / files[0]), last = slurp(dir / files[1]);
+    CHECK(data_array(first, "orientation_x") == std::vector<double>{1, 0, 0});
+    CHECK(data_array(first, "orientation_z") == std::vector<double>{0, 0, 1});
+    std::vector<double> axes = data_array(last, "orientation_x");
+    for (const double z : data_array(last, "orientation_z")) axes.push_back(z);
+    fs::remove_all(dir);
+    return axes;
+  };
+  // R_y(b) R_x(a) and R_x(a) R_y(b) applied to e_x and e_z, written out by hand.
+  const std::vector<double> xy = {std::cos(b), 0.0, -std::sin(b), std::sin(b) * std::cos(a), -std::sin(a), std::cos(b) * std::cos(a)};
+  const std::vector<double> yx = {std::cos(b), std::sin(a) * std::sin(b), -std::cos(a) * std::sin(b), std::sin(b),
+                                  -std::sin(a) * std::cos(b), std::cos(a) * std::cos(b)};
+  const std::vector<double> got_xy = orientation_after(true), got_yx = orientation_after(false);
+  REQUIRE(got_xy.size() == 6);
+  REQUIRE(got_yx.size() == 6);
+  for (std::size_t k = 0; k < 6; ++k) {
+    CHECK(got_xy[k] == Approx(xy[k]).margin(1e-15));
+    CHECK(got_yx[k] == Approx(yx[k]).margin(1e-15));
+  }
+}
+
+TEST_CASE("fields: a sphere rolling on a level floor turns at its constant spin; followed every step",
+          "[integrators][fields][sphere]") {
+  // Rolling from the start (v_x = R omega_y, slip 0) on a level floor: nothing changes the
+  // motion, and after T the body has turned by omega_y T about y.
+  const double R = 0.1, omega = 7.0, T = 0.5;
+  const auto problem = nsb::make_problem("sphere", {{"alpha", "0"}, {"R", "0.1"}, {"vx0", fmt::format("{}", R * omega)},
+                                                    {"vy0", "0"}, {"wx0", "0"}, {"wy0", fmt::format("{}", omega)}, {"wz0", "0"}});
+  auto integrator = nsb::make_integrator("cd-lagrange");
+  integrator->init(*problem, problem->initial_state());
+  const fs::path dir = scratch("rolling");
+  nsb::FieldWriter writer(*problem, dir, "--fields", 3);
+  nsb::RunOptions options;
+  options.dt = 1e-3;
+  options.t_end = T;
+  options.state_every = 200;
+  options.state_sink = &writer;
+  const nsb::RunResult result =
+      nsb::run(*problem, *integrator, options, [&](const nsb::Integrator& i, const nsb::StepInfo&) { writer.follow(i.state()); });
+  writer.commit();
+  REQUIRE(result.status == nsb::RunStatus::Ok);
+  std::vector<std::string> files;
+  pvd_times(slurp(dir / "fields.pvd"), files);
+  const std::string last = slurp(dir / files.back());
+  const double turned = omega * result.t_final;
+  const std::vector<double> x = data_array(last, "orientation_x"), z = data_array(last, "orientation_z");
+  REQUIRE(x.size() == 3);
+  REQUIRE(z.size() == 3);
+  CHECK(x[0] == Approx(std::cos(turned)).margin(1e-12));
+  CHECK(x[1] == Approx(0.0).margin(1e-12));
+  CHECK(x[2] == Approx(-std::sin(turned)).margin(1e-12));
+  CHECK(z[0] == Approx(std::sin(turned)).margin(1e-12));
+  CHECK(z[2] == Approx(std::cos(turned)).margin(1e-12));
+  fs::remove_all(dir);
+}
