@@ -74,7 +74,7 @@ void SiconosIntegrator::init(const Problem& problem, const State& initial) {
     for (Index i = 0; i < contacts.size(); ++i) {
       const double w = contacts.tangent_velocity[i], w2 = contacts.has_cone() ? contacts.tangent2_velocity[i] : 0.0;
       if (w != 0.0 || w2 != 0.0)
-        throw InputError(fmt::format("{}: problem '{}' has an obstacle moving along contact {} (tangent velocity (w, w2) = ({}, {}), e.g. "
+        throw InputError(fmt::format("{}: problem '{}' has an obstacle moving along contact {} (tangent_velocity w = {}, tangent2_velocity w2 = {}, e.g. "
                                      "block-2d's floor_velocity); Siconos' LagrangianLinearTIR has no velocity offset (y' = C v), so its slip "
                                      "would be T v instead of T v - w (valid: floor_velocity = 0, or mu = 0)",
                                      who, problem.name(), i, w, w2));

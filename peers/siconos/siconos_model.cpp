@@ -52,11 +52,11 @@ SP::LCP lemke(double tol) {
 // (separate, stick, slip either way), as our coulomb.hpp; dense Delassus matrix (LinearOSNS'
 // default storage). Residual: |q + W r - u| / |q|.
 //
-// Siconos' 3D nonsmooth Gauss-Seidel (SICONOS_FRICTION_3D_NSGS) with its default local solver,
-// which Siconos 4.4 sets itself (fc3d_nsgs_set_default): the hybrid of a nonsmooth Newton on
-// the Alart-Curnier function and a projection fixed point (SICONOS_FRICTION_3D_ONECONTACT_
-// NSN_GP_HYBRID), to its own local tolerance; residual of the sweep: fc3d_compute_error, the
-// natural-map residual of the cone complementarity over |q|.
+// Siconos' 3D nonsmooth Gauss-Seidel (SICONOS_FRICTION_3D_NSGS) with the local solver Siconos
+// 4.4 sets itself (SICONOS_FRICTION_3D_ONECONTACT_NSN_GP_HYBRID: nonsmooth Newton on the
+// Alart-Curnier function alternating with a projection on the cone, local tolerance 1e-14, 10
+// iterations); residual of the sweep: fc3d_compute_error, the natural-map residual of the cone
+// complementarity over |q| (siconos_integrator.hpp).
 SP::FrictionContact nsgs(int dimension, double tol, int max_iter) {
   auto p = std::make_shared<FrictionContact>(dimension, dimension == 2 ? SICONOS_FRICTION_2D_NSGS : SICONOS_FRICTION_3D_NSGS);
   p->numericsSolverOptions()->dparam[SICONOS_DPARAM_TOL] = tol;
