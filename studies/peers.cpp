@@ -9,6 +9,9 @@
 // dt = 1e-3, to t = 2: slides, stops at t = 1.06, sticks) and the rolling disk dropped
 // spinning (h0 = 0.05, omega0 = 20, e = 0.5, mu = 0.3, dt = 1e-3, to t = 1: slipping impacts,
 // then at rest). Same theta, e and dt on both sides (each pair states its parameters).
+// The 3D problems, run by the FrictionContact(3) pair only (named_only): the sphere on the
+// incline (the defaults, mu = 0.3: the slip turns, then it rolls; dt = 1e-3, to t = 0.5) and
+// bar-3d (N = 10, lumped, sides held, dt = 1e-2, to t = 2.5: one contact phase, 4 contacts).
 // The rows at a given gamma run on the problems with impacts only (kImpacts), to keep the
 // study short (11 s CPU in all, 7 s without them).
 // Both integrators step in lockstep in one run; per step: largest difference of the
@@ -37,6 +40,10 @@
 //     active), on the dropped disk only at the same gamma (its impacts, as above). The Schatzman-Paoli and
 //     D1MinusLinear pairs are n/a there: our schatzman-paoli and Siconos' D1MinusLinearOSI
 //     decline friction.
+//   - FrictionContact(3) with Siconos' 3D NSGS (one_step_problem = fc3d, to 1e-12), theta = 1/2:
+//     the same numbers to round-off on the sphere's cone (du, dv <= 6e-16, dLambda <= 6e-14;
+//     our cone solve is exact, coulomb_cone.hpp) and on bar-3d, where each wall contact is a
+//     3D contact with mu = 0 and zero tangent rows (dLambda <= 1e-12).
 //   - Siconos' cost per step is 15-80x ours: it hands the problem to dense uBLAS matrices
 //     (perf: ~65% of its time in uBLAS' generic dense matrix-vector product, K q and M v,
 //     not BLAS), O(n^2) per step where ours is sparse O(n).
@@ -82,12 +89,16 @@ const std::vector<PeerPair> kPairs = {
      "theta = 1, gamma = 1/2", kPeerImpactProblems},
     {"schatzman-paoli", "siconos-schatzman-paoli", {{"theta", "0"}}, {{"theta", "0"}}, "theta = 0"},
     {"d1-minus-linear", "siconos-d1-minus-linear", {}, {}, "defaults"},
+    // FrictionContact(3) on every contact: on the 3D problems (the sphere's cone takes it anyway).
+    {"moreau-jean", "siconos-moreau-jean", {{"theta", "0.5"}}, {{"theta", "0.5"}, {"one_step_problem", "fc3d"}},
+     "theta = 1/2, FrictionContact(3) on every contact", {"sphere", "bar-3d"}},
 };
 
 struct PeerProblem {
   std::string label, problem;
   Strings params;
   double dt, t_end;
+  bool named_only = false;  // run only by the pairs whose `only` names it
 };
 
 const std::vector<PeerProblem> kProblems = {
@@ -97,6 +108,8 @@ const std::vector<PeerProblem> kProblems = {
     {"sliding mass, 30 deg, mu = 0.8, v0 = 2", "sliding-mass", {{"alpha", "30"}, {"mu", "0.8"}, {"v0", "2"}}, 1e-3, 2.0},
     {"rolling disk dropped, h0 = 0.05, omega0 = 20, e = 0.5, mu = 0.3", "rolling-disk",
      {{"h0", "0.05"}, {"omega0", "20"}, {"e", "0.5"}, {"mu", "0.3"}}, 1e-3, 1.0},
+    {"sphere on the 20 deg incline, mu = 0.3: slips, turning, then rolls", "sphere", {}, 1e-3, 0.5, true},
+    {"bar-3d, N = 10, lumped, sides held", "bar-3d", {{"N", "10"}}, 1e-2, 2.5, true},
 };
 
 bool registered(const std::string& name) {
@@ -110,7 +123,7 @@ std::vector<Json> peers_cases(const StudyOptions&) {
     if (registered(kPairs[k].ours) && registered(kPairs[k].peer))
       for (std::size_t p = 0; p < kProblems.size(); ++p) {
         const auto& only = kPairs[k].only;
-        if (only.empty() || std::find(only.begin(), only.end(), kProblems[p].problem) != only.end())
+        if (only.empty() ? !kProblems[p].named_only : std::find(only.begin(), only.end(), kProblems[p].problem) != only.end())
           cases.push_back({{"pair", k}, {"problem", p}});
       }
   return cases;
@@ -213,7 +226,7 @@ std::vector<Table> peers_tables(const std::vector<Json>& cases, const std::vecto
 
 extern const StudyEntry peers_study;
 const StudyEntry peers_study{
-    "peers", "our schemes against a peer code's (Siconos) on the bouncing mass, the lumped bar, the spring chain, the sliding mass and the rolling disk",
+    "peers", "our schemes against a peer code's (Siconos) on the bouncing mass, the lumped bar, the spring chain, the sliding mass, the rolling disk, the sphere and bar-3d",
     nullptr, &peers_cases, &peers_case, &peers_tables};
 
 }  // namespace nsb

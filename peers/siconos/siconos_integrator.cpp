@@ -47,8 +47,12 @@ ParamSpecs SiconosIntegrator::parameters_spec(siconos::Scheme scheme) {
     specs.push_back(ParamSpec::real("theta", 0.0, 0.0, 1.0, "theta of SchatzmanPaoliOSI (W = M + h^2 theta^2 K; 0: explicit)"));
   specs.push_back(ParamSpec::real("lcp_tol", 1e-12, 0.0, 1e-2, "tolerance of Siconos' Lemke LCP solver", true));
   if (scheme == siconos::Scheme::MoreauJean) {
-    specs.push_back(ParamSpec::real("friction_tol", 1e-12, 0.0, 1e-2, "tolerance of Siconos' 2D friction solver (SICONOS_FRICTION_2D_NSGS; problems with mu > 0)", true));
-    specs.push_back(ParamSpec::integer("friction_max_iter", 1000, 1, 1000000, "cap on the 2D friction solver's Gauss-Seidel sweeps per step"));
+    specs.push_back(ParamSpec::choice("one_step_problem", "auto", {"auto", "fc3d"},
+                                      "Siconos' one-step problem: auto (Lemke LCP without friction, FrictionContact(2) with 2D friction, "
+                                      "FrictionContact(3) with the 3D cone), fc3d (FrictionContact(3) on every contact, mu = 0 and zero "
+                                      "tangent rows where the problem has none)"));
+    specs.push_back(ParamSpec::real("friction_tol", 1e-12, 0.0, 1e-2, "tolerance of Siconos' friction solver (SICONOS_FRICTION_2D_NSGS or _3D_NSGS)", true));
+    specs.push_back(ParamSpec::integer("friction_max_iter", 1000, 1, 1000000, "cap on the friction solver's Gauss-Seidel sweeps per step"));
   }
   specs.push_back(ParamSpec::integer("max_dofs", 128, 1, 100000, "largest problem accepted (Siconos gets dense M, K and W: O(n^2) per step)"));
   return specs;
@@ -67,12 +71,14 @@ void SiconosIntegrator::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
   const Contacts& contacts = problem.contacts();
   if (contacts.has_friction())
-    for (Index i = 0; i < contacts.size(); ++i)
-      if (contacts.tangent_velocity[i] != 0.0)
-        throw InputError(fmt::format("{}: problem '{}' has an obstacle moving along contact {} (tangent_velocity w = {}, e.g. block-2d's "
-                                     "floor_velocity); Siconos' LagrangianLinearTIR has no velocity offset (y' = C v), so its slip would be "
-                                     "T v instead of T v - w (valid: floor_velocity = 0, or mu = 0)",
-                                     who, problem.name(), i, contacts.tangent_velocity[i]));
+    for (Index i = 0; i < contacts.size(); ++i) {
+      const double w = contacts.tangent_velocity[i], w2 = contacts.has_cone() ? contacts.tangent2_velocity[i] : 0.0;
+      if (w != 0.0 || w2 != 0.0)
+        throw InputError(fmt::format("{}: problem '{}' has an obstacle moving along contact {} (tangent_velocity w = {}, tangent2_velocity w2 = {}, e.g. "
+                                     "block-2d's floor_velocity); Siconos' LagrangianLinearTIR has no velocity offset (y' = C v), so its slip "
+                                     "would be T v instead of T v - w (valid: floor_velocity = 0, or mu = 0)",
+                                     who, problem.name(), i, w, w2));
+    }
   {
     const std::lock_guard lock(siconos_mutex());
     model_.reset();
@@ -88,10 +94,15 @@ void SiconosIntegrator::build(double h) {
   if (scheme_ == siconos::Scheme::MoreauJean) spec.gamma = params_.real("gamma");
   spec.lcp_tol = params_.real("lcp_tol");
   const Contacts& contacts = problem.contacts();
-  if (contacts.has_friction()) {
+  if (scheme_ == siconos::Scheme::MoreauJean) {
+    spec.fc3d = contacts.has_cone() || params_.choice("one_step_problem") == "fc3d";
     spec.friction_tol = params_.real("friction_tol");
     spec.friction_max_iter = static_cast<int>(params_.integer("friction_max_iter"));
+  }
+  if (contacts.has_friction()) {
     for (Index i = 0; i < contacts.size(); ++i) spec.tangent_rows.push_back(dense(SpMat(contacts.tangent.row(i))));
+    if (contacts.has_cone())
+      for (Index i = 0; i < contacts.size(); ++i) spec.tangent2_rows.push_back(dense(SpMat(contacts.tangent2.row(i))));
     spec.mu = to_std(contacts.mu);
   }
   spec.h = h;
@@ -123,7 +134,7 @@ StepInfo SiconosIntegrator::advance(double h) {
   siconos::StepStats stats;
   {
     const std::lock_guard lock(siconos_mutex());
-    stats = model_->step(state_.u.data(), state_.v.data(), impulses_.data(), tangential_impulses_.data());
+    stats = model_->step(state_.u.data(), state_.v.data(), {impulses_.data(), tangential_impulses_.data(), tangential_impulses2_.data()});
   }
   ++work_.force_evaluations;  // one K q product per step, inside Siconos
   StepInfo info;
@@ -135,8 +146,8 @@ StepInfo SiconosIntegrator::advance(double h) {
   return info;
 }
 
-NSBENCH_INTEGRATOR({"siconos-moreau-jean", "peer: Siconos MoreauJeanOSI(theta, gamma), TimeStepping, Lemke LCP, or 2D NSGS FrictionContact with friction (linear problems)", &SiconosPeer<siconos::Scheme::MoreauJean>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::MoreauJean>>, false, true,
-                    {.friction = true, .mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}});
+NSBENCH_INTEGRATOR({"siconos-moreau-jean", "peer: Siconos MoreauJeanOSI(theta, gamma), TimeStepping, Lemke LCP, or 2D / 3D NSGS FrictionContact with friction (linear problems)", &SiconosPeer<siconos::Scheme::MoreauJean>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::MoreauJean>>, false, true,
+                    {.friction = true, .friction_cone = true, .mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}});
 NSBENCH_INTEGRATOR({"siconos-schatzman-paoli", "peer: Siconos SchatzmanPaoliOSI(theta), TimeStepping, position-level Lemke LCP (linear problems)", &SiconosPeer<siconos::Scheme::SchatzmanPaoli>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::SchatzmanPaoli>>, false, true,
                     {.mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}});
 NSBENCH_INTEGRATOR({"siconos-d1-minus-linear", "peer: Siconos D1MinusLinearOSI, TimeSteppingD1Minus, impact and contact-force Lemke LCPs (linear problems)", &SiconosPeer<siconos::Scheme::D1MinusLinear>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::D1MinusLinear>>, false, true,

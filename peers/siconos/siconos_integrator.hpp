@@ -42,7 +42,38 @@
 //                               `friction_max_iter` sweeps; iterations and convergence are
 //                               reported as the LCP's (lcp_iterations, lcp_unconverged)
 //
-// A frictionless problem (mu = 0 everywhere) takes the LCP model above unchanged.
+// 3D contacts with friction (Contacts::has_cone: two tangent rows, capability "3D friction
+// cone"; siconos-moreau-jean only), and with one_step_problem = fc3d every contact of any
+// problem, are one 3D interaction each:
+//
+//     LagrangianLinearTIR       y_i = [L_i; T_i; T2_i] q + (g0_i, 0, 0)   (gap, two slip
+//                               positions; a tangent row zero where the problem has none)
+//     NewtonImpactFrictionNSL   (e, e_t = 0, mu_i, 3): Newton on the normal, the Coulomb cone
+//                               |lambda_T| <= mu_i lambda_N with maximal dissipation on the
+//                               tangents (mu_i = 0 where the problem has no friction: the
+//                               cone is the normal ray, lambda_T = 0); Siconos' lambda(1) =
+//                               (normal, along +T_i, along +T2_i): impulses(),
+//                               tangential_impulses(), tangential_impulses2()
+//     FrictionContact(3)        3D nonsmooth Gauss-Seidel over the contacts
+//                               (SICONOS_FRICTION_3D_NSGS), tolerance `friction_tol` (1e-12)
+//                               on Siconos' residual (fc3d_compute_error: the natural-map
+//                               residual of the cone complementarity, over |q|; evaluated
+//                               per sweep by the increment, fully at the end: Siconos'
+//                               "light with full final"), at most `friction_max_iter`
+//                               sweeps; local solver per contact Siconos 4.4's default
+//                               (solver_options_create(SICONOS_FRICTION_3D_NSGS)):
+//                               SICONOS_FRICTION_3D_ONECONTACT_NSN_GP_HYBRID, a nonsmooth
+//                               Newton on the Alart-Curnier function (Goldstein-Price line
+//                               search) alternating with a projection on the cone, local
+//                               tolerance 1e-14, at most 10 iterations
+//
+// theta and gamma as above; the scheme is MoreauJeanOSI's whatever the one-step problem.
+// Sphere (problems/sphere.hpp) is linear time-invariant in these terms: its dofs are the
+// centre's displacement and the integral of omega (theta' = omega), M = diag(m, m, m, I, I,
+// I), constant rows L = e_z, T = (1, 0, 0, 0, -R, 0), T2 = (0, 1, 0, R, 0, 0), a constant
+// F_ext: exactly LagrangianLinearTIDS (K = 0) with one LagrangianLinearTIR.
+// A frictionless problem (mu = 0 everywhere) takes the LCP model above unchanged unless
+// one_step_problem = fc3d (bar-3d: one 3D contact per wall-face node, mu = 0).
 // The Schatzman-Paoli and D1MinusLinear peers decline friction (bind(): mu named).
 // D1MinusLinearOSI has no NewtonImpactFrictionNSL case in its free-output visitor (only
 // NewtonImpactNSL: Siconos throws "you must define a visit function"). SchatzmanPaoliOSI has
@@ -56,7 +87,7 @@
 // Declared capabilities (the registry entries; refused when the problem binds): linear only
 // (Siconos' LagrangianDS would need plugins for a nonlinear F_int; a constant F_ext), no
 // massless dofs (LagrangianDS inverts M), at most `max_dofs` dofs (dense matrices). Declined
-// by init() with an InputError: with friction an obstacle moving along a contact (w != 0, e.g.
+// by init() with an InputError: with friction an obstacle moving along a contact (w or w2 != 0, e.g.
 // block-2d's floor_velocity): LagrangianLinearTIR has no velocity offset (y' = C v), and
 // Siconos' time-dependent relation (LagrangianRheonomousR) takes h, its Jacobian and hDot
 // only as plugins loaded from a shared library by path. The step is fixed at the first call

@@ -51,11 +51,31 @@ SP::LCP lemke(double tol) {
 // Siconos' 2D nonsmooth Gauss-Seidel: per contact, the exact solution of the local law
 // (separate, stick, slip either way), as our coulomb.hpp; dense Delassus matrix (LinearOSNS'
 // default storage). Residual: |q + W r - u| / |q|.
-SP::FrictionContact nsgs_2d(double tol, int max_iter) {
-  auto p = std::make_shared<FrictionContact>(2, SICONOS_FRICTION_2D_NSGS);
+//
+// Siconos' 3D nonsmooth Gauss-Seidel (SICONOS_FRICTION_3D_NSGS) with the local solver Siconos
+// 4.4 sets itself (SICONOS_FRICTION_3D_ONECONTACT_NSN_GP_HYBRID: nonsmooth Newton on the
+// Alart-Curnier function alternating with a projection on the cone, local tolerance 1e-14, 10
+// iterations); residual of the sweep: fc3d_compute_error, the natural-map residual of the cone
+// complementarity over |q| (siconos_integrator.hpp).
+SP::FrictionContact nsgs(int dimension, double tol, int max_iter) {
+  auto p = std::make_shared<FrictionContact>(dimension, dimension == 2 ? SICONOS_FRICTION_2D_NSGS : SICONOS_FRICTION_3D_NSGS);
   p->numericsSolverOptions()->dparam[SICONOS_DPARAM_TOL] = tol;
   p->numericsSolverOptions()->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
   return p;
+}
+
+// Contact i's rows for FrictionContact(dimension): L_i, then T_i (2, 3) and T2_i (3), a tangent
+// row zero where the problem has none.
+std::vector<double> contact_rows(const ModelSpec& spec, std::size_t i, int dimension) {
+  const std::size_t n = static_cast<std::size_t>(spec.ndof);
+  std::vector<double> rows = spec.gap_rows[i];
+  const auto append = [&](const std::vector<std::vector<double>>& tangent) {
+    if (tangent.empty()) rows.resize(rows.size() + n, 0.0);
+    else rows.insert(rows.end(), tangent[i].begin(), tangent[i].end());
+  };
+  append(spec.tangent_rows);
+  if (dimension == 3) append(spec.tangent2_rows);
+  return rows;
 }
 
 }  // namespace
@@ -67,7 +87,7 @@ struct Model::Impl {
   SP::NonSmoothDynamicalSystem nsds;
   SP::TimeStepping time_stepping;            // Moreau-Jean, Schatzman-Paoli
   SP::TimeSteppingD1Minus d1_time_stepping;  // D1MinusLinear
-  SP::FrictionContact friction;              // MoreauJean with friction: its one-step problem
+  SP::FrictionContact friction;              // MoreauJean with friction (or fc3d): its one-step problem
 };
 
 Model::Model(const ModelSpec& spec) : impl_(std::make_unique<Impl>()) {
@@ -81,20 +101,23 @@ Model::Model(const ModelSpec& spec) : impl_(std::make_unique<Impl>()) {
     // The nsbench run driver decides when to stop: Siconos' horizon only has to lie beyond.
     m.nsds = std::make_shared<NonSmoothDynamicalSystem>(spec.t0, spec.t0 + 1e12 * spec.h);
     m.nsds->insertDynamicalSystem(m.ds);
-    const bool friction = !spec.tangent_rows.empty();
-    if (friction && spec.scheme != Scheme::MoreauJean)
+    // FrictionContact(dimension) on every contact, or (dimension 1) the LCP.
+    const int dimension = spec.fc3d ? 3 : spec.tangent_rows.empty() ? 1 : 2;
+    if (dimension > 1 && spec.scheme != Scheme::MoreauJean)
       throw std::invalid_argument("friction is treated by the Moreau-Jean peer only");
     auto law = std::make_shared<NewtonImpactNSL>(spec.restitution);
     for (std::size_t i = 0; i < spec.gap_rows.size(); ++i) {
       SP::Interaction inter;
-      if (friction) {
-        // y = (g_i, T_i q): the normal row first, as MoreauJeanOSI's index set reads y(0)(0),
-        // y(1)(0); Siconos' tangential reaction acts along +T_i (p = C^T lambda) and opposes
-        // the slip y'(1), our Lambda_T and u_T. No tangential restitution (e_t = 0).
-        std::vector<double> rows = spec.gap_rows[i];
-        rows.insert(rows.end(), spec.tangent_rows[i].begin(), spec.tangent_rows[i].end());
-        auto relation = std::make_shared<LagrangianLinearTIR>(matrix(rows, 2, n), vector({spec.gap_offset[i], 0.0}));
-        inter = std::make_shared<Interaction>(std::make_shared<NewtonImpactFrictionNSL>(spec.restitution, 0.0, spec.mu[i], 2), relation);
+      if (dimension > 1) {
+        // y = (g_i, T_i q[, T2_i q]): the normal row first, as MoreauJeanOSI's index set reads
+        // y(0)(0), y(1)(0); Siconos' tangential reactions act along +T_i, +T2_i (p = C^T
+        // lambda) and oppose the slip y'(1:), our Lambda_T and u_T. No tangential restitution
+        // (e_t = 0).
+        std::vector<double> offset(static_cast<std::size_t>(dimension), 0.0);
+        offset[0] = spec.gap_offset[i];
+        auto relation = std::make_shared<LagrangianLinearTIR>(matrix(contact_rows(spec, i, dimension), offset.size(), n), vector(offset));
+        const double mu = spec.mu.empty() ? 0.0 : spec.mu[i];
+        inter = std::make_shared<Interaction>(std::make_shared<NewtonImpactFrictionNSL>(spec.restitution, 0.0, mu, dimension), relation);
       } else {
         auto b = std::make_shared<SiconosVector>(1);
         b->setValue(0, spec.gap_offset[i]);
@@ -107,7 +130,7 @@ Model::Model(const ModelSpec& spec) : impl_(std::make_unique<Impl>()) {
     auto td = std::make_shared<TimeDiscretisation>(spec.t0, spec.h);
     switch (spec.scheme) {
       case Scheme::MoreauJean: {
-        if (friction) m.friction = nsgs_2d(spec.friction_tol, spec.friction_max_iter);
+        if (dimension > 1) m.friction = nsgs(dimension, spec.friction_tol, spec.friction_max_iter);
         SP::OneStepNSProblem osnsp = m.friction ? SP::OneStepNSProblem(m.friction) : lemke(spec.lcp_tol);
         m.time_stepping = std::make_shared<TimeStepping>(m.nsds, td, std::make_shared<MoreauJeanOSI>(spec.theta, spec.gamma), osnsp);
         m.time_stepping->initialize();
@@ -132,7 +155,7 @@ Model::Model(const ModelSpec& spec) : impl_(std::make_unique<Impl>()) {
 
 Model::~Model() = default;
 
-StepStats Model::step(double* q, double* v, double* impulses, double* tangential_impulses) {
+StepStats Model::step(double* q, double* v, const Impulses& impulses) {
   Impl& m = *impl_;
   StepStats stats;
   try {
@@ -147,11 +170,11 @@ StepStats Model::step(double* q, double* v, double* impulses, double* tangential
     // multipliers of the contacts it drops from the active set.
     if (m.time_stepping) {
       m.time_stepping->computeOneStep();
-      read(q, v, impulses, tangential_impulses);
+      read(q, v, impulses);
       m.time_stepping->nextStep();
     } else {
       m.d1_time_stepping->advanceToEvent();
-      read(q, v, impulses, tangential_impulses);
+      read(q, v, impulses);
       m.d1_time_stepping->processEvents();
     }
     if (friction_options) {
@@ -165,7 +188,7 @@ StepStats Model::step(double* q, double* v, double* impulses, double* tangential
   return stats;
 }
 
-void Model::read(double* q, double* v, double* impulses, double* tangential_impulses) const {
+void Model::read(double* q, double* v, const Impulses& impulses) const {
   const SiconosVector& sq = *impl_->ds->q();
   const SiconosVector& sv = *impl_->ds->velocity();
   for (unsigned i = 0; i < sq.size(); ++i) {
@@ -177,15 +200,16 @@ void Model::read(double* q, double* v, double* impulses, double* tangential_impu
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     const Interaction& inter = *m.contacts[i];
     switch (m.spec.scheme) {
-      case Scheme::MoreauJean:  // lambda(1): the impulse of the step, (normal, tangential) with friction
-        impulses[i] = inter.lambda(1)->getValue(0);
-        if (m.friction) tangential_impulses[i] = inter.lambda(1)->getValue(1);
+      case Scheme::MoreauJean:  // lambda(1): the impulse of the step, (normal, tangential[, tangential 2]) with friction
+        impulses.normal[i] = inter.lambda(1)->getValue(0);
+        if (m.friction) impulses.tangential[i] = inter.lambda(1)->getValue(1);
+        if (m.spec.fc3d) impulses.tangential2[i] = inter.lambda(1)->getValue(2);
         break;
       case Scheme::SchatzmanPaoli:  // lambda(0) = R, with W (q - q_free) = L^T R: R / h
-        impulses[i] = inter.lambda(0)->getValue(0) / h;
+        impulses.normal[i] = inter.lambda(0)->getValue(0) / h;
         break;
       case Scheme::D1MinusLinear:  // impact impulse, plus the contact force over the step
-        impulses[i] = inter.lambda(1)->getValue(0) + (inter.lambda(2) ? h * inter.lambda(2)->getValue(0) : 0.0);
+        impulses.normal[i] = inter.lambda(1)->getValue(0) + (inter.lambda(2) ? h * inter.lambda(2)->getValue(0) : 0.0);
         break;
     }
   }
