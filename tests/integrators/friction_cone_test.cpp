@@ -1,8 +1,9 @@
-// The 3D Coulomb cone in the schemes that declare "3D friction cone" (cd-lagrange, moreau-jean;
-// integrators/capabilities.hpp), per contact and step (docs/three_d.md): the law's Alart–Curnier
-// residual at the step's local velocities, stick inside the cone (the slip after the step is
-// zero), slip on its boundary opposite to the slip velocity, no energy gain; the sphere's
-// roll-onset time against its exact value; every other scheme declines the cone in one line.
+// The 3D Coulomb cone in the schemes that declare "3D friction cone" (cd-lagrange, moreau-jean,
+// nsga, d1-minus-linear; integrators/capabilities.hpp), per contact and step (docs/three_d.md):
+// the law's Alart–Curnier residual at the step's local velocities, stick inside the cone (the
+// slip after the step is zero), slip on its boundary opposite to the slip velocity, no energy
+// gain; the sphere's roll-onset time against its exact value; every other scheme declines the
+// cone in one line.
 #include <catch2/catch.hpp>
 #include <Eigen/Dense>
 #include <cmath>
@@ -102,7 +103,7 @@ ConeChecks check_cone(const nsb::Problem& p, nsb::Integrator& integ, double dt, 
   return c;
 }
 
-const char* const kConeSchemes[] = {"cd-lagrange", "moreau-jean"};
+const char* const kConeSchemes[] = {"cd-lagrange", "moreau-jean", "nsga", "d1-minus-linear"};
 
 }  // namespace
 
