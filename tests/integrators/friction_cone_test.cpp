@@ -244,6 +244,29 @@ TEST_CASE("regularised cone: the implicit law solved, isotropic (closed form) an
           Approx(nsb::implicit_regularised_friction(mu, normal, s, 0.8, kRegularisedConeVelocity)).epsilon(1e-15));
 }
 
+TEST_CASE("regularised cone: the force law's slopes (penalty-bdf's Jacobian) against central differences",
+          "[integrators][friction_cone]") {
+  const double mu = 0.4, normal = 2.0, step = 1e-7;
+  // Inside the band (viscous) and outside (sliding, the force turning with the slip).
+  for (const Eigen::Vector2d& slip : {Eigen::Vector2d(3e-4, -4e-4), Eigen::Vector2d(0.3, -0.2)}) {
+    INFO("slip " << slip.transpose());
+    const double h = step * std::max(slip.norm(), kRegularisedConeVelocity);
+    const nsb::RegularisedConeFriction law = nsb::regularised_cone_friction(mu, normal, slip, kRegularisedConeVelocity);
+    for (int l = 0; l < 2; ++l) {
+      const Eigen::Vector2d e = Eigen::Vector2d::Unit(l) * h;
+      const Eigen::Vector2d fd = (nsb::regularised_cone_friction(mu, normal, slip + e, kRegularisedConeVelocity).force -
+                                  nsb::regularised_cone_friction(mu, normal, slip - e, kRegularisedConeVelocity).force) /
+                                 (2.0 * h);
+      CHECK((fd - law.d_slip.col(l)).norm() <= 1e-6 * mu * normal / kRegularisedConeVelocity);
+    }
+    const Eigen::Vector2d fd_normal = (nsb::regularised_cone_friction(mu, normal + 1e-6, slip, kRegularisedConeVelocity).force -
+                                       nsb::regularised_cone_friction(mu, normal - 1e-6, slip, kRegularisedConeVelocity).force) /
+                                      2e-6;
+    CHECK((fd_normal - law.d_normal).norm() <= 1e-8);
+    CHECK(law.force.norm() <= mu * normal * (1.0 + 1e-15));
+  }
+}
+
 TEST_CASE("regularised cone: the sphere on a level floor, per contact and step, for every penalty scheme",
           "[integrators][friction_cone]") {
   const auto sphere = nsb::make_problem("sphere", {{"alpha", "0"}});
