@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "integrators/impulse_contact.hpp"
 #include "integrators/spring_dashpot.hpp"
 
 namespace nsb {
@@ -80,6 +81,18 @@ void CdPenalty::init(const Problem& problem, const State& initial) {
     for (Index i = 0; i < T_.rows(); ++i)
       for (decltype(T_)::InnerIterator it(T_, i); it; ++it) ht_diag_[i] += it.value() * it.value() * minv[it.col()];
   }
+  cone_ = c.has_cone();
+  if (cone_) {
+    T2_ = c.tangent2;
+    w2_ = c.tangent2_velocity;
+    ht_blocks_.assign(static_cast<std::size_t>(T_.rows()), Eigen::Matrix2d::Zero());
+    for (Index i = 0; i < T_.rows(); ++i) {
+      Eigen::Matrix2d& h = ht_blocks_[static_cast<std::size_t>(i)];
+      h(0, 0) = ht_diag_[i];
+      h(0, 1) = h(1, 0) = weighted_row_dot(T_, i, T2_, i, minv);
+      h(1, 1) = weighted_row_dot(T2_, i, T2_, i, minv);
+    }
+  }
   e_ = problem.restitution();
   zeta_ = Vec::Constant(L_.rows(), cd_penalty_damping_ratio(1.0, factor_, e_));
   gap_ = L_ * state_.u + problem.gap_offset();
@@ -109,6 +122,7 @@ StepInfo CdPenalty::advance(double tau) {
   gap_ += g0;
   impulses_.setZero();
   if (friction_) tangential_impulses_.setZero();
+  if (cone_) tangential_impulses2_.setZero();
   for (Index i = 0; i < L_.rows(); ++i) {
     if (!(gap_[i] < 0.0)) continue;
     if (!(gap_prev_[i] < 0.0)) zeta_[i] = cd_penalty_damping_ratio(-gap_[i] / (gap_prev_[i] - gap_[i]), factor_, e_);
@@ -122,6 +136,10 @@ StepInfo CdPenalty::advance(double tau) {
     impulses_[i] = tau * f;
     for (decltype(L_)::InnerIterator it(L_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * tau * f;
     if (!friction_ || mu_[i] == 0.0) continue;
+    if (cone_) {
+      apply_cone_friction(i);
+      continue;
+    }
     double slip = -w_[i];
     for (decltype(T_)::InnerIterator it(T_, i); it; ++it) slip += it.value() * state_.v[it.col()];
     const double lambda_t = implicit_regularised_friction(mu_[i], impulses_[i], slip, ht_diag_[i], v_reg_);
@@ -129,6 +147,18 @@ StepInfo CdPenalty::advance(double tau) {
     for (decltype(T_)::InnerIterator it(T_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda_t;
   }
   return info;
+}
+
+void CdPenalty::apply_cone_friction(Index i) {
+  Eigen::Vector2d slip(-w_[i], -w2_[i]);
+  for (decltype(T_)::InnerIterator it(T_, i); it; ++it) slip[0] += it.value() * state_.v[it.col()];
+  for (decltype(T2_)::InnerIterator it(T2_, i); it; ++it) slip[1] += it.value() * state_.v[it.col()];
+  const Eigen::Vector2d lambda =
+      implicit_regularised_cone_friction(mu_[i], impulses_[i], slip, ht_blocks_[static_cast<std::size_t>(i)], v_reg_);
+  tangential_impulses_[i] = lambda[0];
+  tangential_impulses2_[i] = lambda[1];
+  for (decltype(T_)::InnerIterator it(T_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda[0];
+  for (decltype(T2_)::InnerIterator it(T2_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda[1];
 }
 
 Energy CdPenalty::energy() const {
@@ -140,6 +170,6 @@ Energy CdPenalty::energy() const {
 }
 
 NSBENCH_INTEGRATOR({"cd-penalty", "explicit central difference with penalty contact (spring-dashpot, kappa = penalty_factor m / dt^2)", &CdPenalty::parameters_spec, &make_from_params<Integrator, CdPenalty>, false, false,
-                    {.friction = true, .explicit_step = true, .mass = MassNeed::DiagonalPositive}});
+                    {.friction = true, .friction_cone = true, .explicit_step = true, .mass = MassNeed::DiagonalPositive}});
 
 }  // namespace nsb

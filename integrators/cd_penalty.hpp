@@ -97,12 +97,26 @@
 // the discrete steady state (the implicit law's fixed point is the continuous one). mu = 0
 // on every contact (a frictionless problem) runs the frictionless step, bit for bit.
 // Tangential impulses: Lambda_T,i above (|Lambda_T,i| <= mu_i tau f_i, = when sliding).
+// 3D contacts (Contacts::has_cone, capability "3D friction cone"; docs/three_d.md): the
+// regularised cone of spring_dashpot.hpp, the same implicit law with the interval become the
+// disk, after the same normal force:
+//     s_i = (T_i v - w_i, T2_i v - w2_i),   H_T,i = [T_i; T2_i] M^{-1} [T_i; T2_i]^T,
+//     Lambda_T,i = -mu_i tau f_i phi(u_T(+) / v_reg),  phi(x) = x / max(1, |x|),
+//                  u_T(+) = s_i + H_T,i Lambda_T,i
+//     v    <- v + M^{-1} (T_i^T Lambda_T1,i + T2_i^T Lambda_T2,i)
+// in closed form where H_T,i = h I (a node of a lumped mesh, a rigid sphere:
+// Lambda_T = -mu tau f phi(s / (v_reg + h mu tau f))), else by bisection on the sliding
+// branch's scalar equation to 1e-15 relative (spring_dashpot.hpp); |Lambda_T,i| <= mu_i tau
+// f_i, = when sliding, opposite to u_T(+), which keeps the direction of (I + c H_T) ^{-1} s_i.
 // Start: the half kick of cd_lagrange.hpp. Declines (InputError): a non-diagonal mass or a
 // massless dof (M^{-1} in the update; CD-Lagrange's quasi-static treatment of massless dofs
 // is an impulse law, not a penalty).
 // Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
 // (integrators/capabilities.hpp, one refusal wording): the penalty force along L(U_{k+1})
 // with the gap g(U_{k+1}) would follow from CD-Lagrange's evaluation, but is not implemented.
+#include <Eigen/Core>
+#include <vector>
+
 #include "integrators/central_difference.hpp"
 #include "integrators/integrator.hpp"
 
@@ -134,6 +148,8 @@ class CdPenalty final : public Integrator {
 
  private:
   StepInfo advance(double dt_requested) override;
+  // The regularised cone's tangential impulse of contact i after its normal impulse.
+  void apply_cone_friction(Index i);
   double factor_;
   double e_ = 1.0;
   Vec zeta_;  // per contact, set when it closes
@@ -146,6 +162,10 @@ class CdPenalty final : public Integrator {
   bool friction_ = false;
   Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
   Vec mu_, w_, ht_diag_;
+  bool cone_ = false;  // 3D contacts with friction
+  Eigen::SparseMatrix<double, Eigen::RowMajor> T2_;
+  Vec w2_;
+  std::vector<Eigen::Matrix2d> ht_blocks_;  // H_T,i per contact (3D contacts)
 };
 
 }  // namespace nsb

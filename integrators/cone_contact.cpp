@@ -45,8 +45,8 @@ Eigen::Matrix3d ConeContact::block(Index i, Index j) const {
   return W;
 }
 
-Eigen::Vector3d ConeContact::free_velocity(Index i, ConstVecRef v_prev, ConstVecRef v) const {
-  return {row_dot(0, i, v) + e_ * row_dot(0, i, v_prev), row_dot(1, i, v) - w1_[i], row_dot(2, i, v) - w2_[i]};
+Eigen::Vector3d ConeContact::free_velocity(Index i, ConstVecRef v_prev, ConstVecRef v, double e) const {
+  return {row_dot(0, i, v) + e * row_dot(0, i, v_prev), row_dot(1, i, v) - w1_[i], row_dot(2, i, v) - w2_[i]};
 }
 
 void ConeContact::add_impulse(Index i, const Eigen::Vector3d& lambda, VecRef v) const {
@@ -57,6 +57,11 @@ void ConeContact::add_impulse(Index i, const Eigen::Vector3d& lambda, VecRef v) 
 
 long ConeContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef normal, VecRef tangential,
                         VecRef tangential2, StepInfo& info, WorkCounters& work) {
+  return apply(u, v_prev, v, normal, tangential, tangential2, info, work, e_);
+}
+
+long ConeContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef normal, VecRef tangential,
+                        VecRef tangential2, StepInfo& info, WorkCounters& work, double e) {
   if (moving_) {
     problem_->evaluate_contacts(u, rows_);
   } else {
@@ -78,7 +83,7 @@ long ConeContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef norm
   };
   if (!coupled_) {
     for (const Index i : closed_) {
-      const ConeSolve r = solve_cone(block(i, i), free_velocity(i, v_prev, v), mu_[i]);
+      const ConeSolve r = solve_cone(block(i, i), free_velocity(i, v_prev, v, e), mu_[i]);
       if (!r.converged) {
         info.converged = false;
         ++work.lcp_unconverged;
@@ -90,7 +95,7 @@ long ConeContact::apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef norm
   auto& [D, q, x] = storage_.of_size(3 * a);
   for (Index r = 0; r < a; ++r) {
     for (Index c = 0; c < a; ++c) D.block<3, 3>(3 * r, 3 * c) = block(closed_[r], closed_[c]);
-    q.segment<3>(3 * r) = free_velocity(closed_[r], v_prev, v);
+    q.segment<3>(3 * r) = free_velocity(closed_[r], v_prev, v, e);
   }
   for (Index r = 0; r < a; ++r) mu_closed_[r] = mu_[closed_[r]];
   const LcpResult res = solve_coulomb_cone(D, q, mu_closed_.head(a), x, lcp_);

@@ -39,6 +39,10 @@ class ConeContact {
   // solve in `work` and info.
   long apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef normal, VecRef tangential, VecRef tangential2,
              StepInfo& info, WorkCounters& work);
+  // The same with restitution e instead of the problem's (e = 0: the velocity-level
+  // constraint g' >= 0 of a closed contact, as d1_minus_linear.hpp needs).
+  long apply(ConstVecRef u, ConstVecRef v_prev, VecRef v, VecRef normal, VecRef tangential, VecRef tangential2,
+             StepInfo& info, WorkCounters& work, double e);
 
  private:
   // Row k (0: L, 1: T, 2: T2) of contact i.
@@ -46,7 +50,7 @@ class ConeContact {
   double row_dot(int k, Index i, ConstVecRef x) const;
   double weighted_dot(int k, Index i, int l, Index j) const;  // row k of i . M^{-1} row l of j
   Eigen::Matrix3d block(Index i, Index j) const;
-  Eigen::Vector3d free_velocity(Index i, ConstVecRef v_prev, ConstVecRef v) const;
+  Eigen::Vector3d free_velocity(Index i, ConstVecRef v_prev, ConstVecRef v, double e) const;
   void add_impulse(Index i, const Eigen::Vector3d& lambda, VecRef v) const;
 
   const Problem* problem_ = nullptr;

@@ -15,21 +15,42 @@ void D1MinusLinear::init(const Problem& problem, const State& initial) {
   L_ = problem.gap_operator();
   friction_ = problem.contacts().has_friction();
   if (friction_) T_ = problem.contacts().tangent;
-  contact_ = ImpulseContact(problem, minv_, lcp_);
+  cone_ = problem.contacts().has_cone();
+  if (cone_) {
+    T2_ = problem.contacts().tangent2;
+    cone_contact_ = ConeContact(problem, minv_, lcp_);
+  } else {
+    contact_ = ImpulseContact(problem, minv_, lcp_);
+  }
   const Index n = problem.ndof(), p = L_.rows();
   for (Vec* x : {&f_ext_, &a_now_, &a_next_, &f_int_, &v1_, &v_minus_, &u_start_}) *x = Vec::Zero(n);
-  for (Vec* x : {&p1_, &p2_, &impact_, &gap_, &p1_t_, &p2_t_, &impact_t_}) *x = Vec::Zero(p);
+  gap_ = Vec::Zero(p);
+  for (StageImpulses* x : {&p1_, &p2_, &impact_}) x->reset(p);
   problem.external_force(state_.t, f_ext_);
   started_ = false;
 }
 
-void D1MinusLinear::add_impulses(const Vec& normal, const Vec& tangential, double scale, VecRef v) const {
+void D1MinusLinear::StageImpulses::reset(Index p) {
+  normal.setZero(p);
+  tangential.setZero(p);
+  tangential2.setZero(p);
+}
+
+void D1MinusLinear::add_impulses(const StageImpulses& p, double scale, VecRef v) const {
+  const auto add_row = [&](const Eigen::SparseMatrix<double, Eigen::RowMajor>& rows, Index i, double impulse) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, i); it; ++it)
+      v[it.col()] += scale * minv_[it.col()] * it.value() * impulse;
+  };
   for (Index i = 0; i < L_.rows(); ++i) {
-    if (normal[i] != 0.0)
-      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) v[it.col()] += scale * minv_[it.col()] * it.value() * normal[i];
-    if (friction_ && tangential[i] != 0.0)
-      for (decltype(T_)::InnerIterator it(T_, i); it; ++it) v[it.col()] += scale * minv_[it.col()] * it.value() * tangential[i];
+    if (p.normal[i] != 0.0) add_row(L_, i, p.normal[i]);
+    if (friction_ && p.tangential[i] != 0.0) add_row(T_, i, p.tangential[i]);
+    if (cone_ && p.tangential2[i] != 0.0) add_row(T2_, i, p.tangential2[i]);
   }
+}
+
+long D1MinusLinear::solve_stage(ConstVecRef u, ConstVecRef v_prev, VecRef v, StageImpulses& p, StepInfo& info, double e) {
+  if (cone_) return cone_contact_.apply(u, v_prev, v, p.normal, p.tangential, p.tangential2, info, work_, e);
+  return contact_.apply(u, v_prev, v, p.normal, p.tangential, info, work_, e);
 }
 
 StepInfo D1MinusLinear::advance(double h) {
@@ -48,12 +69,11 @@ StepInfo D1MinusLinear::advance(double h) {
   // solves read and write nothing else); U_{k+1} = U_k + h V_k + h^2/2 A_k + h/2 M^{-1} L^T P_1.
   for_contact_dofs([&](Index j) { v1_[j] = state_.v[j] + h * a_now_[j]; });
   long iterations = 0;
-  p1_.setZero();
-  p1_t_.setZero();
-  if (closed_start_) iterations += contact_.apply(state_.u, v1_, v1_, p1_, p1_t_, info, work_, 0.0);  // e = 0: v_prev unused
+  p1_.reset(L_.rows());
+  if (closed_start_) iterations += solve_stage(state_.u, v1_, v1_, p1_, info, 0.0);  // e = 0: v_prev unused
   std::swap(u_start_, state_.u);
   state_.u.noalias() = u_start_ + h * state_.v + (0.5 * h * h) * a_now_;
-  add_impulses(p1_, p1_t_, 0.5 * h, state_.u);
+  add_impulses(p1_, 0.5 * h, state_.u);
 
   // Right: A_{k+1}, V^- = V_k + h/2 (A_k + A_{k+1}).
   if (!problem_->external_force_is_constant()) problem_->external_force(state_.t + h, f_ext_);
@@ -72,26 +92,24 @@ StepInfo D1MinusLinear::advance(double h) {
     for (decltype(L_)::InnerIterator it(L_, i); it; ++it) gdot += it.value() * v1_[it.col()];
     impact = impact || gdot < 0.0;
   }
-  p2_.setZero();
-  p2_t_.setZero();
+  p2_.reset(L_.rows());
   if (impact) {
-    p1_.setZero();
-    p1_t_.setZero();
+    p1_.reset(L_.rows());
   } else if (closed_start_) {
-    add_impulses(p1_, p1_t_, 0.5, v_minus_);
-    iterations += contact_.apply(u_start_, v_minus_, v_minus_, p2_, p2_t_, info, work_, 0.0);
+    add_impulses(p1_, 0.5, v_minus_);
+    iterations += solve_stage(u_start_, v_minus_, v_minus_, p2_, info, 0.0);
   }
   // Impact at t_{k+1}, Newton's law against V^-.
-  impact_.setZero();
-  impact_t_.setZero();
+  impact_.reset(L_.rows());
   std::swap(state_.v, v_minus_);
   if (closed_end) {
     // V^- on the contacts' dofs (all the impact law reads of it) into v1_, no longer needed.
     for_contact_dofs([&](Index j) { v1_[j] = state_.v[j]; });
-    iterations += contact_.apply(state_.u, v1_, state_.v, impact_, impact_t_, info, work_, problem_->restitution());
+    iterations += solve_stage(state_.u, v1_, state_.v, impact_, info, problem_->restitution());
   }
-  impulses_ = impact_ + 0.5 * p1_ + p2_;
-  if (friction_) tangential_impulses_ = impact_t_ + 0.5 * p1_t_ + p2_t_;
+  impulses_ = impact_.normal + 0.5 * p1_.normal + p2_.normal;
+  if (friction_) tangential_impulses_ = impact_.tangential + 0.5 * p1_.tangential + p2_.tangential;
+  if (cone_) tangential_impulses2_ = impact_.tangential2 + 0.5 * p1_.tangential2 + p2_.tangential2;
 
   std::swap(a_now_, a_next_);
   closed_start_ = closed_end;
@@ -101,6 +119,6 @@ StepInfo D1MinusLinear::advance(double h) {
 }
 
 NSBENCH_INTEGRATOR({"d1-minus-linear", "Schindler-Acary D1MinusLinear, half-explicit velocity level, impacts at the step's end", &D1MinusLinear::parameters_spec, &make_from_params<Integrator, D1MinusLinear>, false, false,
-                    {.friction = true, .explicit_step = true, .mass = MassNeed::DiagonalPositive}});
+                    {.friction = true, .friction_cone = true, .explicit_step = true, .mass = MassNeed::DiagonalPositive}});
 
 }  // namespace nsb

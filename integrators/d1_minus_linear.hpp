@@ -26,11 +26,24 @@
 // law (impulse_contact.hpp) at its own velocity, slip U_T = T V - w, and the tangential
 // impulses join the normal ones in every update (M^{-1} (L^T P_N + T^T P_T)); the step's
 // tangential impulse is summed like the normal one, so it stays in the cone.
+// 3D contacts (Contacts::has_cone, capability "3D friction cone"; docs/three_d.md): every stage's
+// contact solve takes (P_N, P_T1, P_T2) from the Coulomb cone at its own velocity,
+//     0 <= P_N _|_ U_N >= 0,  |P_T| <= mu P_N,  U_T = 0 inside,
+//     P_T = -mu P_N U_T / |U_T| on the boundary (maximal dissipation),  U_T = (T, T2) V - (w, w2),
+// by CD-Lagrange's explicit cone solve (cone_contact.hpp, with e = 0 for P_1, P_2): per contact
+// where no two contacts share a dof, the projection onto the disk where the contact's block
+// [L; T; T2] M^{-1} [L; T; T2]^T is diagonal with equal tangent entries (a node of a lumped
+// mesh, a rigid sphere), else the exact local solve of coulomb_cone.hpp (Moré–Sorensen
+// trust-region step inside an Illinois iteration on P_N, to 1e-15 relative); nonsmooth
+// Gauss–Seidel over the closed contacts (solve_coulomb_cone, to lcp_tol) where they share a
+// dof; and M^{-1} (L^T P_N + T^T P_T1 + T2^T P_T2) in every update. The step's impulse sums
+// the stages' like the 2D one; a sum of impulses in a convex cone stays in it.
 // Reported state: (U_{k+1}, V_{k+1}) at t_{k+1}; energy V^T M V / 2 + V(U).
 // Declines (InputError): a non-diagonal mass or a massless dof (M^{-1} in every stage).
 // Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
 // (integrators/capabilities.hpp, one refusal wording): Schindler and Acary evaluate the
 // rows at the midpoint and end positions of the step; not implemented here.
+#include "integrators/cone_contact.hpp"
 #include "integrators/impulse_contact.hpp"
 #include "integrators/integrator.hpp"
 
@@ -45,8 +58,16 @@ class D1MinusLinear final : public Integrator {
 
  private:
   StepInfo advance(double dt_requested) override;
-  // v += scale M^{-1} (L^T normal + T^T tangential)
-  void add_impulses(const Vec& normal, const Vec& tangential, double scale, VecRef v) const;
+  // The impulses of one contact stage: normal, along T, along T2 (3D contacts).
+  struct StageImpulses {
+    Vec normal, tangential, tangential2;
+    void reset(Index p);
+  };
+  // v += scale M^{-1} (L^T normal + T^T tangential + T2^T tangential2)
+  void add_impulses(const StageImpulses& p, double scale, VecRef v) const;
+  // The stage's contact solve (impulse_contact.hpp, or cone_contact.hpp for 3D contacts)
+  // at the new position u with restitution e: v in, the free velocity, out, after p.
+  long solve_stage(ConstVecRef u, ConstVecRef v_prev, VecRef v, StageImpulses& p, StepInfo& info, double e);
   // f(j) for each dof j of the contact rows (normal and tangent): the only velocities the
   // contact solves read.
   template <class F>
@@ -55,17 +76,21 @@ class D1MinusLinear final : public Integrator {
       for (decltype(L_)::InnerIterator it(L_, i); it; ++it) f(it.col());
       if (friction_)
         for (decltype(T_)::InnerIterator it(T_, i); it; ++it) f(it.col());
+      if (cone_)
+        for (decltype(T2_)::InnerIterator it(T2_, i); it; ++it) f(it.col());
     }
   }
 
   LcpOptions lcp_;
   ImpulseContact contact_;
+  bool cone_ = false;  // 3D contacts with friction: cone_contact_ instead of contact_
+  ConeContact cone_contact_;
   Vec minv_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
-  Vec f_ext_, a_now_, a_next_, f_int_, v1_, v_minus_, u_start_, p1_, p2_, impact_, gap_;
+  Vec f_ext_, a_now_, a_next_, f_int_, v1_, v_minus_, u_start_, gap_;
+  StageImpulses p1_, p2_, impact_;
   bool friction_ = false;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
-  Vec p1_t_, p2_t_, impact_t_;  // the stages' tangential impulses
+  Eigen::SparseMatrix<double, Eigen::RowMajor> T_, T2_;
   bool started_ = false;
   bool closed_start_ = false;  // some contact closed at U_k (g <= 0)
 };

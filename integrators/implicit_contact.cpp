@@ -27,6 +27,11 @@ void ImplicitContact::bind(const Problem& problem, const SpMat& M, const Vec& u0
     tangent_responses_.bind(L_.rows());
     mu_active_ = Vec::Zero(L_.rows());
   }
+  cone_ = problem.contacts().has_cone();
+  if (cone_) {
+    T2_ = problem.contacts().tangent2;
+    tangent2_responses_.bind(L_.rows());
+  }
   S_.bind(M, K_);  // S's pattern for every c, analysed now: a factor too large is refused up front
   chol_.analyze(S_.matrix(), fmt::format("integrator {}", who), "S");
 }
@@ -38,6 +43,7 @@ void ImplicitContact::factorize(double c) {
   c_factored_ = c;
   responses_.invalidate();
   tangent_responses_.invalidate();
+  tangent2_responses_.invalidate();
 }
 
 void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, bool with_contact, Vec& u, Vec& mu,
@@ -102,10 +108,23 @@ const Vec& ImplicitContact::tangent_response(Index i) {
   });
 }
 
-LcpResult ImplicitContact::correct_with_friction(const Vec& b, Vec& x, Vec& normal, Vec& tangential,
+const Vec& ImplicitContact::tangent2_response(Index i) {
+  return tangent2_responses_.get(T2_, i, [this](Vec& r) {
+    chol_.solve(r, r);
+    ++work_->linear_solves;
+  });
+}
+
+LcpResult ImplicitContact::correct_with_friction(const Vec& b, Vec& x, Vec& normal, Vec& tangential, Vec& tangential2,
                                                  const std::vector<Index>& active) {
-  const FrictionalCorrection c{L_, T_, problem_->contacts(), [this](Index i) -> const Vec& { return response(i); },
-                               [this](Index i) -> const Vec& { return tangent_response(i); }, nullptr, {}, nullptr};
+  const FrictionalCorrection c{L_,
+                               T_,
+                               problem_->contacts(),
+                               [this](Index i) -> const Vec& { return response(i); },
+                               [this](Index i) -> const Vec& { return tangent_response(i); },
+                               cone_ ? &T2_ : nullptr,
+                               [this](Index i) -> const Vec& { return tangent2_response(i); },
+                               &tangential2};
   const LcpResult res = frictional_correction(c, b, x, normal, tangential, active, lcp_, buffers_.lcp, mu_active_);
   work_->lcp_iterations += res.iterations;
   if (!res.converged) ++work_->lcp_unconverged;

@@ -94,12 +94,15 @@ class ImplicitContact {
   // `grow`): x += S^{-1} L^T mu, mu (size p, zero off the set) returned in `mu`.
   LcpResult correct(const Vec& b, Vec& x, Vec& mu, const std::vector<Index>& active, bool grow);
   // The frictional correction above on the fixed set `active` (the problem has friction),
-  // iterations counted in work.
-  LcpResult correct_with_friction(const Vec& b, Vec& x, Vec& normal, Vec& tangential, const std::vector<Index>& active);
+  // iterations counted in work. 3D contacts (Contacts::has_cone): the cone law, Lambda_T2
+  // into `tangential2` (size p), which 2D contacts leave untouched.
+  LcpResult correct_with_friction(const Vec& b, Vec& x, Vec& normal, Vec& tangential, Vec& tangential2,
+                                  const std::vector<Index>& active);
 
  private:
   const Vec& response(Index contact);
   const Vec& tangent_response(Index contact);
+  const Vec& tangent2_response(Index contact);
   void factorize(double c);
 
   const Problem* problem_ = nullptr;
@@ -118,6 +121,9 @@ class ImplicitContact {
   CorrectionBuffers buffers_;
   ContactRows T_;                       // with friction
   ContactResponses tangent_responses_;  // S^{-1} T_i^T
+  bool cone_ = false;                    // 3D contacts with friction
+  ContactRows T2_;
+  ContactResponses tangent2_responses_;  // S^{-1} T2_i^T
   Vec mu_active_;
 };
 

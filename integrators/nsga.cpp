@@ -60,10 +60,11 @@ StepInfo Nsga::advance(double h) {
   if (closing_.empty()) {
     impulses_.setZero();
     tangential_impulses_.setZero();
+    tangential_impulses2_.setZero();
   } else {
     b_.noalias() = problem_->restitution() * (L * state_.v);
     const LcpResult vel = problem_->contacts().has_friction()
-                              ? implicit_.correct_with_friction(b_, w_, impulses_, tangential_impulses_, closing_)
+                              ? implicit_.correct_with_friction(b_, w_, impulses_, tangential_impulses_, tangential_impulses2_, closing_)
                               : implicit_.correct(b_, w_, impulses_, closing_, false);
     info.iterations += vel.iterations;
     if (!vel.converged) info.converged = false;
@@ -73,6 +74,6 @@ StepInfo Nsga::advance(double h) {
   return info;
 }
 
-NSBENCH_INTEGRATOR({"nsga", "nonsmooth generalised-alpha (Bruls-Acary-Cardona 2014): position correction and velocity impact law, rho_inf", &Nsga::parameters_spec, &make_from_params<Integrator, Nsga>, false, false, {.friction = true}});
+NSBENCH_INTEGRATOR({"nsga", "nonsmooth generalised-alpha (Bruls-Acary-Cardona 2014): position correction and velocity impact law, rho_inf", &Nsga::parameters_spec, &make_from_params<Integrator, Nsga>, false, false, {.friction = true, .friction_cone = true}});
 
 }  // namespace nsb

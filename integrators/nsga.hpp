@@ -45,6 +45,18 @@
 // with the smooth step's tangential load, h^2/2 a_T per step: creep at about h a_T / 2 under a
 // static load (sliding mass, alpha 30 deg, h = 1e-3: 2.5 mm/s), which Capobianco et al.'s
 // smooth friction force removes.
+// 3D contacts (Contacts::has_cone, capability "3D friction cone"; docs/three_d.md): the same
+// velocity jump with the Coulomb cone, U_T = (T, T2) V_{k+1} - (w, w2),
+//     0 <= Lambda_N _|_ U_N >= 0,  |Lambda_T| <= mu Lambda_N,  U_T = 0 inside,
+//     Lambda_T = -mu Lambda_N U_T / |U_T| on the boundary (maximal dissipation),
+//     V_{k+1} = W_{k+1} + S^{-1} (L^T Lambda_N + T^T Lambda_T1 + T2^T Lambda_T2),
+// on the 3x3 blocks of [L_i; T_i; T2_i] S^{-1} [L_j; T_j; T2_j]^T: Moreau–Jean's solve, shared
+// (implicit_contact.hpp's frictional correction): nonsmooth Gauss–Seidel over contacts
+// (solve_coulomb_cone) until a sweep changes no impulse by more than lcp_tol (relative,
+// velocity units), each contact by the exact local solve of coulomb_cone.hpp (the projection
+// onto the disk where its block is diagonal with equal tangent entries, else the Moré–Sorensen
+// trust-region step inside an Illinois iteration on Lambda_N to 1e-15 relative); neither a
+// projection iteration, Alart–Curnier nor Fischer–Burmeister. The creep above holds in 3D too.
 // Nonlinear F_int: the smooth step is solved by Newton (newton_tol on the increment, see
 // implicit_contact.hpp), refactorising S each iteration; the corrections use the last S.
 // impulses() = Lambda, the velocity jump's impulse (nu is a position correction, no momentum).

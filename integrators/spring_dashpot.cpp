@@ -1,5 +1,7 @@
 #include "integrators/spring_dashpot.hpp"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -45,6 +47,34 @@ RegularisedFriction regularised_friction(double mu, double normal, double slip, 
 
 double implicit_regularised_friction(double mu, double normal, double slip, double h_tangent, double v_reg) {
   return regularised_friction(mu, normal, slip, v_reg + h_tangent * mu * normal).force;
+}
+
+RegularisedConeFriction regularised_cone_friction(double mu, double normal, const Eigen::Vector2d& slip, double v_reg) {
+  const double length = slip.norm();
+  const double a = mu * normal;
+  if (length < v_reg) return {-a / v_reg * slip, -a / v_reg * Eigen::Matrix2d::Identity(), -mu / v_reg * slip};
+  const Eigen::Vector2d direction = slip / length;
+  return {-a * direction, -a / length * (Eigen::Matrix2d::Identity() - direction * direction.transpose()), -mu * direction};
+}
+
+Eigen::Vector2d implicit_regularised_cone_friction(double mu, double normal, const Eigen::Vector2d& slip,
+                                                   const Eigen::Matrix2d& h_tangent, double v_reg) {
+  const double a = mu * normal;
+  if (a == 0.0 || slip.isZero(0.0)) return Eigen::Vector2d::Zero();
+  if (h_tangent(0, 1) == 0.0 && h_tangent(1, 0) == 0.0 && h_tangent(0, 0) == h_tangent(1, 1))
+    return regularised_cone_friction(mu, normal, slip, v_reg + h_tangent(0, 0) * a).force;
+  const auto slip_after = [&](double r) -> Eigen::Vector2d {
+    return (Eigen::Matrix2d::Identity() + (a / r) * h_tangent).inverse() * slip;
+  };
+  const Eigen::Vector2d viscous = slip_after(v_reg);
+  if (viscous.norm() <= v_reg) return -a / v_reg * viscous;
+  double lo = v_reg, hi = slip.norm();
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (slip_after(mid).norm() > mid ? lo : hi) = mid;
+  }
+  const Eigen::Vector2d u = slip_after(hi);
+  return -a * u / u.norm();
 }
 
 }  // namespace nsb

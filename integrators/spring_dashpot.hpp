@@ -30,6 +30,26 @@
 //     Lambda_T = -mu Lambda_N phi(s / (v_reg + h_T mu Lambda_N))
 // (the same law with v_reg widened by the slip the full friction impulse makes): stable for
 // any step, and u_T(+) keeps the sign of s (friction never reverses the slip).
+//
+// The regularised cone (3D contacts, Contacts::has_cone: slip u_T in R^2 along (T, T2)): the
+// same law with the interval become the disk,
+//     F_T = -mu F_N phi(u_T / v_reg),  phi(x) = x / max(1, |x|)     (the 1D clamp for |x| in R)
+// i.e. the viscous law -mu F_N u_T / v_reg for |u_T| < v_reg and Coulomb's sliding force
+// -mu F_N u_T / |u_T| (|F_T| = mu F_N, opposite to the slip) beyond. Its slope: dF_T/du_T =
+// -mu F_N / v_reg I inside, -mu F_N (I - n n^T) / |u_T| (n = u_T / |u_T|) outside (the
+// sliding force turns with the slip, unlike the 1D saturated branch); dF_T/dF_N = -mu phi.
+// Implicit form, with H_T = [T; T2] M^{-1} [T; T2]^T (2x2 SPD) and u_T(+) = s + H_T Lambda_T:
+// Lambda_T = -mu Lambda_N phi(u_T(+) / v_reg) has one solution (u + H_T dPsi(u) = s, Psi the
+// convex potential of the law, is strongly monotone in the H_T^{-1} inner product). H_T = h I
+// (a node of a lumped mesh, a rigid sphere): the 1D widening, in closed form,
+//     Lambda_T = -mu Lambda_N phi(s / (v_reg + h mu Lambda_N)).
+// Any other H_T: the viscous branch u = (I + a / v_reg H_T)^{-1} s (a = mu Lambda_N) if
+// |u| <= v_reg, else the sliding branch u = (I + a / r H_T)^{-1} s with |u| = r, the scalar
+// equation |(I + a / r H_T)^{-1} s| = r bracketed on [v_reg, |s|] (positive at v_reg, <= 0 at
+// |s| since (I + c H_T)^{-1} shrinks) and bisected to 1e-15 relative; then Lambda_T =
+// -a u / |u|, on the disk's boundary to round-off. Either way u_T(+) is a positive multiple
+// of (I + c H_T)^{-1} s: friction never reverses the slip.
+#include <Eigen/Core>
 #include <functional>
 
 namespace nsb {
@@ -54,5 +74,18 @@ RegularisedFriction regularised_friction(double mu, double normal, double slip, 
 // The implicit form above: the tangential impulse for normal impulse `normal`, slip `slip`
 // before it and tangential compliance h_T.
 double implicit_regularised_friction(double mu, double normal, double slip, double h_tangent, double v_reg);
+
+// The regularised cone above at normal force `normal` >= 0 and slip `slip` (R^2), with its
+// partial derivatives.
+struct RegularisedConeFriction {
+  Eigen::Vector2d force;
+  Eigen::Matrix2d d_slip;
+  Eigen::Vector2d d_normal;
+};
+RegularisedConeFriction regularised_cone_friction(double mu, double normal, const Eigen::Vector2d& slip, double v_reg);
+// The cone's implicit form above: the tangential impulse (R^2) for normal impulse `normal`,
+// slip `slip` before it and tangential compliance H_T (2x2 SPD).
+Eigen::Vector2d implicit_regularised_cone_friction(double mu, double normal, const Eigen::Vector2d& slip,
+                                                   const Eigen::Matrix2d& h_tangent, double v_reg);
 
 }  // namespace nsb

@@ -69,12 +69,19 @@ void PenaltyBdf::init(const Problem& problem, const State& initial) {
   }
   const Contacts& contacts = problem.contacts();
   friction_ = contacts.has_friction();
-  const Index q = friction_ ? 2 * p : p;  // Lambda_N, then Lambda_T with friction
+  cone_ = contacts.has_cone();
+  // Lambda_N, then Lambda_T with friction, then Lambda_T2 on the cone
+  const Index q = (1 + (friction_ ? 1 : 0) + (cone_ ? 1 : 0)) * p;
   if (friction_) {
     T_ = contacts.tangent;
     mu_ = contacts.mu;
     w_ = contacts.tangent_velocity;
     ft_ = Vec::Zero(p);
+  }
+  if (cone_) {
+    T2_ = contacts.tangent2;
+    w2_ = contacts.tangent2_velocity;
+    ft2_ = Vec::Zero(p);
   }
   y_ = Vec::Zero(2 * n + q);
   y_ << state_.u, state_.v, Vec::Zero(q);
@@ -141,11 +148,27 @@ bool PenaltyBdf::mode(Index i, bool force_root) const {
   return force_root != static_cast<bool>(on_[i]);
 }
 
+namespace {
+
+// Row i of the tangent rows `rows` against v, minus the obstacle's velocity w_i: the slip.
+double penalty_slip(const RowSpMat& rows, const Vec& w, Index i, ConstVecRef v) {
+  double slip = -w[i];
+  for (RowSpMat::InnerIterator it(rows, i); it; ++it) slip += it.value() * v[it.col()];
+  return slip;
+}
+
+}  // namespace
+
 void PenaltyBdf::friction_forces(ConstVecRef v) {
   for (Index i = 0; i < ft_.size(); ++i) {
-    double slip = -w_[i];
-    for (RowSpMat::InnerIterator it(T_, i); it; ++it) slip += it.value() * v[it.col()];
-    ft_[i] = regularised_friction(mu_[i], fc_[i], slip, v_reg_).force;
+    if (cone_) {
+      const Eigen::Vector2d slip(penalty_slip(T_, w_, i, v), penalty_slip(T2_, w2_, i, v));
+      const Eigen::Vector2d f = regularised_cone_friction(mu_[i], fc_[i], slip, v_reg_).force;
+      ft_[i] = f[0];
+      ft2_[i] = f[1];
+      continue;
+    }
+    ft_[i] = regularised_friction(mu_[i], fc_[i], penalty_slip(T_, w_, i, v), v_reg_).force;
   }
 }
 
@@ -162,8 +185,12 @@ void PenaltyBdf::rhs(double t, ConstVecRef y, VecRef ydot) {
   force_.noalias() += L_.transpose() * fc_;
   if (friction_) {
     friction_forces(y.segment(n, n));
-    ydot.tail(p) = ft_;
+    ydot.segment(2 * n + p, p) = ft_;
     force_.noalias() += T_.transpose() * ft_;
+  }
+  if (cone_) {
+    ydot.tail(p) = ft2_;
+    force_.noalias() += T2_.transpose() * ft2_;
   }
   ydot.head(n) = y.segment(n, n);
   ydot.segment(n, n) = minv_.cwiseProduct(force_);
@@ -197,34 +224,50 @@ void PenaltyBdf::jacobian(double, ConstVecRef y, CsrMatrix& J) {
 }
 
 void PenaltyBdf::friction_jacobian(ConstVecRef y, std::vector<Eigen::Triplet<double, sunindextype>>& e) {
-  // f_T,i = phi-law(f_i, u_T,i): through f_i = -k g_i - c_i g'_i (on) it depends on u and v
-  // along L_i, through the slip on v along T_i. Every frictional contact keeps its entries
-  // (explicit zeros while off or saturated): one pattern for the run.
+  // f_T,i = the law at (f_i, u_T,i): through f_i = -k g_i - c_i g'_i (on) it depends on u and v
+  // along L_i, through the slip on v along T_i (and T2_i on the cone: m = 2 tangent rows,
+  // f_T,i in R^2). Every frictional contact keeps its entries (explicit zeros while off or
+  // saturated): one pattern for the run.
   const Index n = problem_->ndof(), p = L_.rows();
+  const int m = cone_ ? 2 : 1;
+  const RowSpMat* tangents[2] = {&T_, &T2_};
   const auto v = y.segment(n, n);
   gaps(y);
   for (Index i = 0; i < p; ++i) {
     if (mu_[i] == 0.0) continue;
     const double on = on_[i] ? 1.0 : 0.0;
-    double slip = -w_[i];
-    for (RowSpMat::InnerIterator it(T_, i); it; ++it) slip += it.value() * v[it.col()];
     const double fn = on * fc_[i];
-    const RegularisedFriction law = regularised_friction(mu_[i], fn, slip, v_reg_);
-    const Index row = 2 * n + p + i;
-    for (RowSpMat::InnerIterator a(L_, i); a; ++a) {
-      const double du = -on * law.d_normal * k_ * a.value(), dv = -on * law.d_normal * c_[i] * a.value();
-      e.emplace_back(row, a.col(), du);
-      e.emplace_back(row, n + a.col(), dv);
-      for (RowSpMat::InnerIterator b(T_, i); b; ++b) {
-        e.emplace_back(n + b.col(), a.col(), minv_[b.col()] * b.value() * du);
-        e.emplace_back(n + b.col(), n + a.col(), minv_[b.col()] * b.value() * dv);
+    Eigen::Vector2d d_normal = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d d_slip = Eigen::Matrix2d::Zero();
+    if (cone_) {
+      const Eigen::Vector2d slip(penalty_slip(T_, w_, i, v), penalty_slip(T2_, w2_, i, v));
+      const RegularisedConeFriction law = regularised_cone_friction(mu_[i], fn, slip, v_reg_);
+      d_normal = law.d_normal;
+      d_slip = law.d_slip;
+    } else {
+      const RegularisedFriction law = regularised_friction(mu_[i], fn, penalty_slip(T_, w_, i, v), v_reg_);
+      d_normal[0] = law.d_normal;
+      d_slip(0, 0) = law.d_slip;
+    }
+    const auto row = [&](int k) { return 2 * n + (1 + k) * p + i; };  // Lambda_T (k = 0), Lambda_T2
+    for (RowSpMat::InnerIterator a(L_, i); a; ++a)
+      for (int k = 0; k < m; ++k) {
+        const double du = -on * d_normal[k] * k_ * a.value(), dv = -on * d_normal[k] * c_[i] * a.value();
+        e.emplace_back(row(k), a.col(), du);
+        e.emplace_back(row(k), n + a.col(), dv);
+        for (RowSpMat::InnerIterator b(*tangents[k], i); b; ++b) {
+          e.emplace_back(n + b.col(), a.col(), minv_[b.col()] * b.value() * du);
+          e.emplace_back(n + b.col(), n + a.col(), minv_[b.col()] * b.value() * dv);
+        }
       }
-    }
-    for (RowSpMat::InnerIterator a(T_, i); a; ++a) {
-      const double dv = law.d_slip * a.value();
-      e.emplace_back(row, n + a.col(), dv);
-      for (RowSpMat::InnerIterator b(T_, i); b; ++b) e.emplace_back(n + b.col(), n + a.col(), minv_[b.col()] * b.value() * dv);
-    }
+    for (int l = 0; l < m; ++l)
+      for (RowSpMat::InnerIterator a(*tangents[l], i); a; ++a)
+        for (int k = 0; k < m; ++k) {
+          const double dv = d_slip(k, l) * a.value();
+          e.emplace_back(row(k), n + a.col(), dv);
+          for (RowSpMat::InnerIterator b(*tangents[k], i); b; ++b)
+            e.emplace_back(n + b.col(), n + a.col(), minv_[b.col()] * b.value() * dv);
+        }
   }
 }
 
@@ -274,7 +317,8 @@ StepInfo PenaltyBdf::advance(double dt) {
   state_.u = y_.head(n);
   state_.v = y_.segment(n, n);
   impulses_ = y_.segment(2 * n, p) - lambda_start.head(p);
-  if (friction_) tangential_impulses_ = y_.tail(p) - lambda_start.tail(p);
+  if (friction_) tangential_impulses_ = y_.segment(2 * n + p, p) - lambda_start.segment(p, p);
+  if (cone_) tangential_impulses2_ = y_.tail(p) - lambda_start.tail(p);
   info.dt = dt;
   publish_work();
   return info;
@@ -296,6 +340,6 @@ void PenaltyBdf::publish_work() {
   work_.extra["restitution_floor"] = restitution_floored_ ? restitution(kMaxBdfDampingRatio) : 0.0;
 }
 
-NSBENCH_INTEGRATOR({"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>, true, false, {.friction = true}});
+NSBENCH_INTEGRATOR({"penalty-bdf", "reference: penalty-regularised contact (spring-dashpot), CVODE BDF + KLU, analytic sparse Jacobian", &PenaltyBdf::parameters_spec, &make_from_params<Integrator, PenaltyBdf>, true, false, {.friction = true, .friction_cone = true}});
 
 }  // namespace nsb

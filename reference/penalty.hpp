@@ -47,6 +47,17 @@
 // (tests/reference/penalty_test.cpp measures it against the exact stop and the creep rate).
 // Lambda_T gives tangential_impulses(), as Lambda gives impulses(). mu = 0 on every contact:
 // y, the Jacobian and the roots are those of the frictionless scheme, bit for bit.
+// 3D contacts (Contacts::has_cone, capability "3D friction cone"; docs/three_d.md): the
+// regularised cone of spring_dashpot.hpp, the interval become the disk,
+//     f_T,i = -mu_i f_i [on] phi(u_T,i / v_reg),  phi(x) = x / max(1, |x|),
+//     u_T,i = (T_i v - w_i, T2_i v - w2_i) in R^2,
+//     v' += M^{-1} (T^T f_T1 + T2^T f_T2),  Lambda_T2,i' = f_T2,i  (y gains Lambda_T2 last)
+// with the Jacobian of that law (its 2x2 slope -mu f_i / v_reg I inside the band, -mu f_i
+// (I - n n^T) / |u_T| outside, n = u_T / |u_T|, and -mu phi along f_i): exact on each branch.
+// Its error as a reference is the 2D one: the slip reaches the band |u_T| = v_reg at
+// t_s - v_reg / |a_slip| and then creeps (a sphere rolling down a slope of angle alpha at
+// |u_T| = v_reg (2/7) tan(alpha) / mu, the static friction (2/7) m g sin(alpha) over mu F_N).
+// Lambda_T2 gives tangential_impulses2().
 // energy(): kinetic + potential + penalty springs k g_i^2 / 2 of the contacts that are on.
 // Work counters as for event-driven (reference/cvode.hpp); extra: switches (on/off events),
 // missed_switches (switches without a root of their own, found at a CVODE return: a function
@@ -118,6 +129,9 @@ class PenaltyBdf final : public Integrator, private OdeSystem {
   Vec minv_, c_, y_, force_, fext_, g_, gdot_, fc_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
   Vec mu_, w_, ft_;
+  bool cone_ = false;  // 3D contacts with friction: T2, w2, the forces along T2
+  Eigen::SparseMatrix<double, Eigen::RowMajor> T2_;
+  Vec w2_, ft2_;
   std::vector<char> on_;
   SpMat K_;
   long switches_ = 0;
