@@ -13,16 +13,28 @@
 //                  radius R; u = (x, z - R, theta), theta = -(angle about +y): the problem's
 //                  counter-clockwise theta seen with x right and z up, so the contact point's
 //                  slip x' + R theta' is the engine's x' - R omega_y.
+//   rocking-block  a box (half sides b, b, h: the problem's b and h; its depth along y, 2 b, is
+//                  immaterial by symmetry) on the plane z = 0, gravity (0, 0, -g), free to
+//                  slide in x and z and to turn about y; its inertia about y is the problem's
+//                  m (b^2 + h^2) / 3 (the box's own). The problem's y is the engine's z:
+//                  u = (x, z, theta), theta = -(angle about +y) as for the disk. Its contacts
+//                  are the box's bottom edges (the engine finds two points on each, at +-b in
+//                  y): a point right of the centre (world x above the centre's) belongs to the
+//                  problem's contact 0 (the corner (+b, -h)), one left of it to contact 1.
 //
 // The entries declare node-to-rigid contacts only (one body on a fixed plane; ball-chain's
 // contacts between bodies are refused when the problem binds). Every other problem is
 // declined (InputError naming the problem): the engines see rigid bodies, not a
-// semi-discrete continuum. A rolling-disk whose kappa is not a shape's (2/5,
+// semi-discrete continuum. A rocking block's moving contacts are the engine's own (it
+// re-detects the box's corners every step). A rolling-disk whose kappa is not a shape's (2/5,
 // 1/2) is declined naming kappa; an obstacle moving along the contact (w != 0) naming w.
 //
-// Impulses: the engine reports the contact's normal impulse (>= 0) and the world-x component
-// P_x of the friction impulse on the body. The tangent row T is [1, 0] (sliding) or [1, 0, R]
-// (disk): P_x at the contact point gives the x dof P_x and the theta dof R P_x, so Lambda_T = P_x.
+// Impulses: the engine reports each contact point's normal impulse (>= 0) and the world-x
+// component P_x of its friction impulse on the body; the points are summed per problem contact
+// (one contact, or the rocking block's two corners, StepResult::add). The tangent row T is
+// [1, 0] (sliding), [1, 0, R] (disk) or the corner's horizontal velocity (block): P_x at the
+// contact point gives the x dof P_x and the theta dof the moment of P_x, so Lambda_T = P_x.
+#include <array>
 #include <string>
 
 #include "integrators/integrator.hpp"
@@ -43,11 +55,12 @@ struct Scene {
   double radius = 0.0;       // sphere, cylinder; the box's half side in x and y
   double half_height = 0.0;  // box: half height; cylinder: half length (along y)
   double mass = 0.0;
-  double kappa = 0.0;        // inertia about y over m R^2 (sphere 2/5, cylinder 1/2)
+  double kappa = 0.0;        // inertia about y over m radius^2 (sphere 2/5, cylinder 1/2)
   double gx = 0.0, gz = 0.0; // gravity
   double restitution = 0.0, mu = 0.0;
   bool moves_x = false;      // the problem has an x dof (not the bouncing mass)
-  bool rotates = false;      // the problem has a rotation dof (the disk)
+  bool rotates = false;      // the problem has a rotation dof (the disk, the block)
+  int contacts = 1;          // the problem's contacts (the block: 2, its corners)
   Pose start;
 };
 
@@ -65,11 +78,17 @@ double unwrap(double previous, double wrapped);
 ParamSpec size_spec();
 
 // What one engine step reports: the body after it and the step's contact impulses on the
-// body (normal, summed over the engine's contact points; world-x friction component).
+// body per problem contact (normal, summed over the engine's points of that contact;
+// world-x friction component).
 struct StepResult {
+  static constexpr int kMaxContacts = 2;
   Pose pose;
-  double normal_impulse = 0.0, friction_impulse_x = 0.0;
+  std::array<double, kMaxContacts> normal_impulse{}, friction_impulse_x{};
   long iterations = 0;
+
+  // Adds an engine contact point at world x `point_x` (the body's centre at `centre_x`) to the
+  // problem contact it belongs to (engine_scene.hpp's list).
+  void add(const Scene& scene, double point_x, double centre_x, double normal, double friction_x);
 };
 
 }  // namespace nsb::engines

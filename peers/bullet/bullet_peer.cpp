@@ -13,6 +13,11 @@
 
 namespace nsb {
 
+namespace {
+// btManifoldResult::calculateCombinedFriction clamps the product of the two coefficients to it.
+constexpr double kMaxCombinedFriction = 10.0;
+}  // namespace
+
 struct BulletPeer::World {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
@@ -42,6 +47,9 @@ BulletPeer::BulletPeer(const Params& params) : EnginePeer(params) {}
 BulletPeer::~BulletPeer() = default;
 
 void BulletPeer::build(const engines::Scene& s) {
+  if (s.mu > kMaxCombinedFriction)
+    throw InputError(fmt::format("--integrator bullet: problem '{}' has mu = {}, above Bullet's cap on the combined friction (valid: mu <= {})",
+                                 s.problem, s.mu, kMaxCombinedFriction));
   auto w = std::make_unique<World>();
   btContactSolverInfo& info = w->world.getSolverInfo();
   info.m_numIterations = static_cast<int>(params_.integer("iterations"));
@@ -89,6 +97,7 @@ void BulletPeer::build(const engines::Scene& s) {
 
 engines::StepResult BulletPeer::engine_step(double dt) {
   World& w = *world_;
+  const double centre_x = w.body->getWorldTransform().getOrigin().x();
   w.world.stepSimulation(dt, 0);
   engines::StepResult r;
   for (int k = 0; k < w.dispatcher.getNumManifolds(); ++k) {
@@ -99,9 +108,9 @@ engines::StepResult BulletPeer::engine_step(double dt) {
       const btManifoldPoint& p = m->getContactPoint(j);
       // A point the solver skipped (beyond the processing threshold) keeps its last impulse.
       if (p.getDistance() > m->getContactProcessingThreshold()) continue;
-      r.normal_impulse += p.getAppliedImpulse();
-      r.friction_impulse_x += sign * (p.m_appliedImpulseLateral1 * p.m_lateralFrictionDir1.x() +
-                                      p.m_appliedImpulseLateral2 * p.m_lateralFrictionDir2.x());
+      const btVector3& at = sign > 0 ? p.getPositionWorldOnA() : p.getPositionWorldOnB();
+      r.add(scene(), at.x(), centre_x, p.getAppliedImpulse(),
+            sign * (p.m_appliedImpulseLateral1 * p.m_lateralFrictionDir1.x() + p.m_appliedImpulseLateral2 * p.m_lateralFrictionDir2.x()));
     }
   }
   const btTransform& T = w.body->getWorldTransform();
@@ -115,6 +124,6 @@ engines::StepResult BulletPeer::engine_step(double dt) {
 
 NSBENCH_INTEGRATOR({"bullet", "peer: Bullet's btDiscreteDynamicsWorld (sequential impulses, split impulse, e and mu per body) (rigid problems)",
                     &BulletPeer::parameters_spec, &make_from_params<Integrator, BulletPeer>, false, true,
-                    {.friction = true, .node_to_rigid_only = true}});
+                    {.friction = true, .moving_contacts = true, .node_to_rigid_only = true}});
 
 }  // namespace nsb

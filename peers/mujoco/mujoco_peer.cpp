@@ -47,7 +47,7 @@ std::string mjcf(const engines::Scene& s, const Params& p) {
   return fmt::format(
       R"(<mujoco model="nsbench">
   <compiler angle="degree" inertiafromgeom="true"/>
-  <option timestep="0.001" gravity="{} 0 {}" integrator="{}" cone="elliptic" iterations="{}" tolerance="{}"
+  <option timestep="0.001" gravity="{} 0 {}" integrator="{}" cone="{}" iterations="{}" tolerance="{}"
           noslip_iterations="{}" noslip_tolerance="{}"/>
   <worldbody>
     <geom name="floor" type="plane" size="0 0 1" {}/>
@@ -59,7 +59,7 @@ std::string mjcf(const engines::Scene& s, const Params& p) {
 </mujoco>
 )",
       g17(s.gx), g17(s.gz), p.choice("integrator") == "rk4" ? "RK4" : (p.choice("integrator") == "euler" ? "Euler" : "implicit"),
-      p.integer("iterations"), g17(p.real("tolerance")), p.integer("noslip_iterations"), g17(p.real("tolerance")), contact,
+      p.choice("cone"), p.integer("iterations"), g17(p.real("tolerance")), p.integer("noslip_iterations"), g17(p.real("tolerance")), contact,
       joints, geom, g17(s.mass), contact);
 }
 
@@ -88,6 +88,7 @@ ParamSpecs MujocoPeer::parameters_spec() {
   return {ParamSpec::choice("integrator", "implicit", {"euler", "implicit", "rk4"}, "MuJoCo's integrator (option integrator)"),
           ParamSpec::real("timeconst_steps", 2.0, 1.0, 1000.0, "contact spring's time constant tau over dt (MuJoCo: at least 2)"),
           ParamSpec::real("impedance", 0.9999, 0.9, 0.9999, "solimp d (dmin = dmax): how closely the contact follows its reference spring"),
+          ParamSpec::choice("cone", "elliptic", {"elliptic", "pyramidal"}, "MuJoCo's friction cone (option cone)"),
           ParamSpec::integer("iterations", 100, 1, 1000000, "MuJoCo's constraint solver iterations (option iterations)"),
           ParamSpec::real("tolerance", 1e-10, 0.0, 1e-2, "MuJoCo's solver and noslip tolerance (option tolerance, noslip_tolerance)"),
           ParamSpec::integer("noslip_iterations", 20, 0, 1000000, "noslip post-processor iterations (0: off)"),
@@ -151,6 +152,8 @@ engines::StepResult MujocoPeer::engine_step(double dt) {
   if (dt != world_->spring_dt) set_contact_spring(dt);
   mjModel* m = world_->m;
   mjData* d = world_->d;
+  const engines::Scene& s = scene();
+  const double centre_x = s.moves_x ? d->qpos[0] : 0.0;
   mj_step(m, d);
   engines::StepResult r;
   // mj_step computed the contacts and their forces at the step's start: the step's impulses.
@@ -161,11 +164,9 @@ engines::StepResult MujocoPeer::engine_step(double dt) {
     mj_contactForce(m, d, i, f);
     // f acts on geom2 along the frame's rows (normal, t1, t2) when geom2 is the body.
     const double sign = c.geom2 == world_->body_geom ? 1.0 : -1.0;
-    r.normal_impulse += f[0] * dt;
-    r.friction_impulse_x += sign * (f[1] * c.frame[3] + f[2] * c.frame[6]) * dt;
+    r.add(s, c.pos[0], centre_x, f[0] * dt, sign * (f[1] * c.frame[3] + f[2] * c.frame[6]) * dt);
   }
   r.iterations = d->solver_iter;
-  const engines::Scene& s = scene();
   int q = 0;
   if (s.moves_x) {
     r.pose.x = d->qpos[q];
@@ -182,6 +183,6 @@ engines::StepResult MujocoPeer::engine_step(double dt) {
 
 NSBENCH_INTEGRATOR({"mujoco", "peer: MuJoCo's mj_step (implicit, elliptic cone, noslip), soft contact with the spring-damper of e (rigid problems)",
                     &MujocoPeer::parameters_spec, &make_from_params<Integrator, MujocoPeer>, false, true,
-                    {.friction = true, .node_to_rigid_only = true}});
+                    {.friction = true, .moving_contacts = true, .node_to_rigid_only = true}});
 
 }  // namespace nsb

@@ -122,6 +122,7 @@ void OdePeer::build(const engines::Scene& s) {
 engines::StepResult OdePeer::engine_step(double dt) {
   ode_thread_init();
   World& w = *world_;
+  const double centre_x = dBodyGetPosition(w.body)[0];
   std::array<dContact, kMaxContacts> contact{};
   const int n = dCollide(w.geom, w.plane, kMaxContacts, &contact[0].geom, sizeof(dContact));
   for (int i = 0; i < n; ++i) {
@@ -134,10 +135,8 @@ engines::StepResult OdePeer::engine_step(double dt) {
   }
   dWorldStep(w.world, dt);
   engines::StepResult r;
-  for (int i = 0; i < n; ++i) {
-    r.normal_impulse += w.feedback[i].f1[2] * dt;
-    r.friction_impulse_x += w.feedback[i].f1[0] * dt;
-  }
+  for (int i = 0; i < n; ++i)
+    r.add(scene(), contact[i].geom.pos[0], centre_x, w.feedback[i].f1[2] * dt, w.feedback[i].f1[0] * dt);
   dJointGroupEmpty(w.contacts);
   const dReal* x = dBodyGetPosition(w.body);
   const dReal* v = dBodyGetLinearVel(w.body);
@@ -150,6 +149,6 @@ engines::StepResult OdePeer::engine_step(double dt) {
 
 NSBENCH_INTEGRATOR({"ode", "peer: ODE's dWorldStep (direct LCP), contact joints with bounce e, mu (Approx1), ERP/CFM (rigid problems)",
                     &OdePeer::parameters_spec, &make_from_params<Integrator, OdePeer>, false, true,
-                    {.friction = true, .node_to_rigid_only = true}});
+                    {.friction = true, .moving_contacts = true, .node_to_rigid_only = true}});
 
 }  // namespace nsb
