@@ -1,7 +1,7 @@
 #pragma once
 // The rigid scenes the physics-engine peers (MuJoCo, Bullet, ODE: peers/mujoco, peers/bullet,
 // peers/ode) build from nsbench's rigid problems, and the map from the engine's body back to
-// the problem's dofs. The world is z up; every body moves in the x-z plane:
+// the problem's dofs. The world is z up; every body but the sphere moves in the x-z plane:
 //
 //   bouncing-mass  a sphere (radius `size`) above the plane z = 0, gravity (0, 0, -g);
 //                  u = z - size (the gap), v = z'. Frictionless (the problem has mu = 0).
@@ -21,6 +21,15 @@
 //                  are the box's bottom edges (the engine finds two points on each, at +-b in
 //                  y): a point right of the centre (world x above the centre's) belongs to the
 //                  problem's contact 0 (the corner (+b, -h)), one left of it to contact 1.
+//   sphere         (3D, Scene::spatial) a free sphere of the problem's radius R on the plane
+//                  z = 0, the slope made by tilting gravity as for the sliding mass:
+//                  g (sin alpha, 0, -cos alpha), x down the slope, y across it, z the normal,
+//                  the problem's own axes. u = (x, y, z - R, theta_x, theta_y, theta_z),
+//                  v = (x', y', z', omega): omega is the engine's world angular velocity, and
+//                  theta, the problem's integral of omega (no function of the orientation), is
+//                  summed here as the engines step their positions: theta += dt omega(t + dt).
+//                  The engine keeps the orientation (its quaternion) itself; no equation of
+//                  the problem reads it. Slip: (x' - R omega_y, y' + R omega_x).
 //
 // The entries declare node-to-rigid contacts only (one body on a fixed plane; ball-chain's
 // contacts between bodies are refused when the problem binds). Every other problem is
@@ -34,6 +43,8 @@
 // (one contact, or the rocking block's two corners, StepResult::add). The tangent row T is
 // [1, 0] (sliding), [1, 0, R] (disk) or the corner's horizontal velocity (block): P_x at the
 // contact point gives the x dof P_x and the theta dof the moment of P_x, so Lambda_T = P_x.
+// The sphere's second tangent row T2 (slip across the slope) takes the world-y component P_y
+// likewise: Lambda_T2 = P_y.
 #include <array>
 #include <string>
 
@@ -43,10 +54,12 @@ namespace nsb::engines {
 
 enum class Shape { Sphere, Box, Cylinder };
 
-// The body's pose and velocity in the x-z plane; angle and spin about +y.
+// The body's pose and velocity in the x-z plane; angle and spin about +y; then, for a
+// spatial scene, the position and velocity across (y) and the other spin components (world).
 struct Pose {
   double x = 0.0, z = 0.0, angle = 0.0;
   double vx = 0.0, vz = 0.0, wy = 0.0;
+  double y = 0.0, vy = 0.0, wx = 0.0, wz = 0.0;
 };
 
 struct Scene {
@@ -61,13 +74,14 @@ struct Scene {
   bool moves_x = false;      // the problem has an x dof (not the bouncing mass)
   bool rotates = false;      // the problem has a rotation dof (the disk, the block)
   int contacts = 1;          // the problem's contacts (the block: 2, its corners)
+  bool spatial = false;      // a free body in 3D (the sphere): every translation and rotation
   Pose start;
 };
 
 // The scene of `problem` from `initial`; throws InputError (starting with `who`) when the
 // problem is not one of the three, or outside what the shapes can be.
 Scene scene_of(const Problem& problem, const State& initial, double size, const std::string& who);
-// The problem's state at time t from the engine's body.
+// The problem's state at time t from the engine's body (`out`: the state before the step).
 void to_state(const Scene& scene, const Pose& pose, double t, State& out);
 
 // The angle nearest `previous` equal to `wrapped` modulo 2 pi: the disk's unbounded angle from
@@ -79,16 +93,16 @@ ParamSpec size_spec();
 
 // What one engine step reports: the body after it and the step's contact impulses on the
 // body per problem contact (normal, summed over the engine's points of that contact;
-// world-x friction component).
+// world-x and world-y friction components).
 struct StepResult {
   static constexpr int kMaxContacts = 2;
   Pose pose;
-  std::array<double, kMaxContacts> normal_impulse{}, friction_impulse_x{};
+  std::array<double, kMaxContacts> normal_impulse{}, friction_impulse_x{}, friction_impulse_y{};
   long iterations = 0;
 
   // Adds an engine contact point at world x `point_x` (the body's centre at `centre_x`) to the
   // problem contact it belongs to (engine_scene.hpp's list).
-  void add(const Scene& scene, double point_x, double centre_x, double normal, double friction_x);
+  void add(const Scene& scene, double point_x, double centre_x, double normal, double friction_x, double friction_y);
 };
 
 }  // namespace nsb::engines

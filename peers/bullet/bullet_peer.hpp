@@ -20,7 +20,8 @@
 // block's, by up to |omega| b dt) is pushed out without a rebound velocity. Rotations: the
 // bouncing sphere and the sliding box are locked (angular factor 0; the problems are point
 // masses), the disk and the rocking block turn about y only; linear factor (1, 0, 1)
-// (bouncing: (0, 0, 1)). The rocking block's box keeps Bullet's margin: its support points,
+// (bouncing: (0, 0, 1)); the sphere (3D) is free (factors (1, 1, 1)), its friction Bullet's
+// two directions, the first along the contact's slip. The rocking block's box keeps Bullet's margin: its support points,
 // and so its contact points, are the box's sharp corners (btBoxShape adds the margin back). Deactivation (sleeping) is disabled: a
 // sleeping body would hide its creep. No CCD: the fastest case moves v dt <= 0.05 m per step,
 // less than the body's half size.

@@ -3,7 +3,9 @@
 // peers/engine_scene.hpp): MuJoCo's own stepper (mj_step) and its own soft contact model.
 //
 // Model. Generalized coordinates are the problem's dofs: slide joints along x (sliding mass,
-// disk, block) and z, a hinge about y (disk, block); the floor is a plane geom. A contact is a soft
+// disk, block) and z, a hinge about y (disk, block); the sphere (3D) is a free joint, whose
+// angular velocity MuJoCo keeps in the body frame (turned to the world's with the body's
+// quaternion, mju_rotVecQuat); the floor is a plane geom. A contact is a soft
 // constraint: with r the signed distance (< 0: penetration), the solver sets the contact's
 // acceleration to
 //     r'' = d a_ref + (1 - d) r''_free,    a_ref = -b r' - k r,   0 <= f_N,

@@ -18,7 +18,9 @@
 //               (dContactFDir1) and y: exact for the planar motions here.
 // The sphere of the bouncing mass and the box of the sliding mass do not turn
 // (dBodySetMaxAngularSpeed 0: the problems are point masses); the disk turns freely (about
-// y, by symmetry), as does the rocking block's box. Auto-disable is off.
+// y, by symmetry), as does the rocking block's box; the sphere (3D) is free, and its friction
+// ODE's pyramid along x and y (not a cone: a slip at an angle to x meets a bound up to
+// sqrt(2) mu f_N). Auto-disable is off.
 //
 // Mapping from e and mu (stated here, not hidden): surface.bounce = e, surface.mu = mu
 // (Approx1: a coefficient), soft_erp = erp, soft_cfm = cfm. ODE's documentation: dWorldStep
