@@ -134,7 +134,7 @@ void check_capabilities(const DeclaredCapabilities& declared, const std::string&
   }
   if (const std::string has = mass_shortfall(can.mass, mass); !has.empty())
     refuse(mass_requirement(can.mass), has, "a problem with a lumped mass, e.g. mass=lumped");
-  if (can.node_to_rigid_only)
+  if (can.node_to_rigid_only && !problem.contacts_move())
     if (const std::string has = node_to_rigid_shortfall(problem); !has.empty())
       refuse("node-to-rigid contacts (each contact on one dof, one contact per dof)", has,
              "a problem whose contacts each hold one dof against a fixed obstacle");

@@ -48,6 +48,9 @@ struct Capabilities {
   bool constant_force_only = false;
   // Node-to-rigid contacts only: each row of the gap operator L acts on one dof, and no two
   // rows on the same dof (g_i = a_i (u_d - position_i): a node against a fixed obstacle).
+  // Judged on constant rows only: moving rows (one rigid body's corners: translation and
+  // rotation in each row) reach an integrator that treats them, which declines what it cannot
+  // run itself (the engine peers: peers/engine_scene.hpp).
   bool node_to_rigid_only = false;
   // The integer parameter bounding the number of dofs (e.g. "max_dofs" for a scheme with
   // dense matrices); empty: no bound.

@@ -13,6 +13,11 @@
 
 namespace nsb {
 
+namespace {
+// btManifoldResult::calculateCombinedFriction clamps the product of the two coefficients to it.
+constexpr double kMaxCombinedFriction = 10.0;
+}  // namespace
+
 struct BulletPeer::World {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
@@ -42,6 +47,9 @@ BulletPeer::BulletPeer(const Params& params) : EnginePeer(params) {}
 BulletPeer::~BulletPeer() = default;
 
 void BulletPeer::build(const engines::Scene& s) {
+  if (s.mu > kMaxCombinedFriction)
+    throw InputError(fmt::format("--integrator bullet: problem '{}' has mu = {}, above Bullet's cap on the combined friction (valid: mu <= {})",
+                                 s.problem, s.mu, kMaxCombinedFriction));
   auto w = std::make_unique<World>();
   btContactSolverInfo& info = w->world.getSolverInfo();
   info.m_numIterations = static_cast<int>(params_.integer("iterations"));
@@ -78,10 +86,11 @@ void BulletPeer::build(const engines::Scene& s) {
   // within the breaking threshold) aims at e |v| - d / dt, d its distance, and over a few small
   // steps takes all of the rebound (e = 1 came to rest at dt = 1e-4).
   w->body->setContactProcessingThreshold(0);
-  w->body->setLinearFactor(btVector3(s.moves_x ? 1 : 0, 0, 1));
-  w->body->setAngularFactor(s.rotates ? btVector3(0, 1, 0) : btVector3(0, 0, 0));
-  w->body->setLinearVelocity(btVector3(s.start.vx, 0, s.start.vz));
-  w->body->setAngularVelocity(btVector3(0, s.start.wy, 0));
+  const double across = s.spatial ? 1 : 0;
+  w->body->setLinearFactor(btVector3(s.moves_x ? 1 : 0, across, 1));
+  w->body->setAngularFactor(s.rotates ? btVector3(across, 1, across) : btVector3(0, 0, 0));
+  w->body->setLinearVelocity(btVector3(s.start.vx, s.start.vy, s.start.vz));
+  w->body->setAngularVelocity(btVector3(s.start.wx, s.start.wy, s.start.wz));
   w->world.addRigidBody(w->body.get());
   w->angle = s.start.angle;
   world_ = std::move(w);
@@ -89,6 +98,7 @@ void BulletPeer::build(const engines::Scene& s) {
 
 engines::StepResult BulletPeer::engine_step(double dt) {
   World& w = *world_;
+  const double centre_x = w.body->getWorldTransform().getOrigin().x();
   w.world.stepSimulation(dt, 0);
   engines::StepResult r;
   for (int k = 0; k < w.dispatcher.getNumManifolds(); ++k) {
@@ -99,22 +109,22 @@ engines::StepResult BulletPeer::engine_step(double dt) {
       const btManifoldPoint& p = m->getContactPoint(j);
       // A point the solver skipped (beyond the processing threshold) keeps its last impulse.
       if (p.getDistance() > m->getContactProcessingThreshold()) continue;
-      r.normal_impulse += p.getAppliedImpulse();
-      r.friction_impulse_x += sign * (p.m_appliedImpulseLateral1 * p.m_lateralFrictionDir1.x() +
-                                      p.m_appliedImpulseLateral2 * p.m_lateralFrictionDir2.x());
+      const btVector3& at = sign > 0 ? p.getPositionWorldOnA() : p.getPositionWorldOnB();
+      const btVector3 friction = sign * (p.m_appliedImpulseLateral1 * p.m_lateralFrictionDir1 + p.m_appliedImpulseLateral2 * p.m_lateralFrictionDir2);
+      r.add(scene(), at.x(), centre_x, p.getAppliedImpulse(), friction.x(), friction.y());
     }
   }
   const btTransform& T = w.body->getWorldTransform();
   const btVector3 &x = T.getOrigin(), v = w.body->getLinearVelocity(), omega = w.body->getAngularVelocity();
   const btQuaternion q = T.getRotation();
-  // A rotation about y only: q = (0, sin(a/2), 0, cos(a/2)).
+  // A rotation about y only: q = (0, sin(a/2), 0, cos(a/2)) (the spatial sphere's angle is unused).
   w.angle = engines::unwrap(w.angle, 2.0 * std::atan2(q.y(), q.w()));
-  r.pose = {x.x(), x.z(), w.angle, v.x(), v.z(), omega.y()};
+  r.pose = {x.x(), x.z(), w.angle, v.x(), v.z(), omega.y(), x.y(), v.y(), omega.x(), omega.z()};
   return r;
 }
 
 NSBENCH_INTEGRATOR({"bullet", "peer: Bullet's btDiscreteDynamicsWorld (sequential impulses, split impulse, e and mu per body) (rigid problems)",
                     &BulletPeer::parameters_spec, &make_from_params<Integrator, BulletPeer>, false, true,
-                    {.friction = true, .node_to_rigid_only = true}});
+                    {.friction = true, .moving_contacts = true, .friction_cone = true, .node_to_rigid_only = true}});
 
 }  // namespace nsb

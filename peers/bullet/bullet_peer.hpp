@@ -16,15 +16,20 @@
 // then semi-implicit Euler on the positions. Penetration is removed by split impulse
 // (m_splitImpulse, threshold 0: every penetration), a separate position correction at
 // ERP `split_erp` that adds no velocity, so no energy (Bullet's recommended setting for
-// stacking and resting contact). Rotations: the bouncing sphere and the sliding box are
-// locked (angular factor 0; the problems are point masses), the disk turns about y only;
-// linear factor (1, 0, 1) (bouncing: (0, 0, 1)). Deactivation (sleeping) is disabled: a
+// stacking and resting contact): a corner that penetrates before it is found (the rocking
+// block's, by up to |omega| b dt) is pushed out without a rebound velocity. Rotations: the
+// bouncing sphere and the sliding box are locked (angular factor 0; the problems are point
+// masses), the disk and the rocking block turn about y only; linear factor (1, 0, 1)
+// (bouncing: (0, 0, 1)); the sphere (3D) is free (factors (1, 1, 1)), its friction Bullet's
+// two directions, the first along the contact's slip. The rocking block's box keeps Bullet's margin: its support points,
+// and so its contact points, are the box's sharp corners (btBoxShape adds the margin back). Deactivation (sleeping) is disabled: a
 // sleeping body would hide its creep. No CCD: the fastest case moves v dt <= 0.05 m per step,
 // less than the body's half size.
 //
 // Mapping from e and mu (stated here, not hidden): Bullet combines the two bodies'
 // coefficients by product (btManifoldResult), so the floor gets restitution 1 and friction 1,
-// the body e and mu (Bullet caps the combined friction at 10). The restitution threshold
+// the body e and mu; Bullet caps the combined friction at 10, so mu > 10 is declined
+// (InputError naming mu). The restitution threshold
 // (m_restitutionVelocityThreshold, default 0.2 m/s: no bounce below it) is set to 0, so the
 // Newton law applies at every speed. Inertia about y is set to kappa m R^2 exactly.
 //
@@ -34,16 +39,16 @@
 // inside its half sides).
 //
 // Impulses: btManifoldPoint::getAppliedImpulse (normal) and m_appliedImpulseLateral1/2 along
-// m_lateralFrictionDir1/2 (friction), summed over the manifold's points; already impulses.
+// m_lateralFrictionDir1/2 (friction), summed over the manifold's points per problem contact
+// (the rocking block: per corner, by the point's side of the centre); already impulses.
 // Work: one step and one force evaluation per stepSimulation; Bullet does not report the
 // sweeps it took (the iterations column is 0).
 //
 // Reference: E. Coumans, "Bullet 2.80 Physics SDK Manual", 2012 (split impulse, solver
 // settings); E. Catto, "Iterative dynamics with temporal coherence", GDC 2005 (sequential
 // impulses).
-// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
-// (integrators/capabilities.hpp, one refusal wording): the scene is built from the
-// problem's constant rows (peers/engine_scene.hpp); not done for moving contacts.
+// Moving contacts (Problem::contacts_move): the rocking block is Bullet's own box, whose
+// corners it finds every step (peers/engine_scene.hpp); the Painleve rod is declined.
 #include <memory>
 #include <string>
 

@@ -23,6 +23,18 @@ double damping_ratio(double e) {
 
 std::string g17(double x) { return fmt::format("{:.17g}", x); }
 
+// The body's joints: a free joint for a spatial scene (qpos: position, quaternion (w, x, y, z);
+// qvel: linear velocity (world), angular velocity (body frame)), else slide joints along x
+// (when it moves in x) and z and a hinge about y (when it rotates): qpos the planar pose.
+std::string mjcf_joints(const engines::Scene& s) {
+  if (s.spatial) return R"(<freejoint name="free"/>)";
+  std::string joints;
+  if (s.moves_x) joints += R"(<joint name="x" type="slide" axis="1 0 0" damping="0"/>)";
+  joints += R"(<joint name="z" type="slide" axis="0 0 1" damping="0"/>)";
+  if (s.rotates) joints += R"(<joint name="a" type="hinge" axis="0 1 0" damping="0"/>)";
+  return joints;
+}
+
 // The scene as MJCF. The body sits at the origin: its joints' qpos are the pose itself.
 std::string mjcf(const engines::Scene& s, const Params& p) {
   const bool friction = s.mu > 0.0;
@@ -40,14 +52,11 @@ std::string mjcf(const engines::Scene& s, const Params& p) {
       geom = fmt::format(R"(type="cylinder" size="{} {}" euler="90 0 0")", g17(s.radius), g17(s.half_height));
       break;
   }
-  std::string joints;
-  if (s.moves_x) joints += R"(<joint name="x" type="slide" axis="1 0 0" damping="0"/>)";
-  joints += R"(<joint name="z" type="slide" axis="0 0 1" damping="0"/>)";
-  if (s.rotates) joints += R"(<joint name="a" type="hinge" axis="0 1 0" damping="0"/>)";
+  const std::string joints = mjcf_joints(s);
   return fmt::format(
       R"(<mujoco model="nsbench">
   <compiler angle="degree" inertiafromgeom="true"/>
-  <option timestep="0.001" gravity="{} 0 {}" integrator="{}" cone="elliptic" iterations="{}" tolerance="{}"
+  <option timestep="0.001" gravity="{} 0 {}" integrator="{}" cone="{}" iterations="{}" tolerance="{}"
           noslip_iterations="{}" noslip_tolerance="{}"/>
   <worldbody>
     <geom name="floor" type="plane" size="0 0 1" {}/>
@@ -59,8 +68,58 @@ std::string mjcf(const engines::Scene& s, const Params& p) {
 </mujoco>
 )",
       g17(s.gx), g17(s.gz), p.choice("integrator") == "rk4" ? "RK4" : (p.choice("integrator") == "euler" ? "Euler" : "implicit"),
-      p.integer("iterations"), g17(p.real("tolerance")), p.integer("noslip_iterations"), g17(p.real("tolerance")), contact,
+      p.choice("cone"), p.integer("iterations"), g17(p.real("tolerance")), p.integer("noslip_iterations"), g17(p.real("tolerance")), contact,
       joints, geom, g17(s.mass), contact);
+}
+
+// The joints' qpos and qvel from the pose (mjcf_joints' layout).
+void set_pose(const engines::Scene& s, const engines::Pose& p, mjData* d) {
+  if (s.spatial) {
+    const mjtNum x[3] = {p.x, p.y, p.z}, v[3] = {p.vx, p.vy, p.vz}, omega[3] = {p.wx, p.wy, p.wz};
+    const mjtNum quat[4] = {std::cos(p.angle / 2), 0, std::sin(p.angle / 2), 0}, inverse[4] = {quat[0], 0, -quat[2], 0};
+    mju_copy3(d->qpos, x);
+    mju_copy4(d->qpos + 3, quat);
+    mju_copy3(d->qvel, v);
+    mju_rotVecQuat(d->qvel + 3, omega, inverse);  // the free joint's spin is in the body frame
+    return;
+  }
+  int q = 0;
+  if (s.moves_x) {
+    d->qpos[q] = p.x;
+    d->qvel[q++] = p.vx;
+  }
+  d->qpos[q] = p.z;
+  d->qvel[q++] = p.vz;
+  if (s.rotates) {
+    d->qpos[q] = p.angle;
+    d->qvel[q] = p.wy;
+  }
+}
+
+// The pose from the joints' qpos and qvel (mjcf_joints' layout; a spatial scene's angle is
+// not read: the problem does not use the orientation).
+engines::Pose pose_of(const engines::Scene& s, const mjData* d) {
+  engines::Pose p;
+  if (s.spatial) {
+    mjtNum omega[3];
+    mju_rotVecQuat(omega, d->qvel + 3, d->qpos + 3);  // body frame -> world
+    p.x = d->qpos[0], p.y = d->qpos[1], p.z = d->qpos[2];
+    p.vx = d->qvel[0], p.vy = d->qvel[1], p.vz = d->qvel[2];
+    p.wx = omega[0], p.wy = omega[1], p.wz = omega[2];
+    return p;
+  }
+  int q = 0;
+  if (s.moves_x) {
+    p.x = d->qpos[q];
+    p.vx = d->qvel[q++];
+  }
+  p.z = d->qpos[q];
+  p.vz = d->qvel[q++];
+  if (s.rotates) {
+    p.angle = d->qpos[q];
+    p.wy = d->qvel[q];
+  }
+  return p;
 }
 
 // MuJoCo's XML parser keeps global state: one model is compiled at a time.
@@ -88,6 +147,7 @@ ParamSpecs MujocoPeer::parameters_spec() {
   return {ParamSpec::choice("integrator", "implicit", {"euler", "implicit", "rk4"}, "MuJoCo's integrator (option integrator)"),
           ParamSpec::real("timeconst_steps", 2.0, 1.0, 1000.0, "contact spring's time constant tau over dt (MuJoCo: at least 2)"),
           ParamSpec::real("impedance", 0.9999, 0.9, 0.9999, "solimp d (dmin = dmax): how closely the contact follows its reference spring"),
+          ParamSpec::choice("cone", "elliptic", {"elliptic", "pyramidal"}, "MuJoCo's friction cone (option cone)"),
           ParamSpec::integer("iterations", 100, 1, 1000000, "MuJoCo's constraint solver iterations (option iterations)"),
           ParamSpec::real("tolerance", 1e-10, 0.0, 1e-2, "MuJoCo's solver and noslip tolerance (option tolerance, noslip_tolerance)"),
           ParamSpec::integer("noslip_iterations", 20, 0, 1000000, "noslip post-processor iterations (0: off)"),
@@ -120,18 +180,7 @@ void MujocoPeer::build(const engines::Scene& s) {
   }
   w->d = mj_makeData(w->m);
   w->body_geom = 1;  // the floor is geom 0
-  const engines::Pose& p0 = s.start;
-  int q = 0;
-  if (s.moves_x) {
-    w->d->qpos[q] = p0.x;
-    w->d->qvel[q++] = p0.vx;
-  }
-  w->d->qpos[q] = p0.z;
-  w->d->qvel[q++] = p0.vz;
-  if (s.rotates) {
-    w->d->qpos[q] = p0.angle;
-    w->d->qvel[q] = p0.wy;
-  }
+  set_pose(s, s.start, w->d);
   world_ = std::move(w);
 }
 
@@ -151,6 +200,8 @@ engines::StepResult MujocoPeer::engine_step(double dt) {
   if (dt != world_->spring_dt) set_contact_spring(dt);
   mjModel* m = world_->m;
   mjData* d = world_->d;
+  const engines::Scene& s = scene();
+  const double centre_x = s.moves_x ? d->qpos[0] : 0.0;
   mj_step(m, d);
   engines::StepResult r;
   // mj_step computed the contacts and their forces at the step's start: the step's impulses.
@@ -161,27 +212,16 @@ engines::StepResult MujocoPeer::engine_step(double dt) {
     mj_contactForce(m, d, i, f);
     // f acts on geom2 along the frame's rows (normal, t1, t2) when geom2 is the body.
     const double sign = c.geom2 == world_->body_geom ? 1.0 : -1.0;
-    r.normal_impulse += f[0] * dt;
-    r.friction_impulse_x += sign * (f[1] * c.frame[3] + f[2] * c.frame[6]) * dt;
+    r.add(s, c.pos[0], centre_x, f[0] * dt, sign * (f[1] * c.frame[3] + f[2] * c.frame[6]) * dt,
+          sign * (f[1] * c.frame[4] + f[2] * c.frame[7]) * dt);
   }
   r.iterations = d->solver_iter;
-  const engines::Scene& s = scene();
-  int q = 0;
-  if (s.moves_x) {
-    r.pose.x = d->qpos[q];
-    r.pose.vx = d->qvel[q++];
-  }
-  r.pose.z = d->qpos[q];
-  r.pose.vz = d->qvel[q++];
-  if (s.rotates) {
-    r.pose.angle = d->qpos[q];
-    r.pose.wy = d->qvel[q];
-  }
+  r.pose = pose_of(s, d);
   return r;
 }
 
 NSBENCH_INTEGRATOR({"mujoco", "peer: MuJoCo's mj_step (implicit, elliptic cone, noslip), soft contact with the spring-damper of e (rigid problems)",
                     &MujocoPeer::parameters_spec, &make_from_params<Integrator, MujocoPeer>, false, true,
-                    {.friction = true, .node_to_rigid_only = true}});
+                    {.friction = true, .moving_contacts = true, .friction_cone = true, .node_to_rigid_only = true}});
 
 }  // namespace nsb

@@ -3,11 +3,14 @@
 // peers/engine_scene.hpp): MuJoCo's own stepper (mj_step) and its own soft contact model.
 //
 // Model. Generalized coordinates are the problem's dofs: slide joints along x (sliding mass,
-// disk) and z, a hinge about y (disk); the floor is a plane geom. A contact is a soft
+// disk, block) and z, a hinge about y (disk, block); the sphere (3D) is a free joint, whose
+// angular velocity MuJoCo keeps in the body frame (turned to the world's with the body's
+// quaternion, mju_rotVecQuat); the floor is a plane geom. A contact is a soft
 // constraint: with r the signed distance (< 0: penetration), the solver sets the contact's
 // acceleration to
 //     r'' = d a_ref + (1 - d) r''_free,    a_ref = -b r' - k r,   0 <= f_N,
-// inside an elliptic friction cone |f_T| <= mu f_N (cone="elliptic", condim 3; 1 when mu = 0),
+// inside the friction cone, elliptic |f_T| <= mu f_N (cone = elliptic, the default) or
+// MuJoCo's pyramid of 2 (condim - 1) edges (cone = pyramidal) (condim 3; 1 when mu = 0),
 // solved by MuJoCo's Newton solver (`iterations`, `tolerance`), then the noslip
 // post-processor (`noslip_iterations`), which removes the slip the soft cone allows (MuJoCo's
 // documented remedy for creep on slopes).
@@ -28,21 +31,24 @@
 // unstable), elliptic cones and noslip for accurate friction, the implicit integrator (or
 // RK4) for stability.
 //
-// Settings (parameters, defaults): integrator implicit {euler, implicit, rk4}; timeconst_steps
+// Settings (parameters, defaults): integrator implicit {euler, implicit, rk4}; cone elliptic
+// {elliptic, pyramidal}; timeconst_steps
 // 2 [1, 1000]; impedance 0.9999 [0.9, 0.9999]; iterations 100 [1, 10^6]; tolerance 1e-10
 // [0, 1e-2]; noslip_iterations 20 [0, 10^6]; size 0.1 m (engine_scene.hpp).
 //
 // Impulses: mj_contactForce (the contact frame's normal and tangential force, at the step's
-// start state, where mj_step computes it) x dt, summed over the contact points (a box has up
-// to four). Work: one step and one force evaluation per mj_step; the iterations are MuJoCo's
+// start state, where mj_step computes it; mj_contactForce decodes the pyramid's edge forces
+// into it) x dt, summed over the contact points per problem contact (a box has up to four;
+// the rocking block's are split per corner by the point's side of the centre). Work: one step and one force evaluation per mj_step; the iterations are MuJoCo's
 // solver_iter.
 //
 // Reference: E. Todorov, T. Erez, Y. Tassa, "MuJoCo: A physics engine for model-based
 // control", IROS 2012; MuJoCo's documentation, "Computation" and "Modeling: solver parameters".
-// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
-// (integrators/capabilities.hpp, one refusal wording): the scene is built from the
-// problem's constant rows (peers/engine_scene.hpp); a box on a plane in the engine's own terms
-// is issue 32's item 5, not done.
+// Moving contacts (Problem::contacts_move): the rocking block is MuJoCo's own box geom on
+// slide joints x, z and a hinge about y, its corners found every step
+// (peers/engine_scene.hpp); the Painleve rod is declined. A corner found penetrating (by up to
+// |omega| b dt: detection is at the step's start) is pushed out by the reference spring, a
+// separation velocity the block keeps as a hop after an impact.
 #include <memory>
 #include <string>
 

@@ -106,8 +106,8 @@ void OdePeer::build(const engines::Scene& s) {
   dMatrix3 R0;
   dRFromAxisAndAngle(R0, 0, 1, 0, s.start.angle);
   dBodySetRotation(w->body, R0);
-  dBodySetLinearVel(w->body, s.start.vx, 0, s.start.vz);
-  dBodySetAngularVel(w->body, 0, s.start.wy, 0);
+  dBodySetLinearVel(w->body, s.start.vx, s.start.vy, s.start.vz);
+  dBodySetAngularVel(w->body, s.start.wx, s.start.wy, s.start.wz);
   w->surface.mode = dContactBounce | dContactSoftERP | dContactSoftCFM;
   if (s.mu > 0.0) w->surface.mode |= dContactApprox1 | dContactFDir1;
   w->surface.mu = s.mu;
@@ -122,6 +122,7 @@ void OdePeer::build(const engines::Scene& s) {
 engines::StepResult OdePeer::engine_step(double dt) {
   ode_thread_init();
   World& w = *world_;
+  const double centre_x = dBodyGetPosition(w.body)[0];
   std::array<dContact, kMaxContacts> contact{};
   const int n = dCollide(w.geom, w.plane, kMaxContacts, &contact[0].geom, sizeof(dContact));
   for (int i = 0; i < n; ++i) {
@@ -134,22 +135,20 @@ engines::StepResult OdePeer::engine_step(double dt) {
   }
   dWorldStep(w.world, dt);
   engines::StepResult r;
-  for (int i = 0; i < n; ++i) {
-    r.normal_impulse += w.feedback[i].f1[2] * dt;
-    r.friction_impulse_x += w.feedback[i].f1[0] * dt;
-  }
+  for (int i = 0; i < n; ++i)
+    r.add(scene(), contact[i].geom.pos[0], centre_x, w.feedback[i].f1[2] * dt, w.feedback[i].f1[0] * dt, w.feedback[i].f1[1] * dt);
   dJointGroupEmpty(w.contacts);
   const dReal* x = dBodyGetPosition(w.body);
   const dReal* v = dBodyGetLinearVel(w.body);
   const dReal* omega = dBodyGetAngularVel(w.body);
   const dReal* q = dBodyGetQuaternion(w.body);  // (w, x, y, z): a rotation about y only
   w.angle = engines::unwrap(w.angle, 2.0 * std::atan2(q[2], q[0]));
-  r.pose = {x[0], x[2], w.angle, v[0], v[2], omega[1]};
+  r.pose = {x[0], x[2], w.angle, v[0], v[2], omega[1], x[1], v[1], omega[0], omega[2]};
   return r;
 }
 
 NSBENCH_INTEGRATOR({"ode", "peer: ODE's dWorldStep (direct LCP), contact joints with bounce e, mu (Approx1), ERP/CFM (rigid problems)",
                     &OdePeer::parameters_spec, &make_from_params<Integrator, OdePeer>, false, true,
-                    {.friction = true, .node_to_rigid_only = true}});
+                    {.friction = true, .moving_contacts = true, .friction_cone = true, .node_to_rigid_only = true}});
 
 }  // namespace nsb

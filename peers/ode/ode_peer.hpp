@@ -18,7 +18,9 @@
 //               (dContactFDir1) and y: exact for the planar motions here.
 // The sphere of the bouncing mass and the box of the sliding mass do not turn
 // (dBodySetMaxAngularSpeed 0: the problems are point masses); the disk turns freely (about
-// y, by symmetry). Auto-disable is off.
+// y, by symmetry), as does the rocking block's box; the sphere (3D) is free, and its friction
+// ODE's pyramid along x and y (not a cone: a slip at an angle to x meets a bound up to
+// sqrt(2) mu f_N). Auto-disable is off.
 //
 // Mapping from e and mu (stated here, not hidden): surface.bounce = e, surface.mu = mu
 // (Approx1: a coefficient), soft_erp = erp, soft_cfm = cfm. ODE's documentation: dWorldStep
@@ -28,16 +30,18 @@
 //
 // Settings (parameters, defaults): erp 0.2 [0, 1]; cfm 1e-10 [0, 1]; size 0.1 m.
 //
-// Impulses: dJointFeedback's force on the body (f1) x dt, summed over the contact joints;
+// Impulses: dJointFeedback's force on the body (f1) x dt, summed over the contact joints per
+// problem contact (the rocking block: per corner, by the point's side of the centre);
 // the plane is z = 0, so f1's z component is the normal force and its x component the
 // friction along T. Work: one step and one force evaluation per dWorldStep; a direct
 // solve: no iterations (0).
 //
 // Reference: R. Smith, "Open Dynamics Engine v0.5 User Guide", 2006 (ERP and CFM, contact
 // surface parameters, dWorldStep).
-// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
-// (integrators/capabilities.hpp, one refusal wording): the scene is built from the
-// problem's constant rows (peers/engine_scene.hpp); not done for moving contacts.
+// Moving contacts (Problem::contacts_move): the rocking block is ODE's own box, whose corners
+// dCollide finds every step (peers/engine_scene.hpp); the Painleve rod is declined. A corner
+// found penetrating (by up to |omega| b dt: detection is at the step's start) is pushed out by
+// erp through the velocity, a separation velocity the block keeps as a hop after an impact.
 #include <memory>
 #include <string>
 

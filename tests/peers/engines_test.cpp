@@ -15,17 +15,11 @@
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
 #include "problems/sliding_mass.hpp"
+#include "tests/support/engine_built.hpp"
 
 namespace {
 
 const char* const kEngines[] = {"mujoco", "bullet", "ode"};
-
-bool built(const std::string& name) {
-  for (const auto& e : nsb::integrator_registry())
-    if (e.name == name) return true;
-  WARN(name << " is not built here (its package was not found, or NSBENCH_ENGINES=OFF): skipped");
-  return false;
-}
 
 // How long the engine's contact takes to turn an impact around, from its settings (headers):
 // MuJoCo's reference spring-damper at the defaults (tau = 2 dt) rebounds after half a damped
@@ -68,7 +62,7 @@ Bounce first_bounce(const std::string& engine, const nsb::BouncingMass& p, doubl
 TEST_CASE("engine peers: the bouncing sphere's first impact within the contact's softness", "[peers][engines]") {
   const double dt = 1e-3;
   for (const std::string engine : kEngines) {
-    if (!built(engine)) continue;
+    if (!nsb::test::engine_built(engine)) continue;
     for (double e : {0.9, 0.5}) {
       DYNAMIC_SECTION(engine << " e=" << e) {
         const nsb::BouncingMass p(nsb::Params(nsb::BouncingMass::parameters_spec(), {{"e", std::to_string(e)}}));
@@ -99,7 +93,7 @@ TEST_CASE("engine peers: the sliding box stops; its creep is finite, bounded and
   const nsb::SlidingMass p(nsb::Params(nsb::SlidingMass::parameters_spec(), {{"alpha", "30"}, {"mu", "0.8"}, {"v0", "2"}}));
   const double dt = 1e-3, t_s = p.stop_time(), t_end = 2.0 * t_s;
   for (const std::string engine : kEngines) {
-    if (!built(engine)) continue;
+    if (!nsb::test::engine_built(engine)) continue;
     SECTION(engine) {
       auto integ = nsb::make_integrator(engine);
       integ->init(p, p.initial_state());
@@ -133,7 +127,7 @@ TEST_CASE("engine peers: the sliding box stops; its creep is finite, bounded and
 TEST_CASE("engine peers: two identical runs are bit-identical, alone or two at once on two threads", "[peers][engines][threads]") {
   const auto disk = nsb::make_problem("rolling-disk", {{"kappa", "0.4"}, {"h0", "0.1"}, {"omega0", "20"}, {"v0", "0"}, {"e", "0.5"}});
   for (const std::string engine : kEngines) {
-    if (!built(engine)) continue;
+    if (!nsb::test::engine_built(engine)) continue;
     SECTION(engine) {
       using Result = std::pair<nsb::State, double>;
       const auto run = [&] {
@@ -161,7 +155,7 @@ TEST_CASE("engine peers: two identical runs are bit-identical, alone or two at o
 
 TEST_CASE("engine peers: other problems and shapes are declined with the reason", "[peers][engines]") {
   for (const std::string engine : kEngines) {
-    if (!built(engine)) continue;
+    if (!nsb::test::engine_built(engine)) continue;
     SECTION(engine) {
       auto integ = nsb::make_integrator(engine);
       const auto chain = nsb::make_problem("spring-chain");
