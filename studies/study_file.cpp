@@ -854,7 +854,11 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
     const bool blank = d.declined_blank && status != runs.columns.end() && declined(row[static_cast<std::size_t>(status - runs.columns.begin())]);
     std::vector<Cell> cells;
     const Cell none = d.declined_empty ? Cell(std::string()) : Cell{};
-    for (std::size_t i = 0; i < at.size(); ++i) cells.push_back(blank && !asked(d.columns[i].of) ? none : row[at[i]]);
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      const Cell& cell = row[at[i]];
+      const bool missing = std::holds_alternative<std::monostate>(cell) && d.columns[i].missing;
+      cells.push_back(blank && !asked(d.columns[i].of) ? none : missing ? Cell(*d.columns[i].missing) : cell);
+    }
     out.add_row(std::move(cells));
   }
   if (!with_figures) return out;

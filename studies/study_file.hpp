@@ -170,6 +170,9 @@ struct FileFigure {
 struct FileColumn {
   std::string of;
   std::optional<std::string> header, unit, format, description;
+  // The text of a cell with no value (n/a: not measured, e.g. an energy sampled every period
+  // before its first sample) in a case table; none: n/a.
+  std::optional<std::string> missing;
 };
 
 // A table the file declares ([[table]]): its id (the file stem, exactly), title, caption and

@@ -773,8 +773,9 @@ FileColumn read_column(const Checker& c, const Json& j, const std::string& path,
     return col;
   }
   c.expect(j, path, j.is_object(), "a column name or a table { of = NAME, header, unit, format, description }");
-  c.keys(j, path, {"of", "header", "unit", "format", "description"});
+  c.keys(j, path, {"of", "header", "unit", "format", "description", "missing"});
   col.of = c.choice(c.require(j, path, "of"), child(path, "of"), sources);
+  col.missing = optional_string(c, j, path, "missing");
   col.header = optional_string(c, j, path, "header");
   col.unit = optional_string(c, j, path, "unit");
   col.format = optional_string(c, j, path, "format");
@@ -847,7 +848,11 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       const Json& cols = c.require(j, path, "columns");
       c.expect(cols, at, cols.is_array() && !cols.empty(), "a non-empty array of columns");
       const auto sources = table_sources(t.rows, spec);
-      for (std::size_t k = 0; k < cols.size(); ++k) t.columns.push_back(read_column(c, cols[k], element(at, k), sources));
+      for (std::size_t k = 0; k < cols.size(); ++k) {
+        t.columns.push_back(read_column(c, cols[k], element(at, k), sources));
+        if (t.columns.back().missing && t.rows != "case")
+          c.fail(child(element(at, k), "missing"), "only a table of one row per run shows its missing cells otherwise", "rows = \"case\"");
+      }
     }
     tables.push_back(t);
   }

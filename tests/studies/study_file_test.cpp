@@ -1736,11 +1736,20 @@ norm = "step rms"
 inside = "contact_force_exact"
 window = [0.0, 1.9]
 label = "force osc"
+[[measure]]
+kind = "error"
+observable = "contact_force"
+against = "contact_force_exact"
+scale = 300.0
+norm = "step rms"
+inside = "contact_force_exact"
+window = [0.0, 0.5]
+label = "force early"
 [[table]]
 id = "runs"
 title = "runs"
 declined = "empty"
-columns = ["problem", "integrator", "steps", "u max", "status"]
+columns = ["problem", "integrator", "steps", "u max", "status", {{ of = "force early", missing = "" }}, "force early"]
 )",
                                           force_scale);
 }
@@ -1798,6 +1807,10 @@ TEST_CASE("study file: errors relative to a fixed scale, rms in time and over th
   CHECK(std::get<std::string>(declined[2]).empty());
   CHECK(std::get<std::string>(declined[3]).empty());
   CHECK(std::get<long>(runs.rows[0][2]) == r.steps);
+  // Before the first impact (t <= 0.5) no step lies inside a contact phase: no value, shown as
+  // the column's missing text "" where it says one, n/a where not.
+  CHECK(std::get<std::string>(runs.rows[0][5]).empty());
+  CHECK(std::holds_alternative<std::monostate>(runs.rows[0][6]));
 }
 
 TEST_CASE("study file: a fixed error scale, the rms norms, inside and declined = \"empty\": bad input named",
@@ -1817,6 +1830,12 @@ TEST_CASE("study file: a fixed error scale, the rms norms, inside and declined =
              StartsWith("f.toml:40: measure[2].inside: 'force' is not an observable of problem 'lumped'; valid: u_contact, "));
   CHECK_THAT(study_error_of(replaced(text, "inside = \"contact_force_exact\"", "inside = 1")),
              StartsWith("f.toml:40: measure[2].inside: expected a string, got an integer"));
+  CHECK_THAT(study_error_of(replaced(text, "missing = \"\"", "missing = 0")),
+             StartsWith("f.toml:56: table[0].columns[5].missing: expected a string, got an integer"));
+  const std::string history = replaced(replaced(text, "declined = \"empty\"", "rows = \"history\""), "\"steps\", \"u max\", \"status\", { of = \"force early\", missing = \"\" }, \"force early\"",
+                                        "{ of = \"t\", missing = \"\" }");
+  CHECK_THAT(study_error_of(history),
+             StartsWith("f.toml:56: table[0].columns[2].missing: only a table of one row per run shows its missing cells otherwise; valid: rows = \"case\""));
   CHECK_THAT(study_error_of(replaced(text, "declined = \"empty\"", "declined = \"blank\"")),
-             StartsWith("f.toml:46: table[0].declined: 'blank' is not valid (nearest: ") && Catch::Contains("valid: as run, n/a, empty"));
+             StartsWith("f.toml:55: table[0].declined: 'blank' is not valid (nearest: ") && Catch::Contains("valid: as run, n/a, empty"));
 }
