@@ -6,7 +6,12 @@
 //                |o - o_ref|, divided by the largest |u_ref| (|v_ref|, |o_ref|) over the run
 //                (absolute when that is 0); with `against` = o_exact, o_ref is the problem's
 //                own observable o_exact at the run's state instead of the reference's; norm final (last
-//                step), max (over the samples) or l2 (sqrt of the time-weighted mean square).
+//                step), max (over the samples) or l2 (sqrt of the time-weighted mean square);
+//                over every step (at its own dt): rms (sqrt(sum_k dt_k e_k^2 / (t_last - t0)), in
+//                time up to the last step measured) or step rms (sqrt of the mean of e_k^2 over the
+//                steps). With `scale`: each step's error divided by that value instead; with
+//                `inside` = o: only the steps whose t - dt, t and t + dt lie where the problem's
+//                exact observable o is > 0 (the exact contact phases: contact_force_exact).
 //                A reference integrator's samples are interpolated linearly in time.
 //   impact-time  max over the first `count` impacts of |t_i (scheme) - t_i (exact)|, t_i the
 //                end of the first step with an impulse after a step without one [s].
@@ -472,6 +477,9 @@ class EventFigures {
 // One measure's running figures.
 struct Accumulator {
   double scale = 0.0, largest = 0.0, square = 0.0, last = kNaN, t_prev = 0.0;
+  // An error over every step: sum dt_k e_k^2 (rms), sum e_k^2 and the steps counted (step rms).
+  double timed_square = 0.0, step_square = 0.0;
+  long steps = 0;
   RunningSlope drift;
   ContactPhases impacts;
   Polyline graph;  // Hausdorff: the run's samples
@@ -570,14 +578,26 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   // An error of "v": the velocities, unless the problem has an observable of that name (its own).
   const auto& names = problem->observable_names();
   const bool own_v = std::find(names.begin(), names.end(), "v") != names.end();
-  // The measures at a sample: every sample_every steps, and the last step (`energy`: the state's).
-  const auto sample = [&](const Integrator& it, const Energy& energy) {
+  // Whether the problem's exact observable `name` is > 0 at t - dt, t and t + dt (FileMeasure::inside).
+  const auto inside_phase = [&](const std::string& name, double t, double dt) {
+    const double times[] = {t - dt, t, t + dt};
+    return std::all_of(std::begin(times), std::end(times), [&](double at) {
+      const std::optional<State> exact = problem->exact()->state(at);
+      return exact && state_observable(*problem, M, *exact, Vec::Zero(problem->ncontacts()), 0.0, name, obs_ref, nullptr) > 0.0;
+    });
+  };
+  // The measures at a step of length dt: every_step() measures at each step (each_step), the
+  // others every sample_every steps and at the last step (sampled; `energy`: the state's).
+  const auto sample = [&](const Integrator& it, const Energy& energy, double dt, bool sampled, bool each_step) {
     const State& s = it.state();
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       const FileMeasure& fm = spec.measures[m];
+      if (fm.every_step() ? !each_step : !sampled) continue;
       const bool inside = s.t >= windows[m].first && s.t <= windows[m].second;
       if (!on[m] || !(inside || fm.scale_over_run)) continue;  // an error relative to the run: its scale
+      if (!fm.inside.empty() && !(inside && inside_phase(fm.inside, s.t, dt))) continue;
       Accumulator& a = acc[m];
+      const double step_dt = fm.every_step() ? dt : s.t - t_prev;  // the impulses' step (impulse / dt observables)
       double e = kNaN;
       if (fm.kind == MeasureKind::Error) {
         if (fm.observable == "u" || (fm.observable == "v" && !own_v)) {
@@ -586,12 +606,13 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
           e = ((u ? s.u : s.v) - ref).lpNorm<Eigen::Infinity>();
           a.scale = std::max(a.scale, ref.lpNorm<Eigen::Infinity>());
         } else {
-          const double value = state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy);
+          const double value = state_observable(*problem, M, s, it.impulses(), step_dt, fm.observable, obs, &energy);
           const double ref = fm.against.empty() ? reference.observable(s.t, fm.observable, obs_ref)
-                                                : state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.against, obs, &energy);
+                                                : state_observable(*problem, M, s, it.impulses(), step_dt, fm.against, obs, &energy);
           e = std::abs(value - ref);
           a.scale = std::max(a.scale, std::abs(ref));
         }
+        if (fm.scale > 0.0) e /= fm.scale;
       } else if (fm.kind == MeasureKind::Hausdorff) {
         a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy));
       } else if (fm.kind == MeasureKind::Energy) {
@@ -608,6 +629,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       a.square += e * e * (s.t - a.t_prev);
       a.t_prev = s.t;
       a.last = e;
+      a.timed_square += dt * e * e;
+      a.step_square += e * e;
+      ++a.steps;
     }
   };
   long step = 0;
@@ -630,7 +654,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     if (stop) stop->add(s);
     if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(energy.total() - e0) / e_scale});
     figures.add(it, info.dt, momentum, energy.total());
-    if (++step % spec.sample_every == 0) sample(it, energy);
+    sample(it, energy, info.dt, ++step % spec.sample_every == 0, true);
     t_prev = s.t;
   });
   Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps},
@@ -648,13 +672,13 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     out["message"] = fmt::format("max penetration {:.3g} > {}", r.max_penetration, spec.max_penetration_of(fp));
   }
   if (r.status != RunStatus::Ok && !(r.status == RunStatus::OverBudget && spec.measure_over_budget)) return out;
-  if (step % spec.sample_every != 0) sample(*integrator, integrator->energy());
+  if (step % spec.sample_every != 0) sample(*integrator, integrator->energy(), 0.0, true, false);
   history.finish();
   Json values = Json::array();
   for (std::size_t m = 0; m < spec.measures.size(); ++m) {
     const FileMeasure& fm = spec.measures[m];
     const Accumulator& a = acc[m];
-    const double scale = a.scale > 0.0 ? a.scale : 1.0;
+    const double scale = fm.scale > 0.0 || !(a.scale > 0.0) ? 1.0 : a.scale;  // a fixed scale: divided at each step
     double v = kNaN;
     if (!on[m]) {
       values.push_back(real(v));
@@ -662,7 +686,11 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     }
     switch (fm.kind) {
       case MeasureKind::Error:
-        v = (fm.norm == "final" ? a.last : fm.norm == "max" ? a.largest : std::sqrt(a.square / (std::min(t_end, windows[m].second) - windows[m].first))) / scale;
+        v = (fm.norm == "final"      ? a.last
+             : fm.norm == "max"      ? a.largest
+             : fm.norm == "rms"      ? std::sqrt(a.timed_square / (a.t_prev - windows[m].first))
+             : fm.norm == "step rms" ? std::sqrt(a.step_square / static_cast<double>(a.steps))
+                                     : std::sqrt(a.square / (std::min(t_end, windows[m].second) - windows[m].first))) / scale;
         break;
       case MeasureKind::ImpactTime: {
         const auto exact = problem->exact() ? problem->exact()->impact_times(t_end) : std::vector<double>{};
@@ -825,7 +853,12 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
     if (!d.applies_to(std::get<std::string>(row[problem]))) continue;
     const bool blank = d.declined_blank && status != runs.columns.end() && declined(row[static_cast<std::size_t>(status - runs.columns.begin())]);
     std::vector<Cell> cells;
-    for (std::size_t i = 0; i < at.size(); ++i) cells.push_back(blank && !asked(d.columns[i].of) ? Cell{} : row[at[i]]);
+    const Cell none = d.declined_empty ? Cell(std::string()) : Cell{};
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      const Cell& cell = row[at[i]];
+      const bool missing = std::holds_alternative<std::monostate>(cell) && d.columns[i].missing;
+      cells.push_back(blank && !asked(d.columns[i].of) ? none : missing ? Cell(*d.columns[i].missing) : cell);
+    }
     out.add_row(std::move(cells));
   }
   if (!with_figures) return out;

@@ -92,7 +92,8 @@ struct FileMeasure {
   // (its exact column, e.g. contact_force_exact: an impulse's force is no function of the exact
   // state), not against the reference; "": the reference.
   std::string against;
-  std::string norm = "max";      // Error: final|max|l2; Energy: max|final|final abs|drift|offset; FlightEnergy: max|count
+  // Error: final|max|l2|rms|step rms; Energy: max|final|final abs|drift|offset; FlightEnergy: max|count
+  std::string norm = "max";
   int count = 3;                 // ImpactTime, FlightEnergy: the first `count` impacts (flights)
   // Energy: errors relative to the energy after the first step E_1 ((E - E_1) / |E_1|), not E0.
   bool from_first_step = false;
@@ -129,6 +130,18 @@ struct FileMeasure {
   std::pair<double, double> window_for(const std::string& problem_label) const;
   // Error: relative to the largest reference value over the whole run, not the window alone.
   bool scale_over_run = false;
+  // Error: > 0: each step's error divided by this fixed value (a drop height, a force level), not
+  // by the largest reference value.
+  double scale = 0.0;
+  // Error: measured only at the steps ending at t whose t - dt, t and t + dt all lie where the
+  // problem's exact observable of this name is > 0 (e.g. inside the exact contact phases:
+  // contact_force_exact); "": every step.
+  std::string inside;
+  // Error norms taken over every step (not every sample_every-th), the observables at the step's
+  // own length dt: rms (sqrt(sum_k dt_k e_k^2 / (t_last - t0)), in time over the steps measured,
+  // t_last the last of them) and step rms (sqrt(sum_k e_k^2 / n) over the n steps), and any
+  // error measured `inside` an observable's phases.
+  bool every_step() const { return norm == "rms" || norm == "step rms" || !inside.empty(); }
   bool applies_to(const std::string& problem_label) const;
   // Smaller is better and never negative: a measure the ranking may rank by.
   bool rankable() const;
@@ -157,6 +170,9 @@ struct FileFigure {
 struct FileColumn {
   std::string of;
   std::optional<std::string> header, unit, format, description;
+  // The text of a cell with no value (n/a: not measured, e.g. an energy sampled every period
+  // before its first sample) in a case table; none: n/a.
+  std::optional<std::string> missing;
 };
 
 // A table the file declares ([[table]]): its id (the file stem, exactly), title, caption and
@@ -172,8 +188,9 @@ struct FileTable {
   std::vector<FileColumn> columns;
   std::vector<std::string> problems;  // the labels of the problems whose runs (group: fits, by family label too) it shows (empty: all)
   // A declined run's row (status n/a): its measured cells (counts, figures of the run) shown
-  // as n/a, only what was asked kept (declined = "n/a"); by default as the run reports them (0).
-  bool declined_blank = false;
+  // as n/a, only what was asked kept (declined = "n/a"), or empty (declined = "empty": no text
+  // at all, as a table built by hand leaves them); by default as the run reports them (0).
+  bool declined_blank = false, declined_empty = false;
   bool applies_to(const std::string& problem_label) const;
   // rows = "ranking" (the first such table): its error column's header, unit, format and
   // description (`of` unused), and the number format of dt or tol in its runs cells.

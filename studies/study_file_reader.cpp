@@ -468,6 +468,22 @@ void check_against(const Checker& c, const std::string& path, const FileMeasure&
   if (m.observable == m.against) c.fail(child(path, "against"), "the observable itself", "its exact column, e.g. o_exact");
 }
 
+// An error's `inside` (FileMeasure::inside) into `m`: an observable of every problem `on`, which
+// has an exact solution to evaluate it at t - dt and t + dt.
+void read_inside_phase(const Checker& c, const Json& v, const std::string& path, FileMeasure& m, const StudySpec& spec,
+                       const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
+  m.inside = c.string(v, path);
+  for (const std::size_t p : on) {
+    const auto& names = instances[p]->observable_names();
+    if (!instances[p]->exact())
+      c.fail(path, fmt::format("problem '{}' has no exact solution to find where '{}' is positive", spec.problems[p].label, m.inside),
+             "problems with an exact solution (or problems = [...])");
+    if (std::find(names.begin(), names.end(), m.inside) == names.end())
+      c.fail(path, fmt::format("'{}' is not an observable of problem '{}'", m.inside, spec.problems[p].label),
+             fmt::format("{} (or problems = [...])", fmt::join(names, ", ")));
+  }
+}
+
 // `summary` (kind summary, or rest-time and peak-time with exact = true) into `m`: the name of
 // a summary value every problem `on` has (Problem::summary_values); as an exact time, finite.
 void read_summary_name(const Checker& c, const Json& j, const std::string& path, const std::string& kind, FileMeasure& m,
@@ -757,8 +773,9 @@ FileColumn read_column(const Checker& c, const Json& j, const std::string& path,
     return col;
   }
   c.expect(j, path, j.is_object(), "a column name or a table { of = NAME, header, unit, format, description }");
-  c.keys(j, path, {"of", "header", "unit", "format", "description"});
+  c.keys(j, path, {"of", "header", "unit", "format", "description", "missing"});
   col.of = c.choice(c.require(j, path, "of"), child(path, "of"), sources);
+  col.missing = optional_string(c, j, path, "missing");
   col.header = optional_string(c, j, path, "header");
   col.unit = optional_string(c, j, path, "unit");
   col.format = optional_string(c, j, path, "format");
@@ -786,7 +803,9 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples"});
     if (const Json* v = c.find(j, "declined")) {
       if (t.rows != "case") c.fail(child(path, "declined"), "only a table of one row per run shows declined runs", "rows = \"case\"");
-      t.declined_blank = c.choice(*v, child(path, "declined"), {"as run", "n/a"}) == "n/a";
+      const std::string shown = c.choice(*v, child(path, "declined"), {"as run", "n/a", "empty"});
+      t.declined_blank = shown != "as run";
+      t.declined_empty = shown == "empty";
     }
     if (const Json* v = c.find(j, "problems")) {
       const std::string at = child(path, "problems");
@@ -829,7 +848,11 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       const Json& cols = c.require(j, path, "columns");
       c.expect(cols, at, cols.is_array() && !cols.empty(), "a non-empty array of columns");
       const auto sources = table_sources(t.rows, spec);
-      for (std::size_t k = 0; k < cols.size(); ++k) t.columns.push_back(read_column(c, cols[k], element(at, k), sources));
+      for (std::size_t k = 0; k < cols.size(); ++k) {
+        t.columns.push_back(read_column(c, cols[k], element(at, k), sources));
+        if (t.columns.back().missing && t.rows != "case")
+          c.fail(child(element(at, k), "missing"), "only a table of one row per run shows its missing cells otherwise", "rows = \"case\"");
+      }
     }
     tables.push_back(t);
   }
@@ -1228,10 +1251,15 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
         if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
       } else {
-        keys({"observable", "norm", "window", "relative_to", "against"});
+        keys({"observable", "norm", "window", "relative_to", "against", "scale", "inside"});
         if (const Json* v = c.find(j, "against")) m.against = c.string(*v, child(path, "against"));
         if (const Json* v = c.find(j, "relative_to"))
           m.scale_over_run = c.choice(*v, child(path, "relative_to"), {"window", "run"}) == "run";
+        if (const Json* v = c.find(j, "scale")) {
+          m.scale = c.positive(*v, child(path, "scale"));
+          if (c.find(j, "relative_to")) c.fail(child(path, "scale"), "a fixed scale and relative_to both say what the error is relative to", "one of them");
+        }
+        if (const Json* v = c.find(j, "inside")) read_inside_phase(c, *v, child(path, "inside"), m, spec, instances, on);
       }
       for (const std::size_t p : on) {
         const FileReference* ref = spec.reference_of(spec.problems[p]);
@@ -1241,7 +1269,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
           c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",
                  "[reference] solution = \"exact\" or a cached integrator (lockstep = false)");
       }
-      if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2"});
+      if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2", "rms", "step rms"});
       if (const Json* v = c.find(j, "observable")) m.observable = c.string(*v, child(path, "observable"));
       for (const std::size_t p : on) {
         if (!m.against.empty()) {

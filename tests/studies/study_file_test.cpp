@@ -11,7 +11,10 @@
 #include <sstream>
 
 #include "integrators/registry.hpp"
+#include "problems/bouncing_bar.hpp"
 #include "problems/registry.hpp"
+#include "problems/signorini_bar.hpp"
+#include "run/run.hpp"
 #include "studies/study.hpp"
 #include "studies/study_file.hpp"
 #include "tests/support/files.hpp"
@@ -1689,4 +1692,150 @@ TEST_CASE("study file: an energy error sampled every period: bad input named", "
              StartsWith("f.toml:19: measure[0].history: an energy sampled every period has no window or history; valid: one of every or window/history"));
   CHECK_THAT(study_error_of(replaced(kMinimal, "t_end = 0.6", "t_end = 0.6\nmeasure_over_budget = 1")),
              StartsWith("f.toml:4: study.measure_over_budget: expected a boolean, got an integer"));
+}
+
+namespace {
+
+// The bouncing bar (N = 10) to t = 2 (first impact at t = 1, contact until about 1.67): a lumped
+// bar that Moreau-Jean runs and a consistent one that CD-Lagrange declines.
+std::string bouncing_bar_errors_study(double force_scale) {
+  return quick_study("2.0") + fmt::format(R"(
+[[problem]]
+name = "bouncing-bar"
+label = "lumped"
+parameters = {{ mass = "lumped", N = 10 }}
+stable_steps = [0.5]
+[[problem]]
+name = "bouncing-bar"
+label = "consistent"
+parameters = {{ mass = "consistent", N = 10 }}
+stable_steps = [0.5]
+[[integrator]]
+name = "moreau-jean"
+[[integrator]]
+name = "cd-lagrange"
+[[measure]]
+kind = "error"
+observable = "u_contact"
+against = "u_contact_exact"
+scale = 5.0
+label = "u max"
+[[measure]]
+kind = "error"
+observable = "u_contact"
+against = "u_contact_exact"
+scale = 5.0
+norm = "rms"
+label = "u rms"
+[[measure]]
+kind = "error"
+observable = "contact_force"
+against = "contact_force_exact"
+scale = {:.17g}
+norm = "step rms"
+inside = "contact_force_exact"
+window = [0.0, 1.9]
+label = "force osc"
+[[measure]]
+kind = "error"
+observable = "contact_force"
+against = "contact_force_exact"
+scale = 300.0
+norm = "step rms"
+inside = "contact_force_exact"
+window = [0.0, 0.5]
+label = "force early"
+[[table]]
+id = "runs"
+title = "runs"
+declined = "empty"
+columns = ["problem", "integrator", "steps", "u max", "status", {{ of = "force early", missing = "" }}, "force early"]
+)",
+                                          force_scale);
+}
+
+}  // namespace
+
+TEST_CASE("study file: errors relative to a fixed scale, rms in time and over the steps, inside the exact contact phases; "
+          "declined cells empty", "[studies][study_file]") {
+  // The known answer: the bouncing bar study's own formulas, by hand on one run, against a
+  // freshly built exact solution: |u_0 - u_0,exact| / g0 (max, and sqrt(sum dt e^2 / t) in time),
+  // and the RMS over the steps of (Lambda / dt - lambda_exact) / (rho A c V) at the steps whose
+  // t - dt, t and t + dt lie inside the exact contact phase, t <= 1.9.
+  const nsb::Params params(nsb::SignoriniBar::bouncing_parameters_spec(), {{"mass", "lumped"}, {"N", "10"}});
+  const nsb::BouncingBarExact ex(params, 4.0);
+  const double g0 = params.real("g0");
+  const double force_scale = params.real("rho") * params.real("A") * std::sqrt(params.real("E") / params.real("rho")) * ex.impact_speed();
+  const auto problem = nsb::make_problem("bouncing-bar", {{"mass", "lumped"}, {"N", "10"}});
+  auto integrator = nsb::make_integrator("moreau-jean");
+  REQUIRE_FALSE(nsb::init_or_decline(*integrator, *problem));
+  nsb::RunOptions options;
+  options.dt = 0.5 * problem->stable_step();
+  options.t_end = 2.0;
+  options.record_series = false;
+  double u_max = 0.0, u_sq = 0.0, osc_sq = 0.0;
+  long osc_n = 0;
+  const nsb::RunResult r = nsb::run(*problem, *integrator, options, [&](const nsb::Integrator& it, const nsb::StepInfo& info) {
+    const double t = it.state().t;
+    const double du = std::abs(it.state().u[0] - ex.displacement(0.0, t)) / g0;
+    u_max = std::max(u_max, du);
+    u_sq += info.dt * du * du;
+    if (t <= 1.9 && ex.contact_force(t - info.dt) > 0.0 && ex.contact_force(t) > 0.0 && ex.contact_force(t + info.dt) > 0.0) {
+      const double d = (it.impulses()[0] / info.dt - ex.contact_force(t)) / force_scale;
+      osc_sq += d * d;
+      ++osc_n;
+    }
+  });
+  REQUIRE(osc_n > 10);  // the contact phase [1, 1.67] holds many steps of 1/60
+
+  const nsb::StudySpec spec = nsb::parse_study_text(bouncing_bar_errors_study(force_scale), "f.toml", false);
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(spec, &results);
+  REQUIRE(results.size() == 4);  // lumped: moreau-jean, cd-lagrange; consistent: the same
+  const nsb::Json& v = results[0]["values"];
+  CHECK(results[0]["steps"].get<long>() == r.steps);
+  CHECK(v[0].get<double>() == u_max);  // bit for bit: the same sums in the same order
+  CHECK(v[1].get<double>() == std::sqrt(u_sq / r.t_final));
+  CHECK(v[2].get<double>() == std::sqrt(osc_sq / static_cast<double>(osc_n)));
+  CHECK(v[2].get<double>() > 0.0);
+  // CD-Lagrange declines the consistent mass: what was asked kept, its measured cells empty text.
+  const nsb::Table& runs = table_ending(tables, "runs");
+  REQUIRE(runs.rows.size() == 4);
+  const auto& declined = runs.rows[3];
+  CHECK(std::get<std::string>(declined[1]) == "cd-lagrange");
+  CHECK_THAT(std::get<std::string>(declined[4]), Catch::StartsWith("n/a"));
+  CHECK(std::get<std::string>(declined[2]).empty());
+  CHECK(std::get<std::string>(declined[3]).empty());
+  CHECK(std::get<long>(runs.rows[0][2]) == r.steps);
+  // Before the first impact (t <= 0.5) no step lies inside a contact phase: no value, shown as
+  // the column's missing text "" where it says one, n/a where not.
+  CHECK(std::get<std::string>(runs.rows[0][5]).empty());
+  CHECK(std::holds_alternative<std::monostate>(runs.rows[0][6]));
+}
+
+TEST_CASE("study file: a fixed error scale, the rms norms, inside and declined = \"empty\": bad input named",
+          "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  const std::string text = bouncing_bar_errors_study(300.0);
+  CHECK(study_error_of(text) == "(no error)");
+  CHECK_THAT(study_error_of(replaced(text, "scale = 5.0", "scale = 0")),
+             StartsWith("f.toml:25: measure[0].scale: 0 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(study_error_of(replaced(text, "scale = 5.0", "scale = \"g0\"")),
+             StartsWith("f.toml:25: measure[0].scale: expected a number, got a string"));
+  CHECK_THAT(study_error_of(replaced(text, "scale = 5.0", "scale = 5.0\nrelative_to = \"run\"")),
+             StartsWith("f.toml:25: measure[0].scale: a fixed scale and relative_to both say what the error is relative to; valid: one of them"));
+  CHECK_THAT(study_error_of(replaced(text, "norm = \"rms\"", "norm = \"rmss\"")),
+             StartsWith("f.toml:32: measure[1].norm: 'rmss' is not valid (nearest: ") && Catch::Contains("valid: final, max, l2, rms, step rms"));
+  CHECK_THAT(study_error_of(replaced(text, "inside = \"contact_force_exact\"", "inside = \"force\"")),
+             StartsWith("f.toml:40: measure[2].inside: 'force' is not an observable of problem 'lumped'; valid: u_contact, "));
+  CHECK_THAT(study_error_of(replaced(text, "inside = \"contact_force_exact\"", "inside = 1")),
+             StartsWith("f.toml:40: measure[2].inside: expected a string, got an integer"));
+  CHECK_THAT(study_error_of(replaced(text, "missing = \"\"", "missing = 0")),
+             StartsWith("f.toml:56: table[0].columns[5].missing: expected a string, got an integer"));
+  const std::string history = replaced(replaced(text, "declined = \"empty\"", "rows = \"history\""), "\"steps\", \"u max\", \"status\", { of = \"force early\", missing = \"\" }, \"force early\"",
+                                        "{ of = \"t\", missing = \"\" }");
+  CHECK_THAT(study_error_of(history),
+             StartsWith("f.toml:56: table[0].columns[2].missing: only a table of one row per run shows its missing cells otherwise; valid: rows = \"case\""));
+  CHECK_THAT(study_error_of(replaced(text, "declined = \"empty\"", "declined = \"blank\"")),
+             StartsWith("f.toml:55: table[0].declined: 'blank' is not valid (nearest: ") && Catch::Contains("valid: as run, n/a, empty"));
 }
