@@ -19,6 +19,7 @@ struct Measured {
   double ns = 0.0;                  // time per step (per call)
   std::optional<double> limit_ns;   // the limit's time per step
   std::optional<double> peak_rss_mb;  // a whole run's peak resident set (the memory benchmark)
+  std::optional<double> bytes_per_unit;  // compulsory memory traffic of one pass, per unit (counter bytes_per_element)
   long threads = 0, units = 0;
 };
 
@@ -81,6 +82,7 @@ std::vector<Measured> read_file(const std::filesystem::path& file, std::vector<s
       m.ns = to_ns(b.at("real_time").get<double>(), b.at("time_unit").get<std::string>(), file);
       if (b.contains("limit_ns")) m.limit_ns = b["limit_ns"].get<double>();
       if (b.contains("peak_rss_mb")) m.peak_rss_mb = b["peak_rss_mb"].get<double>();
+      if (b.contains("bytes_per_element")) m.bytes_per_unit = b["bytes_per_element"].get<double>();
       if (b.contains("run_threads")) m.threads = std::lround(b["run_threads"].get<double>());
       if (b.contains("units")) m.units = std::lround(b["units"].get<double>());
       const std::string label = b.value("label", std::string());
@@ -135,7 +137,8 @@ Table performance_table(const std::vector<std::filesystem::path>& benchmark_file
                {"limit per step", "us", "{:.4g}", "", true},
                {"ratio", "", "{:.2f}", "step / limit", true},
                {"speed-up", "", "{:.2f}", "one thread's time / this", true},
-               {"peak RSS", "MB", "{:.1f}", "the run's peak resident set (memory benchmark)", true}};
+               {"peak RSS", "MB", "{:.1f}", "the run's peak resident set (memory benchmark)", true},
+               {"bytes per unit", "B", "{:.4g}", "compulsory traffic of one F_int pass per element (the hex8 bar)", true}};
   for (const auto& m : all) {
     std::optional<double> speed_up;
     if (m.threads > 1)
@@ -145,7 +148,7 @@ Table performance_table(const std::vector<std::filesystem::path>& benchmark_file
     t.add_row({m.family, m.name, m.threads ? Cell{m.threads} : Cell{}, m.units ? Cell{m.units} : Cell{}, m.ns * 1e-3,
                m.units ? Cell{m.ns / static_cast<double>(m.units)} : Cell{}, m.limit.empty() ? Cell{} : Cell{m.limit},
                m.limit_ns ? Cell{*m.limit_ns * 1e-3} : Cell{}, m.limit_ns ? Cell{m.ns / *m.limit_ns} : Cell{},
-               cell(speed_up), cell(m.peak_rss_mb)});
+               cell(speed_up), cell(m.peak_rss_mb), cell(m.bytes_per_unit)});
   }
   t.metadata = machine;
   std::string files;

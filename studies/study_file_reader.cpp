@@ -1164,8 +1164,15 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     const Json& j = integrators[i];
     const std::string path = element("integrator", i);
     auto keys = sweep_keys;
-    keys.insert(keys.end(), {"name", "label", "per_problem"});
+    keys.insert(keys.end(), {"name", "label", "per_problem", "optional"});
     c.keys(j, path, keys);
+    // optional = true: left out of a build that does not register it (a peer whose package is
+    // absent), so that the file still runs there; a name no build knows is still an error there.
+    if (const Json* o = c.find(j, "optional"); o && c.boolean(*o, child(path, "optional"))) {
+      const Json& name = c.require(j, path, "name");
+      const auto names = names_of(integrator_registry());
+      if (name.is_string() && std::find(names.begin(), names.end(), name.get<std::string>()) == names.end()) continue;
+    }
     FileIntegrator it;
     it.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(integrator_registry()), "integrator");
     it.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : it.name;

@@ -68,6 +68,17 @@ TEST_CASE("performance: the memory benchmark's peak RSS in its own column", "[st
   CHECK(std::get<std::string>(t.rows[0][0]) == "memory");
   CHECK(std::get<std::string>(t.rows[0][1]) == "PeakRss/bouncing-mass/2000000");
   CHECK(std::get<double>(t.rows[0][10]) == 16.8);
+  CHECK(std::holds_alternative<std::monostate>(t.rows[0][11]));  // no bytes_per_element counter
+}
+
+TEST_CASE("performance: the hex8 bar's bytes per element in their own column", "[studies][performance]") {
+  nsb::Json j = {{"context", {{"executable", "/x/build/studies/nsbench-bench-bar3d"}}},
+                 {"benchmarks", {entry("BM_Bar3d/internal-force/16/real_time", "iteration", "", 80.0, "us", 1)}}};
+  j["benchmarks"][0]["bytes_per_element"] = 28.5;
+  const nsb::Table t = nsb::performance_table({write_json("nsbench_perf_bar3d.json", j)});
+  REQUIRE(t.rows.size() == 1);
+  CHECK(t.columns.at(11).name == "bytes per unit");
+  CHECK(std::get<double>(t.rows[0][11]) == 28.5);
 }
 
 TEST_CASE("performance: a file that is missing, not JSON or not benchmark output is named in the error",

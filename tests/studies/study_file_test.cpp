@@ -1506,6 +1506,38 @@ kind = "energy"
              StartsWith("f.toml:23: figure[0].deviation: expected a boolean, got an integer"));
 }
 
+TEST_CASE("study file: an optional integrator is left out where this build does not register it; bad input named",
+          "[studies][study_file][bad-input]") {
+  const std::string text = quick_study("0.6", "integrators = \"all\"\n") + R"(
+[[problem]]
+name = "bouncing-mass"
+steps = [1e-2]
+[[integrator]]
+name = "peer-of-another-build"
+optional = true
+[[integrator]]
+name = "moreau-jean"
+label = "MJ, theta = 1"
+parameters = { theta = 1.0 }
+optional = true
+[[measure]]
+kind = "energy"
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "f.toml", false);
+  const auto labelled = [&](const std::string& label) {
+    return std::count_if(spec.integrators.begin(), spec.integrators.end(), [&](const auto& it) { return it.label == label; });
+  };
+  CHECK(spec.integrators.size() == nsb::integrator_registry().size());  // moreau-jean's variant in its place
+  CHECK(labelled("MJ, theta = 1") == 1);
+  CHECK(labelled("moreau-jean") == 0);
+  CHECK(labelled("peer-of-another-build") == 0);
+  // Without optional an unknown name is an error; optional takes a boolean.
+  CHECK_THAT(study_error_of(replaced(text, "optional = true\n[[integrator]]", "[[integrator]]")),
+             Catch::StartsWith("f.toml:12: integrator[0].name: 'peer-of-another-build' is not"));
+  CHECK_THAT(study_error_of(replaced(text, "optional = true\n[[integrator]]", "optional = 1\n[[integrator]]")),
+             Catch::StartsWith("f.toml:13: integrator[0].optional: expected a boolean, got an integer"));
+}
+
 TEST_CASE("study file: case_order, default_only, [[exclude]] rules by kind, parameter and stable step, a budget per step",
           "[studies][study_file]") {
   const std::string text = quick_study("0.6", "integrators = \"all\"\ncase_order = \"integrator\"\nmax_force_evaluations_per_step = 4\n") + R"(
