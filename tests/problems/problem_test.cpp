@@ -121,6 +121,32 @@ TEST_CASE("field mesh: append shifts points and dofs, keeps fixed components fix
   CHECK(a.cell_body == std::vector<int>{0, 3});
 }
 
+TEST_CASE("field mesh: append carries the turning bodies' rotation dofs, shifted, -1 for the bodies that do not turn",
+          "[problems][field-mesh]") {
+  // A 3D body's centre: one vertex, its translation on dofs 0..2 and its rotation dofs from 3 (or none).
+  const auto centre = [](std::vector<int> rotation_dofs) {
+    nsb::FieldMesh m;
+    m.dimension = 3;
+    m.points = Eigen::RowVector3d(0.0, 0.0, 1.0);
+    m.point_dofs = Eigen::RowVector3i(0, 1, 2);
+    m.cells = Eigen::MatrixXi::Zero(1, 1);
+    m.cell_body = {0};
+    m.body_rotation_dofs = std::move(rotation_dofs);
+    return m;
+  };
+  nsb::FieldMesh turning = centre({3});
+  turning.append(centre({3}), 6, 1);
+  CHECK(turning.body_rotation_dofs == std::vector<int>{3, 9});
+  turning.append(centre({}), 12, 2);
+  CHECK(turning.body_rotation_dofs == std::vector<int>{3, 9, -1});
+  nsb::FieldMesh still = centre({});
+  still.append(centre({3}), 3, 1);
+  CHECK(still.body_rotation_dofs == std::vector<int>{-1, 6});
+  nsb::FieldMesh none = centre({});
+  none.append(centre({}), 3, 1);
+  CHECK(none.body_rotation_dofs.empty());
+}
+
 TEST_CASE("field mesh: cells of mixed sizes are padded with -1; a vertex appended to lines, lines to a vertex",
           "[problems][field-mesh]") {
   nsb::FieldMesh m;
