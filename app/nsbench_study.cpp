@@ -185,7 +185,6 @@ int main(int argc, char** argv) {
     const nsb::StudyOptions options{full};
     std::optional<nsb::ReportIndex> index;
     if (report) index.emplace(full, report->path());
-    std::vector<nsb::Table> all_tables;
     // The cases of every selected study (this shard's), run in one pool: a study's longest
     // case no longer leaves the other cores idle at its end (each case is independent, so the
     // results do not depend on the order).
@@ -239,7 +238,6 @@ int main(int argc, char** argv) {
         continue;
       }
       index->add_study(*s, tables);
-      all_tables.insert(all_tables.end(), tables.begin(), tables.end());
       fmt::print(stderr, "study {}: {} cases, {} tables\n", s->name, cases.size(), tables.size());
     }
     if (verify) {
@@ -251,7 +249,7 @@ int main(int argc, char** argv) {
     }
     if (!shard.count) {
       if (spec) nsb::write_study_copy(*spec, report->path());
-      nsb::write_file_atomic(report->path() / "figures.json", nsb::figures_to_json(all_tables));
+      nsb::write_file_atomic(report->path() / "figures.json", index->figures());
       nsb::write_file_atomic(report->path() / "index.md", index->text());
       report->commit();
     }

@@ -22,6 +22,7 @@ namespace fs = std::filesystem;
 // (rankings) tables shown in full at the top.
 struct IndexPart {
   std::string section, lead, headline;
+  Json figures = Json::array();  // its entries of figures.json (table.hpp, figures_to_json)
 };
 
 IndexPart index_part(const StudyEntry& s, const std::vector<Table>& tables) {
@@ -59,7 +60,11 @@ std::vector<IndexPart> index_parts(const fs::path& report) {
       fmt::print(stderr, "nsbench-study: warning: {}: damaged, its study is left out of index.md\n", e.path().string());
       continue;
     }
-    found[e.path().stem().string()] = {j["section"], j["lead"], j["headline"]};
+    const bool has_figures = j.contains("figures") && j["figures"].is_array();
+    if (!has_figures)  // written before the parts kept their figures
+      fmt::print(stderr, "nsbench-study: warning: {}: no figures kept, its study's figures are left out of figures.json "
+                 "(run the study again)\n", e.path().string());
+    found[e.path().stem().string()] = {j["section"], j["lead"], j["headline"], has_figures ? j["figures"] : Json::array()};
   }
   std::vector<IndexPart> parts;
   for (const auto& s : study_registry())
@@ -85,7 +90,14 @@ void ReportIndex::add_study(const StudyEntry& s, const std::vector<Table>& table
   const IndexPart part = index_part(s, tables);
   ensure_directory(report_ / ".index");
   write_file_atomic(report_ / ".index" / (s.name + ".json"),
-                    Json{{"section", part.section}, {"lead", part.lead}, {"headline", part.headline}}.dump() + "\n");
+                    Json{{"section", part.section}, {"lead", part.lead}, {"headline", part.headline},
+                         {"figures", Json::parse(figures_to_json(tables))}}.dump() + "\n");
+}
+
+std::string ReportIndex::figures() const {
+  Json all = Json::array();
+  for (const auto& part : index_parts(report_)) all.insert(all.end(), part.figures.begin(), part.figures.end());
+  return all.dump(2) + "\n";
 }
 
 std::string ReportIndex::text() const {

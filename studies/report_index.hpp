@@ -3,8 +3,9 @@
 // build stamp, the lead tables (the claims) in full with the lead figures (one per claim), and
 // the headline tables (the rankings) in full,
 // then a section per study listing its tables and figures, and the environment footer.
-// Each study's entries are kept in the report as .index/STUDY.json, so that a later run of
-// other studies into the same report lists them all, not only its own.
+// Each study's entries (and its figures) are kept in the report as .index/STUDY.json, so that a
+// later run of other studies into the same report lists them all in index.md and figures.json,
+// not only its own.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -24,6 +25,8 @@ class ReportIndex {
   // their order, then the others by name), and the footer (machine, libraries, build, the
   // command that ran). A damaged entry is left out, with a warning.
   std::string text() const;
+  // figures.json: the figures of every study whose entries the report holds, in the same order.
+  std::string figures() const;
 
  private:
   std::string header_;

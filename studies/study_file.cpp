@@ -1373,7 +1373,7 @@ std::vector<std::string> run_study_file(const StudySpec& spec, const std::filesy
   const ReportIndex index(false, report.path());
   index.add_study(study, tables);
   write_study_copy(spec, report.path());
-  write_file_atomic(report.path() / "figures.json", figures_to_json(tables));
+  write_file_atomic(report.path() / "figures.json", index.figures());
   write_file_atomic(report.path() / "index.md", index.text());
   report.commit();
   std::vector<std::string> ids;

@@ -386,8 +386,9 @@ TEST_CASE("cli: an unusable reference cache is a warning, the study runs and lea
   fs::remove_all(dir);
 }
 
-// Issue 30, finding 10: a second study into the same --out rewrote index.md to list only itself.
-TEST_CASE("cli: index.md lists every study of the --out, not only the last run's", "[app][reliability]") {
+// Issue 30, finding 10: a second study into the same --out rewrote index.md to list only itself;
+// figures.json kept only the last run's figures until the index parts carried them too.
+TEST_CASE("cli: index.md and figures.json list every study of the --out, not only the last run's", "[app][reliability]") {
   namespace fs = std::filesystem;
   const std::string dir = tmpdir("index"), out = dir + "/out";
   fs::remove_all(dir);
@@ -402,6 +403,12 @@ TEST_CASE("cli: index.md lists every study of the --out, not only the last run's
   const std::string rerun((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
   CHECK(rerun.find("\n## first\n") == rerun.rfind("\n## first\n"));
   CHECK_THAT(rerun, Catch::Contains("\n## second\n"));
+  std::ifstream figures_file(out + "/figures.json");
+  const nlohmann::json figures = nlohmann::json::parse(figures_file);
+  std::vector<std::string> ids;
+  for (const auto& f : figures) ids.push_back(f["id"]);
+  CHECK(std::count(ids.begin(), ids.end(), "first_work_precision") == 1);
+  CHECK(std::count(ids.begin(), ids.end(), "second_work_precision") == 1);
   fs::remove_all(dir);
 }
 
