@@ -1112,22 +1112,25 @@ Table history_table(const StudySpec& spec, const FileTable& d, const std::vector
   return t;
 }
 
-const std::vector<Column>& periodic_columns() {
-  static const std::vector<Column> columns = {
-      {"problem", "", "", ""}, {"problem name", "", "", "the registered problem"}, {"integrator", "", "", ""},
+// The columns of a periodic or trajectory table: which run, then the sample's `own`.
+std::vector<Column> run_series_columns(const std::vector<Column>& own) {
+  std::vector<Column> columns = {
+      {"problem", "", "", ""}, {"problem name", "", "", "the registered problem"}, {"integrator", "", "", "exact: the exact observable"},
       {"integrator name", "", "", "the registered integrator"},
-      {"parameters", "", "", "the integrator's parameters set by the file (default: none)"}, {"run", "", "", ""},
-      {"k", "", "", "the sample's number: at the first step past from + k every"}, {"value", "", "", "the measure's sample"},
-      {"|value|", "", "", "its absolute value (a log scale)"}};
+      {"parameters", "", "", "the integrator's parameters set by the file (default: none)"}, {"run", "", "", ""}};
+  columns.insert(columns.end(), own.begin(), own.end());
+  return columns;
+}
+
+const std::vector<Column>& periodic_columns() {
+  static const std::vector<Column> columns = run_series_columns(
+      {{"k", "", "", "the sample's number: at the first step past from + k every"}, {"value", "", "", "the measure's sample"},
+       {"|value|", "", "", "its absolute value (a log scale)"}});
   return columns;
 }
 
 const std::vector<Column>& trajectory_columns() {
-  static const std::vector<Column> columns = {
-      {"problem", "", "", ""}, {"problem name", "", "", "the registered problem"}, {"integrator", "", "", "exact: the exact observable"},
-      {"integrator name", "", "", "the registered integrator"},
-      {"parameters", "", "", "the integrator's parameters set by the file (default: none)"}, {"run", "", "", ""},
-      {"t", "s", "", "the sample's step"}, {"value", "", "", "the observable"}};
+  static const std::vector<Column> columns = run_series_columns({{"t", "s", "", "the sample's step"}, {"value", "", "", "the observable"}});
   return columns;
 }
 
