@@ -59,7 +59,7 @@ namespace {
 constexpr double kVx = 0.5;
 constexpr long kBlockStepBudget = 20;  // F_int evaluations allowed per step of the requested size
 constexpr double kBlockSamplePeriod = 0.01;  // y_c sampling period [s]
-const std::vector<double> kRankingTargets = {1e-3, 1e-4, 3e-5, 1e-5};  // y_c error [m]
+const std::vector<double> kBlockRankingTargets = {1e-3, 1e-4, 3e-5, 1e-5};  // y_c error [m]
 constexpr double kDetailDt = 1e-4;  // the step of the cost table and the momentum histories
 constexpr int kBlockHistoryPoints = 150;
 // The runs pictured deformed: the scheme under study and the reference, on a mesh whose cells
@@ -367,7 +367,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
   deformed.cells.metadata = deformed.arrows.metadata = cases_table.metadata;
 
   RankingProblem ranking{"2D block", fmt::format("the penalty-bdf reference on {}x{}", n_ref, n_ref),
-                         ref_penalty_error + ref_tolerance_error + ref_restitution_error, kRankingTargets, {}};
+                         ref_penalty_error + ref_tolerance_error + ref_restitution_error, kBlockRankingTargets, {}};
   std::size_t k = kRefCases;
   while (k < cases.size()) {
     const std::string integrator = cases[k]["integrator"];

@@ -12,7 +12,6 @@ extern const StudyEntry reference_study;
 extern const StudyEntry bar_study;
 extern const StudyEntry block_study;
 extern const StudyEntry peers_study;
-extern const StudyEntry bouncing_bar_study;
 extern const StudyEntry friction_study;
 extern const StudyEntry bodies_study;
 extern const StudyEntry hausdorff_study;
@@ -59,7 +58,10 @@ const std::vector<StudyEntry>& study_registry() {
       cpp_study(bar_study, "studies/bar.cpp"),
       cpp_study(block_study, "studies/block.cpp"),
       cpp_study(peers_study, "studies/peers.cpp"),
-      cpp_study(bouncing_bar_study, "studies/bouncing_bar.cpp"),
+      builtin_file_study("bouncing-bar",
+                         "Doyen-Ern-Piperno bouncing bar over many periods: energy per period per mass model, contact-end "
+                         "error, force oscillation",
+                         "studies/builtin/bouncing-bar.toml"),
       cpp_study(friction_study, "studies/friction.cpp"),
       cpp_study(bodies_study, "studies/bodies.cpp"),
       cpp_study(hausdorff_study, "studies/hausdorff_study.cpp"),

@@ -509,6 +509,47 @@ double periodic_value(const std::string& norm, const std::vector<double>& e) {
   return fit_line(k, e).slope;
 }
 
+// The series of one run that the tables of some runs show (FileTable::of_some_runs): each
+// trajectory table's observable (and exact observable) at the first step at or after each of
+// its points + 1 evenly spaced times over the run's last `last` seconds; and, at the end, each
+// periodic table's energy samples (its measure's own).
+class RunSeries {
+ public:
+  RunSeries(const StudySpec& spec, const FileProblem& fp, double t_end) : spec_(spec) {
+    for (const FileTable& d : spec.tables)
+      if (d.rows == "trajectory" && d.applies_to(fp.label)) trajectories_.push_back({&d, t_end - d.last, {}, {}, {}});
+  }
+  void add(const Problem& problem, const SpMat& M, const Integrator& it, double dt, std::span<double> buffer, const Energy& energy) {
+    const State& s = it.state();
+    for (Trajectory& tr : trajectories_) {
+      const auto n = static_cast<double>(tr.t.size());
+      if (tr.t.size() > static_cast<std::size_t>(tr.table->points) || s.t < tr.start + tr.table->last * n / tr.table->points) continue;
+      tr.t.push_back(s.t);
+      tr.value.push_back(state_observable(problem, M, s, it.impulses(), dt, tr.table->observable, buffer, &energy));
+      if (!tr.table->exact.empty()) tr.exact.push_back(state_observable(problem, M, s, it.impulses(), dt, tr.table->exact, buffer, &energy));
+    }
+  }
+  // Into the run's figures: "trajectories" by table id {t, value, exact}, "periodic" by measure
+  // label (the samples of `periodic`, each measure's, in the order of spec.measures).
+  void write(const std::vector<const std::vector<double>*>& periodic, Json& run) const {
+    for (const Trajectory& tr : trajectories_)
+      run["trajectories"][tr.table->id] = {{"t", tr.t}, {"value", reals(tr.value)}, {"exact", reals(tr.exact)}};
+    for (const FileTable& d : spec_.tables)
+      for (std::size_t m = 0; m < spec_.measures.size(); ++m)
+        if (d.rows == "periodic" && spec_.measures[m].label == d.measure && periodic[m])
+          run["periodic"][d.measure] = reals(*periodic[m]);
+  }
+
+ private:
+  struct Trajectory {
+    const FileTable* table;
+    double start;
+    std::vector<double> t, value, exact;
+  };
+  const StudySpec& spec_;
+  std::vector<Trajectory> trajectories_;
+};
+
 Json run_file_case(const StudySpec& spec, const Json& c) {
   const FileProblem& fp = spec.problems[c["problem"].get<std::size_t>()];
   const FileIntegrator& fi = spec.integrators[c["integrator"].get<std::size_t>()];
@@ -569,6 +610,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     return m.kind == MeasureKind::Energy && m.history;
   });
   RunFigures figures(*problem, spec, fp, t_end, e0, e_scale);
+  RunSeries series(spec, fp, t_end);
   double e1 = kNaN;  // the energy after the first step
   // An energy measure's error of E: relative to E_1 (relative_to = "first step") or E0 (its scale).
   const auto energy_error = [&](const FileMeasure& fm, double e) { return fm.from_first_step ? (e - e1) / std::abs(e1) : (e - e0) / e_scale; };
@@ -654,6 +696,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     if (stop) stop->add(s);
     if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(energy.total() - e0) / e_scale});
     figures.add(it, info.dt, momentum, energy.total());
+    series.add(*problem, M, it, info.dt, obs, energy);
     sample(it, energy, info.dt, ++step % spec.sample_every == 0, true);
     t_prev = s.t;
   });
@@ -661,6 +704,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
               {"force_evaluations", r.work.force_evaluations}, {"factorizations", r.work.factorizations},
               {"lcp_iterations", r.work.lcp_iterations}};
   out.update(figures.result(r, growth.largest() / e_scale));
+  std::vector<const std::vector<double>*> periodic;
+  for (std::size_t m = 0; m < acc.size(); ++m) periodic.push_back(on[m] && spec.measures[m].every > 0.0 ? &acc[m].periodic : nullptr);
+  series.write(periodic, out["run"]);
   if (spec.cpu_repeats == 0) out["cpu"] = r.step_cpu_seconds;  // the observed run's, whatever its end
   // A blow-up or penetration seen before the budget ran out is reported as such.
   if (r.status != RunStatus::Ok && r.status != RunStatus::OverBudget) return out;
@@ -1066,6 +1112,139 @@ Table history_table(const StudySpec& spec, const FileTable& d, const std::vector
   return t;
 }
 
+// The columns of a periodic or trajectory table: which run, then the sample's `own`.
+std::vector<Column> run_series_columns(const std::vector<Column>& own) {
+  std::vector<Column> columns = {
+      {"problem", "", "", ""}, {"problem name", "", "", "the registered problem"}, {"integrator", "", "", "exact: the exact observable"},
+      {"integrator name", "", "", "the registered integrator"},
+      {"parameters", "", "", "the integrator's parameters set by the file (default: none)"}, {"run", "", "", ""}};
+  columns.insert(columns.end(), own.begin(), own.end());
+  return columns;
+}
+
+const std::vector<Column>& periodic_columns() {
+  static const std::vector<Column> columns = run_series_columns(
+      {{"k", "", "", "the sample's number: at the first step past from + k every"}, {"value", "", "", "the measure's sample"},
+       {"|value|", "", "", "its absolute value (a log scale)"}});
+  return columns;
+}
+
+const std::vector<Column>& trajectory_columns() {
+  static const std::vector<Column> columns = run_series_columns({{"t", "s", "", "the sample's step"}, {"value", "", "", "the observable"}});
+  return columns;
+}
+
+// Whether a table of some runs shows the run of this case-table row (FileTable::where, drop_above).
+bool shows_run(const FileTable& d, const Table& runs, const std::vector<Cell>& row) {
+  const auto number = [](const Cell& cell) {
+    return std::holds_alternative<double>(cell) ? std::get<double>(cell) : std::holds_alternative<long>(cell) ? static_cast<double>(std::get<long>(cell)) : kNaN;
+  };
+  for (const auto& [name, want] : d.where) {
+    const Cell& cell = row[column_index(runs, name)];
+    if (std::holds_alternative<std::string>(want) ? cell != want : number(cell) != std::get<double>(want)) return false;
+  }
+  return std::none_of(d.drop_above.begin(), d.drop_above.end(),
+                      [&](const auto& limit) { return std::abs(number(row[column_index(runs, limit.first)])) > limit.second; });
+}
+
+// A cell as the text of a pivot's column header.
+std::string pivot_value_text(const Cell& cell) {
+  if (const auto* text = std::get_if<std::string>(&cell)) return *text;
+  if (const auto* n = std::get_if<long>(&cell)) return fmt::format("{}", *n);
+  if (const auto* x = std::get_if<double>(&cell)) return fmt::format("{}", *x);
+  return "n/a";
+}
+
+// rows = "pivot" (FileTable::across): from the case table `runs` with every column.
+Table pivot_table(const FileTable& d, const Table& runs) {
+  const std::size_t across = column_index(runs, d.across), outcome = column_index(runs, "outcome");
+  const std::size_t value = column_index(runs, d.columns.back().of);
+  std::vector<std::size_t> keys;
+  for (std::size_t k = 0; k + 1 < d.columns.size(); ++k) keys.push_back(column_index(runs, d.columns[k].of));
+  std::vector<std::vector<Cell>> rows;  // the key cells, then one cell per spread value
+  std::vector<std::string> spread;
+  std::map<std::pair<std::size_t, std::size_t>, Cell> cells;
+  for (const auto& row : runs.rows) {
+    if (!d.applies_to(std::get<std::string>(row[column_index(runs, "problem")])) || !shows_run(d, runs, row)) continue;
+    std::vector<Cell> key;
+    for (const std::size_t k : keys) key.push_back(row[k]);
+    const std::size_t r = static_cast<std::size_t>(std::find(rows.begin(), rows.end(), key) - rows.begin());
+    if (r == rows.size()) rows.push_back(key);
+    const std::string at = pivot_value_text(row[across]);
+    const std::size_t a = static_cast<std::size_t>(std::find(spread.begin(), spread.end(), at) - spread.begin());
+    if (a == spread.size()) spread.push_back(at);
+    cells[{r, a}] = row[outcome] == Cell{std::string("ok")} ? row[value] : row[outcome];
+  }
+  Table out;
+  for (std::size_t k = 0; k < keys.size(); ++k) out.columns.push_back(declared_column(runs.columns[keys[k]], d.columns[k]));
+  for (const std::string& at : spread) {
+    Column c = declared_column(runs.columns[value], d.columns.back());
+    const auto hole = c.name.find("{}");
+    c.name = hole == std::string::npos ? c.name + ", " + at : c.name.replace(hole, 2, at);
+    out.columns.push_back(c);
+  }
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    for (std::size_t a = 0; a < spread.size(); ++a) {
+      const auto it = cells.find({r, a});
+      rows[r].push_back(it == cells.end() ? Cell(std::string()) : it->second);
+    }
+    out.add_row(std::move(rows[r]));
+  }
+  return out;
+}
+
+// rows = "periodic" or "trajectory": a row per sample of each run shown (its case-table row in
+// `runs`: case_row), in the order of the cases; a trajectory's rows "exact" after the first run
+// shown of each problem, at its times.
+Table run_series_table(const StudySpec& spec, const FileTable& d, const std::vector<Json>& cases, const std::vector<Json>& results,
+                       const Table& runs, const std::vector<std::size_t>& case_row) {
+  const bool periodic = d.rows == "periodic";
+  Table all;
+  all.columns = periodic ? periodic_columns() : trajectory_columns();
+  const std::vector<Column> parameters = parameter_columns(spec);
+  all.columns.insert(all.columns.end(), parameters.begin(), parameters.end());
+  const std::vector<std::string> parameter_names = parameter_column_names(spec);
+  std::vector<std::string> exact_drawn;  // the problems whose exact rows are in
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Json& run = results[k].contains("run") ? results[k]["run"] : Json::object();
+    const char* key = periodic ? "periodic" : "trajectories";
+    const std::string& id = periodic ? d.measure : d.id;
+    const FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+    if (!run.contains(key) || !run[key].contains(id) || !d.applies_to(p.label) || !shows_run(d, runs, runs.rows[case_row[k]])) continue;
+    const FileIntegrator& fi = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
+    const std::vector<Cell> own = parameter_cells(p, parameter_names);
+    const auto add = [&](std::vector<Cell> row) {
+      row.insert(row.end(), own.begin(), own.end());
+      all.add_row(std::move(row));
+    };
+    const std::vector<Cell> head = {p.label, p.name, shown_label(fi, p.label), fi.name, parameters_text(fi, p.label), run_label(cases[k])};
+    const Json& samples = run[key][id];
+    if (periodic) {
+      for (std::size_t i = 0; i < samples.size(); ++i) {
+        std::vector<Cell> row = head;
+        row.insert(row.end(), {static_cast<long>(i + 1), number_cell(samples[i]), number_cell(std::abs(real(samples[i])))});
+        add(row);
+      }
+      continue;
+    }
+    const Json& t = samples["t"];
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      std::vector<Cell> row = head;
+      row.insert(row.end(), {number_cell(t[i]), number_cell(samples["value"][i])});
+      add(row);
+    }
+    if (d.exact.empty() || t.empty() || std::find(exact_drawn.begin(), exact_drawn.end(), p.label) != exact_drawn.end()) continue;
+    exact_drawn.push_back(p.label);
+    for (std::size_t i = 0; i < t.size(); ++i)
+      add({p.label, p.name, "exact", "", "", "", number_cell(t[i]), number_cell(samples["exact"][i])});
+  }
+  for (const FileFigure& f : spec.figures)
+    if (f.table == d.id) all.figures.push_back(declared_figure(spec, f));
+  Table out = case_table(d, all, true);
+  out.csv_only = true;
+  return out;
+}
+
 // The tables the file declares, built from the engine's work-precision (`runs`), orders and
 // ranking tables.
 std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, const Table& orders, const std::optional<Table>& rank,
@@ -1074,7 +1253,7 @@ std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, con
   bool figures_placed = false;
   for (const FileTable& d : spec.tables) {
     Table t;
-    if (d.rows == "history" || d.rows == "samples") {
+    if (d.rows == "history" || d.rows == "samples" || d.of_some_runs()) {
       t = history(d);
     } else if (d.rows == "ranking") {
       t = *rank;  // the reader refuses a ranking without a ranked measure
@@ -1222,6 +1401,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   const std::vector<Column> own = study_run_columns(spec);
   counters.insert(counters.end(), own.begin(), own.end());
   std::vector<std::vector<Cell>> counter_rows;
+  std::vector<std::size_t> case_row(cases.size());  // each case's row in t
   for (const std::vector<std::size_t>& sweep : sweep_runs(spec, cases)) {
     const std::size_t begin = sweep.front();
     const std::size_t pi = cases[begin]["problem"], ii = cases[begin]["integrator"];
@@ -1246,6 +1426,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       const std::string status = r["status"];
       row.insert(row.end(), {number_cell(real_or_nan(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
                              status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
+      case_row[k] = t.rows.size();
       t.add_row(std::move(row));
       const auto count = [&](const char* key) { return r.contains(key) ? Cell{r[key].get<long>()} : Cell{}; };
       std::vector<Cell> more = {count("factorizations"), count("lcp_iterations")};
@@ -1297,7 +1478,10 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     runs_all.columns.insert(runs_all.columns.end(), counters.begin(), counters.end());
     for (std::size_t r = 0; r < runs_all.rows.size(); ++r)
       runs_all.rows[r].insert(runs_all.rows[r].end(), counter_rows[r].begin(), counter_rows[r].end());
-    tables = declared_tables(spec, runs_all, orders, rank, [&](const FileTable& d) { return history_table(spec, d, cases, results); });
+    tables = declared_tables(spec, runs_all, orders, rank, [&](const FileTable& d) {
+      if (d.rows == "pivot") return pivot_table(d, runs_all);
+      return d.of_some_runs() ? run_series_table(spec, d, cases, results, runs_all, case_row) : history_table(spec, d, cases, results);
+    });
   } else {
     tables.push_back(t);
     if (!orders.rows.empty()) tables.push_back(orders);
@@ -1331,6 +1515,16 @@ const std::vector<std::string>& history_column_names() {
 
 const std::vector<std::string>& samples_column_names() {
   static const std::vector<std::string> names = column_names(samples_columns());
+  return names;
+}
+
+const std::vector<std::string>& periodic_column_names() {
+  static const std::vector<std::string> names = column_names(periodic_columns());
+  return names;
+}
+
+const std::vector<std::string>& trajectory_column_names() {
+  static const std::vector<std::string> names = column_names(trajectory_columns());
   return names;
 }
 

@@ -196,6 +196,25 @@ struct FileTable {
   // description (`of` unused), and the number format of dt or tol in its runs cells.
   std::optional<FileColumn> error;
   std::optional<std::string> runs_format;
+  // Tables of some runs (rows = "pivot", "periodic", "trajectory"): the runs whose case-table
+  // column equals each value of `where` (a number or a text), less those whose |column| exceeds
+  // the value of `drop_above` (a run with no value there is kept).
+  std::vector<std::pair<std::string, Cell>> where;
+  std::vector<std::pair<std::string, double>> drop_above;
+  // rows = "pivot": one row per value of the columns before the last (e.g. integrator), the
+  // last column's value spread over one column per value of the case-table column `across`
+  // (header: the last column's header with {} replaced by that value); a run whose outcome is
+  // not ok shows its outcome instead, no run an empty cell.
+  std::string across;
+  // rows = "periodic": one row per sample of the energy measure of this label (sampled `every`).
+  std::string measure;
+  // rows = "trajectory": the observable at the first step at or after each of points + 1 evenly
+  // spaced times over the run's last `last` seconds (t_end - last to t_end), and after the
+  // first run shown of each problem, rows "exact": its observable `exact` at the same times.
+  std::string observable, exact;
+  double last = 0.0;
+  int points = 400;
+  bool of_some_runs() const { return rows == "pivot" || rows == "periodic" || rows == "trajectory"; }
 };
 
 // [[exclude]]: runs the study does not make: those of the registered integrators of one kind
@@ -277,6 +296,8 @@ bool measure_converges(const FileMeasure& m);
 const std::vector<std::string>& run_column_names();
 const std::vector<std::string>& history_column_names();
 const std::vector<std::string>& samples_column_names();
+const std::vector<std::string>& periodic_column_names();
+const std::vector<std::string>& trajectory_column_names();
 // The problems' parameters a declared case, history or samples table may show: "parameter NAME" for each parameter
 // of each problem (the first problem's order first); a problem without it shows an empty cell.
 std::vector<std::string> parameter_column_names(const StudySpec& spec);

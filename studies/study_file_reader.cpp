@@ -665,8 +665,9 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const S
   const bool declared_only = spec.declared_figures_only;
   // A figure of a history or samples table: any of their columns (its table's checked with the tables).
   std::vector<std::string> table_columns = history_column_names();
-  for (const auto& name : samples_column_names())
-    if (std::find(table_columns.begin(), table_columns.end(), name) == table_columns.end()) table_columns.push_back(name);
+  for (const auto* more : {&samples_column_names(), &periodic_column_names(), &trajectory_column_names()})
+    for (const auto& name : *more)
+      if (std::find(table_columns.begin(), table_columns.end(), name) == table_columns.end()) table_columns.push_back(name);
   const auto parameters = parameter_column_names(spec);
   table_columns.insert(table_columns.end(), parameters.begin(), parameters.end());
   std::vector<FileFigure> figures;
@@ -743,6 +744,10 @@ std::vector<std::string> table_sources(const std::string& rows, const StudySpec&
         for (const char* what : {"order", "CI low", "CI high", "points"}) sources.push_back(fmt::format("{} of {}", what, m.label));
   } else if (rows == "history" || rows == "samples") {
     sources = rows == "history" ? history_column_names() : samples_column_names();
+  } else if (rows == "periodic" || rows == "trajectory") {
+    sources = rows == "periodic" ? periodic_column_names() : trajectory_column_names();
+  } else if (rows == "pivot") {
+    return table_sources("case", spec);
   }
   if (rows != "group") {
     const auto parameters = parameter_column_names(spec);
@@ -784,6 +789,66 @@ FileColumn read_column(const Checker& c, const Json& j, const std::string& path,
   return col;
 }
 
+// The keys of a table of some runs (FileTable::of_some_runs) into `t`: where, drop_above (a
+// case-table column each), a pivot's across, a periodic table's measure, a trajectory's
+// observable, exact, last and points (its observables checked against the problems later:
+// check_trajectory_observables); refused on the other tables.
+void read_some_runs(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
+  const std::vector<std::string> runs = table_sources("case", spec);
+  const std::map<std::string, std::string> own = {{"across", "pivot"}, {"measure", "periodic"}, {"observable", "trajectory"},
+                                                  {"exact", "trajectory"}, {"last", "trajectory"}, {"points", "trajectory"}};
+  for (const char* key : {"where", "drop_above", "across", "measure", "observable", "exact", "last", "points"}) {
+    const auto whose = own.find(key);
+    if (c.find(j, key) && (whose == own.end() ? !t.of_some_runs() : t.rows != whose->second))
+      c.fail(child(path, key), fmt::format("a table of rows = \"{}\" has no {}", t.rows, key),
+             whose == own.end() ? "rows = \"pivot\", \"periodic\" or \"trajectory\"" : fmt::format("rows = \"{}\"", whose->second));
+  }
+  const auto conditions = [&](const char* key, const auto& read) {
+    const Json* v = c.find(j, key);
+    if (!v) return;
+    const std::string at = child(path, key);
+    c.expect(*v, at, v->is_object() && !v->empty(), "a table of case-table column = value");
+    for (const auto& [name, value] : v->items()) read(c.choice(Json(name), child(at, name), runs), value, child(at, name));
+  };
+  conditions("where", [&](const std::string& name, const Json& value, const std::string& at) {
+    c.expect(value, at, value.is_number() || value.is_string(), "a number or a text");
+    t.where.emplace_back(name, value.is_number() ? Cell{value.get<double>()} : Cell{value.get<std::string>()});
+  });
+  conditions("drop_above", [&](const std::string& name, const Json& value, const std::string& at) {
+    t.drop_above.emplace_back(name, c.positive(value, at));
+  });
+  if (t.rows == "pivot") t.across = c.choice(c.require(j, path, "across"), child(path, "across"), runs);
+  if (t.rows == "periodic") {
+    std::vector<std::string> sampled;
+    for (const auto& m : spec.measures)
+      if (m.kind == MeasureKind::Energy && m.every > 0.0) sampled.push_back(m.label);
+    if (sampled.empty()) c.fail(child(path, "rows"), "the study has no energy measure sampled every period", "an energy [[measure]] with every");
+    t.measure = c.choice(c.require(j, path, "measure"), child(path, "measure"), sampled);
+  }
+  if (t.rows == "trajectory") {
+    t.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
+    if (const Json* v = c.find(j, "exact")) t.exact = c.string(*v, child(path, "exact"));
+    t.last = c.positive(c.require(j, path, "last"), child(path, "last"));
+    if (const Json* v = c.find(j, "points")) t.points = static_cast<int>(c.integer(*v, child(path, "points"), 1, 100000));
+  }
+}
+
+// A trajectory table's observable and exact: observables of every problem it shows.
+void check_trajectory_observables(const Checker& c, const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances) {
+  for (std::size_t i = 0; i < spec.tables.size(); ++i) {
+    const FileTable& t = spec.tables[i];
+    if (t.rows != "trajectory") continue;
+    for (std::size_t p = 0; p < spec.problems.size(); ++p) {
+      if (!t.applies_to(spec.problems[p].label)) continue;
+      const auto& names = instances[p]->observable_names();
+      for (const auto& [key, name] : {std::pair{"observable", t.observable}, std::pair{"exact", t.exact}})
+        if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end())
+          c.fail(child(element("table", i), key), fmt::format("'{}' is not an observable of problem '{}'", name, spec.problems[p].label),
+                 fmt::format("{} (or problems = [...])", fmt::join(names, ", ")));
+    }
+  }
+}
+
 // [[table]]: the tables the study writes instead of the engine's own.
 std::vector<FileTable> read_tables(const Checker& c, const Json& root, const StudySpec& spec) {
   std::vector<FileTable> tables;
@@ -792,7 +857,8 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Json& j = list[i];
     const std::string path = element("table", i);
-    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined"});
+    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined", "where",
+                     "drop_above", "across", "measure", "observable", "exact", "last", "points"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
@@ -800,7 +866,8 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       if (u.id == t.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", t.id), "distinct ids");
     t.title = c.string(c.require(j, path, "title"), child(path, "title"));
     t.caption = optional_string(c, j, path, "caption");
-    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples"});
+    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples", "pivot", "periodic", "trajectory"});
+    read_some_runs(c, j, path, spec, t);
     if (const Json* v = c.find(j, "declined")) {
       if (t.rows != "case") c.fail(child(path, "declined"), "only a table of one row per run shows declined runs", "rows = \"case\"");
       const std::string shown = c.choice(*v, child(path, "declined"), {"as run", "n/a", "empty"});
@@ -853,6 +920,8 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
         if (t.columns.back().missing && t.rows != "case")
           c.fail(child(element(at, k), "missing"), "only a table of one row per run shows its missing cells otherwise", "rows = \"case\"");
       }
+      if (t.rows == "pivot" && cols.size() < 2)
+        c.fail(at, "a pivot needs the columns naming a row and the value column last", "two or more columns");
     }
     tables.push_back(t);
   }
@@ -864,12 +933,13 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     auto runs = first_runs;
     if (!spec.figures[i].table.empty()) {
       runs = std::find_if(tables.begin(), tables.end(), [&](const FileTable& t) { return t.id == spec.figures[i].table; });
-      if (runs == tables.end() || (runs->rows != "history" && runs->rows != "samples")) {
+      const auto series = [](const FileTable& t) { return t.rows == "history" || t.rows == "samples" || t.rows == "periodic" || t.rows == "trajectory"; };
+      if (runs == tables.end() || !series(*runs)) {
         std::vector<std::string> histories;
         for (const auto& t : tables)
-          if (t.rows == "history" || t.rows == "samples") histories.push_back(t.id);
-        c.fail(child(path, "table"), fmt::format("'{}' is no declared history or samples table", spec.figures[i].table),
-               histories.empty() ? "a [[table]] with rows = \"history\" or \"samples\"" : fmt::format("{}", fmt::join(histories, ", ")));
+          if (series(t)) histories.push_back(t.id);
+        c.fail(child(path, "table"), fmt::format("'{}' is no declared history, samples, periodic or trajectory table", spec.figures[i].table),
+               histories.empty() ? "a [[table]] with rows = \"history\", \"samples\", \"periodic\" or \"trajectory\"" : fmt::format("{}", fmt::join(histories, ", ")));
       }
     }
     if (runs == tables.end()) c.fail(path, "declared tables hold no table of one row per run to draw it from", "a [[table]] with rows = \"case\"");
@@ -1360,6 +1430,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   spec.ranked = ranked_measure(c, study, spec.measures);
   spec.figures = read_figures(c, root, spec);
   spec.tables = read_tables(c, root, spec);
+  check_trajectory_observables(c, spec, instances);
   if (std::any_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; }))
     for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
       const auto held = [&](const FileSweep& sweep, const std::string& path) {

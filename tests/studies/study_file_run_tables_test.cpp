@@ -1,0 +1,238 @@
+// Study files: the tables of some runs (FileTable::of_some_runs): rows = "pivot", "periodic" and
+// "trajectory", their runs picked by `where` and left out by `drop_above`, and their bad input.
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "problems/registry.hpp"
+#include "studies/study.hpp"
+#include "studies/study_file.hpp"
+
+namespace {
+
+// The bouncing mass to t = 1, elastic and with e = 0.5 on a budget of 45 F_int evaluations
+// (over budget near t = 0.45, measured up to the stop), two schemes at two steps; the energy
+// error sampled at 0.35, 0.6, 0.85.
+const std::string kSomeRuns = R"([study]
+title = "t"
+t_end = 1.0
+cpu_repeats = 0
+targets = [1e-2]
+measure_over_budget = true
+
+[[problem]]
+name = "bouncing-mass"
+label = "elastic"
+parameters = { e = 1 }
+
+[[problem]]
+name = "bouncing-mass"
+label = "stopped"
+parameters = { e = 0.5 }
+max_force_evaluations = 45
+
+[[integrator]]
+name = "moreau-jean"
+steps = [1e-2, 5e-3]
+
+[[integrator]]
+name = "schatzman-paoli"
+steps = [1e-2, 5e-3]
+
+[[measure]]
+kind = "energy"
+every = 0.25
+from = 0.1
+norm = "final"
+label = "E end"
+
+[[table]]
+id = "runs"
+title = "runs"
+columns = ["problem", "integrator", "dt", "E end", "outcome", "t reached"]
+
+[[table]]
+id = "pivot"
+title = "pivot"
+rows = "pivot"
+where = { dt = 0.01 }
+across = "parameter e"
+columns = ["integrator", { of = "E end", header = "E end, e = {}" }]
+
+[[table]]
+id = "periodic"
+title = "periodic"
+rows = "periodic"
+measure = "E end"
+where = { dt = 0.01 }
+columns = ["problem", "integrator", "k", "value", "|value|"]
+
+[[table]]
+id = "elastic_trajectory"
+title = "trajectory"
+rows = "trajectory"
+observable = "q"
+exact = "q_exact"
+last = 0.8
+points = 10
+where = { problem = "elastic" }
+columns = ["problem", "integrator", "run", "t", "value"]
+
+[[table]]
+id = "stopped_trajectory"
+title = "trajectory"
+rows = "trajectory"
+observable = "q"
+last = 0.8
+points = 10
+drop_above = { "t reached" = 0.9 }
+columns = ["problem", "integrator", "run", "t", "value"]
+
+[[figure]]
+id = "periodic_figure"
+table = "periodic"
+title = "E"
+x = "k"
+y = "value"
+log_x = false
+log_y = false
+)";
+
+std::vector<nsb::Table> run_some_runs(const std::string& text) {
+  const nsb::StudyEntry entry = nsb::file_study(nsb::parse_study_text(text, "f.toml", false));
+  const auto cases = nsb::study_cases(entry, {});
+  std::vector<nsb::Json> results;
+  for (const auto& c : cases) results.push_back(nsb::run_study_case(entry, c, {}));
+  return nsb::study_tables(entry, cases, results, {});
+}
+
+const nsb::Table& table_of(const std::vector<nsb::Table>& tables, const std::string& id) {
+  const auto t = std::find_if(tables.begin(), tables.end(), [&](const nsb::Table& u) { return u.id == id; });
+  REQUIRE(t != tables.end());
+  return *t;
+}
+
+std::string some_runs_error(const std::string& text) {
+  try {
+    nsb::parse_study_text(text, "f.toml", false);
+  } catch (const nsb::InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string with_replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("study file: a pivot, a periodic and a trajectory table of the runs where/drop_above pick", "[studies][study_file]") {
+  const auto tables = run_some_runs(kSomeRuns);
+  const nsb::Table& runs = table_of(tables, "runs");
+  REQUIRE(runs.rows.size() == 8);
+  // runs row of (problem, integrator, dt)
+  const auto run = [&](const std::string& problem, const std::string& integrator, double dt) {
+    const auto r = std::find_if(runs.rows.begin(), runs.rows.end(), [&](const std::vector<nsb::Cell>& row) {
+      return row[0] == nsb::Cell{problem} && row[1] == nsb::Cell{integrator} && row[2] == nsb::Cell{dt};
+    });
+    REQUIRE(r != runs.rows.end());
+    return *r;
+  };
+  CHECK(run("stopped", "moreau-jean", 1e-2)[4] == nsb::Cell{std::string("over budget")});
+  CHECK(run("elastic", "moreau-jean", 1e-2)[4] == nsb::Cell{std::string("ok")});
+
+  // Pivot: one row per integrator, one column per e (in the order of the runs); the stopped
+  // run shows its outcome, the elastic one its value.
+  const nsb::Table& pivot = table_of(tables, "pivot");
+  REQUIRE(pivot.columns.size() == 3);
+  CHECK(pivot.columns[1].name == "E end, e = 1");
+  CHECK(pivot.columns[2].name == "E end, e = 0.5");
+  REQUIRE(pivot.rows.size() == 2);
+  for (const auto& row : pivot.rows) {
+    const std::string integrator = std::get<std::string>(row[0]);
+    CHECK(row[1] == run("elastic", integrator, 1e-2)[3]);
+    CHECK(std::holds_alternative<double>(row[1]));
+    CHECK(row[2] == nsb::Cell{std::string("over budget")});
+  }
+
+  // Periodic: the runs at dt = 0.01, k = 1, 2, 3 (elastic) and 1 (stopped at 0.45); the last
+  // sample is the measure's final value.
+  const nsb::Table& periodic = table_of(tables, "periodic");
+  CHECK(periodic.csv_only);
+  REQUIRE(periodic.rows.size() == 2 * 3 + 2 * 1);
+  CHECK(periodic.rows[0][2] == nsb::Cell{1L});
+  CHECK(periodic.rows[2][2] == nsb::Cell{3L});
+  CHECK(periodic.rows[2][3] == run(std::get<std::string>(periodic.rows[2][0]), std::get<std::string>(periodic.rows[2][1]), 1e-2)[3]);
+  for (const auto& row : periodic.rows) CHECK(std::get<double>(row[4]) == std::abs(std::get<double>(row[3])));
+  REQUIRE(periodic.figures.size() == 1);
+  CHECK(periodic.figures[0].id == "f_periodic_figure");
+
+  // Trajectory of the elastic runs: q at the first step at or after 0.2 + 0.08 n (n = 0..10),
+  // then after the first run (moreau-jean, dt = 0.01) the exact q at the same times.
+  const nsb::Table& elastic = table_of(tables, "elastic_trajectory");
+  std::vector<std::string> order;
+  for (const auto& row : elastic.rows) {
+    const std::string who = std::get<std::string>(row[1]) + " " + std::get<std::string>(row[2]);
+    if (order.empty() || order.back() != who) order.push_back(who);
+    CHECK(std::get<std::string>(row[0]) == "elastic");
+    CHECK(std::get<double>(row[3]) >= 0.2);
+  }
+  REQUIRE(order.size() == 5);
+  CHECK(order[0] == "moreau-jean dt = 1.00e-02");
+  CHECK(order[1] == "exact ");
+  const auto exact = nsb::make_problem("bouncing-mass", {{"e", "1"}})->exact();
+  std::size_t first = 0, exact_rows = 0;
+  for (const auto& row : elastic.rows) {
+    if (row[1] == nsb::Cell{std::string("exact")}) {
+      const double t = std::get<double>(row[3]);
+      CHECK(row[3] == elastic.rows[exact_rows][3]);  // the first run's times
+      CHECK(std::get<double>(row[4]) == Approx(exact->state(t)->u[0]).margin(1e-12));
+      ++exact_rows;
+    } else if (row[1] == elastic.rows[0][1] && row[2] == elastic.rows[0][2]) {
+      ++first;
+    }
+  }
+  CHECK(first >= 10);
+  CHECK(first <= 11);
+  CHECK(exact_rows == first);
+
+  // drop_above: the runs that reached t > 0.9 (the elastic ones) left out; the stopped runs'
+  // samples end where they stopped, and no exact rows without `exact`.
+  const nsb::Table& stopped = table_of(tables, "stopped_trajectory");
+  REQUIRE(!stopped.rows.empty());
+  for (const auto& row : stopped.rows) {
+    CHECK(row[0] == nsb::Cell{std::string("stopped")});
+    CHECK(std::get<double>(row[3]) < 0.5);
+  }
+}
+
+TEST_CASE("study file: tables of some runs: bad input named", "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  CHECK(some_runs_error(kSomeRuns) == "(no error)");
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "across = \"parameter e\"\n", "")),
+             StartsWith("f.toml:39: table[1]: missing key 'across'"));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "columns = [\"problem\", \"integrator\", \"dt\", \"E end\", \"outcome\", \"t reached\"]",
+                                           "across = \"dt\"\ncolumns = [\"problem\"]")),
+             StartsWith("f.toml:37: table[0].across: a table of rows = \"case\" has no across; valid: rows = \"pivot\""));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "where = { dt = 0.01 }\nacross", "where = { dtt = 0.01 }\nacross")),
+             StartsWith("f.toml:43: table[1].where.dtt: 'dtt' is not valid (nearest: dt)"));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "where = { dt = 0.01 }\nacross", "where = { dt = true }\nacross")),
+             StartsWith("f.toml:43: table[1].where.dt: expected a number or a text, got a boolean"));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "drop_above = { \"t reached\" = 0.9 }", "drop_above = { \"t reached\" = -1 }")),
+             StartsWith("f.toml:73: table[4].drop_above.t reached: -1 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "columns = [\"integrator\", { of = \"E end\", header = \"E end, e = {}\" }]",
+                                           "columns = [\"integrator\"]")),
+             StartsWith("f.toml:45: table[1].columns: a pivot needs the columns naming a row and the value column last; valid: two or more columns"));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "measure = \"E end\"", "measure = \"E\"")),
+             StartsWith("f.toml:51: table[2].measure: 'E' is not valid (nearest: E end); valid: E end"));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "observable = \"q\"\nexact", "observable = \"u_contact\"\nexact")),
+             StartsWith("f.toml:59: table[3].observable: 'u_contact' is not an observable of problem 'elastic'; valid: q, v, q_exact, v_exact"));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "last = 0.8\npoints = 10\nwhere", "last = 0.8\npoints = 0\nwhere")),
+             StartsWith("f.toml:62: table[3].points: 0 is out of range; valid: [1, 100000]"));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "table = \"periodic\"", "table = \"pivot\"")),
+             StartsWith("f.toml:78: figure[0].table: 'pivot' is no declared history, samples, periodic or trajectory table"));
+}
