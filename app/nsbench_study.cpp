@@ -53,18 +53,23 @@ using nsb::Json;
 namespace fs = std::filesystem;
 
 // Writes the performance table into `out` and lists it in out/index.md when that exists
-// (written by the studies before the benchmarks run).
+// (written by the studies before the benchmarks run), keeping its section as an index part
+// (.index/performance.json, studies/report_index.hpp) so that a later study run into `out`
+// lists it too.
 void write_performance(const std::vector<std::string>& files, const fs::path& out) {
   const nsb::Table table = nsb::performance_table(std::vector<fs::path>(files.begin(), files.end()));
   nsb::ensure_directory(out);
   nsb::write_table(table, out);
+  const std::string entry = fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", table.title, table.id, table.id, table.id);
+  const std::string section = "## performance\n\nThe benchmarks (nsbench-bench-*), each step against its limit.\n\n" + entry + "\n";
+  nsb::ensure_directory(out / ".index");
+  nsb::write_file_atomic(out / ".index" / "performance.json",
+                         Json{{"section", section}, {"lead", ""}, {"headline", ""}, {"figures", Json::array()}}.dump() + "\n");
   const fs::path index = out / "index.md";
   if (!fs::exists(index)) return;
   std::ifstream in(index);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string entry = fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", table.title, table.id, table.id, table.id);
   if (text.find(entry) != std::string::npos) return;
-  const std::string section = "## performance\n\nThe benchmarks (nsbench-bench-*), each step against its limit.\n\n" + entry + "\n";
   const auto footer = text.rfind("---\n");  // the environment footer stays last
   text.insert(footer == std::string::npos ? text.size() : footer, section);
   nsb::write_file_atomic(index, text);

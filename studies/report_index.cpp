@@ -57,13 +57,14 @@ std::vector<IndexPart> index_parts(const fs::path& report) {
     const Json j = parse_json_bounded(read_file_bounded(e.path(), std::size_t{1} << 28, "index part"));
     const auto text = [&](const char* key) { return j.is_object() && j.contains(key) && j[key].is_string(); };
     if (!text("section") || !text("lead") || !text("headline")) {
-      fmt::print(stderr, "nsbench-study: warning: {}: damaged, its study is left out of index.md\n", e.path().string());
+      fmt::print(stderr, "nsbench-study: warning: the report's .index/{}: damaged, its study is left out of index.md\n",
+                 e.path().filename().string());
       continue;
     }
     const bool has_figures = j.contains("figures") && j["figures"].is_array();
     if (!has_figures)  // written before the parts kept their figures
-      fmt::print(stderr, "nsbench-study: warning: {}: no figures kept, its study's figures are left out of figures.json "
-                 "(run the study again)\n", e.path().string());
+      fmt::print(stderr, "nsbench-study: warning: the report's .index/{}: no figures kept, its study's figures are left "
+                 "out of figures.json (run the study again)\n", e.path().filename().string());
     found[e.path().stem().string()] = {j["section"], j["lead"], j["headline"], has_figures ? j["figures"] : Json::array()};
   }
   std::vector<IndexPart> parts;

@@ -412,6 +412,28 @@ TEST_CASE("cli: index.md and figures.json list every study of the --out, not onl
   fs::remove_all(dir);
 }
 
+// The performance table edited index.md in place and kept no index part: the next study run
+// into the same --out rewrote index.md from the parts and its performance section was gone.
+TEST_CASE("cli: the performance section of index.md survives a later study run into the --out", "[app][reliability]") {
+  namespace fs = std::filesystem;
+  const std::string dir = tmpdir("performance_index"), out = dir + "/out";
+  fs::remove_all(dir);
+  REQUIRE(study("run " + write_quick_study(dir, "first") + " --out " + out).code == 0);
+  const nlohmann::json step = {{"name", "BM_Step/a/1000"}, {"run_name", "BM_Step/a/1000"}, {"run_type", "iteration"},
+                               {"real_time", 1.0}, {"cpu_time", 1.0}, {"time_unit", "us"}, {"units", 1000.0},
+                               {"limit_ns", 250.0}, {"threads", 1}, {"run_threads", 1}, {"label", "limit: a triad"}};
+  const nlohmann::json bench = {{"context", {{"executable", "/x/build/studies/nsbench-bench-bar"}, {"num_cpus", 2}}},
+                                {"benchmarks", {step}}};
+  std::ofstream(dir + "/bench.json") << bench.dump();
+  REQUIRE(study("performance " + dir + "/bench.json --out " + out).code == 0);
+  REQUIRE(study("run " + write_quick_study(dir, "second") + " --out " + out).code == 0);
+  std::ifstream in(out + "/index.md");
+  const std::string index((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK_THAT(index, Catch::Contains("\n## performance\n") && Catch::Contains("(performance.md)") &&
+                        Catch::Contains("\n## first\n") && Catch::Contains("\n## second\n"));
+  fs::remove_all(dir);
+}
+
 // Issue 30, finding 10: a repeated --set key took the last value, an empty --fields or
 // --shard was ignored, --rtol nan was accepted, h0 = 0 printed "energy error nan", and an
 // overflow exited 3 without naming the parameter.
