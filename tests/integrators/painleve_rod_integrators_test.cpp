@@ -32,3 +32,28 @@ TEST_CASE("cd-lagrange and moreau-jean on the Painlevé rod: the sliding phase w
     }
   }
 }
+
+// Through the jam (0.8145 s) to 1.2 s (the rigid study's t_end) at the rigid study's coarser
+// steps: every scheme with the capability runs it with finite states at every step (the
+// engine peers decline the rod); when and how each meets the jam is the study's to report.
+TEST_CASE("every moving-contact scheme runs the Painlevé rod through the jam without a non-finite state",
+          "[integrators][painleve_rod]") {
+  const nsb::PainleveRod p(nsb::Params(nsb::PainleveRod::parameters_spec()));
+  for (const auto& entry : nsb::integrator_registry()) {
+    if (!entry.declared().resolved(nsb::Params(entry.parameters())).moving_contacts || nsb::testing::is_engine_peer(entry.name))
+      continue;
+    for (const double dt : {1e-3, 1e-4}) {
+      auto integ = nsb::testing::init_or_decline(entry, p);
+      REQUIRE(integ);
+      bool finite = true;
+      const long steps = std::lround(1.2 / dt);
+      long k = 0;
+      for (; k < steps && finite; ++k) {
+        integ->step(dt);
+        finite = integ->state().u.allFinite() && integ->state().v.allFinite() && integ->impulses().allFinite();
+      }
+      INFO(entry.name << ", dt = " << dt << ": non-finite at step " << k);
+      CHECK(finite);
+    }
+  }
+}
