@@ -21,7 +21,7 @@ namespace {
 
 // The schemes with the capability "moving contacts", each held below to the law it
 // reproduces (the test after the next checks this list against the registry).
-const std::vector<std::string> kMovingContactSchemes = {"cd-lagrange", "moreau-jean", "cd-penalty", "d1-minus-linear"};
+const std::vector<std::string> kMovingContactSchemes = {"cd-lagrange", "moreau-jean", "cd-penalty", "d1-minus-linear", "nsga"};
 
 nsb::RockingBlock make_rocking(const std::map<std::string, std::string>& set = {}) {
   return nsb::RockingBlock(nsb::Params(nsb::RockingBlock::parameters_spec(), set));
