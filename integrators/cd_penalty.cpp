@@ -18,6 +18,10 @@ constexpr long kMaxContactSteps = 10'000'000;
 // An undamped rebound this close to e needs no dashpot (at an integer half period, e = 1
 // at every phase to round-off: kept undamped bit for bit).
 constexpr double kUndampedTolerance = 1e-12;
+// The coupled normal and tangential impulses of a moving contact (header): sweeps until the
+// tangential impulse changes by at most this, relative.
+constexpr double kCoupledContactTolerance = 1e-13;
+constexpr int kCoupledContactMaxSweeps = 200;
 }  // namespace
 
 double cd_penalty_restitution(double phase, double penalty_factor, double zeta) {
@@ -64,41 +68,54 @@ CdPenalty::CdPenalty(const Params& params)
 void CdPenalty::init(const Problem& problem, const State& initial) {
   bind(problem, initial);
   cd_.reset(problem, state_, mass_.diagonal());
-  const Vec& minv = cd_.minv;
-  L_ = problem.gap_operator();
-  h_diag_ = Vec::Zero(L_.rows());
-  for (Index i = 0; i < L_.rows(); ++i) {
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) h_diag_[i] += it.value() * it.value() * minv[it.col()];
-    if (!(h_diag_[i] > 0.0)) throw InputError(fmt::format("integrator cd-penalty: problem {} has a contact ({}) with an empty row of L", problem.name(), i));
-  }
+  moving_ = problem.contacts_move();
+  rows_ = problem.contact_geometry();
+  if (moving_) problem.evaluate_contacts(state_.u, rows_);
   const Contacts& c = problem.contacts();
   friction_ = c.has_friction();
+  cone_ = c.has_cone();
+  const Index p = rows_.normal.rows();
+  h_diag_ = Vec::Zero(p);
   if (friction_) {
-    T_ = c.tangent;
     mu_ = c.mu;
     w_ = c.tangent_velocity;
-    ht_diag_ = Vec::Zero(T_.rows());
-    for (Index i = 0; i < T_.rows(); ++i)
-      for (decltype(T_)::InnerIterator it(T_, i); it; ++it) ht_diag_[i] += it.value() * it.value() * minv[it.col()];
+    ht_diag_ = Vec::Zero(p);
   }
-  cone_ = c.has_cone();
   if (cone_) {
-    T2_ = c.tangent2;
     w2_ = c.tangent2_velocity;
-    ht_blocks_.assign(static_cast<std::size_t>(T_.rows()), Eigen::Matrix2d::Zero());
-    for (Index i = 0; i < T_.rows(); ++i) {
-      Eigen::Matrix2d& h = ht_blocks_[static_cast<std::size_t>(i)];
-      h(0, 0) = ht_diag_[i];
-      h(0, 1) = h(1, 0) = weighted_row_dot(T_, i, T2_, i, minv);
-      h(1, 1) = weighted_row_dot(T2_, i, T2_, i, minv);
-    }
+    ht_blocks_.assign(static_cast<std::size_t>(p), Eigen::Matrix2d::Zero());
+  }
+  for (Index i = 0; i < p; ++i) {
+    contact_masses(i);
+    if (!(h_diag_[i] > 0.0)) throw InputError(fmt::format("integrator cd-penalty: problem {} has a contact ({}) with an empty row of L", problem.name(), i));
   }
   e_ = problem.restitution();
-  zeta_ = Vec::Constant(L_.rows(), cd_penalty_damping_ratio(1.0, factor_, e_));
-  gap_ = L_ * state_.u + problem.gap_offset();
+  zeta_ = Vec::Constant(p, cd_penalty_damping_ratio(1.0, factor_, e_));
+  if (moving_) {
+    gap_ = rows_.gap;
+  } else {
+    gap_ = rows_.normal * state_.u + problem.gap_offset();
+  }
   gap_prev_ = gap_;
   tau_ = 0.0;
   if (std::isfinite(stable_step_with_contacts())) work_.extra["stable_step_with_contacts"] = stable_step_with_contacts();
+}
+
+void CdPenalty::contact_masses(Index i) {
+  const Vec& minv = cd_.minv;
+  const auto self_product = [&](const RowSpMat& rows) {
+    double sum = 0.0;
+    for (RowSpMat::InnerIterator it(rows, i); it; ++it) sum += it.value() * it.value() * minv[it.col()];
+    return sum;
+  };
+  h_diag_[i] = self_product(rows_.normal);
+  if (!friction_) return;
+  ht_diag_[i] = self_product(rows_.tangent);
+  if (!cone_) return;
+  Eigen::Matrix2d& h = ht_blocks_[static_cast<std::size_t>(i)];
+  h(0, 0) = ht_diag_[i];
+  h(0, 1) = h(1, 0) = weighted_row_dot(rows_.tangent, i, rows_.tangent2, i, minv);
+  h(1, 1) = weighted_row_dot(rows_.tangent2, i, rows_.tangent2, i, minv);
 }
 
 double CdPenalty::stable_step_with_contacts() const { return problem_->stable_step() * std::sqrt(1.0 - factor_ / 4.0); }
@@ -116,49 +133,81 @@ StepInfo CdPenalty::advance(double tau) {
 
   // Penalty forces, contact by contact (H diagonal: independent; otherwise one Gauss-Seidel
   // sweep, each contact seeing the velocity the previous ones left).
-  const Vec& g0 = problem_->gap_offset();
   std::swap(gap_prev_, gap_);
-  gap_.noalias() = L_ * state_.u;
-  gap_ += g0;
+  if (moving_) {
+    problem_->evaluate_contacts(state_.u, rows_);
+    gap_ = rows_.gap;
+  } else {
+    gap_.noalias() = rows_.normal * state_.u;
+    gap_ += problem_->gap_offset();
+  }
   impulses_.setZero();
   if (friction_) tangential_impulses_.setZero();
   if (cone_) tangential_impulses2_.setZero();
-  for (Index i = 0; i < L_.rows(); ++i) {
+  const RowSpMat& L = rows_.normal;
+  const RowSpMat& T = rows_.tangent;
+  for (Index i = 0; i < L.rows(); ++i) {
     if (!(gap_[i] < 0.0)) continue;
+    if (moving_) contact_masses(i);  // H_ii, h_T,i at U_{k+1}
     if (!(gap_prev_[i] < 0.0)) zeta_[i] = cd_penalty_damping_ratio(-gap_[i] / (gap_prev_[i] - gap_[i]), factor_, e_);
     const double mi = 1.0 / h_diag_[i];
     const double kappa = factor_ * mi / (tau * tau);
     const double c = 2.0 * zeta_[i] * std::sqrt(kappa * mi);
     double gdot = 0.0;
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) gdot += it.value() * state_.v[it.col()];
+    for (RowSpMat::InnerIterator it(L, i); it; ++it) gdot += it.value() * state_.v[it.col()];
+    if (moving_ && friction_ && !cone_ && mu_[i] != 0.0) {
+      apply_coupled_contact(i, kappa, c, gdot, tau);
+      continue;
+    }
     const double f = std::max(0.0, (-kappa * gap_[i] - c * gdot) / (1.0 + c * tau * h_diag_[i]));
     if (f == 0.0) continue;
     impulses_[i] = tau * f;
-    for (decltype(L_)::InnerIterator it(L_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * tau * f;
+    for (RowSpMat::InnerIterator it(L, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * tau * f;
     if (!friction_ || mu_[i] == 0.0) continue;
     if (cone_) {
       apply_cone_friction(i);
       continue;
     }
     double slip = -w_[i];
-    for (decltype(T_)::InnerIterator it(T_, i); it; ++it) slip += it.value() * state_.v[it.col()];
+    for (RowSpMat::InnerIterator it(T, i); it; ++it) slip += it.value() * state_.v[it.col()];
     const double lambda_t = implicit_regularised_friction(mu_[i], impulses_[i], slip, ht_diag_[i], v_reg_);
     tangential_impulses_[i] = lambda_t;
-    for (decltype(T_)::InnerIterator it(T_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda_t;
+    for (RowSpMat::InnerIterator it(T, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda_t;
   }
   return info;
 }
 
+void CdPenalty::apply_coupled_contact(Index i, double kappa, double c, double gdot, double tau) {
+  const RowSpMat& L = rows_.normal;
+  const RowSpMat& T = rows_.tangent;
+  const double w_nt = weighted_row_dot(L, i, T, i, cd_.minv);
+  double slip = -w_[i];
+  for (RowSpMat::InnerIterator it(T, i); it; ++it) slip += it.value() * state_.v[it.col()];
+  double f = 0.0, lambda_t = 0.0;
+  for (int it = 0; it < kCoupledContactMaxSweeps; ++it) {
+    f = std::max(0.0, (-kappa * gap_[i] - c * (gdot + w_nt * lambda_t)) / (1.0 + c * tau * h_diag_[i]));
+    const double next = implicit_regularised_friction(mu_[i], tau * f, slip + w_nt * tau * f, ht_diag_[i], v_reg_);
+    const bool settled = std::abs(next - lambda_t) <= kCoupledContactTolerance * std::abs(next);
+    lambda_t = next;
+    if (settled) break;
+  }
+  if (f == 0.0) return;
+  impulses_[i] = tau * f;
+  tangential_impulses_[i] = lambda_t;
+  for (RowSpMat::InnerIterator it(L, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * tau * f;
+  for (RowSpMat::InnerIterator it(T, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda_t;
+}
+
 void CdPenalty::apply_cone_friction(Index i) {
   Eigen::Vector2d slip(-w_[i], -w2_[i]);
-  for (decltype(T_)::InnerIterator it(T_, i); it; ++it) slip[0] += it.value() * state_.v[it.col()];
-  for (decltype(T2_)::InnerIterator it(T2_, i); it; ++it) slip[1] += it.value() * state_.v[it.col()];
+  for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) slip[0] += it.value() * state_.v[it.col()];
+  for (RowSpMat::InnerIterator it(rows_.tangent2, i); it; ++it) slip[1] += it.value() * state_.v[it.col()];
   const Eigen::Vector2d lambda =
       implicit_regularised_cone_friction(mu_[i], impulses_[i], slip, ht_blocks_[static_cast<std::size_t>(i)], v_reg_);
   tangential_impulses_[i] = lambda[0];
   tangential_impulses2_[i] = lambda[1];
-  for (decltype(T_)::InnerIterator it(T_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda[0];
-  for (decltype(T2_)::InnerIterator it(T2_, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda[1];
+  for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda[0];
+  for (RowSpMat::InnerIterator it(rows_.tangent2, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda[1];
 }
 
 Energy CdPenalty::energy() const {
@@ -170,6 +219,6 @@ Energy CdPenalty::energy() const {
 }
 
 NSBENCH_INTEGRATOR({"cd-penalty", "explicit central difference with penalty contact (spring-dashpot, kappa = penalty_factor m / dt^2)", &CdPenalty::parameters_spec, &make_from_params<Integrator, CdPenalty>, false, false,
-                    {.friction = true, .friction_cone = true, .explicit_step = true, .mass = MassNeed::DiagonalPositive}});
+                    {.friction = true, .moving_contacts = true, .friction_cone = true, .explicit_step = true, .mass = MassNeed::DiagonalPositive}});
 
 }  // namespace nsb

@@ -111,9 +111,24 @@
 // Start: the half kick of cd_lagrange.hpp. Declines (InputError): a non-diagonal mass or a
 // massless dof (M^{-1} in the update; CD-Lagrange's quasi-static treatment of massless dofs
 // is an impulse law, not a penalty).
-// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
-// (integrators/capabilities.hpp, one refusal wording): the penalty force along L(U_{k+1})
-// with the gap g(U_{k+1}) would follow from CD-Lagrange's evaluation, but is not implemented.
+// Moving contacts (Problem::contacts_move; capability "moving contacts"): CD-Lagrange's
+// evaluation (cd_lagrange.hpp, its step 3) with the penalty in place of the impulse law. After
+// the drift, g(U_{k+1}), L(U_{k+1}), T(U_{k+1}) (and T2) are evaluated once per step; each
+// contact with g_i(U_{k+1}) < 0 takes H_ii = L_i(U_{k+1}) M^{-1} L_i(U_{k+1})^T (so m_i and
+// kappa_i follow the configuration), the force above along L_i(U_{k+1}) with the gap
+// g_i(U_{k+1}) and g'_i = L_i(U_{k+1}) v, and the friction above along T_i(U_{k+1}) with
+// h_T,i from it. The impact's phase uses g_i(U_k) (the previous step's evaluation) and
+// g_i(U_{k+1}); the spring energy uses H_ii at U_{k+1}. On a rigid body the normal and tangent
+// rows share the rotation (W_nt = L_i M^{-1} T_i^T != 0), where the Gauss-Seidel order above
+// (normal first) lets the tangential impulse move g' after the dashpot saw it, which gains
+// energy (the rocking block's pivot, mu = 1); so with 2D friction a moving contact solves its
+// two impulses together, by sweeps until Lambda_T changes by at most 1e-13 relative (at most
+// 200):
+//     f_i = max(0, (-kappa_i g_i - c_i (L_i v + W_nt Lambda_T)) / (1 + c_i tau H_ii)),
+//     Lambda_T = -mu_i tau f_i phi((T_i v + W_nt tau f_i - w_i) / (v_reg + h_T,i mu_i tau f_i)),
+// v the velocity before the contact, then v <- v + M^{-1} (L_i^T tau f_i + T_i^T Lambda_T).
+// 3D contacts keep the order above (normal, then the cone).
+// Constant kinematics: the rows of the construction and g0 + L U, as before.
 #include <Eigen/Core>
 #include <vector>
 
@@ -150,20 +165,25 @@ class CdPenalty final : public Integrator {
   StepInfo advance(double dt_requested) override;
   // The regularised cone's tangential impulse of contact i after its normal impulse.
   void apply_cone_friction(Index i);
+  // Moving contacts with 2D friction: contact i's normal force and tangential impulse solved
+  // together (header), from its kappa, c and g'_i before it.
+  void apply_coupled_contact(Index i, double kappa, double c, double gdot, double tau);
   double factor_;
   double e_ = 1.0;
   Vec zeta_;  // per contact, set when it closes
   CentralDifference cd_;
+  // H_ii, h_T,i and H_T,i of contact i from the rows in rows_.
+  void contact_masses(Index i);
+  bool moving_ = false;
+  // L, T, T2 (the construction's, or at U_{k+1} for moving contacts) and g(U_{k+1}) (moving).
+  ContactGeometry rows_;
   Vec h_diag_;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
   Vec gap_, gap_prev_;  // gaps at U_{k+1}, U_k
   double tau_ = 0.0;    // last step (the springs' stiffness depends on it)
   double v_reg_;
   bool friction_ = false;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> T_;
   Vec mu_, w_, ht_diag_;
   bool cone_ = false;  // 3D contacts with friction
-  Eigen::SparseMatrix<double, Eigen::RowMajor> T2_;
   Vec w2_;
   std::vector<Eigen::Matrix2d> ht_blocks_;  // H_T,i per contact (3D contacts)
 };

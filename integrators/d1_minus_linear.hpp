@@ -40,9 +40,19 @@
 // the stages' like the 2D one; a sum of impulses in a convex cone stays in it.
 // Reported state: (U_{k+1}, V_{k+1}) at t_{k+1}; energy V^T M V / 2 + V(U).
 // Declines (InputError): a non-diagonal mass or a massless dof (M^{-1} in every stage).
-// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
-// (integrators/capabilities.hpp, one refusal wording): Schindler and Acary evaluate the
-// rows at the midpoint and end positions of the step; not implemented here.
+// Moving contacts (Problem::contacts_move; capability "moving contacts"): each contact force
+// acts along the rows of the node it belongs to (the discontinuous Galerkin scheme's
+// quadrature at the element's ends t_k^+ and t_{k+1}^-, with W(q_k) and W(q_{k+1})):
+//     P_1 (t_k^+):   active set g_i(U_k) <= 0, rows L(U_k), T(U_k) (solve, the kick of
+//                    V_{k,1}, and its share h/2 M^{-1} L(U_k)^T P_1 of U_{k+1} and of V^-);
+//     impact test and Lambda (t_{k+1}): g(U_{k+1}), rows L(U_{k+1}), T(U_{k+1});
+//     P_2:           active set of U_k (as above) and its rows L(U_k), T(U_k).
+// U_{k+1} is the scheme's only new position (no midpoint stage exists in the half-explicit
+// velocity-level scheme), so these are the rows at the step's two nodes; P_2's rows at U_k
+// instead of U_{k+1} differ by O(h) in a force term of weight h/2, O(h^2) per step, within
+// the scheme's first order at impacts. The rows at U_{k+1} are kept for the next step's U_k
+// (one evaluation of g, L, T per step here; the contact solves evaluate their own).
+// Constant kinematics: the rows of the construction and g0 + L U, as before.
 #include "integrators/cone_contact.hpp"
 #include "integrators/impulse_contact.hpp"
 #include "integrators/integrator.hpp"
@@ -72,12 +82,12 @@ class D1MinusLinear final : public Integrator {
   // contact solves read.
   template <class F>
   void for_contact_dofs(F&& f) const {
-    for (Index i = 0; i < L_.rows(); ++i) {
-      for (decltype(L_)::InnerIterator it(L_, i); it; ++it) f(it.col());
+    for (Index i = 0; i < rows_.normal.rows(); ++i) {
+      for (RowSpMat::InnerIterator it(rows_.normal, i); it; ++it) f(it.col());
       if (friction_)
-        for (decltype(T_)::InnerIterator it(T_, i); it; ++it) f(it.col());
+        for (RowSpMat::InnerIterator it(rows_.tangent, i); it; ++it) f(it.col());
       if (cone_)
-        for (decltype(T2_)::InnerIterator it(T2_, i); it; ++it) f(it.col());
+        for (RowSpMat::InnerIterator it(rows_.tangent2, i); it; ++it) f(it.col());
     }
   }
 
@@ -86,11 +96,15 @@ class D1MinusLinear final : public Integrator {
   bool cone_ = false;  // 3D contacts with friction: cone_contact_ instead of contact_
   ConeContact cone_contact_;
   Vec minv_;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> L_;
+  bool moving_ = false;
+  // L, T, T2 at U_k (the construction's for constant kinematics; with moving contacts
+  // evaluated at U_k: the rows P_1 acts along) and at U_{k+1} (the impact test's).
+  ContactGeometry rows_, rows_next_;
+  // gap_ = g(u), and rows at u for moving contacts (g0 + L u otherwise).
+  void evaluate_gaps(ConstVecRef u, ContactGeometry& rows);
   Vec f_ext_, a_now_, a_next_, f_int_, v1_, v_minus_, u_start_, gap_;
   StageImpulses p1_, p2_, impact_;
   bool friction_ = false;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> T_, T2_;
   bool started_ = false;
   bool closed_start_ = false;  // some contact closed at U_k (g <= 0)
 };

@@ -32,6 +32,7 @@ void ImplicitContact::bind(const Problem& problem, const SpMat& M, const Vec& u0
     T2_ = problem.contacts().tangent2;
     tangent2_responses_.bind(L_.rows());
   }
+  if (problem.contacts_move()) geometry_ = problem.contact_geometry();
   S_.bind(M, K_);  // S's pattern for every c, analysed now: a factor too large is refused up front
   chol_.analyze(S_.matrix(), fmt::format("integrator {}", who), "S");
 }
@@ -92,6 +93,21 @@ void ImplicitContact::solve_step(const Vec& u_hat, const Vec& f_ext, double c, b
       return;
     }
   }
+}
+
+const Vec& ImplicitContact::evaluate_contacts_at(ConstVecRef u) {
+  problem_->evaluate_contacts(u, geometry_);
+  L_ = geometry_.normal;
+  responses_.invalidate();
+  if (T_.rows() > 0) {
+    T_ = geometry_.tangent;
+    tangent_responses_.invalidate();
+  }
+  if (cone_) {
+    T2_ = geometry_.tangent2;
+    tangent2_responses_.invalidate();
+  }
+  return geometry_.gap;
 }
 
 const Vec& ImplicitContact::response(Index i) {

@@ -98,6 +98,12 @@ class ImplicitContact {
   // into `tangential2` (size p), which 2D contacts leave untouched.
   LcpResult correct_with_friction(const Vec& b, Vec& x, Vec& normal, Vec& tangential, Vec& tangential2,
                                   const std::vector<Index>& active);
+  // Moving contacts (Problem::contacts_move): the rows L, T, T2 the corrections use become
+  // L(u), T(u), T2(u) (values refilled in their pattern, the cached responses dropped);
+  // returns g(u). Only for a problem whose contacts move.
+  const Vec& evaluate_contacts_at(ConstVecRef u);
+  // The normal rows the corrections use (the construction's, or the last evaluate_contacts_at).
+  const ContactRows& normal_rows() const { return L_; }
 
  private:
   const Vec& response(Index contact);
@@ -125,6 +131,7 @@ class ImplicitContact {
   ContactRows T2_;
   ContactResponses tangent2_responses_;  // S^{-1} T2_i^T
   Vec mu_active_;
+  ContactGeometry geometry_;  // moving contacts: g, L, T, T2 at the last evaluate_contacts_at
 };
 
 // The Newton and LCP parameters (newton_tol, newton_max_iter, lcp_tol, lcp_max_iter) shared

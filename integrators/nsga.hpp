@@ -65,10 +65,24 @@
 // impact loses m g_grav g_k (g_k in [0, h |g'_k|], the height at the start of the step): O(h)
 // per impact, a loss Moreau-Jean (which leaves U at g_k) does not have. The energy so lost on
 // the hard study's bouncing mass: docs/measurements.md.
-// Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
-// (integrators/capabilities.hpp, one refusal wording): Capobianco et al. evaluate g and its
-// rows at the stage's positions (their method handles a nonlinear g); that evaluation, with
-// its Newton iteration on the rows, is not implemented here.
+// Moving contacts (Problem::contacts_move; capability "moving contacts"): g and its rows at
+// the positions where each level is enforced, as Chen, Acary, Virlez and Brüls (IJNME 96,
+// 2013: g(q_{n+1}) and g_q(q_{n+1}) inside their Newton iteration) and Capobianco et al.
+// (g_N(q_{n+1}), W_N(q_{n+1})) do:
+//     closing set:  g_i(Q_{k+1}) <= 0;
+//     position:     U_{k+1} = Q_{k+1} + S^{-1} L(U_{k+1})^T nu,  0 <= nu _|_ g(U_{k+1}) >= 0,
+//                   by Newton (Josephy) on the rows: from x_0 = Q_{k+1},
+//                   x_{j+1} = Q_{k+1} + S^{-1} L(x_j)^T nu_j,
+//                   0 <= nu_j _|_ g(x_j) + L(x_j) (x_{j+1} - x_j) >= 0   (one LCP per iterate),
+//                   stopped when |x_{j+1} - x_j|_inf <= newton_tol |x_{j+1} - Q_{k+1}|_inf
+//                   + 100 eps |x_{j+1}|_inf (the smooth step's test), at most newton_max_iter
+//                   iterates (then the step reports unconverged, counted in
+//                   work().extra["position_newton_unconverged"]);
+//     velocity:     rows L(U_{k+1}), T(U_{k+1}) for the jump, U_N = L(U_{k+1}) V_{k+1}
+//                   + e L(U_k) V_k (each rate at its own position, as Capobianco et al.'s
+//                   xi_N = gamma_N(q_{n+1}, u_{n+1}) + e gamma_N(q_n, u_n)).
+// The three problems stay sequential (difference (i) above). Constant kinematics: the rows of
+// the construction and one LCP for the position, as before.
 #include "integrators/implicit_contact.hpp"
 
 namespace nsb {
@@ -82,9 +96,15 @@ class Nsga final : public Integrator {
 
  private:
   StepInfo advance(double dt_requested) override;
+  // Moving contacts: the position correction by Newton on the rows (formula block above),
+  // q_ in: the smooth step's Q, out: U_{k+1}.
+  void correct_positions_on_moving_rows(StepInfo& info);
   double alpha_m_, alpha_f_, gamma_, beta_;
+  NewtonOptions newton_;
   ImplicitContact implicit_;
+  bool moving_ = false;
   Vec a_, abar_, abar_next_, u_pred_, u_hat_, q_, w_, nu_, f_ext_, b_;
+  Vec q_smooth_, q_previous_, offset_, restitution_rate_;  // moving contacts
   std::vector<Index> closing_;
 };
 
