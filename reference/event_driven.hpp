@@ -50,8 +50,12 @@
 // Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
 // (integrators/capabilities.hpp, one refusal wording): it locates impacts and releases by
 // root finding on g0 + L U(t) and integrates the constrained phases with L constant; locating
-// on g(U(t)) is cheap, but the constrained phases would need L(U) in their index reduction,
-// which is not implemented, so the reference declines rather than integrate frozen rows.
+// on g(U(t)) is cheap, but the constrained phases would need L(U) and the curvature term
+// (dL/dU [V]) V in their index reduction, which are not implemented, so the reference declines
+// rather than integrate frozen rows. It would run no case of the suite if it did: every
+// problem with moving contacts has friction (the rocking block's pivot must stick to rock, the
+// Painleve rod's jam is a friction effect, the blocks slide with mu), which this reference does
+// not treat (the capability "friction": a closed contact here holds the normal direction only).
 #include <memory>
 
 #include "integrators/integrator.hpp"
