@@ -269,3 +269,34 @@ TEST_CASE("draft bouncing-bar.toml: its table bouncing_bar's header and two of i
   CHECK(fresh[2][16] == "n/a");  // the declined row: its status, its measured cells empty
   CHECK(fresh[2][13].empty());
 }
+
+// reference.toml against the C++ study it is to replace (studies/reference.cpp): the same runs
+// in the same order, each with the C++ study's integrator, parameters (atol = rtol / 100 as the
+// C++ formats it) and swept value (tolerance or stiffness), every run at the 1e-3 s samples.
+TEST_CASE("reference.toml: the C++ study reference's runs, in its order, with its parameters", "[studies]") {
+  const nsb::StudySpec spec =
+      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "reference.toml");
+  const auto& registry = nsb::study_registry();
+  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "reference"; });
+  REQUIRE(cpp != registry.end());
+  REQUIRE(cpp->source == "studies/reference.cpp");
+  for (const bool full : {false, true}) {
+    INFO("full " << full);
+    const auto expected = nsb::study_cases(*cpp, {full});
+    const auto cases = nsb::study_cases(nsb::file_study(spec), {full});
+    REQUIRE(cases.size() == expected.size());
+    REQUIRE(cases.size() == 29);
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      INFO("case " << k << ": " << expected[k].dump());
+      const nsb::FileIntegrator& it = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
+      CHECK(spec.problems[cases[k]["problem"].get<std::size_t>()].name == "bouncing-mass");
+      CHECK(spec.problems[cases[k]["problem"].get<std::size_t>()].parameters == std::map<std::string, std::string>{{"e", "0.9"}});
+      CHECK(it.name == expected[k]["integrator"].get<std::string>());
+      CHECK(it.label == expected[k]["label"].get<std::string>());
+      CHECK(nsb::file_case_parameters(spec, cases[k]) == expected[k]["params"].get<std::map<std::string, std::string>>());
+      CHECK(cases[k]["tol"].get<double>() == expected[k]["x"].get<double>());
+      CHECK(cases[k]["dt"].get<double>() == 1e-3);
+      CHECK(spec.t_end_of(spec.problems[0]) == 3.0);
+    }
+  }
+}
