@@ -3,6 +3,7 @@
 // the C++ was deleted; now against what stays: the committed report's rows and the C++ study's
 // recorded sweep sizes.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -270,33 +271,62 @@ TEST_CASE("draft bouncing-bar.toml: its table bouncing_bar's header and two of i
   CHECK(fresh[2][13].empty());
 }
 
-// reference.toml against the C++ study it is to replace (studies/reference.cpp): the same runs
-// in the same order, each with the C++ study's integrator, parameters (atol = rtol / 100 as the
-// C++ formats it) and swept value (tolerance or stiffness), every run at the 1e-3 s samples.
-TEST_CASE("reference.toml: the C++ study reference's runs, in its order, with its parameters", "[studies]") {
-  const nsb::StudySpec spec =
-      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "reference.toml");
+// reference.toml's runs are those of the C++ study it replaced (studies/reference.cpp, whose case
+// list this file's equalled, default and --full, before it was deleted: commit ef9a78a), rebuilt
+// here as that study built them (kTolerances, kStiffness; atol = rtol / 100 formatted as it did),
+// and the rows of the committed reports. Its reports verify at --rtol 0 against the C++ study's:
+// nsbench-study reference --verify reports --rtol 0.
+TEST_CASE("built-in study reference: reference.toml's runs are the C++ study's and the committed reports' rows", "[studies]") {
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/reference.toml");
   const auto& registry = nsb::study_registry();
-  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "reference"; });
-  REQUIRE(cpp != registry.end());
-  REQUIRE(cpp->source == "studies/reference.cpp");
+  const auto study = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "reference"; });
+  REQUIRE(study != registry.end());
+  CHECK(study->source == "studies/builtin/reference.toml");
+  struct Run {
+    std::string integrator, label;
+    std::map<std::string, std::string> parameters;
+    double x;
+  };
+  const auto text = [](double x) { return fmt::format("{}", x); };
+  const std::vector<double> tolerances = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  std::vector<Run> expected;
+  for (const char* method : {"bdf", "adams"})
+    for (double tol : tolerances)
+      expected.push_back({"event-driven", fmt::format("event-driven {}", method), {{"method", method}, {"rtol", text(tol)}, {"atol", text(tol / 100)}}, tol});
+  for (double tol : tolerances) expected.push_back({"penalty-bdf", "penalty-bdf k=1e10", {{"rtol", text(tol)}, {"atol", text(tol / 100)}}, tol});
+  for (double k : {1e6, 1e7, 1e8, 1e9, 1e10})
+    expected.push_back({"penalty-bdf", "penalty-bdf", {{"stiffness", text(k)}, {"rtol", "1e-10"}, {"atol", "1e-14"}}, k});
   for (const bool full : {false, true}) {
     INFO("full " << full);
-    const auto expected = nsb::study_cases(*cpp, {full});
-    const auto cases = nsb::study_cases(nsb::file_study(spec), {full});
+    const auto cases = nsb::study_cases(*study, {full});
     REQUIRE(cases.size() == expected.size());
-    REQUIRE(cases.size() == 29);
     for (std::size_t k = 0; k < cases.size(); ++k) {
-      INFO("case " << k << ": " << expected[k].dump());
+      INFO("case " << k << ": " << expected[k].label << " " << expected[k].x);
+      const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
       const nsb::FileIntegrator& it = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
-      CHECK(spec.problems[cases[k]["problem"].get<std::size_t>()].name == "bouncing-mass");
-      CHECK(spec.problems[cases[k]["problem"].get<std::size_t>()].parameters == std::map<std::string, std::string>{{"e", "0.9"}});
-      CHECK(it.name == expected[k]["integrator"].get<std::string>());
-      CHECK(it.label == expected[k]["label"].get<std::string>());
-      CHECK(nsb::file_case_parameters(spec, cases[k]) == expected[k]["params"].get<std::map<std::string, std::string>>());
-      CHECK(cases[k]["tol"].get<double>() == expected[k]["x"].get<double>());
+      CHECK(p.name == "bouncing-mass");
+      CHECK(p.parameters == std::map<std::string, std::string>{{"e", "0.9"}});
+      CHECK(spec.t_end_of(p) == 3.0);
+      CHECK(it.name == expected[k].integrator);
+      CHECK(it.label == expected[k].label);
+      CHECK(nsb::file_case_parameters(spec, cases[k]) == expected[k].parameters);
+      CHECK(cases[k]["tol"].get<double>() == expected[k].x);
       CHECK(cases[k]["dt"].get<double>() == 1e-3);
-      CHECK(spec.t_end_of(spec.problems[0]) == 3.0);
     }
   }
+  // The committed reports: 24 rows of the tolerance sweeps (integrator, rtol), 5 of the penalty's (k).
+  const auto records = [](const std::string& id) {
+    std::ifstream in(std::filesystem::path(NSBENCH_SOURCE_DIR) / "reports" / (id + ".csv"));
+    std::stringstream csv;
+    csv << in.rdbuf();
+    return nsb::parse_csv(csv.str());
+  };
+  const auto tolerance = records("reference_tolerance"), penalty = records("reference_penalty");
+  REQUIRE(tolerance.size() == 25);
+  REQUIRE(penalty.size() == 6);
+  for (std::size_t r = 1; r < tolerance.size(); ++r) {
+    CHECK(tolerance[r][0] == expected[r - 1].label);
+    CHECK(std::stod(tolerance[r][1]) == expected[r - 1].x);
+  }
+  for (std::size_t r = 1; r < penalty.size(); ++r) CHECK(std::stod(penalty[r][0]) == expected[24 + r - 1].x);
 }
