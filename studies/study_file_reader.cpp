@@ -484,11 +484,10 @@ void read_momentum_component(const Checker& c, const Json& j, const std::string&
   m.label += " " + m.component;
 }
 
-// kind = "estimate": the observable (required: one of the problem's own, or kinetic, potential,
-// total_energy, min_gap) compared with the next run of the sweep, and the error law's `order`
-// (nonzero, finite).
-void read_next_run_estimate(const Checker& c, const Json& j, const std::string& path, FileMeasure& m, const StudySpec& spec,
-                            const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
+// A measure's required observable of the state: one of every problem `on`'s own, or kinetic,
+// potential, total_energy, min_gap (a problem with contacts).
+void read_state_observable(const Checker& c, const Json& j, const std::string& path, FileMeasure& m, const StudySpec& spec,
+                           const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
   m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
   for (const std::size_t p : on) {
     std::vector<std::string> valid = instances[p]->observable_names();
@@ -496,8 +495,16 @@ void read_next_run_estimate(const Checker& c, const Json& j, const std::string& 
     if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
     if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
       c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'", m.observable, spec.problems[p].label),
-             fmt::format("{} (or problems = [...])", fmt::join(valid, ", ")));
+             fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
   }
+}
+
+// kind = "estimate": the observable (required: one of the problem's own, or kinetic, potential,
+// total_energy, min_gap) compared with the next run of the sweep, and the error law's `order`
+// (nonzero, finite).
+void read_next_run_estimate(const Checker& c, const Json& j, const std::string& path, FileMeasure& m, const StudySpec& spec,
+                            const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
+  read_state_observable(c, j, path, m, spec, instances, on);
   if (const Json* v = c.find(j, "order")) {
     c.expect(*v, child(path, "order"), v->is_number(), "a number");
     m.order = v->get<double>();
@@ -569,17 +576,7 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
   std::vector<std::string> keys = own.at(kind);
   keys.insert(keys.end(), {"kind", "label", "problems"});
   c.keys(j, path, keys);
-  if (kind != "impact-count" && kind != "summary") {
-    m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
-    for (const std::size_t p : on) {
-      std::vector<std::string> valid = instances[p]->observable_names();
-      valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
-      if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
-      if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
-        c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'", m.observable, spec.problems[p].label),
-               fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
-    }
-  }
+  if (kind != "impact-count" && kind != "summary") read_state_observable(c, j, path, m, spec, instances, on);
   if (const Json* v = c.find(j, "exact")) m.exact = c.boolean(*v, child(path, "exact"));
   read_summary_name(c, j, path, kind, m, spec, instances, on);
   if (const Json* v = c.find(j, "law")) m.law = c.choice(*v, child(path, "law"), {"housner", "moreau"});
