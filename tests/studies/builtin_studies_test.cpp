@@ -14,6 +14,7 @@
 
 #include "integrators/registry.hpp"
 #include "problems/bouncing_bar.hpp"
+#include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
 #include "studies/registry.hpp"
 #include "studies/study_file.hpp"
@@ -329,4 +330,34 @@ TEST_CASE("built-in study reference: reference.toml's runs are the C++ study's a
     CHECK(std::stod(tolerance[r][1]) == expected[r - 1].x);
   }
   for (std::size_t r = 1; r < penalty.size(); ++r) CHECK(std::stod(penalty[r][0]) == expected[24 + r - 1].x);
+}
+
+// The draft studies/builtin/drafts/bouncing.toml against the C++ study it is to replace
+// (studies/bouncing.cpp), default and --full: the same runs in the same order (integrator, e,
+// dt), each to the C++ study's end (e < 1: Zeno time + 0.5 s; e = 1: the 6th impact + 0.1 s).
+TEST_CASE("draft bouncing.toml: the C++ study bouncing's runs, in its order, with its steps and end times", "[studies]") {
+  const nsb::StudySpec spec =
+      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bouncing.toml");
+  const auto& registry = nsb::study_registry();
+  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bouncing"; });
+  REQUIRE(cpp != registry.end());
+  REQUIRE(cpp->source == "studies/bouncing.cpp");
+  for (const bool full : {false, true}) {
+    INFO("full " << full);
+    const auto expected = nsb::study_cases(*cpp, {full});
+    const auto cases = nsb::study_cases(nsb::file_study(spec), {full});
+    REQUIRE(cases.size() == expected.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      INFO("case " << k << ": " << expected[k].dump());
+      const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+      const double e = expected[k]["e"].get<double>();
+      CHECK(spec.integrators[cases[k]["integrator"].get<std::size_t>()].name == expected[k]["integrator"].get<std::string>());
+      CHECK(spec.integrators[cases[k]["integrator"].get<std::size_t>()].sweep_for(p.label).parameters.empty());
+      CHECK(p.parameters == std::map<std::string, std::string>{{"e", fmt::format("{}", e)}});
+      CHECK(cases[k]["dt"].get<double>() == expected[k]["dt"].get<double>());
+      const auto problem = nsb::make_problem("bouncing-mass", p.parameters);
+      const auto& mass = dynamic_cast<const nsb::BouncingMass&>(*problem);
+      CHECK(spec.t_end_of(p, full) == (e < 1.0 ? mass.zeno_time() + 0.5 : mass.impact_time(6) + 0.1));
+    }
+  }
 }
