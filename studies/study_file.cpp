@@ -816,6 +816,15 @@ std::string file_result_damage(const StudySpec& spec, const Json& r) {
   if (r.contains("cpu") && !(r["cpu"].is_number() || r["cpu"].is_null())) return "cpu is not a number";
   for (const char* key : {"factorizations", "lcp_iterations"})
     if (r.contains(key) && !r[key].is_number_integer()) return fmt::format("{} is not an integer", key);
+  if (r.contains("samples")) {  // an estimate's samples: an array of numbers per estimate measure, by its index
+    const Json& samples = r["samples"];
+    if (!samples.is_object()) return "samples is not a table";
+    for (std::size_t m = 0; m < spec.measures.size(); ++m)
+      if (spec.measures[m].kind == MeasureKind::Estimate &&
+          !(samples.contains(std::to_string(m)) && samples[std::to_string(m)].is_array() &&
+            std::all_of(samples[std::to_string(m)].begin(), samples[std::to_string(m)].end(), [](const Json& x) { return x.is_number(); })))
+        return fmt::format("samples has no array of numbers for measure {}", m);
+  }
   if (r.contains("history")) {
     const Json& h = r["history"];
     if (!h.is_object() || !h.contains("t") || !h.contains("e") || !reals_or_null(h["t"]) || !reals_or_null(h["e"]) ||

@@ -316,7 +316,8 @@ Overrides file_case_parameters(const StudySpec& spec, const Json& c);
 // Why `result`, read back from a shard (--merge), is not one the file study's run_case returns
 // for `spec`: a key missing (status, message, steps, force_evaluations), values not an array of
 // one number (or null) per measure, cpu not a number, history not two arrays t and e of
-// numbers of the same length; empty when it is.
+// numbers of the same length, samples without an array of numbers per estimate measure; empty
+// when it is.
 std::string file_result_damage(const StudySpec& spec, const Json& result);
 
 // Writes <out>/<name>.study.<ext> (the file as read) and <out>/<name>.study.hash.

@@ -1967,6 +1967,13 @@ columns = ["integrator", "tol", "t located", "est", "est law", "rate of err", "s
   CHECK(std::get<long>(t.rows[0][7]) >= 0);
   CHECK(cell(0, 8) > 0.0);
   CHECK(cell(0, 9) == 1.0);
+  // A shard's run read back (--merge): its estimate samples an array of numbers per estimate measure.
+  CHECK(nsb::file_result_damage(spec, results[0]).empty());
+  nsb::Json damaged = results[0];
+  damaged["samples"]["2"] = "x";
+  CHECK(nsb::file_result_damage(spec, damaged) == "samples has no array of numbers for measure 2");
+  damaged["samples"] = nsb::Json::array();
+  CHECK(nsb::file_result_damage(spec, damaged) == "samples is not a table");
 
   CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 5e-3]\ntolerance_divisors = { atol = 100 }")),
              Catch::StartsWith("f.toml:12: integrator[0].tolerance_divisors: divisors of a tolerance without a tolerance sweep"));
