@@ -70,7 +70,7 @@ namespace {
 
 constexpr long kFrictionStepBudget = 20;   // F_int evaluations allowed per step of the requested size
 constexpr double kHardStep = 1e-3;
-const std::vector<double> kRankingTargets = {1e-2, 1e-3, 1e-4};  // [s]
+const std::vector<double> kFrictionRankingTargets = {1e-2, 1e-3, 1e-4};  // [s]
 // The disk's slip history: the coarsest step, where the schemes' steps are told apart.
 const std::string kFrictionTrajectoryCase = "disk";
 constexpr double kTrajectoryStep = 1e-2;
@@ -450,7 +450,7 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
   for (const auto& fc : kFrictionCases)
     if (fc.ranked)
       ranking.push_back({fc.problem + ", " + fc.label + (fc.group == FrictionGroup::Disk ? ": rolling onset" : ": stop time"),
-                         "the exact solution", 0.0, kRankingTargets, {}});
+                         "the exact solution", 0.0, kFrictionRankingTargets, {}});
   std::vector<std::string> ranked;
   for (const auto& fc : kFrictionCases)
     if (fc.ranked) ranked.push_back(fc.id);

@@ -8,7 +8,6 @@
 namespace nsb {
 
 extern const StudyEntry bouncing_study;
-extern const StudyEntry reference_study;
 extern const StudyEntry bar_study;
 extern const StudyEntry block_study;
 extern const StudyEntry peers_study;
@@ -54,7 +53,9 @@ const std::vector<StudyEntry>& study_registry() {
                          "studies/builtin/precision.toml"),
       builtin_file_study("energy", "long-time energy and momentum: fixed vs adaptive CD-Lagrange (all variants) vs Moreau-Jean",
                          "studies/builtin/energy.toml"),
-      cpp_study(reference_study, "studies/reference.cpp"),
+      builtin_file_study("reference",
+                         "SUNDIALS references (event-driven, penalty): tolerance and penalty sweeps against exact solutions",
+                         "studies/builtin/reference.toml"),
       cpp_study(bar_study, "studies/bar.cpp"),
       cpp_study(block_study, "studies/block.cpp"),
       cpp_study(peers_study, "studies/peers.cpp"),

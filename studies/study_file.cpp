@@ -281,6 +281,19 @@ class EnergyGrowth {
   Vec obstacle_speed_, u_prev_, f_ext_;
 };
 
+// A work counter of study.counters: Work::extra's entry of that name, or a sum "a + b" of
+// entries (one a scheme does not count adds 0: the event-driven reference's events and the
+// penalty reference's switches in one column); null where it counts none of them.
+Json work_counter(const std::map<std::string, double>& extra, const std::string& name) {
+  std::optional<double> sum;
+  for (std::size_t begin = 0; begin <= name.size();) {
+    const std::size_t end = std::min(name.find(" + ", begin), name.size());
+    if (const auto it = extra.find(name.substr(begin, end - begin)); it != extra.end()) sum = sum.value_or(0.0) + it->second;
+    begin = end + 3;
+  }
+  return sum ? real(*sum) : Json(nullptr);
+}
+
 // What every run reports besides its measures (the run columns of a declared case table and
 // the rows of its history tables): where it stopped, its contact phases (a phase after at least
 // the problem's min_flight without impulse) and the mode switches a scheme locates inside its
@@ -322,7 +335,7 @@ class RunFigures {
                     {"final_energy_error", real(std::abs(r.final_energy - r.initial_energy) / e_scale_)},
                     {"energy_scale", e_scale_}, {"note", r.message}, {"min_step", min_step_}, {"max_step", max_step_}};
     Json counters = Json::array();
-    for (const auto& name : spec_.counters) counters.push_back(extra(name));
+    for (const auto& name : spec_.counters) counters.push_back(work_counter(r.work.extra, name));
     figures["counters"] = counters;
     if (keeps_history_) {
       history_.finish();
@@ -487,7 +500,21 @@ struct Accumulator {
   std::optional<EventFigures> events;
   std::optional<MeshMomentum> mesh_momentum;  // a momentum measure's component
   std::vector<double> periodic;  // Energy with `every`: the error at each sample time from + k every
+  std::vector<double> samples;   // Estimate: the observable at each sample (compared with the next run's)
 };
+
+// An impact-time measure with `located`: max over the first `count` impacts the integrator
+// located itself (impacts and Zeno stops, each against the exact impact of its rank before
+// t_end) of |t_i - t_i exact|; NaN when it locates none (a time-stepping scheme).
+double located_impact_error(const Integrator& integrator, const Problem& problem, double t_end, int count) {
+  const auto located = events_of_kind(integrator.events(), {ContactEventKind::Impact, ContactEventKind::ZenoStop});
+  const std::vector<double> exact = problem.exact()->impact_times(t_end);
+  if (located.empty()) return kNaN;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < located.size() && i < exact.size() && i < static_cast<std::size_t>(count); ++i)
+    largest = std::max(largest, std::abs(located[i].t - exact[i]));
+  return largest;
+}
 
 // An energy measure with `every` after a step ending at t (nominal step dt): its error e at each
 // sample time t_k = from + k every (k = 1, 2, ..., t_k <= t_end) the step reaches, to half a step
@@ -554,8 +581,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const FileProblem& fp = spec.problems[c["problem"].get<std::size_t>()];
   const FileIntegrator& fi = spec.integrators[c["integrator"].get<std::size_t>()];
   auto problem = make_problem(fp.name, fp.parameters);
-  Overrides params = fi.sweep_for(fp.label).parameters;
-  if (!c["tol"].is_null()) params[fi.sweep_for(fp.label).tolerance_parameter] = fmt::format("{}", c["tol"].get<double>());
+  const Overrides params = file_case_parameters(spec, c);
   RunOptions options;
   options.dt = c["dt"];
   const double t_end = case_t_end(spec, fp, c);
@@ -655,6 +681,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
           a.scale = std::max(a.scale, std::abs(ref));
         }
         if (fm.scale > 0.0) e /= fm.scale;
+      } else if (fm.kind == MeasureKind::Estimate) {
+        if (inside) a.samples.push_back(state_observable(*problem, M, s, it.impulses(), step_dt, fm.observable, obs, &energy));
+        continue;
       } else if (fm.kind == MeasureKind::Hausdorff) {
         a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy));
       } else if (fm.kind == MeasureKind::Energy) {
@@ -702,7 +731,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   });
   Json out = {{"status", status_name(r.status)}, {"message", r.message}, {"steps", r.steps},
               {"force_evaluations", r.work.force_evaluations}, {"factorizations", r.work.factorizations},
-              {"lcp_iterations", r.work.lcp_iterations}};
+              {"lcp_iterations", r.work.lcp_iterations}, {"solver_steps", r.work.steps},
+              {"tangent_evaluations", r.work.tangent_evaluations}};
   out.update(figures.result(r, growth.largest() / e_scale));
   std::vector<const std::vector<double>*> periodic;
   for (std::size_t m = 0; m < acc.size(); ++m) periodic.push_back(on[m] && spec.measures[m].every > 0.0 ? &acc[m].periodic : nullptr);
@@ -739,6 +769,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
                                      : std::sqrt(a.square / (std::min(t_end, windows[m].second) - windows[m].first))) / scale;
         break;
       case MeasureKind::ImpactTime: {
+        if (fm.located) {
+          v = located_impact_error(*integrator, *problem, t_end, fm.count);
+          break;
+        }
         const auto exact = problem->exact() ? problem->exact()->impact_times(t_end) : std::vector<double>{};
         const std::size_t n = std::min<std::size_t>(fm.count, exact.size());
         const std::vector<double>& impacts = a.impacts.starts();
@@ -764,6 +798,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         v = a.mesh_momentum ? a.mesh_momentum->largest() / a.mesh_momentum->scale() : a.largest / scale;
         break;
       case MeasureKind::Penetration: v = r.max_penetration; break;
+      case MeasureKind::Estimate: break;  // compared with the next run by the tables
       default: v = a.events->result(*problem); break;
       case MeasureKind::StopTime:
       case MeasureKind::OnsetTime: {
@@ -783,7 +818,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     }
     values.push_back(real(v));
   }
-  out["values"] = values;
+  out["values"] = values;  // an estimate's: NaN until the tables compare it with the next run (with_next_run_estimates)
+  for (std::size_t m = 0; m < spec.measures.size(); ++m)
+    if (spec.measures[m].kind == MeasureKind::Estimate) out["samples"][std::to_string(m)] = reals(acc[m].samples);
   if (spec.cpu_repeats > 0) out["cpu"] = median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats);
   if (history_measure != spec.measures.end())
     out["history"] = {{"t", reals(history.times())}, {"e", reals(history.largest(0))}};
@@ -791,6 +828,16 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
 }
 
 }  // namespace
+
+Overrides file_case_parameters(const StudySpec& spec, const Json& c) {
+  const FileProblem& fp = spec.problems[c["problem"].get<std::size_t>()];
+  const FileSweep& sweep = spec.integrators[c["integrator"].get<std::size_t>()].sweep_for(fp.label);
+  Overrides params = sweep.parameters;
+  if (c["tol"].is_null()) return params;
+  params[sweep.tolerance_parameter] = fmt::format("{}", c["tol"].get<double>());
+  for (const auto& [name, divisor] : sweep.tolerance_divisors) params[name] = fmt::format("{}", c["tol"].get<double>() / divisor);
+  return params;
+}
 
 bool FileTable::applies_to(const std::string& problem_label) const {
   return problems.empty() || std::find(problems.begin(), problems.end(), problem_label) != problems.end();
@@ -815,6 +862,15 @@ std::string file_result_damage(const StudySpec& spec, const Json& r) {
   if (r.contains("cpu") && !(r["cpu"].is_number() || r["cpu"].is_null())) return "cpu is not a number";
   for (const char* key : {"factorizations", "lcp_iterations"})
     if (r.contains(key) && !r[key].is_number_integer()) return fmt::format("{} is not an integer", key);
+  if (r.contains("samples")) {  // an estimate's samples: an array of numbers per estimate measure, by its index
+    const Json& samples = r["samples"];
+    if (!samples.is_object()) return "samples is not a table";
+    for (std::size_t m = 0; m < spec.measures.size(); ++m)
+      if (spec.measures[m].kind == MeasureKind::Estimate &&
+          !(samples.contains(std::to_string(m)) && samples[std::to_string(m)].is_array() &&
+            std::all_of(samples[std::to_string(m)].begin(), samples[std::to_string(m)].end(), [](const Json& x) { return x.is_number(); })))
+        return fmt::format("samples has no array of numbers for measure {}", m);
+  }
   if (r.contains("history")) {
     const Json& h = r["history"];
     if (!h.is_object() || !h.contains("t") || !h.contains("e") || !reals_or_null(h["t"]) || !reals_or_null(h["e"]) ||
@@ -895,8 +951,13 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
   }
   const auto status = std::find_if(runs.columns.begin(), runs.columns.end(), [](const Column& c) { return c.name == "status"; });
   const std::size_t problem = column_index(runs, "problem");
+  // integrators = [...] (case rows only): the file's label of each run.
+  const std::size_t label = d.integrators.empty() ? 0 : column_index(runs, "integrator label");
   for (const auto& row : runs.rows) {
     if (!d.applies_to(std::get<std::string>(row[problem]))) continue;
+    if (!d.integrators.empty() &&
+        std::find(d.integrators.begin(), d.integrators.end(), std::get<std::string>(row[label])) == d.integrators.end())
+      continue;
     const bool blank = d.declined_blank && status != runs.columns.end() && declined(row[static_cast<std::size_t>(status - runs.columns.begin())]);
     std::vector<Cell> cells;
     const Cell none = d.declined_empty ? Cell(std::string()) : Cell{};
@@ -974,6 +1035,7 @@ const std::vector<Column>& run_columns() {
       {"note", "", "", "the run driver's message: why a run diverged, stopped or is n/a"},
       {"integrator name", "", "", "the registered integrator"},
       {"parameters", "", "", "the integrator's parameters set by the file (default: none)"},
+      {"integrator label", "", "", "the integrator's label in the file"},
       {"min step", "s", "{:.2e}", "smallest step taken"},
       {"max step", "s", "{:.2e}", "largest step taken"},
       {"CPU per step", "s", "{:.2e}", "CPU / steps: the cost of a step, observer excluded", true}};
@@ -1048,7 +1110,7 @@ std::vector<Cell> run_cells(const StudySpec& spec, const Json& c, const Json& r)
           r["status"].get<std::string>(), value("t_reached"), f.contains("impacts") ? Cell{f["impacts"].get<long>()} : Cell{},
           value("switches"), value("missed_switches"), spec.budget_of(p, c["dt"].get<double>(), t_end), value("max_penetration"), spec.max_penetration_of(p),
           value("energy_scale"), value("energy_growth"), spec.energy_blow_up_of(p), value("final_energy_error"),
-          f.contains("note") ? Cell{f["note"].get<std::string>()} : Cell{}, fi.name, parameters_text(fi, p.label),
+          f.contains("note") ? Cell{f["note"].get<std::string>()} : Cell{}, fi.name, parameters_text(fi, p.label), fi.label,
           value("min_step"), value("max_step"),
           r["steps"].get<long>() > 0 ? number_cell(real_or_nan(r, "cpu") / static_cast<double>(r["steps"].get<long>())) : Cell{}};
 }
@@ -1294,6 +1356,64 @@ std::vector<std::vector<std::size_t>> sweep_runs(const StudySpec& spec, const st
   return out;
 }
 
+// The columns of sweep_work_column_names: the solver's own steps and Jacobians (CVODE's counts,
+// which the driver's steps and F_int evaluations are not for the references), and each
+// converging measure's rate against the next run of the sweep.
+std::vector<Column> sweep_work_columns(const StudySpec& spec) {
+  std::vector<Column> columns = {{"solver steps", "", "{:.0f}", "the integrator's own steps (CVODE's internal steps)"},
+                                 {"Jacobians", "", "{:.0f}", "tangent (Jacobian) evaluations"}};
+  for (const auto& m : spec.measures)
+    if (measure_converges(m))
+      columns.push_back({"rate of " + m.label, "", "{:.2f}",
+                         "log(e / e') / log(x' / x) against the next run x' of the sweep (x: its step, tolerance or swept parameter)"});
+  return columns;
+}
+
+std::vector<Cell> sweep_work_cells(const StudySpec& spec, const Json& r) {
+  const auto count = [&](const char* key) { return r.contains(key) ? Cell{r[key].get<long>()} : Cell{}; };
+  std::vector<Cell> cells = {count("solver_steps"), count("tangent_evaluations")};
+  std::size_t k = 0;
+  for (const auto& m : spec.measures)
+    if (measure_converges(m)) cells.push_back(r.contains("next_rates") ? number_cell(r["next_rates"][k++]) : Cell{});
+  return cells;
+}
+
+// What compares a run with the next run of its sweep (the next step, tolerance or swept
+// parameter x'), when both are ok: each estimate measure's value, max over the common samples
+// of |o - o'| (divided by 1 - (x'/x)^q with its order q), and the rate of each converging
+// measure against it, observed_order(1/x, e, 1/x', e') (the order in 1/x: a stiffness's rate,
+// positive when the error falls as x grows). A run last in its sweep has neither.
+std::vector<Json> with_next_run_estimates(const StudySpec& spec, const std::vector<Json>& cases, std::vector<Json> results) {
+  const auto x_of = [&](std::size_t k) { return cases[k]["tol"].is_null() ? cases[k]["dt"].get<double>() : cases[k]["tol"].get<double>(); };
+  for (const std::vector<std::size_t>& sweep : sweep_runs(spec, cases))
+    for (std::size_t i = 0; i < sweep.size(); ++i) {
+      Json& r = results[sweep[i]];
+      const bool next = i + 1 < sweep.size() && results[sweep[i + 1]]["status"] == "ok" && r["status"] == "ok" && r.contains("values");
+      Json rates = Json::array();
+      for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+        const FileMeasure& fm = spec.measures[m];
+        if (!next) {
+          if (measure_converges(fm)) rates.push_back(nullptr);
+          continue;
+        }
+        const Json& n = results[sweep[i + 1]];
+        const double x = x_of(sweep[i]), x_next = x_of(sweep[i + 1]);
+        if (measure_converges(fm)) {
+          const auto e = [&](const Json& run) { return is_event_time(fm) ? real(run["values"][m]) : above_round_off(real(run["values"][m])); };
+          rates.push_back(real(observed_order(1.0 / x, e(r), 1.0 / x_next, e(n))));
+        }
+        if (fm.kind != MeasureKind::Estimate || !r.contains("samples") || !n.contains("samples")) continue;
+        const std::string key = std::to_string(m);
+        const auto a = r["samples"][key].get<std::vector<double>>(), b = n["samples"][key].get<std::vector<double>>();
+        double d = 0.0;
+        for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) d = std::max(d, std::abs(a[k] - b[k]));
+        r["values"][m] = real(fm.order != 0.0 ? d / (1.0 - std::pow(x_next / x, fm.order)) : d);
+      }
+      r["next_rates"] = rates;
+    }
+  return results;
+}
+
 std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& cases, const std::vector<Json>& results) {
   const std::vector<std::pair<std::string, std::string>> meta = {
       {"study", spec.name}, {"study_file", spec.file}, {"study_file_fnv1a64", spec.hash}, {"t_end", fmt::format("{}", spec.t_end)}};
@@ -1398,8 +1518,9 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   for (const auto& m : spec.measures)
     if (measure_converges(m)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
   counters.insert(counters.end(), run_columns().begin(), run_columns().end());
-  const std::vector<Column> own = study_run_columns(spec);
+  const std::vector<Column> own = study_run_columns(spec), work = sweep_work_columns(spec);
   counters.insert(counters.end(), own.begin(), own.end());
+  counters.insert(counters.end(), work.begin(), work.end());
   std::vector<std::vector<Cell>> counter_rows;
   std::vector<std::size_t> case_row(cases.size());  // each case's row in t
   for (const std::vector<std::size_t>& sweep : sweep_runs(spec, cases)) {
@@ -1436,9 +1557,11 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
         const auto e = [&](std::size_t j) { return is_event_time(spec.measures[m]) ? ys[m][j] : above_round_off(ys[m][j]); };
         more.push_back(i ? number_cell(observed_order(xs[i - 1], e(i - 1), xs[i], e(i))) : Cell{});
       }
-      const std::vector<Cell> run = run_cells(spec, cases[k], r), study = study_run_cells(spec, cases[k], r);
+      const std::vector<Cell> run = run_cells(spec, cases[k], r), study = study_run_cells(spec, cases[k], r),
+                              work = sweep_work_cells(spec, r);
       more.insert(more.end(), run.begin(), run.end());
       more.insert(more.end(), study.begin(), study.end());
+      more.insert(more.end(), work.begin(), work.end());
       counter_rows.push_back(std::move(more));
       // A declined run is no point; a run an outcome threshold removed (its values kept: energy
       // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
@@ -1513,6 +1636,8 @@ const std::vector<std::string>& history_column_names() {
   return names;
 }
 
+std::vector<std::string> sweep_work_column_names(const StudySpec& spec) { return column_names(sweep_work_columns(spec)); }
+
 const std::vector<std::string>& samples_column_names() {
   static const std::vector<std::string> names = column_names(samples_columns());
   return names;
@@ -1543,7 +1668,7 @@ StudyEntry file_study(const StudySpec& spec) {
   e.cases = [spec](const StudyOptions& options) { return file_cases(spec, options.full); };
   e.run_case = [spec](const Json& c) { return run_file_case(spec, c); };
   e.tables = [spec](const std::vector<Json>& cases, const std::vector<Json>& results, const StudyOptions&) {
-    return file_tables(spec, cases, results);
+    return file_tables(spec, cases, with_next_run_estimates(spec, cases, results));
   };
   return e;
 }

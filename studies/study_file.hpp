@@ -71,6 +71,8 @@ struct FileSweep {
   std::vector<double> stable_fractions;
   std::vector<double> tolerances;
   std::string tolerance_parameter = "rtol";
+  // Parameters set with each tolerance to tolerance / divisor (atol = rtol / 100), by name.
+  std::map<std::string, double> tolerance_divisors;
   double dt = 0.0;
 };
 
@@ -81,8 +83,9 @@ struct FileIntegrator {
   const FileSweep& sweep_for(const std::string& problem_label) const;
 };
 
+// The kinds from ImpactRatio on are the measures of an observable's events (EventFigures).
 enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime, FlightEnergy,
-                         ImpactRatio, Amplitude, ImpactCount, RestTime, PeakTime, Value, Summary };
+                         Estimate, ImpactRatio, Amplitude, ImpactCount, RestTime, PeakTime, Value, Summary };
 
 struct FileMeasure {
   MeasureKind kind = MeasureKind::Error;
@@ -95,6 +98,13 @@ struct FileMeasure {
   // Error: final|max|l2|rms|step rms; Energy: max|final|final abs|drift|offset; FlightEnergy: max|count
   std::string norm = "max";
   int count = 3;                 // ImpactTime, FlightEnergy: the first `count` impacts (flights)
+  // ImpactTime: the impact times the integrator locates itself (Integrator::events(), impacts
+  // and Zeno stops: the event-driven reference), not the steps' ends; n/a where it locates none.
+  bool located = false;
+  // Estimate: max over the samples of |o - o'| against the next run of the same sweep (its
+  // next tolerance, step or swept parameter x'); with `order` q (error ~ x^q) divided by
+  // 1 - (x'/x)^q, the run's own error when that law holds.
+  double order = 0.0;
   // Energy: errors relative to the energy after the first step E_1 ((E - E_1) / |E_1|), not E0.
   bool from_first_step = false;
   // Momentum: the residual divided by sum_i m_i |v0_i| (nonzero when the total momentum is),
@@ -191,6 +201,8 @@ struct FileTable {
   // as n/a, only what was asked kept (declined = "n/a"), or empty (declined = "empty": no text
   // at all, as a table built by hand leaves them); by default as the run reports them (0).
   bool declined_blank = false, declined_empty = false;
+  // case: the labels of the integrators whose runs it shows (empty: all).
+  std::vector<std::string> integrators;
   bool applies_to(const std::string& problem_label) const;
   // rows = "ranking" (the first such table): its error column's header, unit, format and
   // description (`of` unused), and the number format of dt or tol in its runs cells.
@@ -298,6 +310,10 @@ const std::vector<std::string>& history_column_names();
 const std::vector<std::string>& samples_column_names();
 const std::vector<std::string>& periodic_column_names();
 const std::vector<std::string>& trajectory_column_names();
+// The columns of a declared case table that compare a run with the next run of its sweep or
+// count the solver's own work: "solver steps", "Jacobians" and, for each converging measure,
+// "rate of <label>".
+std::vector<std::string> sweep_work_column_names(const StudySpec& spec);
 // The problems' parameters a declared case, history or samples table may show: "parameter NAME" for each parameter
 // of each problem (the first problem's order first); a problem without it shows an empty cell.
 std::vector<std::string> parameter_column_names(const StudySpec& spec);
@@ -314,10 +330,15 @@ StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, lo
 // The study as the driver runs it.
 StudyEntry file_study(const StudySpec& spec);
 
+// The integrator's parameters of a case of the study: its sweep's on the case's problem, with a
+// tolerance sweep's tolerance and the parameters divided from it (tolerance_divisors).
+Overrides file_case_parameters(const StudySpec& spec, const Json& c);
+
 // Why `result`, read back from a shard (--merge), is not one the file study's run_case returns
 // for `spec`: a key missing (status, message, steps, force_evaluations), values not an array of
 // one number (or null) per measure, cpu not a number, history not two arrays t and e of
-// numbers of the same length; empty when it is.
+// numbers of the same length, samples without an array of numbers per estimate measure; empty
+// when it is.
 std::string file_result_damage(const StudySpec& spec, const Json& result);
 
 // Writes <out>/<name>.study.<ext> (the file as read) and <out>/<name>.study.hash.

@@ -272,6 +272,32 @@ std::vector<double> stable_fractions(const Checker& c, const Json& j, const std:
   return v;
 }
 
+// tolerance_divisors = { atol = 100 }: real parameters of the integrator, other than the swept
+// one, set with each tolerance to tolerance / divisor (divisor > 0; each value in its range).
+void read_tolerance_divisors(const Checker& c, const Json& j, const std::string& path, const IntegratorEntry& entry, FileSweep& s) {
+  const Json* v = c.find(j, "tolerance_divisors");
+  if (!v) return;
+  const std::string at = child(path, "tolerance_divisors");
+  if (s.tolerances.empty()) c.fail(at, "divisors of a tolerance without a tolerance sweep", "tolerances = [...] beside it");
+  c.expect(*v, at, v->is_object(), "a table of parameter = divisor");
+  const auto specs = entry.parameters();
+  std::vector<std::string> reals;
+  for (const auto& p : specs)
+    if (p.kind == ParamSpec::Kind::Real && p.name != s.tolerance_parameter) reals.push_back(p.name);
+  c.keys(*v, at, reals);
+  s.tolerance_divisors.clear();
+  for (const auto& [name, d] : v->items()) {
+    const double divisor = c.positive(d, child(at, name));
+    const auto spec = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& p) { return p.name == name; });
+    for (double tol : s.tolerances) try {
+        spec->validate(fmt::format("{}", tol / divisor));
+      } catch (const InputError& e) {
+        c.fail(child(at, name), fmt::format("tolerance {:g} / {:g}: {}", tol, divisor, e.what()), spec->range_text());
+      }
+    s.tolerance_divisors[name] = divisor;
+  }
+}
+
 // An integrator's sweep (`base`: its own, under a per_problem table). Empty: the problems' steps
 // serve it (sweep_from_problems).
 FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, const IntegratorEntry& entry,
@@ -316,6 +342,7 @@ FileSweep read_sweep(const Checker& c, const Json& j, const std::string& path, c
         c.fail(element(child(path, "tolerances"), i), e.what(), spec->range_text());
       }
   }
+  read_tolerance_divisors(c, j, path, entry, s);
   return s;
 }
 
@@ -457,6 +484,36 @@ void read_momentum_component(const Checker& c, const Json& j, const std::string&
   m.label += " " + m.component;
 }
 
+// A measure's required observable of the state: one of every problem `on`'s own, or kinetic,
+// potential, total_energy, min_gap (a problem with contacts).
+void read_state_observable(const Checker& c, const Json& j, const std::string& path, FileMeasure& m, const StudySpec& spec,
+                           const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
+  m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
+  for (const std::size_t p : on) {
+    std::vector<std::string> valid = instances[p]->observable_names();
+    valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
+    if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
+    if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
+      c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'", m.observable, spec.problems[p].label),
+             fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
+  }
+}
+
+// kind = "estimate": the observable (required: one of the problem's own, or kinetic, potential,
+// total_energy, min_gap) compared with the next run of the sweep, and the error law's `order`
+// (nonzero, finite).
+void read_next_run_estimate(const Checker& c, const Json& j, const std::string& path, FileMeasure& m, const StudySpec& spec,
+                            const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
+  read_state_observable(c, j, path, m, spec, instances, on);
+  if (const Json* v = c.find(j, "order")) {
+    c.expect(*v, child(path, "order"), v->is_number(), "a number");
+    m.order = v->get<double>();
+    if (m.order == 0.0 || !std::isfinite(m.order))
+      c.fail(child(path, "order"), fmt::format("{} is no order of an error law x^q", m.order), "a finite nonzero number (e.g. -0.5: error ~ k^-1/2)");
+  }
+  m.label = fmt::format("est {}", m.observable);
+}
+
 // An error measure's `against`: it and the measured observable both the problem's own
 // observables (not u, v or the generic columns), the two distinct.
 void check_against(const Checker& c, const std::string& path, const FileMeasure& m, const std::vector<std::string>& names,
@@ -519,17 +576,7 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
   std::vector<std::string> keys = own.at(kind);
   keys.insert(keys.end(), {"kind", "label", "problems"});
   c.keys(j, path, keys);
-  if (kind != "impact-count" && kind != "summary") {
-    m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
-    for (const std::size_t p : on) {
-      std::vector<std::string> valid = instances[p]->observable_names();
-      valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
-      if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
-      if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
-        c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'", m.observable, spec.problems[p].label),
-               fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
-    }
-  }
+  if (kind != "impact-count" && kind != "summary") read_state_observable(c, j, path, m, spec, instances, on);
   if (const Json* v = c.find(j, "exact")) m.exact = c.boolean(*v, child(path, "exact"));
   read_summary_name(c, j, path, kind, m, spec, instances, on);
   if (const Json* v = c.find(j, "law")) m.law = c.choice(*v, child(path, "law"), {"housner", "moreau"});
@@ -738,6 +785,8 @@ std::vector<std::string> table_sources(const std::string& rows, const StudySpec&
     const auto& run = run_column_names();
     sources.insert(sources.end(), run.begin(), run.end());
     sources.insert(sources.end(), spec.counters.begin(), spec.counters.end());
+    const auto work = sweep_work_column_names(spec);
+    sources.insert(sources.end(), work.begin(), work.end());
   } else if (rows == "group") {
     for (const auto& m : measures)
       if (measure_converges(m))
@@ -849,6 +898,18 @@ void check_trajectory_observables(const Checker& c, const StudySpec& spec, const
   }
 }
 
+// A case table's integrators = [labels]: the runs of those integrators only.
+void read_table_integrators(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
+  const Json* v = c.find(j, "integrators");
+  if (!v) return;
+  const std::string at = child(path, "integrators");
+  if (t.rows != "case") c.fail(at, "only a table of one row per run picks its integrators' runs", "rows = \"case\"");
+  c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more integrator labels");
+  std::vector<std::string> labels;
+  for (const auto& it : spec.integrators) labels.push_back(it.label);
+  for (std::size_t k = 0; k < v->size(); ++k) t.integrators.push_back(c.choice((*v)[k], element(at, k), labels));
+}
+
 // [[table]]: the tables the study writes instead of the engine's own.
 std::vector<FileTable> read_tables(const Checker& c, const Json& root, const StudySpec& spec) {
   std::vector<FileTable> tables;
@@ -857,8 +918,8 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Json& j = list[i];
     const std::string path = element("table", i);
-    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined", "where",
-                     "drop_above", "across", "measure", "observable", "exact", "last", "points"});
+    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined", "integrators",
+                     "where", "drop_above", "across", "measure", "observable", "exact", "last", "points"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
@@ -884,6 +945,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
         if (t.rows == "group" && !p.family.empty() && std::find(labels.begin(), labels.end(), p.family) == labels.end()) labels.push_back(p.family);
       for (std::size_t k = 0; k < v->size(); ++k) t.problems.push_back(c.choice((*v)[k], element(at, k), labels));
     }
+    read_table_integrators(c, j, path, spec, t);
     if (t.rows == "ranking") {
       if (c.find(j, "columns")) c.fail(child(path, "columns"), "a ranking's columns are fixed", "no columns key with rows = \"ranking\"");
       if (spec.ranked >= spec.measures.size()) c.fail(child(path, "rows"), "the study has no measure to rank by", "case, group");
@@ -1229,7 +1291,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   // [[integrator]] tables name: in its place, the tables' variants, in their order.
   std::vector<FileIntegrator> declared;
   const Json& integrators = all_integrators && !c.find(root, "integrator") ? Json::array() : list("integrator");
-  const std::vector<std::string> sweep_keys{"parameters", "steps", "full_steps", "stable_steps", "tolerances", "tolerance_parameter", "dt"};
+  const std::vector<std::string> sweep_keys{"parameters", "steps", "full_steps", "stable_steps", "tolerances", "tolerance_parameter",
+                                           "tolerance_divisors", "dt"};
   for (std::size_t i = 0; i < integrators.size(); ++i) {
     const Json& j = integrators[i];
     const std::string path = element("integrator", i);
@@ -1293,7 +1356,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   // A study of declared tables may show its runs' own figures alone (outcome, steps, histories).
   const Json& measures = c.find(root, "measure") || !c.find(root, "table") ? list("measure") : Json::array();
   const std::vector<std::string> kinds{"error",        "impact-time", "energy",      "momentum",     "penetration",
-                                       "hausdorff",    "stop-time",   "onset-time",  "flight-energy", "impact-ratio",
+                                       "hausdorff",    "stop-time",   "onset-time",  "flight-energy", "estimate", "impact-ratio",
                                        "amplitude",    "impact-count", "rest-time",  "peak-time",    "value",
                                        "summary"};
   std::vector<std::string> problem_labels;
@@ -1370,8 +1433,9 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
                 : m.against.empty() ? fmt::format("err {} {}", m.observable, m.norm)
                                     : fmt::format("err {} {} against {}", m.observable, m.norm, m.against);
     } else if (m.kind == MeasureKind::ImpactTime) {
-      keys({"count"});
+      keys({"count", "located"});
       if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));
+      if (const Json* v = c.find(j, "located")) m.located = c.boolean(*v, child(path, "located"));
       for (const std::size_t p : on)
         if (!instances[p]->exact() || instances[p]->exact()->impact_times(spec.t_end_of(spec.problems[p])).empty())
           c.fail(child(path, "kind"), fmt::format("problem '{}' knows no impact times before t_end", spec.problems[p].label),
@@ -1396,6 +1460,9 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       read_energy_sampling(c, j, path, m);
       if (m.from_first_step && m.norm == "offset")
         c.fail(child(path, "relative_to"), "the offset is E_1 - E0 relative to E0's scale", "relative_to = \"initial\" with norm = \"offset\"");
+    } else if (m.kind == MeasureKind::Estimate) {
+      keys({"observable", "order"});
+      read_next_run_estimate(c, j, path, m, spec, instances, on);
     } else if (m.kind == MeasureKind::FlightEnergy) {
       read_flight_energy(c, j, path, spec, on, instances, m);
       keys({"count", "norm"});

@@ -3,6 +3,7 @@
 // the C++ was deleted; now against what stays: the committed report's rows and the C++ study's
 // recorded sweep sizes.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 
 #include "integrators/registry.hpp"
 #include "problems/bouncing_bar.hpp"
+#include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
 #include "studies/registry.hpp"
 #include "studies/study_file.hpp"
@@ -320,5 +322,95 @@ TEST_CASE("built-in study bouncing-bar: its tables' cd-lagrange rows equal the c
     const auto now = fresh_csv(id);
     CHECK(expected.size() == (std::string(id) == "bouncing_bar_dep" ? 2u : std::string(id) == "bouncing_bar_energy" ? 41u : 1605u));
     CHECK(now == expected);
+  }
+}
+
+// reference.toml's runs are those of the C++ study it replaced (studies/reference.cpp, whose case
+// list this file's equalled, default and --full, before it was deleted: commit ef9a78a), rebuilt
+// here as that study built them (kTolerances, kStiffness; atol = rtol / 100 formatted as it did),
+// and the rows of the committed reports. Its reports verify at --rtol 0 against the C++ study's:
+// nsbench-study reference --verify reports --rtol 0.
+TEST_CASE("built-in study reference: reference.toml's runs are the C++ study's and the committed reports' rows", "[studies]") {
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/reference.toml");
+  const auto& registry = nsb::study_registry();
+  const auto study = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "reference"; });
+  REQUIRE(study != registry.end());
+  CHECK(study->source == "studies/builtin/reference.toml");
+  struct Run {
+    std::string integrator, label;
+    std::map<std::string, std::string> parameters;
+    double x;
+  };
+  const auto text = [](double x) { return fmt::format("{}", x); };
+  const std::vector<double> tolerances = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  std::vector<Run> expected;
+  for (const char* method : {"bdf", "adams"})
+    for (double tol : tolerances)
+      expected.push_back({"event-driven", fmt::format("event-driven {}", method), {{"method", method}, {"rtol", text(tol)}, {"atol", text(tol / 100)}}, tol});
+  for (double tol : tolerances) expected.push_back({"penalty-bdf", "penalty-bdf k=1e10", {{"rtol", text(tol)}, {"atol", text(tol / 100)}}, tol});
+  for (double k : {1e6, 1e7, 1e8, 1e9, 1e10})
+    expected.push_back({"penalty-bdf", "penalty-bdf", {{"stiffness", text(k)}, {"rtol", "1e-10"}, {"atol", "1e-14"}}, k});
+  for (const bool full : {false, true}) {
+    INFO("full " << full);
+    const auto cases = nsb::study_cases(*study, {full});
+    REQUIRE(cases.size() == expected.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      INFO("case " << k << ": " << expected[k].label << " " << expected[k].x);
+      const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+      const nsb::FileIntegrator& it = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
+      CHECK(p.name == "bouncing-mass");
+      CHECK(p.parameters == std::map<std::string, std::string>{{"e", "0.9"}});
+      CHECK(spec.t_end_of(p) == 3.0);
+      CHECK(it.name == expected[k].integrator);
+      CHECK(it.label == expected[k].label);
+      CHECK(nsb::file_case_parameters(spec, cases[k]) == expected[k].parameters);
+      CHECK(cases[k]["tol"].get<double>() == expected[k].x);
+      CHECK(cases[k]["dt"].get<double>() == 1e-3);
+    }
+  }
+  // The committed reports: 24 rows of the tolerance sweeps (integrator, rtol), 5 of the penalty's (k).
+  const auto records = [](const std::string& id) {
+    std::ifstream in(std::filesystem::path(NSBENCH_SOURCE_DIR) / "reports" / (id + ".csv"));
+    std::stringstream csv;
+    csv << in.rdbuf();
+    return nsb::parse_csv(csv.str());
+  };
+  const auto tolerance = records("reference_tolerance"), penalty = records("reference_penalty");
+  REQUIRE(tolerance.size() == 25);
+  REQUIRE(penalty.size() == 6);
+  for (std::size_t r = 1; r < tolerance.size(); ++r) {
+    CHECK(tolerance[r][0] == expected[r - 1].label);
+    CHECK(std::stod(tolerance[r][1]) == expected[r - 1].x);
+  }
+  for (std::size_t r = 1; r < penalty.size(); ++r) CHECK(std::stod(penalty[r][0]) == expected[24 + r - 1].x);
+}
+
+// The draft studies/builtin/drafts/bouncing.toml against the C++ study it is to replace
+// (studies/bouncing.cpp), default and --full: the same runs in the same order (integrator, e,
+// dt), each to the C++ study's end (e < 1: Zeno time + 0.5 s; e = 1: the 6th impact + 0.1 s).
+TEST_CASE("draft bouncing.toml: the C++ study bouncing's runs, in its order, with its steps and end times", "[studies]") {
+  const nsb::StudySpec spec =
+      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bouncing.toml");
+  const auto& registry = nsb::study_registry();
+  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bouncing"; });
+  REQUIRE(cpp != registry.end());
+  REQUIRE(cpp->source == "studies/bouncing.cpp");
+  for (const bool full : {false, true}) {
+    INFO("full " << full);
+    const auto expected = nsb::study_cases(*cpp, {full});
+    const auto cases = nsb::study_cases(nsb::file_study(spec), {full});
+    REQUIRE(cases.size() == expected.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      INFO("case " << k << ": " << expected[k].dump());
+      const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+      const double e = expected[k]["e"].get<double>();
+      CHECK(spec.integrators[cases[k]["integrator"].get<std::size_t>()].name == expected[k]["integrator"].get<std::string>());
+      CHECK(spec.integrators[cases[k]["integrator"].get<std::size_t>()].sweep_for(p.label).parameters.empty());
+      CHECK(p.parameters == std::map<std::string, std::string>{{"e", fmt::format("{}", e)}});
+      CHECK(cases[k]["dt"].get<double>() == expected[k]["dt"].get<double>());
+      const auto problem = nsb::make_problem("bouncing-mass", p.parameters);
+      const auto& mass = dynamic_cast<const nsb::BouncingMass&>(*problem);
+      CHECK(spec.t_end_of(p, full) == (e < 1.0 ? mass.zeno_time() + 0.5 : mass.impact_time(6) + 0.1));
+    }
   }
 }

@@ -1871,3 +1871,116 @@ TEST_CASE("study file: a fixed error scale, the rms norms, inside and declined =
   CHECK_THAT(study_error_of(replaced(text, "declined = \"empty\"", "declined = \"blank\"")),
              StartsWith("f.toml:55: table[0].declined: 'blank' is not valid (nearest: ") && Catch::Contains("valid: as run, n/a, empty"));
 }
+
+// The features the built-in study reference needs (studies/builtin/reference.toml): a tolerance
+// sweep that sets atol = rtol / 100, impact times the integrator locates itself, a run's own
+// error estimate against the next run of its sweep (plain and under an error law x^q), the rate
+// against the next run, the solver's own steps and Jacobians, a sum of work counters, and a
+// table of some integrators' runs. The bouncing mass (e = 0.9, h0 = 1) to t = 1 s has one
+// exact impact, at 0.4515 s.
+TEST_CASE("study file: tolerance divisors, located impacts, next-run estimates and rates, solver counts, counter sums",
+          "[studies][study_file]") {
+  const std::string text = R"([study]
+title = "t"
+t_end = 1.0
+cpu_repeats = 0
+figures = "declared"
+counters = ["root_evaluations", "events + switches"]
+
+[[problem]]
+name = "bouncing-mass"
+parameters = { e = 0.9 }
+
+[[integrator]]
+name = "event-driven"
+label = "ed"
+tolerances = [1e-4, 1e-6]
+tolerance_divisors = { atol = 100 }
+dt = 1e-2
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2, 1e-3]
+
+[[measure]]
+kind = "impact-time"
+label = "t located"
+located = true
+
+[[measure]]
+kind = "estimate"
+label = "est"
+observable = "q"
+
+[[measure]]
+kind = "estimate"
+label = "est law"
+observable = "q"
+order = 1
+
+[[measure]]
+kind = "error"
+label = "err"
+observable = "q"
+against = "q_exact"
+scale = 1.0
+
+[[table]]
+id = "runs"
+title = "runs"
+integrators = ["ed"]
+columns = ["integrator", "tol", "t located", "est", "est law", "rate of err", "solver steps", "Jacobians", "root_evaluations",
+           "events + switches", "err"]
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "r.toml", false);
+  const auto cases = nsb::study_cases(nsb::file_study(spec), {});
+  REQUIRE(cases.size() == 4);
+  CHECK(nsb::file_case_parameters(spec, cases[0]) == std::map<std::string, std::string>{{"rtol", "0.0001"}, {"atol", "1e-06"}});
+  CHECK(nsb::file_case_parameters(spec, cases[1]) == std::map<std::string, std::string>{{"rtol", "1e-06"}, {"atol", "1e-08"}});
+  CHECK(nsb::file_case_parameters(spec, cases[2]).empty());
+  std::vector<nsb::Json> results;
+  const auto tables = run_all(spec, &results);
+  REQUIRE(tables.size() == 1);
+  const nsb::Table& t = tables[0];
+  REQUIRE(t.rows.size() == 2);  // the ed runs alone
+  const auto cell = [&](std::size_t row, std::size_t col) { return std::get<double>(t.rows[row][col]); };
+  // The located impact: the event-driven reference finds it to its tolerance; cd-lagrange locates none (n/a).
+  CHECK(cell(0, 2) < 1e-5);
+  CHECK(cell(1, 2) < cell(0, 2));
+  CHECK(results[2]["values"][0].is_null());
+  // The estimate: max |q(1e-4) - q(1e-6)| over the 100 samples; under the law x^1 divided by 1 - 1e-2.
+  const auto a = results[0]["samples"]["1"].get<std::vector<double>>(), b = results[1]["samples"]["1"].get<std::vector<double>>();
+  REQUIRE(a.size() == 100);
+  REQUIRE(b.size() == 100);
+  double d = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) d = std::max(d, std::abs(a[k] - b[k]));
+  CHECK(d > 0.0);
+  CHECK(cell(0, 3) == d);
+  CHECK(cell(0, 4) == d / (1.0 - 1e-2));
+  // The rate of err against the next run, in 1/tol: log(e / e') / log(tol' / tol).
+  CHECK(cell(0, 5) == Approx(std::log(cell(0, 10) / cell(1, 10)) / std::log(1e-6 / 1e-4)).epsilon(1e-12));
+  // The last run of its sweep has no next run.
+  for (std::size_t col : {3, 4, 5}) CHECK(std::holds_alternative<std::monostate>(t.rows[1][col]));
+  // CVODE's own steps (not the 100 output steps), its Jacobians, roots, and the one impact as events.
+  CHECK(std::get<long>(t.rows[0][6]) > 0);
+  CHECK(std::get<long>(t.rows[0][6]) != 100);
+  CHECK(std::get<long>(t.rows[0][7]) >= 0);
+  CHECK(cell(0, 8) > 0.0);
+  CHECK(cell(0, 9) == 1.0);
+  // A shard's run read back (--merge): its estimate samples an array of numbers per estimate measure.
+  CHECK(nsb::file_result_damage(spec, results[0]).empty());
+  nsb::Json damaged = results[0];
+  damaged["samples"]["2"] = "x";
+  CHECK(nsb::file_result_damage(spec, damaged) == "samples has no array of numbers for measure 2");
+  damaged["samples"] = nsb::Json::array();
+  CHECK(nsb::file_result_damage(spec, damaged) == "samples is not a table");
+
+  CHECK_THAT(study_error_of(replaced(kMinimal, "steps = [1e-2, 5e-3]", "steps = [1e-2, 5e-3]\ntolerance_divisors = { atol = 100 }")),
+             Catch::StartsWith("f.toml:12: integrator[0].tolerance_divisors: divisors of a tolerance without a tolerance sweep"));
+  CHECK_THAT(study_error_of(replaced(text, "order = 1", "order = 0")),
+             Catch::StartsWith("f.toml:37: measure[2].order: 0 is no order of an error law x^q"));
+  CHECK_THAT(study_error_of(replaced(text, "integrators = [\"ed\"]", "integrators = [\"ef\"]")),
+             Catch::StartsWith("f.toml:49: table[0].integrators[0]: 'ef' is not valid (nearest: ed); valid: ed, cd-lagrange"));
+  CHECK_THAT(study_error_of(replaced(text, "atol = 100", "atol = 1e-300")),
+             Catch::StartsWith("f.toml:16: integrator[0].tolerance_divisors.atol: tolerance 0.0001 / 1e-300: parameter 'atol' = 1e+296 is outside its valid range (0, 1]; valid: (0, 1]"));
+}
