@@ -62,9 +62,8 @@ constexpr double kBlockSamplePeriod = 0.01;  // y_c sampling period [s]
 const std::vector<double> kBlockRankingTargets = {1e-3, 1e-4, 3e-5, 1e-5};  // y_c error [m]
 constexpr double kDetailDt = 1e-4;  // the step of the cost table and the momentum histories
 constexpr int kBlockHistoryPoints = 150;
-// The runs pictured deformed: the scheme under study and the reference, on a mesh whose cells
-// can be seen, at the detail step.
-const std::vector<std::string> kSnapshotSchemes = {"cd-lagrange", "penalty-bdf"};
+// The runs pictured deformed (kSnapshotSchemes) on a mesh whose cells can be seen, at the
+// detail step.
 constexpr long kSnapshotMesh = 8;
 
 Block2d make_block(long n) {

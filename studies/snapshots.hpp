@@ -19,6 +19,10 @@
 
 namespace nsb {
 
+// The runs pictured deformed in the block and bodies studies: the scheme under study and the
+// reference, side by side.
+inline const std::vector<std::string> kSnapshotSchemes = {"cd-lagrange", "penalty-bdf"};
+
 class MeshSnapshots {
  public:
   // `component`: the name of the stress component coloured (one of field_mesh()'s); throws
