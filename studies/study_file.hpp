@@ -33,6 +33,10 @@ struct FileReference {
   // its states at the run's step times (modal-exact: the semi-discrete system's exact solution).
   bool lockstep = false;
   std::string against;     // what the errors are measured against, as captions and the ranking say it ("": said from the above)
+  // A cached run's own end time, at or past its problems' (0: the problem's t_end): a run whose
+  // steps do not divide t_end ends up to one step past it, where the reference would otherwise
+  // stand still at its last sample (its samples are not extrapolated).
+  double t_end = 0.0;
 };
 
 struct FileProblem {

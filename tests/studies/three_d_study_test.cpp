@@ -194,3 +194,31 @@ TEST_CASE("study file: block-3d's momentum identities per component, round-off f
                                                     "[[integrator]]\nname = \"cd-lagrange\"\n[[measure]]\nkind = \"momentum\"\ncomponent = \"jz\"\n")),
              Catch::Contains("measure[0].component: problem 'bouncing-mass' has no mesh component jz"));
 }
+
+TEST_CASE("study file: a reference run's own t_end covers a run's last step past the problem's end; bad input named",
+          "[studies][three_d][study_file]") {
+  // Free fall (h0 = 10 m: the floor at 1.43 s), t_end = 1 and dt = 0.3: CD-Lagrange's four
+  // steps end at 1.2 s, its positions exact for a constant force. Against event-driven's samples
+  // up to 1.2 s its error is round-off; against samples that stop at 1 s the run's last q is
+  // compared with the reference's last sample, q(1): the clamp the key exists to avoid.
+  const auto text = [](const std::string& reference) {
+    return three_d_study_text("1.0", "name = \"bouncing-mass\"\nparameters = { h0 = 10 }\nsteps = [0.3]\nreference = { " + reference + " }",
+                              "[[integrator]]\nname = \"cd-lagrange\"\n[[measure]]\nkind = \"error\"\nobservable = \"q\"\n");
+  };
+  const std::string ed = "integrator = \"event-driven\", dt = 0.1";
+  const nsb::StudySpec spec = nsb::parse_study_text(text(ed + ", t_end = 1.2"), "t.toml", false);
+  CHECK(spec.reference_of(spec.problems[0])->t_end == 1.2);
+  std::vector<nsb::Json> covered, clamped;
+  three_d_run(text(ed + ", t_end = 1.2"), covered);
+  three_d_run(text(ed), clamped);
+  REQUIRE(covered[0]["steps"] == 4);
+  CHECK(three_d_value(covered[0], 0) < 1e-9);
+  CHECK(three_d_value(clamped[0], 0) == Approx(0.5 * 9.81 * (1.2 * 1.2 - 1.0) / 10.0).epsilon(1e-6));
+
+  CHECK_THAT(three_d_parse_error(text(ed + ", t_end = 0.9")),
+             Catch::Contains("problem[0].reference.t_end: 0.9 is before the end of problem 'bouncing-mass' (1 s)"));
+  CHECK_THAT(three_d_parse_error(text("solution = \"exact\", t_end = 1.2")),
+             Catch::Contains("problem[0].reference.t_end: the exact solution has no end time"));
+  CHECK_THAT(three_d_parse_error(text("integrator = \"event-driven\", lockstep = true, t_end = 1.2")),
+             Catch::Contains("problem[0].reference.t_end: a lockstep reference steps with each run"));
+}
