@@ -454,7 +454,7 @@ void read_flight_energy(const Checker& c, const Json& j, const std::string& path
 }
 
 // A momentum measure's component (MeshMomentum): one every problem `on` has (a mesh of its
-// dimension; jx, jy, jz in 3D), its contacts constant; no window or relative_to (its own scale).
+// dimension; jx, jy, jz in 3D); no window or relative_to (its own scale).
 void read_momentum_component(const Checker& c, const Json& j, const std::string& path, const Json& v, FileMeasure& m,
                              const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances,
                              const std::vector<std::size_t>& on) {
@@ -467,8 +467,6 @@ void read_momentum_component(const Checker& c, const Json& j, const std::string&
     if (std::find(valid.begin(), valid.end(), m.component) == valid.end())
       c.fail(at, fmt::format("problem '{}' has no mesh component {}", spec.problems[p].label, m.component),
              valid.empty() ? std::string("a problem with a field mesh, or problems = [...]") : fmt::format("{} (or problems = [...])", fmt::join(valid, ", ")));
-    if (instances[p]->contacts_move())
-      c.fail(at, fmt::format("problem '{}' has contacts that move with it", spec.problems[p].label), "a problem with constant contact rows, or problems = [...]");
   }
   m.label += " " + m.component;
 }

@@ -110,8 +110,8 @@ TEST_CASE("rigid study's two blocks: the momentum identity of the 2D two-body me
           "in large sliding and small",
           "[studies][rigid][measures]") {
   // As rigid.toml runs them: the node-to-segment weights sum to zero per direction in every
-  // configuration, so P changes by the floor impulses only (MeshMomentum sums L^T Lambda with the
-  // rows at U0). The upper block lands (y impulses) and slides under friction (x impulses).
+  // configuration, so P changes by the floor impulses only (MeshMomentum takes the rows at the
+  // step's end). The upper block lands (y impulses) and slides under friction (x impulses).
   const std::string measures = R"(
 [[measure]]
 kind = "momentum"
