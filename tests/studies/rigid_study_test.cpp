@@ -112,17 +112,9 @@ TEST_CASE("rigid study's two blocks: the momentum identity of the 2D two-body me
   // As rigid.toml runs them: the node-to-segment weights sum to zero per direction in every
   // configuration, so P changes by the floor impulses only (MeshMomentum takes the rows at the
   // step's end). The upper block lands (y impulses) and slides under friction (x impulses).
-  const std::string measures = R"(
-[[measure]]
-kind = "momentum"
-component = "px"
-[[measure]]
-kind = "momentum"
-component = "py"
-[[measure]]
-kind = "energy"
-norm = "final"
-)";
+  std::string measures;
+  for (const char* c : {"px", "py"}) measures += fmt::format("[[measure]]\nkind = \"momentum\"\ncomponent = \"{}\"\n", c);
+  measures += "[[measure]]\nkind = \"energy\"\nnorm = \"final\"\n";
   for (const char* sliding : {"large", "small"}) {
     INFO(sliding);
     const nsb::Json v = run_values(one_run(fmt::format("name = \"two-blocks\"\nparameters = {{ sliding = \"{}\", g = 0, e = 0, mu = 0.3, "
