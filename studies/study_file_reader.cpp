@@ -1409,8 +1409,10 @@ StudySpec read_study_file(const std::filesystem::path& path) {
 
 StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, long budget) {
   spec.t_end *= t_scale;
+  spec.reference.t_end *= t_scale;  // a reference's own end stays past its problems' (0: theirs)
   for (auto& p : spec.problems) {
     p.t_end *= t_scale;
+    if (p.reference) p.reference->t_end *= t_scale;
     if (p.max_force_evaluations > 0) p.max_force_evaluations = std::min(p.max_force_evaluations, budget);
   }
   spec.cpu_repeats = 0;
