@@ -290,8 +290,9 @@ StudySpec read_study_file(const std::filesystem::path& path);
 // The same from text; `file` names it in errors.
 StudySpec parse_study_text(const std::string& text, const std::string& file, bool json);
 
-// A reduced copy for tests and smoke runs: t_end (and a reference's own t_end) scaled by `t_scale`, each sweep cut to its
-// first `max_runs` entries, one CPU run, at most `budget` F_int evaluations per run.
+// A reduced copy for tests and smoke runs: t_end (a reference's own t_end too) scaled by
+// `t_scale`, each sweep cut to its first `max_runs` entries, one CPU run, at most `budget` F_int
+// evaluations per run.
 StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, long budget);
 
 // The study as the driver runs it.
