@@ -71,6 +71,20 @@ TEST_CASE("built-in study three-d: registered from its file; every integrator on
   CHECK(spec.problems[12].name == "sphere");
   CHECK(spec.problems[13].parameters.at("mu") == "0.05");  // below (2/7) tan 20 deg: slides for ever
   CHECK(spec.problems[17].label == "block-3d, mu = 0.3, nx = 8");
+  // block-3d's own reference: penalty-bdf on the same mesh, cached, past the runs' last steps.
+  for (std::size_t p = 14; p < 18; ++p) {
+    const nsb::FileReference* ref = spec.reference_of(spec.problems[p]);
+    REQUIRE(ref != nullptr);
+    CHECK_FALSE(ref->exact);
+    CHECK(ref->integrator == "penalty-bdf");
+    CHECK_FALSE(ref->lockstep);
+    CHECK(ref->dt == 2.5e-4);
+    const double dt = 0.9 * nsb::make_problem("block-3d", spec.problems[p].parameters)->stable_step();
+    CHECK(ref->t_end >= std::ceil(spec.t_end_of(spec.problems[p]) / dt) * dt);  // the run's last step's end
+  }
+  std::vector<std::string> labels;
+  for (const auto& m : spec.measures) labels.push_back(m.label);
+  for (const char* error : {"err zc max", "err xc max"}) CHECK(std::find(labels.begin(), labels.end(), error) != labels.end());
   // Every registered integrator, MuJoCo (where built) as its two cones in its place.
   std::size_t references = 0;
   for (const auto& it : spec.integrators) references += nsb::find_integrator(it.name).reference;
