@@ -10,6 +10,16 @@
 namespace nsb {
 
 namespace {
+
+// f += L^T Lambda_N + T^T Lambda_T + T2^T Lambda_T2 (the rows a scheme has: tangents where it
+// reports their impulses), of constant Contacts or of a ContactGeometry evaluated at a configuration.
+template <class Rows>
+void mesh_momentum_add_impulses(const Rows& rows, const Integrator& integrator, Vec& f) {
+  f.noalias() += rows.normal.transpose() * integrator.impulses();
+  if (rows.tangent.rows() && integrator.tangential_impulses().size()) f.noalias() += rows.tangent.transpose() * integrator.tangential_impulses();
+  if (rows.tangent2.rows() && integrator.tangential_impulses2().size()) f.noalias() += rows.tangent2.transpose() * integrator.tangential_impulses2();
+}
+
 }  // namespace
 
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
@@ -131,6 +141,7 @@ std::vector<std::string> MeshMomentum::components(const Problem& problem) {
 MeshMomentum::MeshMomentum(const Problem& problem, const State& initial, const std::string& component)
     : problem_(problem), M_(problem.mass_matrix()), axis_(component[1] - 'x'), angular_(component[0] == 'j'),
       f_(problem.ndof()), f_ext_(problem.ndof()), p_(problem.ndof()) {
+  if (problem.contacts_move()) moving_rows_ = problem.contact_geometry();
   const FieldMesh mesh = *problem.field_mesh();
   points_ = mesh.points;
   point_dofs_ = mesh.point_dofs;
@@ -170,12 +181,14 @@ double MeshMomentum::torque(const State& s, const Vec& f) const {
 
 void MeshMomentum::add(const Integrator& integrator, double dt) {
   const State& s = integrator.state();
-  const Contacts& c = problem_.contacts();
   problem_.external_force(s.t - dt, f_ext_);
   f_.noalias() = dt * f_ext_;
-  f_.noalias() += c.normal.transpose() * integrator.impulses();
-  if (c.tangent.rows() && integrator.tangential_impulses().size()) f_.noalias() += c.tangent.transpose() * integrator.tangential_impulses();
-  if (c.tangent2.rows() && integrator.tangential_impulses2().size()) f_.noalias() += c.tangent2.transpose() * integrator.tangential_impulses2();
+  if (moving_rows_) {
+    problem_.evaluate_contacts(s.u, *moving_rows_);
+    mesh_momentum_add_impulses(*moving_rows_, integrator, f_);
+  } else {
+    mesh_momentum_add_impulses(problem_.contacts(), integrator, f_);
+  }
   ++steps_;
   if (angular_) {
     const double J = angular_momentum(s);

@@ -18,6 +18,7 @@
 //     graphs (studies/hausdorff.hpp) are the measures of those headers.
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -125,7 +126,12 @@ class MomentumBalance {
 //             the internal forces having no net torque at one configuration.
 // largest(): the largest residual so far; scale(): sum_i M_ii |v0_i| (linear) or
 // sum_a |x_a,0| |(M v0)_a| (angular), so that a residual relative to it is not 0 / 0 when the
-// momentum is. Contacts must not move (constant rows).
+// momentum is. Contacts that move with the configuration (Problem::contacts_move) carry the
+// impulses through their rows evaluated at the end-of-step configuration U_k, where the
+// torques are taken: CD-Lagrange's rows (L(U_{k+1}) of its step); a scheme that applies them
+// through rows at another configuration (Moreau-Jean: L(U_k) of its step, the start) shows the
+// difference in J, and in P only where the rows' weights do not sum to zero per direction
+// (two-blocks' node-to-segment rows do, in every configuration).
 class MeshMomentum {
  public:
   MeshMomentum(const Problem& problem, const State& initial, const std::string& component);
@@ -146,6 +152,7 @@ class MeshMomentum {
   int axis_ = 0;
   bool angular_ = false;
   Vec f_, f_ext_, p_;
+  std::optional<ContactGeometry> moving_rows_;  // the rows at the step's end (moving contacts)
   double previous_ = 0.0;  // P or J at the last step
   double largest_ = 0.0, scale_ = 0.0;
   long steps_ = 0;

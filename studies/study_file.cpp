@@ -90,7 +90,7 @@ std::string shown_label(const FileIntegrator& fi, const std::string& problem_lab
 
 ReferenceRequest reference_request(const StudySpec& spec, const FileProblem& p) {
   const FileReference& r = *spec.reference_of(p);
-  return {p.name, p.parameters, r.integrator, r.parameters, r.dt, spec.t_end_of(p), r.sample_every};
+  return {p.name, p.parameters, r.integrator, r.parameters, r.dt, r.t_end > 0.0 ? r.t_end : spec.t_end_of(p), r.sample_every};
 }
 
 // The end time of a case: its problem's, or its full_t_end under --full.

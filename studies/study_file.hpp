@@ -33,6 +33,10 @@ struct FileReference {
   // its states at the run's step times (modal-exact: the semi-discrete system's exact solution).
   bool lockstep = false;
   std::string against;     // what the errors are measured against, as captions and the ranking say it ("": said from the above)
+  // A cached run's own end time, at or past its problems' (0: the problem's t_end): a run whose
+  // steps do not divide t_end ends up to one step past it, where the reference would otherwise
+  // stand still at its last sample (its samples are not extrapolated).
+  double t_end = 0.0;
 };
 
 struct FileProblem {
@@ -323,8 +327,9 @@ StudySpec read_study_file(const std::filesystem::path& path);
 // The same from text; `file` names it in errors.
 StudySpec parse_study_text(const std::string& text, const std::string& file, bool json);
 
-// A reduced copy for tests and smoke runs: t_end scaled by `t_scale`, each sweep cut to its
-// first `max_runs` entries, one CPU run, at most `budget` F_int evaluations per run.
+// A reduced copy for tests and smoke runs: t_end (a reference's own t_end too) scaled by
+// `t_scale`, each sweep cut to its first `max_runs` entries, one CPU run, at most `budget` F_int
+// evaluations per run.
 StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, long budget);
 
 // The study as the driver runs it.

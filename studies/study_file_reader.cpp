@@ -383,12 +383,25 @@ void read_problem_steps(const Checker& c, const Json& j, const std::string& path
   }
 }
 
+// A cached reference run's own end time (reference.t_end, FileReference::t_end): at or past the
+// end of every problem it serves (`served`), so that a run whose steps do not divide t_end, and
+// whose last step ends past it, is compared with the reference at that step's end.
+double read_reference_end(const Checker& c, const Json& v, const std::string& path, const StudySpec& spec,
+                          const std::vector<std::size_t>& served) {
+  const double t_end = c.positive(v, path);
+  for (const std::size_t i : served)
+    if (const FileProblem& p = spec.problems[i]; t_end < spec.t_end_of(p))
+      c.fail(path, fmt::format("{} is before the end of problem '{}' ({} s)", t_end, p.label, spec.t_end_of(p)),
+             "t_end >= the t_end of every problem the reference serves");
+  return t_end;
+}
+
 // A reference: the study's [reference] or a problem's own (`path`), checked against the problems
 // it serves (their indices in spec.problems and instances).
 FileReference read_reference(const Checker& c, const Json& r, const std::string& path, const StudySpec& spec,
                              const std::vector<std::size_t>& served, const std::vector<std::unique_ptr<Problem>>& instances) {
   c.expect(r, path, r.is_object(), "a table");
-  c.keys(r, path, {"solution", "integrator", "parameters", "dt", "sample_every", "floor", "lockstep", "against"});
+  c.keys(r, path, {"solution", "integrator", "parameters", "dt", "sample_every", "floor", "lockstep", "against", "t_end"});
   FileReference ref;
   if (!c.find(r, "solution") == !c.find(r, "integrator")) c.fail(path, "give one of solution = \"exact\" or integrator = NAME");
   if (const Json* v = c.find(r, "solution")) {
@@ -407,11 +420,14 @@ FileReference read_reference(const Checker& c, const Json& r, const std::string&
   if (ref.exact && c.find(r, "lockstep"))
     c.fail(child(path, "lockstep"), "only a reference integrator steps with the runs", "integrator = NAME with lockstep = true");
   if (ref.lockstep) {
-    for (const char* key : {"dt", "sample_every"})
-      if (c.find(r, key)) c.fail(child(path, key), "a lockstep reference steps with each run, at its steps", "no dt or sample_every with lockstep = true");
+    for (const char* key : {"dt", "sample_every", "t_end"})
+      if (c.find(r, key)) c.fail(child(path, key), "a lockstep reference steps with each run, at its steps", "no dt, sample_every or t_end with lockstep = true");
+  } else if (ref.exact && c.find(r, "t_end")) {
+    c.fail(child(path, "t_end"), "the exact solution has no end time", "integrator = NAME with t_end");
   } else if (!ref.exact) {
     ref.dt = c.positive(c.require(r, path, "dt"), child(path, "dt"));
-    double longest = 0.0;
+    if (const Json* v = c.find(r, "t_end")) ref.t_end = read_reference_end(c, *v, child(path, "t_end"), spec, served);
+    double longest = ref.t_end;
     for (const std::size_t i : served) {
       const FileProblem& p = spec.problems[i];
       check_step(c, ref.dt, child(path, "dt"), spec.t_end_of(p), p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end");
@@ -465,7 +481,7 @@ void read_flight_energy(const Checker& c, const Json& j, const std::string& path
 }
 
 // A momentum measure's component (MeshMomentum): one every problem `on` has (a mesh of its
-// dimension; jx, jy, jz in 3D), its contacts constant; no window or relative_to (its own scale).
+// dimension; jx, jy, jz in 3D); no window or relative_to (its own scale).
 void read_momentum_component(const Checker& c, const Json& j, const std::string& path, const Json& v, FileMeasure& m,
                              const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances,
                              const std::vector<std::size_t>& on) {
@@ -478,8 +494,6 @@ void read_momentum_component(const Checker& c, const Json& j, const std::string&
     if (std::find(valid.begin(), valid.end(), m.component) == valid.end())
       c.fail(at, fmt::format("problem '{}' has no mesh component {}", spec.problems[p].label, m.component),
              valid.empty() ? std::string("a problem with a field mesh, or problems = [...]") : fmt::format("{} (or problems = [...])", fmt::join(valid, ", ")));
-    if (instances[p]->contacts_move())
-      c.fail(at, fmt::format("problem '{}' has contacts that move with it", spec.problems[p].label), "a problem with constant contact rows, or problems = [...]");
   }
   m.label += " " + m.component;
 }
@@ -1533,8 +1547,10 @@ StudySpec read_study_file(const std::filesystem::path& path) {
 
 StudySpec reduced_study(StudySpec spec, double t_scale, std::size_t max_runs, long budget) {
   spec.t_end *= t_scale;
+  spec.reference.t_end *= t_scale;  // a reference's own end stays past its problems' (0: theirs)
   for (auto& p : spec.problems) {
     p.t_end *= t_scale;
+    if (p.reference) p.reference->t_end *= t_scale;
     if (p.max_force_evaluations > 0) p.max_force_evaluations = std::min(p.max_force_evaluations, budget);
   }
   spec.cpu_repeats = 0;

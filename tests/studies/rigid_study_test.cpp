@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
@@ -57,17 +60,32 @@ TEST_CASE("built-in study rigid: registered from its file, every integrator on e
   REQUIRE(file != nullptr);
   const nsb::StudySpec spec = nsb::parse_study_text(std::string(file->text), "rigid.toml", false);
   const auto& registry = nsb::integrator_registry();
-  REQUIRE(spec.problems.size() == 3);
+  REQUIRE(spec.problems.size() == 5);
   CHECK(spec.problems[0].name == "rocking-block");
   CHECK(spec.problems[0].parameters.at("mu") == "1");
   CHECK(spec.problems[1].name == "rocking-block");
   CHECK(spec.problems[1].parameters.at("mu") == "0.1");
   CHECK(spec.problems[2].name == "painleve-rod");
   CHECK(spec.problems[2].parameters.empty());  // the cardillo example's data are the defaults
+  // The two blocks, large sliding and small, launched alike (only `sliding` differs), one step.
+  for (std::size_t p : {3, 4}) {
+    CHECK(spec.problems[p].name == "two-blocks");
+    CHECK(spec.problems[p].steps == std::vector<double>{1e-4});
+  }
+  CHECK(spec.problems[3].parameters.at("sliding") == "large");
+  CHECK(spec.problems[4].parameters.at("sliding") == "small");
+  nsb::Overrides small = spec.problems[4].parameters;
+  small["sliding"] = "large";
+  CHECK(small == spec.problems[3].parameters);
+  CHECK(nsb::make_problem("two-blocks", spec.problems[3].parameters)->contacts_move());
+  CHECK_FALSE(nsb::make_problem("two-blocks", spec.problems[4].parameters)->contacts_move());
+  std::vector<std::string> ids;
+  for (const auto& t : spec.tables) ids.push_back(t.id);
+  CHECK(ids == std::vector<std::string>{"rigid_rocking", "rigid_painleve", "rigid_sliding", "rigid_ranking"});
   const auto cases = nsb::study_cases(rigid, {false});
-  REQUIRE(cases.size() == 3 * registry.size() * 3);
+  REQUIRE(cases.size() == 3 * registry.size() * 3 + 2 * registry.size());
   std::size_t k = 0;
-  for (std::size_t p = 0; p < 3; ++p)
+  for (std::size_t p = 0; p < 5; ++p)
     for (std::size_t i = 0; i < registry.size(); ++i)
       for (const double dt : spec.problems[p].steps) {
         CHECK(cases[k]["problem"] == p);
@@ -86,6 +104,29 @@ TEST_CASE("built-in study rigid: registered from its file, every integrator on e
                                             {});
   CHECK(declined["status"] == "n/a");
   CHECK(declined["message"].get<std::string>().find("moving contacts") != std::string::npos);
+}
+
+TEST_CASE("rigid study's two blocks: the momentum identity of the 2D two-body mesh per component, round-off for cd-lagrange "
+          "in large sliding and small",
+          "[studies][rigid][measures]") {
+  // As rigid.toml runs them: the node-to-segment weights sum to zero per direction in every
+  // configuration, so P changes by the floor impulses only (MeshMomentum takes the rows at the
+  // step's end). The upper block lands (y impulses) and slides under friction (x impulses).
+  std::string measures;
+  for (const char* c : {"px", "py"}) measures += fmt::format("[[measure]]\nkind = \"momentum\"\ncomponent = \"{}\"\n", c);
+  measures += "[[measure]]\nkind = \"energy\"\nnorm = \"final\"\n";
+  for (const char* sliding : {"large", "small"}) {
+    INFO(sliding);
+    const nsb::Json v = run_values(one_run(fmt::format("name = \"two-blocks\"\nparameters = {{ sliding = \"{}\", g = 0, e = 0, mu = 0.3, "
+                                                       "upper_vx = 1.5, upper_vy = -1 }}",
+                                                       sliding),
+                                           "0.15", "1e-4", measures));
+    CHECK(v[0].get<double>() < 1e-13);
+    CHECK(v[1].get<double>() < 1e-13);
+    CHECK(v[2].get<double>() < -0.01);  // the landing (e = 0) and the sliding took energy: there was contact
+  }
+  CHECK_THAT(parse_error(one_run("name = \"two-blocks\"", "0.1", "1e-4", "[[measure]]\nkind = \"momentum\"\ncomponent = \"pz\"\n")),
+             Catch::Contains("measure[0].component: problem 'two-blocks' has no mesh component pz"));
 }
 
 TEST_CASE("ContactImpacts: an impact is a contact's impulse after steps without one in which its gap opened and fell; before, after and amplitude",

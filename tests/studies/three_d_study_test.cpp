@@ -71,6 +71,20 @@ TEST_CASE("built-in study three-d: registered from its file; every integrator on
   CHECK(spec.problems[12].name == "sphere");
   CHECK(spec.problems[13].parameters.at("mu") == "0.05");  // below (2/7) tan 20 deg: slides for ever
   CHECK(spec.problems[17].label == "block-3d, mu = 0.3, nx = 8");
+  // block-3d's own reference: penalty-bdf on the same mesh, cached, past the runs' last steps.
+  for (std::size_t p = 14; p < 18; ++p) {
+    const nsb::FileReference* ref = spec.reference_of(spec.problems[p]);
+    REQUIRE(ref != nullptr);
+    CHECK_FALSE(ref->exact);
+    CHECK(ref->integrator == "penalty-bdf");
+    CHECK_FALSE(ref->lockstep);
+    CHECK(ref->dt == 2.5e-4);
+    const double dt = 0.9 * nsb::make_problem("block-3d", spec.problems[p].parameters)->stable_step();
+    CHECK(ref->t_end >= std::ceil(spec.t_end_of(spec.problems[p]) / dt) * dt);  // the run's last step's end
+  }
+  std::vector<std::string> labels;
+  for (const auto& m : spec.measures) labels.push_back(m.label);
+  for (const char* error : {"err zc max", "err xc max"}) CHECK(std::find(labels.begin(), labels.end(), error) != labels.end());
   // Every registered integrator, MuJoCo (where built) as its two cones in its place.
   std::size_t references = 0;
   for (const auto& it : spec.integrators) references += nsb::find_integrator(it.name).reference;
@@ -193,4 +207,33 @@ TEST_CASE("study file: block-3d's momentum identities per component, round-off f
   CHECK_THAT(three_d_parse_error(three_d_study_text("1", "name = \"bouncing-mass\"\nsteps = [1e-2]",
                                                     "[[integrator]]\nname = \"cd-lagrange\"\n[[measure]]\nkind = \"momentum\"\ncomponent = \"jz\"\n")),
              Catch::Contains("measure[0].component: problem 'bouncing-mass' has no mesh component jz"));
+}
+
+TEST_CASE("study file: a reference run's own t_end covers a run's last step past the problem's end; bad input named",
+          "[studies][three_d][study_file]") {
+  // Free fall (h0 = 10 m: the floor at 1.43 s), t_end = 1 and dt = 0.3: CD-Lagrange's four
+  // steps end at 1.2 s, its positions exact for a constant force. Against event-driven's samples
+  // up to 1.2 s its error is round-off; against samples that stop at 1 s the run's last q is
+  // compared with the reference's last sample, q(1): the clamp the key exists to avoid.
+  const auto text = [](const std::string& reference) {
+    return three_d_study_text("1.0", "name = \"bouncing-mass\"\nparameters = { h0 = 10 }\nsteps = [0.3]\nreference = { " + reference + " }",
+                              "[[integrator]]\nname = \"cd-lagrange\"\n[[measure]]\nkind = \"error\"\nobservable = \"q\"\n");
+  };
+  const std::string ed = "integrator = \"event-driven\", dt = 0.1";
+  const nsb::StudySpec spec = nsb::parse_study_text(text(ed + ", t_end = 1.2"), "t.toml", false);
+  CHECK(spec.reference_of(spec.problems[0])->t_end == 1.2);
+  std::vector<nsb::Json> covered, clamped;
+  three_d_run(text(ed + ", t_end = 1.2"), covered);
+  three_d_run(text(ed), clamped);
+  REQUIRE(covered[0]["steps"] == 4);
+  CHECK(three_d_value(covered[0], 0) < 1e-9);
+  // |q(1.2) - q(1)| over the largest reference value at the run's steps, q(0.3).
+  CHECK(three_d_value(clamped[0], 0) == Approx(0.5 * 9.81 * (1.2 * 1.2 - 1.0) / (10.0 - 0.5 * 9.81 * 0.09)).epsilon(1e-6));
+
+  CHECK_THAT(three_d_parse_error(text(ed + ", t_end = 0.9")),
+             Catch::Contains("problem[0].reference.t_end: 0.9 is before the end of problem 'bouncing-mass' (1 s)"));
+  CHECK_THAT(three_d_parse_error(text("solution = \"exact\", t_end = 1.2")),
+             Catch::Contains("problem[0].reference.t_end: the exact solution has no end time"));
+  CHECK_THAT(three_d_parse_error(text("integrator = \"event-driven\", lockstep = true, t_end = 1.2")),
+             Catch::Contains("problem[0].reference.t_end: a lockstep reference steps with each run"));
 }
