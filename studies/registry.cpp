@@ -70,7 +70,8 @@ const std::vector<StudyEntry>& study_registry() {
       cpp_study(properties_study, "studies/properties.cpp"),
       builtin_file_study("rigid",
                          "rigid bodies with moving contacts: the rocking block's impact ratios against Housner's and Moreau's "
-                         "laws, amplitude, time to rest, energy; the Painleve rod's dynamic jam per scheme and what follows",
+                         "laws, amplitude, time to rest, energy; the Painleve rod's dynamic jam per scheme and what follows; "
+                         "two blocks with large sliding against small: momentum identities, energy, cost per step",
                          "studies/builtin/rigid.toml"),
       builtin_file_study("three-d",
                          "three dimensions: bar-3d against its exact solution under joint refinement per mass model, the "
