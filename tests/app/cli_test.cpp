@@ -22,6 +22,7 @@
 #include "studies/registry.hpp"
 #include "studies/verify.hpp"
 #include "run_cli.hpp"
+#include "tests/support/files.hpp"
 
 namespace {
 
@@ -394,17 +395,14 @@ TEST_CASE("cli: index.md and figures.json list every study of the --out, not onl
   fs::remove_all(dir);
   REQUIRE(study("run " + write_quick_study(dir, "first") + " --out " + out).code == 0);
   REQUIRE(study("run " + write_quick_study(dir, "second") + " --out " + out).code == 0);
-  std::ifstream in(out + "/index.md");
-  const std::string index((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string index = nsb::test::read_text(out + "/index.md");
   CHECK_THAT(index, Catch::Contains("\n## first\n") && Catch::Contains("\n## second\n") &&
                         Catch::Contains("(first_work_precision.md)") && Catch::Contains("(second_work_precision.md)"));
   REQUIRE(study("run " + write_quick_study(dir, "first") + " --out " + out).code == 0);  // rerun: listed once
-  std::ifstream again(out + "/index.md");
-  const std::string rerun((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
+  const std::string rerun = nsb::test::read_text(out + "/index.md");
   CHECK(rerun.find("\n## first\n") == rerun.rfind("\n## first\n"));
   CHECK_THAT(rerun, Catch::Contains("\n## second\n"));
-  std::ifstream figures_file(out + "/figures.json");
-  const nlohmann::json figures = nlohmann::json::parse(figures_file);
+  const nlohmann::json figures = nlohmann::json::parse(nsb::test::read_text(out + "/figures.json"));
   std::vector<std::string> ids;
   for (const auto& f : figures) ids.push_back(f["id"]);
   CHECK(std::count(ids.begin(), ids.end(), "first_work_precision") == 1);
@@ -427,8 +425,7 @@ TEST_CASE("cli: the performance section of index.md survives a later study run i
   std::ofstream(dir + "/bench.json") << bench.dump();
   REQUIRE(study("performance " + dir + "/bench.json --out " + out).code == 0);
   REQUIRE(study("run " + write_quick_study(dir, "second") + " --out " + out).code == 0);
-  std::ifstream in(out + "/index.md");
-  const std::string index((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string index = nsb::test::read_text(out + "/index.md");
   CHECK_THAT(index, Catch::Contains("\n## performance\n") && Catch::Contains("(performance.md)") &&
                         Catch::Contains("\n## first\n") && Catch::Contains("\n## second\n"));
   fs::remove_all(dir);
