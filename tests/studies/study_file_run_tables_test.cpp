@@ -184,7 +184,8 @@ TEST_CASE("study file: a pivot, a periodic and a trajectory table of the runs wh
   REQUIRE(order.size() == 5);
   CHECK(order[0] == "moreau-jean dt = 1.00e-02");
   CHECK(order[1] == "exact ");
-  const auto exact = nsb::make_problem("bouncing-mass", {{"e", "1"}})->exact();
+  const auto elastic_mass = nsb::make_problem("bouncing-mass", {{"e", "1"}});  // owns the exact solution
+  const auto exact = elastic_mass->exact();
   std::size_t first = 0, exact_rows = 0;
   for (const auto& row : elastic.rows) {
     if (row[1] == nsb::Cell{std::string("exact")}) {
