@@ -58,18 +58,16 @@ namespace fs = std::filesystem;
 // lists it too.
 void write_performance(const std::vector<std::string>& files, const fs::path& out) {
   const nsb::Table table = nsb::performance_table(std::vector<fs::path>(files.begin(), files.end()));
+  nsb::StudyEntry performance;
+  performance.name = "performance";
+  performance.description = "The benchmarks (nsbench-bench-*), each step against its limit.";
   nsb::ensure_directory(out);
-  nsb::write_table(table, out);
-  const std::string entry = fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", table.title, table.id, table.id, table.id);
-  const std::string section = "## performance\n\nThe benchmarks (nsbench-bench-*), each step against its limit.\n\n" + entry + "\n";
-  nsb::ensure_directory(out / ".index");
-  nsb::write_file_atomic(out / ".index" / "performance.json",
-                         Json{{"section", section}, {"lead", ""}, {"headline", ""}, {"figures", Json::array()}}.dump() + "\n");
+  const std::string section = nsb::ReportIndex(false, out).add_study(performance, {table});
   const fs::path index = out / "index.md";
   if (!fs::exists(index)) return;
   std::ifstream in(index);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (text.find(entry) != std::string::npos) return;
+  if (text.find(section) != std::string::npos) return;
   const auto footer = text.rfind("---\n");  // the environment footer stays last
   text.insert(footer == std::string::npos ? text.size() : footer, section);
   nsb::write_file_atomic(index, text);
@@ -254,8 +252,7 @@ int main(int argc, char** argv) {
     }
     if (!shard.count) {
       if (spec) nsb::write_study_copy(*spec, report->path());
-      nsb::write_file_atomic(report->path() / "figures.json", index->figures());
-      nsb::write_file_atomic(report->path() / "index.md", index->text());
+      index->write();
       report->commit();
     }
   } catch (const InputError& e) {

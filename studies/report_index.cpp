@@ -86,28 +86,26 @@ ReportIndex::ReportIndex(bool full, std::filesystem::path report) : report_(std:
                         b.build_type, b.compiler, full ? ", full sweeps" : "", plugged.empty() ? "" : ", plugins " + plugged);
 }
 
-void ReportIndex::add_study(const StudyEntry& s, const std::vector<Table>& tables) const {
+std::string ReportIndex::add_study(const StudyEntry& s, const std::vector<Table>& tables) const {
   for (const auto& t : tables) write_table(t, report_);
   const IndexPart part = index_part(s, tables);
   ensure_directory(report_ / ".index");
   write_file_atomic(report_ / ".index" / (s.name + ".json"),
                     Json{{"section", part.section}, {"lead", part.lead}, {"headline", part.headline},
                          {"figures", Json::parse(figures_to_json(tables))}}.dump() + "\n");
+  return part.section;
 }
 
-std::string ReportIndex::figures() const {
-  Json all = Json::array();
-  for (const auto& part : index_parts(report_)) all.insert(all.end(), part.figures.begin(), part.figures.end());
-  return all.dump(2) + "\n";
-}
-
-std::string ReportIndex::text() const {
+void ReportIndex::write() const {
   std::string studies, lead, headline;
+  Json figures = Json::array();
   for (const auto& part : index_parts(report_)) {
     studies += part.section;
     lead += part.lead;
     headline += part.headline;
+    figures.insert(figures.end(), part.figures.begin(), part.figures.end());
   }
+  write_file_atomic(report_ / "figures.json", figures.dump(2) + "\n");
   std::string index = header_;
   if (!lead.empty()) index += "## Claims\n\nEach claim is tested under the conditions its source states (as claimed) and beyond them; every "
                               "verdict is computed from measured figures by the rule in the caption, the conditions are written "
@@ -117,9 +115,11 @@ std::string ReportIndex::text() const {
              "caption).\n\n" + headline + "\n";
   const auto& env = environment();
   const auto& b = build_info();
-  return index + studies +
-         fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, nsbench {} revision {}. Rerun: `{}`</sub>\n", env.cpu,
-                     env.cores, env.libraries, b.build_type, b.compiler, b.version, b.git_revision, command_line());
+  write_file_atomic(report_ / "index.md",
+                    index + studies +
+                        fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, nsbench {} revision {}. Rerun: `{}`</sub>\n",
+                                    env.cpu, env.cores, env.libraries, b.build_type, b.compiler, b.version, b.git_revision,
+                                    command_line()));
 }
 
 }  // namespace nsb

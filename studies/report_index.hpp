@@ -19,14 +19,14 @@ class ReportIndex {
  public:
   // `report`: the directory being written (a ReportDirectory's staging path).
   ReportIndex(bool full, std::filesystem::path report);
-  // Writes the study's tables into the report and keeps its entries (.index/STUDY.json).
-  void add_study(const StudyEntry& study, const std::vector<Table>& tables) const;
-  // The whole index: every study whose entries the report holds (the registered studies in
-  // their order, then the others by name), and the footer (machine, libraries, build, the
-  // command that ran). A damaged entry is left out, with a warning.
-  std::string text() const;
-  // figures.json: the figures of every study whose entries the report holds, in the same order.
-  std::string figures() const;
+  // Writes the study's tables into the report and keeps its entries (.index/STUDY.json);
+  // returns its section of index.md.
+  std::string add_study(const StudyEntry& study, const std::vector<Table>& tables) const;
+  // Writes index.md and figures.json from the entries the report holds, read once: every
+  // study's (the registered studies in their order, then the others by name), and index.md's
+  // footer (machine, libraries, build, the command that ran). A damaged entry is left out,
+  // with a warning.
+  void write() const;
 
  private:
   std::string header_;

@@ -1692,8 +1692,7 @@ std::vector<std::string> run_study_file(const StudySpec& spec, const std::filesy
   const ReportIndex index(false, report.path());
   index.add_study(study, tables);
   write_study_copy(spec, report.path());
-  write_file_atomic(report.path() / "figures.json", index.figures());
-  write_file_atomic(report.path() / "index.md", index.text());
+  index.write();
   report.commit();
   std::vector<std::string> ids;
   for (const auto& t : tables) ids.push_back(t.id);
