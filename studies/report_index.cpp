@@ -117,7 +117,8 @@ void ReportIndex::write() const {
   const auto& b = build_info();
   write_file_atomic(report_ / "index.md",
                     index + studies +
-                        fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, nsbench {} revision {}. Rerun: `{}`</sub>\n",
+                        fmt::format("---\n\n<sub>{}, {} cores; {}; {} build, {}, nsbench {} revision {}. This index last written by `{}`; "
+                                    "each table's footer names the command and revision that wrote it.</sub>\n",
                                     env.cpu, env.cores, env.libraries, b.build_type, b.compiler, b.version, b.git_revision,
                                     command_line()));
 }

@@ -558,7 +558,7 @@ TEST_CASE("nsbench-study run writes the tables and the file and its hash and mer
                                                                Catch::Contains("libraries = Eigen ") && Catch::Contains("command = "));
   CHECK(nsb::test::read_text(dir / "out" / "mini.study.toml") == nsb::test::read_text(file));
   CHECK_THAT(nsb::test::read_text(dir / "out" / "mini.study.hash"), Catch::StartsWith("FNV-1a 64 "));
-  CHECK_THAT(nsb::test::read_text(dir / "out" / "index.md"), Catch::Contains("Rerun: `") && Catch::Contains(" run "));
+  CHECK_THAT(nsb::test::read_text(dir / "out" / "index.md"), Catch::Contains("This index last written by `") && Catch::Contains(" run "));
   CHECK_THAT(nsb::test::read_text(dir / "stderr"), Catch::Contains("mini: case 2/2"));
   fs::remove(dir / "out" / "mini_work_precision.md");
   REQUIRE(study("--shard 1/2") == 0);
