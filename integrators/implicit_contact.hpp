@@ -8,9 +8,8 @@
 // with the contact a Josephy-Newton (sequential LCP) iteration: each iterate solves the
 // linearised step with its LCP. Stopped when |U_{i+1} - U_i|_inf <= newton_tol
 // |U_{i+1} - U_hat|_inf + 100 eps |U_{i+1}|_inf (the second term: round-off of U, which
-// |U - U_hat| = O(h^2) can be far below); a linear K takes one iteration and one
-// factorisation per c. Measured on block-2d 32x32, dt = 1e-4: without the round-off term
-// 561 of 1500 steps hit the iteration cap (11 factorisations per step; now 2.5).
+// |U - U_hat| = O(h^2) can be far below, and without which a step near rest can run to the
+// iteration cap: docs/measurements.md); a linear K takes one iteration and one factorisation per c.
 //
 //     S = M + c K                          iteration matrix (c = beta h^2 for Newmark,
 //                                          beta h^2 (1 - alpha_f) / (1 - alpha_m) for gen.-alpha)

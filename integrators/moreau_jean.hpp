@@ -50,11 +50,10 @@
 // V_{k+1} = V_free + W^{-1} (L^T Lambda_N + T^T Lambda_T1 + T2^T Lambda_T2).
 // Massless dofs (the singular-mass bar's contact node): their rows of W are algebraic, and
 // theta = 1/2 only carries an algebraic error over from step to step with factor -1 (the
-// trapezoidal rule is not stiffly accurate). Measured on the bar bouncing under gravity
-// (N = 100, dt = 0.9 h/c, to t = 40): theta = 1/2 lets the node's velocity flip sign each
-// step after a release and the bar passes through the wall (penetration 413 L, energy x688);
-// theta = 0.55 keeps the penetration at 0.016 L. Not fixed here: the studies run the default
-// theta = 1/2 and show it.
+// trapezoidal rule is not stiffly accurate): on the singular-mass bar bouncing under gravity
+// theta = 1/2 lets the node's velocity flip sign each step after a release and the bar passes
+// through the wall, theta > 1/2 damps the alternation (docs/measurements.md has the run and
+// its numbers). Not fixed here: the studies run the default theta = 1/2 and show it.
 //
 // Nonlinear F_int (e.g. block-2d): linearised, not Newton. Each step assembles K(U_k) into
 // its fixed pattern, refactorises W (CHOLMOD keeps the symbolic analysis) and solves once:

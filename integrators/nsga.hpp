@@ -40,11 +40,11 @@
 // normal (no tangential constraint on positions). Differences from Capobianco et al.: their
 // scheme carries separate contact forces and percussions, each with its own friction law,
 // and solves the stages as one system; here, as in (iii) above, the per-step impulse carries
-// the persistent friction force too. The price, measured (tests/integrators/friction_test.cpp):
-// the friction force never enters the smooth accelerations, so a stuck contact still moves
-// with the smooth step's tangential load, h^2/2 a_T per step: creep at about h a_T / 2 under a
-// static load (sliding mass, alpha 30 deg, h = 1e-3: 2.5 mm/s), which Capobianco et al.'s
-// smooth friction force removes.
+// the persistent friction force too. The price: the friction force never enters the smooth
+// accelerations, so a stuck contact still moves with the smooth step's tangential load,
+// h^2/2 a_T per step: creep at about h a_T / 2 under a static load (a_T = g sin(alpha) on the
+// sliding mass; tests/integrators/friction_test.cpp holds nsga to that rate), which
+// Capobianco et al.'s smooth friction force removes.
 // 3D contacts (Contacts::has_cone, capability "3D friction cone"; docs/three_d.md): the same
 // velocity jump with the Coulomb cone, U_T = (T, T2) V_{k+1} - (w, w2),
 //     0 <= Lambda_N _|_ U_N >= 0,  |Lambda_T| <= mu Lambda_N,  U_T = 0 inside,
