@@ -46,7 +46,7 @@ if [ "$what" != studies ]; then
   ctest --test-dir "$build" --output-on-failure -j "$jobs" "${skip[@]}"
   # Then README's commands, among them the check that the committed reports reproduce
   # (`nsbench-study bouncing --verify reports`), and the plugin walkthrough. The sanitizer
-  # build's tests already load the example plugin (tests/main.cpp).
+  # build's tests already load the example plugin (tests/support/example_plugin.cpp).
   if [ "$what" = tests ]; then BUILD_DIR="$build" bash scripts/plugin-example.sh; fi
 else
   # From scratch into reports.new, swapped in only when every study and figure succeeded.
