@@ -114,8 +114,8 @@ TEST_CASE("FinalRest: the first step of the last stretch at rest, if it lasts lo
   for (const auto& [t, still] : std::vector<std::pair<double, bool>>{{0.1, true}, {0.2, false}, {0.3, true}, {0.4, true}, {0.6, true}})
     rest.add(t, still);
   CHECK(rest.start() == 0.3);
-  none.add(0.3, true);
-  none.add(0.55, true);  // lasts 0.25, not longer
+  none.add(0.5, true);
+  none.add(0.75, true);  // lasts 0.25 (exactly, in binary), not longer
   CHECK(std::isnan(none.start()));
   moving.add(0.3, true);
   moving.add(0.4, false);  // the last step moves: no rest
