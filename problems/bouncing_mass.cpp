@@ -65,6 +65,8 @@ double BouncingMass::zeno_time() const {
   return t1_ + 2.0 * e_ * w1_ / (g_ * (1.0 - e_));
 }
 
+std::vector<std::pair<std::string, double>> BouncingMass::summary_values() const { return {{"t_zeno_exact", zeno_time()}}; }
+
 double BouncingMass::energy_after_impact(int i) const {
   return initial_energy() * std::pow(e_, 2 * i);
 }

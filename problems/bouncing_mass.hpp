@@ -37,6 +37,8 @@ class BouncingMass final : public RigidProblem, public ExactSolution {
   std::vector<double> impact_times(double t_end) const override;  // up to 1000, before the Zeno time
   std::vector<double> energies_after_impacts(double t_end) const override;  // E0 e^{2i}, of those impacts
   std::optional<FieldMesh> field_mesh() const override;
+  // t_zeno_exact: the accumulation time of the impacts (zeno_time(), +inf for e = 1).
+  std::vector<std::pair<std::string, double>> summary_values() const override;
 
   // Exact impact sequence.
   double initial_energy() const { return 0.5 * m_ * w1_ * w1_; }

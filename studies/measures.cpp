@@ -215,6 +215,43 @@ bool ContactPhases::add(double t, bool contact) {
   return starts;
 }
 
+std::size_t compared_impacts(const std::vector<double>& exact, std::size_t count, double min_flight) {
+  std::size_t n = 0;
+  while (n < count && n < exact.size()) {
+    if (min_flight > 0.0 && (n + 1 >= exact.size() || exact[n + 1] - exact[n] < min_flight)) break;
+    ++n;
+  }
+  return n;
+}
+
+void FlightEnergies::add(double t, bool contact, double energy) {
+  if (at_ == At::exact_mid_flight) {
+    const std::size_t i = errors_.size();  // flight i + 1, after impact i + 1
+    if (i < flights_ && i + 1 < impacts_.size() && t >= 0.5 * (impacts_[i] + impacts_[i + 1]))
+      errors_.push_back(energy / energies_[i] - 1.0);
+    return;
+  }
+  if (errors_.size() >= flights_) return;
+  if (phases_.add(t, contact)) {
+    // Phase n starts at this step: flight n - 1 is over, its steps k_{n-1} .. k_n - 1 buffered.
+    if (const std::size_t n = phases_.starts().size(); n >= 2)
+      errors_.push_back(since_start_[since_start_.size() / 2] / energies_[n - 2] - 1.0);
+    since_start_.clear();
+  }
+  if (!phases_.starts().empty()) since_start_.push_back(energy);
+}
+
+double FlightEnergies::largest() const {
+  double largest = errors_.empty() ? kNaN : 0.0;
+  for (double x : errors_) largest = std::max(largest, std::abs(x));
+  return largest;
+}
+
+double rest_bound(double at_most, int power, double dt) {
+  for (int k = 0; k < power; ++k) at_most *= dt;
+  return at_most;
+}
+
 ContactImpacts::ContactImpacts(const Vec& initial_gaps, double initial_value) : previous_(initial_value) {
   const double carrying = -std::numeric_limits<double>::infinity();
   for (Index i = 0; i < initial_gaps.size(); ++i) {

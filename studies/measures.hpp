@@ -7,7 +7,9 @@
 //     (fit_order, fitted_order, observed_order);
 //   - momentum balance of a 1D problem (MomentumBalance): P - P0 - sum of the impulses of the
 //     external forces and the contacts;
-//   - contact phases and impact times (ContactPhases);
+//   - contact phases and impact times (ContactPhases), the impacts compared with the exact ones
+//     (compared_impacts) and the energies of the flights between them (FlightEnergies); the
+//     start of a run's final rest (FinalRest: the bouncing mass's detected Zeno time);
 //   - impacts seen per contact, with an observable before and after each and its amplitude
 //     between them (ContactImpacts), and the closed forms they are held against on the
 //     moving-contact problems (rocking_law_ratio, rocking_amplitude_after, rocking_rest_time,
@@ -20,6 +22,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "problems/problem.hpp"
@@ -174,6 +177,65 @@ class ContactPhases {
   double last_contact_ = -1e300;
   std::vector<double> starts_;
 };
+
+// The impacts of a run compared with the exact ones (exact: the exact impact times in order):
+// the first `count`, up to the first whose exact flight to the next exact impact lasts less
+// than `min_flight` (flights below the step's resolution: the Zeno phase; min_flight = 10 dt
+// keeps flights of 10 steps at least; an impact with no next exact impact then ends them too);
+// min_flight = 0: the first `count` of them.
+std::size_t compared_impacts(const std::vector<double>& exact, std::size_t count, double min_flight);
+
+// Flight energies against the exact energies after the impacts (energies[i - 1]: E_i, after
+// impact i of `impacts`, the exact impact times), fed the energy after every step: flight i
+// (between impacts i and i + 1) for i = 1 .. flights gives E / E_i - 1, where E is the energy
+//   at = exact_mid_flight: at the first step ending at or after the exact mid-flight time
+//                          (t_i + t_{i+1}) / 2 (flights with a known next impact only);
+//   at = mid_flight_step:  at the step midway by index (k_i + k_{i+1}) / 2, rounded down,
+//                          between the steps k_i, k_{i+1} that start the run's contact phases
+//                          i and i + 1 (ContactPhases): the numerical flight, whatever its
+//                          timing error; a flight whose next phase never starts is not compared.
+class FlightEnergies {
+ public:
+  enum class At { exact_mid_flight, mid_flight_step };
+  FlightEnergies() = default;
+  FlightEnergies(std::vector<double> impacts, std::vector<double> energies, std::size_t flights, At at)
+      : impacts_(std::move(impacts)), energies_(std::move(energies)), flights_(flights), at_(at) {}
+  // After each step ending at t: whether it had a contact impulse, and the energy.
+  void add(double t, bool contact, double energy);
+  // max |E / E_i - 1| over the flights compared (NaN: none).
+  double largest() const;
+  std::size_t compared() const { return errors_.size(); }
+  const std::vector<double>& errors() const { return errors_; }
+
+ private:
+  std::vector<double> impacts_, energies_, errors_;
+  std::size_t flights_ = 0;
+  At at_ = At::exact_mid_flight;
+  ContactPhases phases_;
+  std::vector<double> since_start_;  // mid_flight_step: the energies from the last phase's first step on
+};
+
+// The start of a run's final rest, fed after each step ending at t whether the step is at rest
+// (e.g. its speed and height below what a few steps of gravity give: the bouncing mass after its
+// Zeno time): the end of the first step of the stretch of steps at rest that lasts to the run's
+// last step, provided that stretch lasts longer than `min_rest` (from that first step's end to
+// the last step's); NaN otherwise (the last step not at rest: no rest yet).
+class FinalRest {
+ public:
+  explicit FinalRest(double min_rest = 0.0) : min_rest_(min_rest) {}
+  void add(double t, bool at_rest) {
+    if (!at_rest) start_ = kNaN;
+    else if (std::isnan(start_)) start_ = t;
+    last_ = t;
+  }
+  double start() const { return last_ - start_ > min_rest_ ? start_ : kNaN; }
+
+ private:
+  double min_rest_, start_ = kNaN, last_ = kNaN;
+};
+// A bound of a step at rest that scales with the step: at_most dt^power, multiplied factor by
+// factor from the left ((at_most dt) dt: the rounding of a study's 2 g dt dt).
+double rest_bound(double at_most, int power, double dt);
 
 // Impacts seen per contact: a step at which a contact takes an impulse after steps in which it
 // took none, during which its gap was open (> 0) and then fell (it approached the obstacle):

@@ -14,7 +14,17 @@
 //                exact observable o is > 0 (the exact contact phases: contact_force_exact).
 //                A reference integrator's samples are interpolated linearly in time.
 //   impact-time  max over the first `count` impacts of |t_i (scheme) - t_i (exact)|, t_i the
-//                end of the first step with an impulse after a step without one [s].
+//                end of the first step with an impulse after a step without one [s]; with
+//                min_flight_steps n: those up to the first whose exact flight is shorter than n
+//                steps (compared_impacts, studies/measures.hpp); norm = "count": how many.
+//   flight-energy  max over the first `count` flights of |E / E_i - 1| (FlightEnergies,
+//                studies/measures.hpp), E at the exact mid-flight time or at the mid-flight
+//                step between the run's own impacts (at = "mid-flight step"); an error that
+//                converges with dt (fitted and pairwise orders); norm = "count": how many.
+//   rest-start   the start of the run's final rest (FinalRest, studies/measures.hpp): the end of
+//                the first step after which every step to the end has each `rest` bound's
+//                observable at most at_most dt^dt_power, if that lasts longer than min_rest;
+//                with exact = true its distance to the problem's summary value `summary` [s].
 //   energy       (E - E0)/|E0| (E0 = 0: the problem's energy_scale(), run/run.hpp), E the scheme's own energy: max |.|, final, or drift (its
 //                least-squares slope in time, 1/s); with `every` T, at the first step past each
 //                from + k T (k = 1, 2, ... up to t_end, to half a step): count, first, final, or
@@ -376,34 +386,6 @@ Json not_run(const std::string& why) {
                    {"energy_growth", 0.0}, {"final_energy_error", 0.0}, {"energy_scale", 0.0}, {"note", why}}}};
 }
 
-// The flight-energy measure: after each step, the energy of the next of the first `count`
-// flights is compared once the step reaches the flight's exact middle (between exact impacts
-// i and i + 1) with the exact energy after impact i: E / E_i - 1.
-class FlightEnergies {
- public:
-  FlightEnergies() = default;
-  FlightEnergies(const Problem& problem, double t_end, int count)
-      : impacts_(problem.exact() ? problem.exact()->impact_times(t_end) : std::vector<double>{}),
-        energies_(problem.exact() ? problem.exact()->energies_after_impacts(t_end) : std::vector<double>{}),
-        count_(count) {}
-  void add(double t, double energy) {
-    const std::size_t i = errors_.size();  // flight i + 1, after impact i + 1
-    if (static_cast<int>(i) < count_ && i + 1 < impacts_.size() && t >= 0.5 * (impacts_[i] + impacts_[i + 1]))
-      errors_.push_back(energy / energies_[i] - 1.0);
-  }
-  // max |E / E_i - 1| over the flights compared (NaN: none), or how many were.
-  double largest() const {
-    double largest = errors_.empty() ? kNaN : 0.0;
-    for (double x : errors_) largest = std::max(largest, std::abs(x));
-    return largest;
-  }
-  std::size_t compared() const { return errors_.size(); }
-
- private:
-  std::vector<double> impacts_, energies_, errors_;
-  int count_ = 0;
-};
-
 // The running figures of a measure of an observable's events, fed the observable after every
 // step (README, "Studies from a file"):
 //   impact-ratio  o+ / o- across impact `impact` (ContactImpacts: a contact's impulse after a
@@ -497,6 +479,7 @@ struct Accumulator {
   ContactPhases impacts;
   Polyline graph;  // Hausdorff: the run's samples
   FlightEnergies flights;
+  FinalRest rest;
   std::optional<EventFigures> events;
   std::optional<MeshMomentum> mesh_momentum;  // a momentum measure's component
   std::vector<double> periodic;  // Energy with `every`: the error at each sample time from + k every
@@ -641,7 +624,23 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   // An energy measure's error of E: relative to E_1 (relative_to = "first step") or E0 (its scale).
   const auto energy_error = [&](const FileMeasure& fm, double e) { return fm.from_first_step ? (e - e1) / std::abs(e1) : (e - e0) / e_scale; };
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
-    if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights = FlightEnergies(*problem, t_end, spec.measures[m].count);
+    if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) {
+      const FileMeasure& fm = spec.measures[m];
+      std::vector<double> impacts = problem->exact()->impact_times(t_end);
+      const std::size_t flights = compared_impacts(impacts, fm.count, fm.min_flight_steps * options.dt);
+      acc[m].flights = FlightEnergies(std::move(impacts), problem->exact()->energies_after_impacts(t_end), flights,
+                                      fm.at_mid_flight_step ? FlightEnergies::At::mid_flight_step : FlightEnergies::At::exact_mid_flight);
+    }
+  for (std::size_t m = 0; m < spec.measures.size(); ++m)
+    if (on[m] && spec.measures[m].kind == MeasureKind::RestStart) acc[m].rest = FinalRest(spec.measures[m].min_rest);
+  // Whether the state after a step is at rest by the bounds of a rest-start measure (each checked
+  // only while the others before it hold).
+  const auto at_rest = [&](const FileMeasure& fm, const Integrator& it, double dt, const Energy& energy) {
+    return std::all_of(fm.rest.begin(), fm.rest.end(), [&](const FileMeasure::RestBound& b) {
+      const double o = state_observable(*problem, M, it.state(), it.impulses(), dt, b.observable, obs, &energy);
+      return (b.abs ? std::abs(o) : o) <= rest_bound(b.at_most, b.dt_power, options.dt);
+    });
+  };
 
   // An error of "v": the velocities, unless the problem has an observable of that name (its own).
   const auto& names = problem->observable_names();
@@ -716,7 +715,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) acc[m].impacts.add(s.t, contact);
       else if (acc[m].events) acc[m].events->add(s.t, it.impulses(), s.u, event_observable(*problem, M, it, info.dt, spec.measures[m], obs, energy));
-      if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights.add(s.t, energy.total());
+      if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights.add(s.t, contact, energy.total());
+      if (on[m] && spec.measures[m].kind == MeasureKind::RestStart) acc[m].rest.add(s.t, at_rest(spec.measures[m], it, info.dt, energy));
       if (acc[m].mesh_momentum) acc[m].mesh_momentum->add(it, info.dt);
       if (on[m] && spec.measures[m].kind == MeasureKind::Energy && spec.measures[m].every > 0.0)
         sample_periodic(spec.measures[m], acc[m], s.t, options.dt, t_end, energy_error(spec.measures[m], energy.total()));
@@ -774,8 +774,12 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
           break;
         }
         const auto exact = problem->exact() ? problem->exact()->impact_times(t_end) : std::vector<double>{};
-        const std::size_t n = std::min<std::size_t>(fm.count, exact.size());
+        const std::size_t n = compared_impacts(exact, fm.count, fm.min_flight_steps * options.dt);
         const std::vector<double>& impacts = a.impacts.starts();
+        if (fm.norm == "count") {
+          v = static_cast<double>(std::min(n, impacts.size()));
+          break;
+        }
         v = impacts.size() < n ? kNaN : 0.0;  // an impact missed: no error to report
         for (std::size_t i = 0; i < n && i < impacts.size(); ++i) v = std::max(v, std::abs(impacts[i] - exact[i]));
         break;
@@ -793,6 +797,9 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         break;
       case MeasureKind::FlightEnergy:
         v = fm.norm == "count" ? static_cast<double>(a.flights.compared()) : a.flights.largest();
+        break;
+      case MeasureKind::RestStart:
+        v = fm.exact ? std::abs(a.rest.start() - summary_value(*problem, fm.summary)) : a.rest.start();
         break;
       case MeasureKind::Momentum:
         v = a.mesh_momentum ? a.mesh_momentum->largest() / a.mesh_momentum->scale() : a.largest / scale;
@@ -843,12 +850,20 @@ bool FileTable::applies_to(const std::string& problem_label) const {
   return problems.empty() || std::find(problems.begin(), problems.end(), problem_label) != problems.end();
 }
 
+bool asked_column(const std::string& source) {
+  static const std::vector<std::string> names = {"problem", "problem name", "integrator", "integrator name", "parameters", "dt", "tol",
+                                                 "stable steps", "t_end", "budget", "penetration limit", "energy blow-up limit",
+                                                 "status", "outcome", "note"};
+  return source.rfind("parameter ", 0) == 0 || std::find(names.begin(), names.end(), source) != names.end();
+}
+
 bool is_event_time(const FileMeasure& m) {
-  return m.kind == MeasureKind::ImpactTime || m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime ||
-         ((m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime) && m.exact);
+  return (m.kind == MeasureKind::ImpactTime && m.norm != "count") || m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime ||
+         ((m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime || m.kind == MeasureKind::RestStart) && m.exact);
 }
 bool measure_converges(const FileMeasure& m) {
-  return m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff || is_event_time(m);
+  return m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff || is_event_time(m) ||
+         (m.kind == MeasureKind::FlightEnergy && m.norm == "max");
 }
 
 std::string file_result_damage(const StudySpec& spec, const Json& r) {
@@ -929,15 +944,6 @@ bool declined(const Cell& status) {
   return text && text->rfind("n/a", 0) == 0;
 }
 
-// A column that says what a case asked for (problem, integrator, step, limits, status), not
-// what its run measured: kept in a declined run's row with declined = "n/a".
-bool asked(const std::string& source) {
-  static const std::vector<std::string> names = {"problem", "problem name", "integrator", "integrator name", "parameters", "dt", "tol",
-                                                 "stable steps", "t_end", "budget", "penetration limit", "energy blow-up limit",
-                                                 "status", "outcome", "note"};
-  return source.rfind("parameter ", 0) == 0 || std::find(names.begin(), names.end(), source) != names.end();
-}
-
 // rows = "case": the work-precision rows, their columns picked, ordered and renamed; the first
 // such table carries the work-precision figures whose columns it shows, under the new names.
 Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
@@ -951,6 +957,7 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
   }
   const auto status = std::find_if(runs.columns.begin(), runs.columns.end(), [](const Column& c) { return c.name == "status"; });
   const std::size_t problem = column_index(runs, "problem");
+  const std::size_t note = d.declined_reason.empty() ? 0 : column_index(runs, "note");  // a declined run's: the scheme's reason
   // integrators = [...] (case rows only): the file's label of each run.
   const std::size_t label = d.integrators.empty() ? 0 : column_index(runs, "integrator label");
   for (const auto& row : runs.rows) {
@@ -964,7 +971,8 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
     for (std::size_t i = 0; i < at.size(); ++i) {
       const Cell& cell = row[at[i]];
       const bool missing = std::holds_alternative<std::monostate>(cell) && d.columns[i].missing;
-      cells.push_back(blank && !asked(d.columns[i].of) ? none : missing ? Cell(*d.columns[i].missing) : cell);
+      const Cell blanked = d.columns[i].of == d.declined_reason ? row[note] : none;
+      cells.push_back(blank && !asked_column(d.columns[i].of) ? blanked : missing ? Cell(*d.columns[i].missing) : cell);
     }
     out.add_row(std::move(cells));
   }
@@ -978,38 +986,6 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
     for (auto& s : f.series) shown = shown && rename(s);
     for (auto& s : f.panels) shown = shown && rename(s);
     if (shown) out.figures.push_back(f);
-  }
-  return out;
-}
-
-// rows = "group": one row per problem (a joint refinement's family) and integrator of the
-// table's problems (in the order of the runs), the fitted
-// orders' columns ("order of <measure>", ...) side by side; n/a where no fit was made.
-Table group_table(const FileTable& d, const Table& orders) {
-  Table out;
-  std::vector<std::pair<Cell, Cell>> groups;  // (problem, integrator)
-  for (const auto& row : orders.rows)
-    if (d.applies_to(std::get<std::string>(row[0])) && std::find(groups.begin(), groups.end(), std::pair{row[0], row[1]}) == groups.end())
-      groups.emplace_back(row[0], row[1]);
-  for (const FileColumn& c : d.columns) {
-    const auto of = c.of.find(" of ");
-    out.columns.push_back(declared_column(orders.columns[column_index(orders, of == std::string::npos ? c.of : c.of.substr(0, of))], c));
-  }
-  for (const auto& [problem, integrator] : groups) {
-    std::vector<Cell> cells;
-    for (const FileColumn& c : d.columns) {
-      const auto of = c.of.find(" of ");
-      if (of == std::string::npos) {
-        cells.push_back(c.of == "problem" ? problem : integrator);
-        continue;
-      }
-      const std::size_t k = column_index(orders, c.of.substr(0, of));
-      const Cell measure = c.of.substr(of + 4);
-      const auto row = std::find_if(orders.rows.begin(), orders.rows.end(),
-                                    [&](const auto& r) { return r[0] == problem && r[1] == integrator && r[2] == measure; });
-      cells.push_back(row == orders.rows.end() ? Cell{} : (*row)[k]);
-    }
-    out.add_row(std::move(cells));
   }
   return out;
 }
@@ -1088,6 +1064,50 @@ std::vector<Cell> parameter_cells(const FileProblem& p, const std::vector<std::s
     }
   }
   return cells;
+}
+
+// rows = "group": one row per problem (a joint refinement's family) and integrator of the
+// table's problems (in the order of the runs), the fitted orders' columns ("order of
+// <measure>", ...) side by side, n/a where no fit was made, and the problem's parameters
+// ("parameter NAME": the first problem's of a joint refinement's family).
+Table group_table(const StudySpec& spec, const FileTable& d, const Table& orders) {
+  Table out;
+  std::vector<std::pair<Cell, Cell>> groups;  // (problem, integrator)
+  for (const auto& row : orders.rows)
+    if (d.applies_to(std::get<std::string>(row[0])) && std::find(groups.begin(), groups.end(), std::pair{row[0], row[1]}) == groups.end())
+      groups.emplace_back(row[0], row[1]);
+  const std::vector<Column> parameters = parameter_columns(spec);
+  const auto parameter = [&](const std::string& name) {
+    return std::find_if(parameters.begin(), parameters.end(), [&](const Column& c) { return c.name == name; });
+  };
+  for (const FileColumn& c : d.columns) {
+    const auto of = c.of.find(" of ");
+    if (const auto p = parameter(c.of); p != parameters.end()) out.columns.push_back(declared_column(*p, c));
+    else out.columns.push_back(declared_column(orders.columns[column_index(orders, of == std::string::npos ? c.of : c.of.substr(0, of))], c));
+  }
+  for (const auto& [problem, integrator] : groups) {
+    const auto fp = std::find_if(spec.problems.begin(), spec.problems.end(),
+                                 [&, &problem = problem](const FileProblem& q) { return Cell{q.family_label()} == problem; });
+    std::vector<Cell> cells;
+    for (const FileColumn& c : d.columns) {
+      const auto of = c.of.find(" of ");
+      if (parameter(c.of) != parameters.end()) {
+        cells.push_back(parameter_cells(*fp, {c.of}).front());
+        continue;
+      }
+      if (of == std::string::npos) {
+        cells.push_back(c.of == "problem" ? problem : integrator);
+        continue;
+      }
+      const std::size_t k = column_index(orders, c.of.substr(0, of));
+      const Cell measure = c.of.substr(of + 4);
+      const auto row = std::find_if(orders.rows.begin(), orders.rows.end(),
+                                    [&](const auto& r) { return r[0] == problem && r[1] == integrator && r[2] == measure; });
+      cells.push_back(row == orders.rows.end() ? Cell{} : (*row)[k]);
+    }
+    out.add_row(std::move(cells));
+  }
+  return out;
 }
 
 std::vector<Cell> study_run_cells(const StudySpec& spec, const Json& c, const Json& r) {
@@ -1324,7 +1344,7 @@ std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, con
       t.caption = runs.caption;
       figures_placed = true;
     } else {
-      t = group_table(d, orders);
+      t = group_table(spec, d, orders);
       t.caption = orders.caption;
     }
     t.id = d.id;
@@ -1447,7 +1467,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
                {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
   for (const auto& m : spec.measures)
-    t.columns.push_back({m.label, m.kind == MeasureKind::ImpactTime || m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime || m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" && m.every == 0.0 ? "1/s" : "",
+    t.columns.push_back({m.label, (m.kind == MeasureKind::ImpactTime && m.norm != "count") || m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime || m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime || m.kind == MeasureKind::RestStart ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" && m.every == 0.0 ? "1/s" : "",
                          "{:.3e}", ""});
   t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", "", true}, {"steps", "", "", ""},
                                      {"F_int evals", "", "", "internal force evaluations"},

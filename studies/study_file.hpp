@@ -88,7 +88,7 @@ struct FileIntegrator {
 };
 
 // The kinds from ImpactRatio on are the measures of an observable's events (EventFigures).
-enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime, FlightEnergy,
+enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime, FlightEnergy, RestStart,
                          Estimate, ImpactRatio, Amplitude, ImpactCount, RestTime, PeakTime, Value, Summary };
 
 struct FileMeasure {
@@ -99,9 +99,25 @@ struct FileMeasure {
   // (its exact column, e.g. contact_force_exact: an impulse's force is no function of the exact
   // state), not against the reference; "": the reference.
   std::string against;
-  // Error: final|max|l2|rms|step rms; Energy: max|final|final abs|drift|offset; FlightEnergy: max|count
+  // Error: final|max|l2|rms|step rms; Energy: max|final|final abs|drift|offset; ImpactTime, FlightEnergy: max|count
   std::string norm = "max";
   int count = 3;                 // ImpactTime, FlightEnergy: the first `count` impacts (flights)
+  // ImpactTime, FlightEnergy: > 0: the impacts (flights) compared end at the first whose exact
+  // flight lasts less than this many steps (compared_impacts, studies/measures.hpp).
+  int min_flight_steps = 0;
+  // RestStart: a step is at rest when each observable (|o| with abs) is at most at_most dt^dt_power
+  // (dt: the run's nominal step); the rest must last longer than min_rest [s] (FinalRest).
+  struct RestBound {
+    std::string observable;
+    bool abs = false;
+    double at_most = 0.0;
+    int dt_power = 0;
+  };
+  std::vector<RestBound> rest;
+  double min_rest = 0.0;
+  // FlightEnergy: the energy at the step midway between the steps starting the run's contact
+  // phases (FlightEnergies::At::mid_flight_step), not at the exact mid-flight time.
+  bool at_mid_flight_step = false;
   // ImpactTime: the impact times the integrator locates itself (Integrator::events(), impacts
   // and Zeno stops: the event-driven reference), not the steps' ends; n/a where it locates none.
   bool located = false;
@@ -205,6 +221,9 @@ struct FileTable {
   // as n/a, only what was asked kept (declined = "n/a"), or empty (declined = "empty": no text
   // at all, as a table built by hand leaves them); by default as the run reports them (0).
   bool declined_blank = false, declined_empty = false;
+  // With declined_blank: the measured column (by `of`) whose cell in a declined run's row shows
+  // the scheme's reason (the run's note) instead (declined_reason = COLUMN); "": none.
+  std::string declined_reason;
   // case: the labels of the integrators whose runs it shows (empty: all).
   std::vector<std::string> integrators;
   bool applies_to(const std::string& problem_label) const;
@@ -300,6 +319,10 @@ struct StudySpec {
     return p.reference ? &*p.reference : has_reference ? &reference : nullptr;
   }
 };
+
+// A column of a case table that says what a case asked for (problem, integrator, step, limits,
+// status), not what its run measured: kept in a declined run's row with declined = "n/a".
+bool asked_column(const std::string& source);
 
 // A time measured against the problem's exact event times [s] (impact, stop, onset times; a
 // rest or peak time with exact = true).

@@ -461,6 +461,12 @@ std::pair<double, double> read_window(const Checker& c, const Json& v, const std
   return {t0, t1};
 }
 
+// An impact-time or flight-energy measure's min_flight_steps (FileMeasure::min_flight_steps).
+void read_min_flight_steps(const Checker& c, const Json& j, const std::string& path, FileMeasure& m) {
+  if (const Json* v = c.find(j, "min_flight_steps"))
+    m.min_flight_steps = static_cast<int>(c.integer(*v, child(path, "min_flight_steps"), 1, 1000000));
+}
+
 // A flight-energy measure's count and norm (max or count), checked against the exact impacts of
 // the problems it is measured on (`on`): count + 1 of them by the end of each.
 void read_flight_energy(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec,
@@ -468,6 +474,9 @@ void read_flight_energy(const Checker& c, const Json& j, const std::string& path
   m.count = static_cast<int>(c.integer(c.require(j, path, "count"), child(path, "count"), 1, 999));
   m.norm = "max";
   if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "count"});
+  read_min_flight_steps(c, j, path, m);
+  if (const Json* v = c.find(j, "at"))
+    m.at_mid_flight_step = c.choice(*v, child(path, "at"), {"exact mid-flight", "mid-flight step"}) == "mid-flight step";
   for (const std::size_t p : on) {
     const double t_end = spec.t_end_of(spec.problems[p]);
     const ExactSolution* exact = instances[p]->exact();
@@ -555,7 +564,7 @@ void read_inside_phase(const Checker& c, const Json& v, const std::string& path,
   }
 }
 
-// `summary` (kind summary, or rest-time and peak-time with exact = true) into `m`: the name of
+// `summary` (kind summary, or rest-time, peak-time and rest-start with exact = true) into `m`: the name of
 // a summary value every problem `on` has (Problem::summary_values); as an exact time, finite.
 void read_summary_name(const Checker& c, const Json& j, const std::string& path, const std::string& kind, FileMeasure& m,
                        const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances,
@@ -575,6 +584,44 @@ void read_summary_name(const Checker& c, const Json& j, const std::string& path,
       c.fail(child(path, "summary"), fmt::format("summary value '{}' of problem '{}' is not a finite time ({})", m.summary, spec.problems[p].label, value),
              "a problem whose event happens (e.g. a sphere that rolls), or problems = [...]");
   }
+}
+
+// A rest-start measure (FileMeasure::rest) into `m`: its bounds rest = [{ observable, abs,
+// at_most, dt_power }, ...], each observable one every problem `on` has (its own or kinetic,
+// potential, total_energy, min_gap), min_rest, and with exact = true the exact time, a finite
+// summary value of each problem.
+void read_rest_start(const Checker& c, const Json& j, const std::string& path, FileMeasure& m, const StudySpec& spec,
+                     const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
+  c.keys(j, path, {"kind", "label", "problems", "rest", "min_rest", "exact", "summary"});
+  const std::string at = child(path, "rest");
+  const Json& rest = c.require(j, path, "rest");
+  c.expect(rest, at, rest.is_array() && !rest.empty(), "an array of one or more { observable, abs, at_most, dt_power }");
+  for (std::size_t k = 0; k < rest.size(); ++k) {
+    const std::string bp = element(at, k);
+    const Json& b = rest[k];
+    c.expect(b, bp, b.is_object(), "a table { observable, abs, at_most, dt_power }");
+    c.keys(b, bp, {"observable", "abs", "at_most", "dt_power"});
+    FileMeasure::RestBound bound;
+    bound.observable = c.string(c.require(b, bp, "observable"), child(bp, "observable"));
+    if (const Json* v = c.find(b, "abs")) bound.abs = c.boolean(*v, child(bp, "abs"));
+    bound.at_most = c.positive(c.require(b, bp, "at_most"), child(bp, "at_most"));
+    if (const Json* v = c.find(b, "dt_power")) bound.dt_power = static_cast<int>(c.integer(*v, child(bp, "dt_power"), 0, 4));
+    for (const std::size_t p : on) {
+      std::vector<std::string> valid = instances[p]->observable_names();
+      valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
+      if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
+      if (std::find(valid.begin(), valid.end(), bound.observable) == valid.end())
+        c.fail(child(bp, "observable"), fmt::format("'{}' is not an observable of problem '{}'", bound.observable, spec.problems[p].label),
+               fmt::format("{} (or problems = [...])", fmt::join(valid, ", ")));
+    }
+    m.rest.push_back(bound);
+  }
+  if (const Json* v = c.find(j, "min_rest")) m.min_rest = c.positive(*v, child(path, "min_rest"));
+  if (const Json* v = c.find(j, "exact")) m.exact = c.boolean(*v, child(path, "exact"));
+  read_summary_name(c, j, path, "rest-start", m, spec, instances, on);
+  if (m.exact && m.summary.empty())
+    c.fail(child(path, "exact"), "the exact start of a rest is a summary value of the problem", "summary = NAME (e.g. t_zeno_exact)");
+  m.label = m.exact ? "err rest start" : "rest start";
 }
 
 // The measures of an observable's events (impact-ratio, amplitude, impact-count, rest-time,
@@ -812,10 +859,8 @@ std::vector<std::string> table_sources(const std::string& rows, const StudySpec&
   } else if (rows == "pivot") {
     return table_sources("case", spec);
   }
-  if (rows != "group") {
-    const auto parameters = parameter_column_names(spec);
-    sources.insert(sources.end(), parameters.begin(), parameters.end());
-  }
+  const auto parameters = parameter_column_names(spec);
+  sources.insert(sources.end(), parameters.begin(), parameters.end());
   return sources;
 }
 
@@ -932,7 +977,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Json& j = list[i];
     const std::string path = element("table", i);
-    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined", "integrators",
+    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined", "declined_reason", "integrators",
                      "where", "drop_above", "across", "measure", "observable", "exact", "last", "points"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
@@ -998,6 +1043,14 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       }
       if (t.rows == "pivot" && cols.size() < 2)
         c.fail(at, "a pivot needs the columns naming a row and the value column last", "two or more columns");
+    }
+    if (const Json* v = c.find(j, "declined_reason")) {
+      const std::string at = child(path, "declined_reason");
+      if (!t.declined_blank) c.fail(at, "a declined run's reason replaces one of its blanked cells", "declined = \"n/a\" or \"empty\"");
+      std::vector<std::string> measured;
+      for (const FileColumn& col : t.columns)
+        if (!asked_column(col.of)) measured.push_back(col.of);
+      t.declined_reason = c.choice(*v, at, measured);
     }
     tables.push_back(t);
   }
@@ -1190,8 +1243,8 @@ std::pair<double, double> FileMeasure::window_for(const std::string& problem_lab
 }
 
 bool FileMeasure::rankable() const {
-  if (kind >= MeasureKind::ImpactRatio) return !law.empty() || exact;  // a difference from a closed form, not a value
-  return (kind != MeasureKind::Energy && kind != MeasureKind::FlightEnergy) || norm == "max";
+  if (kind >= MeasureKind::ImpactRatio || kind == MeasureKind::RestStart) return !law.empty() || exact;  // a difference from a closed form, not a value
+  return (kind != MeasureKind::Energy && kind != MeasureKind::FlightEnergy && kind != MeasureKind::ImpactTime) || norm == "max";
 }
 
 const FileSweep& FileIntegrator::sweep_for(const std::string& problem_label) const {
@@ -1370,7 +1423,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   // A study of declared tables may show its runs' own figures alone (outcome, steps, histories).
   const Json& measures = c.find(root, "measure") || !c.find(root, "table") ? list("measure") : Json::array();
   const std::vector<std::string> kinds{"error",        "impact-time", "energy",      "momentum",     "penetration",
-                                       "hausdorff",    "stop-time",   "onset-time",  "flight-energy", "estimate", "impact-ratio",
+                                       "hausdorff",    "stop-time",   "onset-time",  "flight-energy", "rest-start", "estimate", "impact-ratio",
                                        "amplitude",    "impact-count", "rest-time",  "peak-time",    "value",
                                        "summary"};
   std::vector<std::string> problem_labels;
@@ -1447,14 +1500,19 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
                 : m.against.empty() ? fmt::format("err {} {}", m.observable, m.norm)
                                     : fmt::format("err {} {} against {}", m.observable, m.norm, m.against);
     } else if (m.kind == MeasureKind::ImpactTime) {
-      keys({"count", "located"});
+      keys({"count", "located", "min_flight_steps", "norm"});
       if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));
       if (const Json* v = c.find(j, "located")) m.located = c.boolean(*v, child(path, "located"));
+      if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "count"});
+      read_min_flight_steps(c, j, path, m);
+      if (m.located && (m.min_flight_steps > 0 || m.norm == "count"))
+        c.fail(child(path, "located"), "located impacts are compared by rank, all of the first count",
+               "located = true without min_flight_steps and norm = \"count\"");
       for (const std::size_t p : on)
         if (!instances[p]->exact() || instances[p]->exact()->impact_times(spec.t_end_of(spec.problems[p])).empty())
           c.fail(child(path, "kind"), fmt::format("problem '{}' knows no impact times before t_end", spec.problems[p].label),
                  "problems with known impacts (bouncing-mass, rolling-disk dropped from h0 > 0), or problems = [...]");
-      m.label = "impact time err";
+      m.label = m.norm == "count" ? "impacts compared" : "impact time err";
     } else if (m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime) {
       keys({});
       const bool onset = m.kind == MeasureKind::OnsetTime;
@@ -1477,9 +1535,11 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     } else if (m.kind == MeasureKind::Estimate) {
       keys({"observable", "order"});
       read_next_run_estimate(c, j, path, m, spec, instances, on);
+    } else if (m.kind == MeasureKind::RestStart) {
+      read_rest_start(c, j, path, m, spec, instances, on);
     } else if (m.kind == MeasureKind::FlightEnergy) {
       read_flight_energy(c, j, path, spec, on, instances, m);
-      keys({"count", "norm"});
+      keys({"count", "norm", "min_flight_steps", "at"});
     } else {
       keys(kind == "momentum" ? std::vector<std::string>{"window", "relative_to", "component"} : std::vector<std::string>{});
       if (const Json* v = c.find(j, "relative_to"))

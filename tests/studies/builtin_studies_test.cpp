@@ -414,3 +414,55 @@ TEST_CASE("draft bouncing.toml: the C++ study bouncing's runs, in its order, wit
     }
   }
 }
+
+// The draft's measures against the C++ study's own figures of the same run (its run_case), on
+// the runs at dt = 1e-2 and 1e-3 of three schemes: the impacts compared (the first 5 whose exact
+// flight lasts 10 steps at least), their largest time error, the flight energies at the
+// mid-flight step against E0 e^(2i), the detected Zeno time and its error, bit for bit.
+TEST_CASE("draft bouncing.toml: impact times, flight energies and Zeno times equal the C++ study's", "[studies]") {
+  const nsb::StudySpec spec =
+      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bouncing.toml");
+  const auto& registry = nsb::study_registry();
+  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bouncing"; });
+  REQUIRE(cpp != registry.end());
+  const auto measure = [&](const std::string& label) {
+    const auto at = std::find_if(spec.measures.begin(), spec.measures.end(), [&](const nsb::FileMeasure& m) { return m.label == label; });
+    REQUIRE(at != spec.measures.end());
+    return static_cast<std::size_t>(at - spec.measures.begin());
+  };
+  const nsb::StudyEntry file = nsb::file_study(spec);
+  const auto expected = nsb::study_cases(*cpp, {false});
+  const auto cases = nsb::study_cases(file, {false});
+  std::size_t compared = 0;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string name = expected[k]["integrator"];
+    const double dt = expected[k]["dt"], e = expected[k]["e"];
+    if ((name != "cd-lagrange" && name != "moreau-jean" && name != "schatzman-paoli") || dt < 1e-3) continue;
+    INFO("case " << expected[k].dump());
+    const nsb::Json want = cpp->run_case(expected[k]), got = file.run_case(cases[k]);
+    REQUIRE(got["status"] == "ok");
+    const auto value = [&](const std::string& label) { return nsb::real(got["values"][measure(label)]); };
+    const std::vector<double> t_err = want["impact_time_error"], flights = want["flight_energy"];
+    double t_max = 0.0, e_max = t_err.empty() ? NAN : 0.0;
+    for (double x : t_err) t_max = std::max(t_max, std::abs(x));
+    const auto mass = nsb::make_problem("bouncing-mass", {{"e", fmt::format("{}", e)}});
+    const auto& bouncing = dynamic_cast<const nsb::BouncingMass&>(*mass);
+    for (std::size_t i = 0; i < flights.size(); ++i)
+      e_max = std::max(e_max, std::abs(flights[i] / bouncing.energy_after_impact(static_cast<int>(i) + 1) - 1.0));
+    CHECK(value("impacts") == static_cast<double>(t_err.size()));
+    CHECK(value("max t_i err") == t_max);
+    CHECK(value("t1 err") == std::abs(t_err.at(0)));
+    if (flights.empty()) CHECK(std::isnan(value("max E_i err")));
+    else CHECK(value("max E_i err") == e_max);
+    const double zeno = nsb::real(want["zeno_detected"]);
+    if (e < 1.0 && !std::isnan(zeno)) {
+      CHECK(value("Zeno detected") == zeno);
+      CHECK(value("Zeno err") == std::abs(zeno - bouncing.zeno_time()));
+    } else {
+      CHECK(std::isnan(value("Zeno detected")));
+      CHECK(std::isnan(value("Zeno err")));
+    }
+    ++compared;
+  }
+  CHECK(compared == 3 * 3 * 2);
+}

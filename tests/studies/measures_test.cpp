@@ -67,6 +67,66 @@ TEST_CASE("ContactPhases: a phase starts after a step without impulse, more than
   CHECK(chatter.starts() == std::vector<double>{0.2, 1.1});
 }
 
+TEST_CASE("compared_impacts: the first count, up to the first exact flight shorter than min_flight", "[studies][measures]") {
+  const std::vector<double> exact{1.0, 2.0, 2.5, 2.6, 2.62};  // flights 1, 0.5, 0.1, 0.02
+  CHECK(nsb::compared_impacts(exact, 3, 0.0) == 3);
+  CHECK(nsb::compared_impacts(exact, 9, 0.0) == 5);  // as many as known
+  CHECK(nsb::compared_impacts(exact, 9, 0.1) == 3);  // the flight of 0.02 ends them (0.1 is kept: not shorter)
+  CHECK(nsb::compared_impacts(exact, 9, 0.3) == 2);
+  CHECK(nsb::compared_impacts(exact, 1, 0.3) == 1);
+  CHECK(nsb::compared_impacts(exact, 9, 2.0) == 0);
+  CHECK(nsb::compared_impacts({1.0, 2.0}, 9, 0.5) == 1);  // the last has no known flight
+}
+
+TEST_CASE("FlightEnergies: at the exact mid-flight time, and at the mid-flight step between the run's impacts", "[studies][measures]") {
+  // Exact impacts at 1, 2, 3, energies after them 4, 2, 1. Steps of 0.25 with impulses at the
+  // steps ending at 1.25 (and 1.5: one phase), 2.5 and 3.0; energy at the step ending at t: 10 t.
+  const std::vector<double> impacts{1.0, 2.0, 3.0}, energies{4.0, 2.0, 1.0};
+  nsb::FlightEnergies exact(impacts, energies, 2, nsb::FlightEnergies::At::exact_mid_flight);
+  nsb::FlightEnergies step(impacts, energies, 2, nsb::FlightEnergies::At::mid_flight_step);
+  nsb::FlightEnergies one(impacts, energies, 1, nsb::FlightEnergies::At::mid_flight_step);
+  for (int k = 1; k <= 16; ++k) {
+    const double t = 0.25 * k;
+    const bool contact = t == 1.25 || t == 1.5 || t == 2.5 || t == 3.0;
+    for (auto* f : {&exact, &step, &one}) f->add(t, contact, 10.0 * t);
+  }
+  // Exact mid-flights 1.5 and 2.5: E = 15 and 25 against 4 and 2.
+  REQUIRE(exact.compared() == 2);
+  CHECK(exact.errors()[0] == Approx(15.0 / 4.0 - 1.0));
+  CHECK(exact.errors()[1] == Approx(25.0 / 2.0 - 1.0));
+  CHECK(exact.largest() == Approx(11.5));
+  // Phases start at the steps k = 5 (1.25), 10 (2.5), 12 (3.0): mid-flight steps 7 (1.75) and 11 (2.75).
+  REQUIRE(step.compared() == 2);
+  CHECK(step.errors()[0] == Approx(17.5 / 4.0 - 1.0));
+  CHECK(step.errors()[1] == Approx(27.5 / 2.0 - 1.0));
+  CHECK(one.compared() == 1);  // the flights asked for only
+  // A flight whose next impact never comes is not compared; none compared: NaN.
+  nsb::FlightEnergies lone(impacts, energies, 2, nsb::FlightEnergies::At::mid_flight_step);
+  lone.add(1.0, true, 1.0);
+  lone.add(1.5, false, 1.0);
+  CHECK(lone.compared() == 0);
+  CHECK(std::isnan(lone.largest()));
+}
+
+TEST_CASE("FinalRest: the first step of the last stretch at rest, if it lasts longer than min_rest; rest_bound", "[studies][measures]") {
+  nsb::FinalRest rest(0.25), none(0.25), moving(0.0);
+  // At rest at 0.1, moving at 0.2, at rest from 0.3 to 0.6: the rest starts at 0.3 and lasts 0.3 > 0.25.
+  for (const auto& [t, still] : std::vector<std::pair<double, bool>>{{0.1, true}, {0.2, false}, {0.3, true}, {0.4, true}, {0.6, true}})
+    rest.add(t, still);
+  CHECK(rest.start() == 0.3);
+  none.add(0.5, true);
+  none.add(0.75, true);  // lasts 0.25 (exactly, in binary), not longer
+  CHECK(std::isnan(none.start()));
+  moving.add(0.3, true);
+  moving.add(0.4, false);  // the last step moves: no rest
+  CHECK(std::isnan(moving.start()));
+  // 2 g dt dt as a study writes it: (19.62 dt) dt, not 19.62 (dt dt).
+  const double dt = 1e-3;
+  CHECK(nsb::rest_bound(19.62, 2, dt) == 19.62 * dt * dt);
+  CHECK(nsb::rest_bound(19.62, 1, dt) == 19.62 * dt);
+  CHECK(nsb::rest_bound(19.62, 0, dt) == 19.62);
+}
+
 TEST_CASE("MomentumBalance and ContactPhases on the bouncing mass: Moreau-Jean balances momentum, impacts on time",
           "[studies][measures]") {
   // m = 1, g = 9.81, h0 = 1: first impact at sqrt(2 h0 / g) = 0.45152 s, the next 2 e sqrt(2 h0/g) later.

@@ -1356,8 +1356,15 @@ id = "runs"
 title = "runs"
 problems = ["target"]
 declined = "n/a"
+declined_reason = "final"
 columns = ["problem", "integrator name", "parameters", "t_end", "steps", "min step", "max step", "offset", "final", "flight",
            "flights", "no_root_steps", "parameter e", "status"]
+[[table]]
+id = "fits"
+title = "fits"
+rows = "group"
+problems = ["target"]
+columns = ["integrator", "parameter e", "order of flight"]
 [[table]]
 id = "momentum"
 title = "momentum"
@@ -1398,6 +1405,17 @@ TEST_CASE("study file: errors from the first step, flight energies, a momentum s
   CHECK(std::holds_alternative<std::monostate>(cell(0, "no_root_steps")));  // moreau-jean counts none
   CHECK(std::get<std::string>(cell(0, "integrator name")) == "moreau-jean");
   CHECK(std::get<std::string>(cell(0, "parameters")) == "default");
+  // newmark-lm declines e = 0.9: what was asked kept, its reason in the column declined_reason names.
+  CHECK(std::get<std::string>(cell(1, "integrator name")) == "newmark-lm");
+  CHECK_THAT(std::get<std::string>(cell(1, "final")), Catch::StartsWith("newmark-lm: problem 'bouncing-mass' asks for restitution e = 0.9"));
+  CHECK(std::holds_alternative<std::monostate>(cell(1, "offset")));
+  CHECK(std::holds_alternative<std::monostate>(cell(1, "flight")));
+  // A group table shows its problem's parameters beside the fits (one step: no order).
+  const nsb::Table& fits = table_ending(tables, "fits");
+  REQUIRE(fits.rows.size() == 2);
+  CHECK(fits.rows[0][0] == nsb::Cell{std::string("moreau-jean")});
+  CHECK(std::get<double>(fits.rows[0][1]) == 0.9);
+  CHECK(std::holds_alternative<std::monostate>(fits.rows[0][2]));
   CHECK(std::get<double>(cell(0, "parameter e")) == 0.9);  // a real parameter: a number
   // newmark-lm declines e = 0.9: what was asked kept, what a run measures n/a (not 0 steps).
   CHECK_THAT(std::get<std::string>(cell(1, "status")), Catch::StartsWith("n/a: "));
@@ -1489,7 +1507,45 @@ kind = "energy"
              StartsWith("f.toml:18: measure[0].count: problem 'bouncing-mass' knows 1 exact impacts and energies by t_end, not count + 1 = 4"));
   CHECK_THAT(study_error_of(with_measure("kind = \"flight-energy\"\ncount = 1\nnorm = \"l2\"")),
              StartsWith("f.toml:19: measure[0].norm: 'l2' is not valid (nearest: ") && Catch::Contains("valid: max, count"));
+  // The impacts compared (min_flight_steps), their count, and flight energies at the mid-flight step.
+  CHECK_THAT(study_error_of(with_measure("kind = \"impact-time\"\nmin_flight_steps = 0")),
+             StartsWith("f.toml:18: measure[0].min_flight_steps: 0 is out of range; valid: [1, 1000000]"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"impact-time\"\nmin_flight_steps = 2.5")),
+             StartsWith("f.toml:18: measure[0].min_flight_steps: expected an integer, got a number"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"impact-time\"\nnorm = \"first\"")),
+             StartsWith("f.toml:18: measure[0].norm: 'first' is not valid (nearest: ") && Catch::Contains("valid: max, count"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"impact-time\"\nlocated = true\nnorm = \"count\"")),
+             StartsWith("f.toml:18: measure[0].located: located impacts are compared by rank, all of the first count; valid: located = true "
+                        "without min_flight_steps and norm = \"count\""));
+  CHECK_THAT(study_error_of(with_measure("kind = \"flight-energy\"\ncount = 1\nmin_flight_steps = -3")),
+             StartsWith("f.toml:19: measure[0].min_flight_steps: -3 is out of range; valid: [1, 1000000]"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"flight-energy\"\ncount = 1\nat = \"middle\"")),
+             StartsWith("f.toml:19: measure[0].at: 'middle' is not valid (nearest: ") && Catch::Contains("valid: exact mid-flight, mid-flight step"));
+  // The start of the final rest: its bounds, min_rest and exact time.
+  const std::string bound = "kind = \"rest-start\"\nrest = [{ observable = \"v\", abs = true, at_most = 19.62, dt_power = 1 }]\n";
+  CHECK_THAT(study_error_of(with_measure("kind = \"rest-start\"")), StartsWith("f.toml:16: measure[0]: missing key 'rest'"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"rest-start\"\nrest = []")),
+             StartsWith("f.toml:18: measure[0].rest: expected an array of one or more { observable, abs, at_most, dt_power }"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"rest-start\"\nrest = [{ observable = \"w\", at_most = 1 }]")),
+             StartsWith("f.toml:18: measure[0].rest[0].observable: 'w' is not an observable of problem 'bouncing-mass'; valid: q, v, "));
+  CHECK_THAT(study_error_of(with_measure("kind = \"rest-start\"\nrest = [{ observable = \"v\", at_most = 0 }]")),
+             StartsWith("f.toml:18: measure[0].rest[0].at_most: 0 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"rest-start\"\nrest = [{ observable = \"v\", at_most = 1, dt_power = 5 }]")),
+             StartsWith("f.toml:18: measure[0].rest[0].dt_power: 5 is out of range; valid: [0, 4]"));
+  CHECK_THAT(study_error_of(with_measure("kind = \"rest-start\"\nrest = [{ observable = \"v\", at_most = 1, below = 2 }]")),
+             StartsWith("f.toml:18: measure[0].rest[0].below: unknown key"));
+  CHECK_THAT(study_error_of(with_measure(bound + "min_rest = -0.25")),
+             StartsWith("f.toml:19: measure[0].min_rest: -0.25 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(study_error_of(with_measure(bound + "exact = true")),
+             StartsWith("f.toml:19: measure[0].exact: the exact start of a rest is a summary value of the problem; valid: summary = NAME"));
+  CHECK_THAT(study_error_of(with_measure(bound + "exact = true\nsummary = \"t_roll_exact\"")),
+             StartsWith("f.toml:20: measure[0].summary: 't_roll_exact' is not a summary value of problem 'bouncing-mass'; valid: t_zeno_exact"));
   const std::string declared = kMinimal + "[[table]]\nid = \"t\"\ntitle = \"t\"\ncolumns = [\"problem\"]\n";
+  CHECK_THAT(study_error_of(declared + "declined_reason = \"problem\"\n"),
+             StartsWith("f.toml:22: table[0].declined_reason: a declined run's reason replaces one of its blanked cells; valid: declined = \"n/a\" or \"empty\""));
+  CHECK_THAT(study_error_of(replaced(declared, "columns = [\"problem\"]", "columns = [\"problem\", \"err u max\"]") +
+                            "declined = \"n/a\"\ndeclined_reason = \"problem\"\n"),
+             StartsWith("f.toml:23: table[0].declined_reason: 'problem' is not valid (nearest: err u max); valid: err u max"));
   CHECK_THAT(study_error_of(declared + "declined = \"zero\"\n"),
              StartsWith("f.toml:22: table[0].declined: 'zero' is not valid (nearest: ") && Catch::Contains("valid: as run, n/a"));
   CHECK_THAT(study_error_of(declared + "rows = \"group\"\ndeclined = \"n/a\"\n"),
