@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <memory>
 #include <numeric>
@@ -1105,9 +1106,9 @@ void read_t_end_exact(const Checker& c, const Json& j, const std::string& path, 
     else if (const auto w = std::find_if(values.begin(), values.end(), [&](const auto& x) { return x.first == name; });
              exact && w != values.end())
       time = exact->value(w->second);
-    else if (name.rfind("impact_", 0) == 0 && name.size() > 7 && name.find_first_not_of("0123456789", 7) == std::string::npos &&
-             std::stoul(name.substr(7)) >= 1 && std::stoul(name.substr(7)) <= impacts.size())
-      time = impacts[std::stoul(name.substr(7)) - 1];
+    else if (std::size_t k = 0; name.rfind("impact_", 0) == 0 && std::from_chars(name.data() + 7, name.data() + name.size(), k).ptr ==
+                                                                        name.data() + name.size() && k >= 1 && k <= impacts.size())
+      time = impacts[k - 1];  // impact_K: digits only, in [1, the impacts known]
     if (!time || !std::isfinite(*time))
       c.fail(key, fmt::format("problem '{}' has no exact time or value '{}'", p.label, name), valid);
     t_end += factor.get<double>() * *time;

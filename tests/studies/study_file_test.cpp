@@ -772,6 +772,8 @@ kind = "error"
   CHECK_THAT(study_error_of(replaced(text, "impact_2 = 1.0", "impact_900 = 1.0")),
              StartsWith("f.toml:8: problem[0].t_end_exact.impact_900: problem 'bouncing-mass' has no exact time or value 'impact_900'; "
                         "valid: impact_1 .. impact_"));
+  CHECK_THAT(study_error_of(replaced(text, "impact_2 = 1.0", "impact_99999999999999999999999 = 1.0")),
+             StartsWith("f.toml:8: problem[0].t_end_exact.impact_99999999999999999999999: problem 'bouncing-mass' has no exact time"));
   CHECK_THAT(study_error_of(replaced(text, "cpu_repeats = 0", "cpu_repeats = 0\nintegrators = \"peers\"")),
              StartsWith("f.toml:5: study.integrators: 'peers' is not valid") && Contains("valid: all, schemes"));
   CHECK_THAT(study_error_of(replaced(bar, "case_order = \"sweep\"", "case_order = \"sweeps\"")),
