@@ -126,10 +126,12 @@ double interpolate(const Polyline& g, double t) {
 }
 
 GraphErrors graph_errors(const Polyline& run, const Polyline& reference, const std::function<double(double)>& reference_at,
-                         double time_scale) {
+                         double time_scale, double value_scale) {
   GraphErrors e;
   e.time_scale = time_scale;
-  for (double x : reference.x) e.value_scale = std::max(e.value_scale, std::abs(x));
+  e.value_scale = value_scale;
+  if (!(value_scale > 0.0))
+    for (double x : reference.x) e.value_scale = std::max(e.value_scale, std::abs(x));
   if (!(e.value_scale > 0.0)) e.value_scale = 1.0;
   for (std::size_t k = 0; k < run.size(); ++k) e.max_error = std::max(e.max_error, std::abs(run.x[k] - reference_at(run.t[k])));
   e.max_error /= e.value_scale;

@@ -25,8 +25,9 @@ struct GraphErrors {
   double max_error = 0.0;                      // max_k |x_k - ref(t_k)| / V
   double hausdorff = 0.0, to_reference = 0.0, from_reference = 0.0;  // scaled coordinates
 };
+// V: value_scale when > 0, else the reference's largest |value| (1 if 0).
 GraphErrors graph_errors(const Polyline& run, const Polyline& reference, const std::function<double(double)>& reference_at,
-                         double time_scale);
+                         double time_scale, double value_scale = 0.0);
 
 // The study's fits for one integrator, per problem in the study's order: the problem's name and
 // the orders in dt of the max-norm error and of the Hausdorff distance (runs the 4 refinements).

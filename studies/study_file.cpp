@@ -42,7 +42,9 @@
 //                the exact solution with its jumps as vertical segments, or the reference run's
 //                samples), in scaled coordinates (t / time_scale, o / value_scale), by default
 //                time_scale = t_end and value_scale = the reference's largest |o|
-//                (studies/hausdorff.hpp).
+//                (studies/hausdorff.hpp); norm "to reference" / "from reference": one directed
+//                distance, "max error": max over the run's samples of |o - o_ref(t)| / value_scale,
+//                "value scale": that scale (GraphErrors).
 //   stop-time    |t_stop - t_stop exact| of a sliding mass, onset-time the same for a rolling
 //   onset-time   disk's rolling onset: the slip's stop as the friction study measures it
 //                (studies/slip_stop.hpp, one code for both) [s].
@@ -108,6 +110,14 @@ double case_t_end(const StudySpec& spec, const FileProblem& p, const Json& c) {
   return c.contains("t_end") ? c["t_end"].get<double>() : spec.t_end_of(p);
 }
 
+// What a Hausdorff measure's graphs are of: its observable, or each problem's ("v_contact (signorini-bar), ...").
+std::string graph_observables(const FileMeasure& m) {
+  if (m.problem_observables.empty()) return m.observable;
+  std::vector<std::string> each;
+  for (const auto& [label, name] : m.problem_observables) each.push_back(fmt::format("{} ({})", name, label));
+  return fmt::format("{}", fmt::join(each, ", "));
+}
+
 // A reference run once per problem and cached (not the exact solution, not stepped in lockstep).
 bool cached(const FileReference* r) { return r && !r->exact && !r->lockstep; }
 
@@ -154,11 +164,21 @@ void add_cases(const StudySpec& spec, std::size_t p, std::size_t i, bool full, s
 std::vector<Json> file_cases(const StudySpec& spec, bool full) {
   std::vector<Json> cases;
   const std::size_t np = spec.problems.size(), ni = spec.integrators.size();
-  for (std::size_t outer = 0; outer < (spec.integrator_major ? ni : np); ++outer)
-    for (std::size_t inner = 0; inner < (spec.integrator_major ? np : ni); ++inner) {
-      const std::size_t p = spec.integrator_major ? inner : outer, i = spec.integrator_major ? outer : inner;
-      if (spec.runs(spec.problems[p], full)) add_cases(spec, p, i, full, cases);
+  if (spec.sweep_major) {
+    // Each family (consecutive problems of one joint refinement, or one problem) over the integrators.
+    for (std::size_t first = 0, last = 0; first < np; first = last) {
+      while (last < np && spec.problems[last].family_label() == spec.problems[first].family_label()) ++last;
+      for (std::size_t i = 0; i < ni; ++i)
+        for (std::size_t p = first; p < last; ++p)
+          if (spec.runs(spec.problems[p], full)) add_cases(spec, p, i, full, cases);
     }
+  } else {
+    for (std::size_t outer = 0; outer < (spec.integrator_major ? ni : np); ++outer)
+      for (std::size_t inner = 0; inner < (spec.integrator_major ? np : ni); ++inner) {
+        const std::size_t p = spec.integrator_major ? inner : outer, i = spec.integrator_major ? outer : inner;
+        if (spec.runs(spec.problems[p], full)) add_cases(spec, p, i, full, cases);
+      }
+  }
   // A reference integrator runs once per problem, here, before the cases that read it.
   for (const auto& p : spec.problems)
     if (cached(spec.reference_of(p)) && spec.runs(p, full)) try {
@@ -602,7 +622,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (on[m] && spec.measures[m].kind == MeasureKind::Hausdorff) {
       const State& s = integrator->state();
-      acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0, spec.measures[m].observable, obs, &energy0));
+      acc[m].graph.add(s.t, state_observable(*problem, M, s, Vec::Zero(problem->ncontacts()), 0.0,
+                                             spec.measures[m].observable_for(fp.label), obs, &energy0));
     }
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (on[m] && spec.measures[m].kind >= MeasureKind::ImpactRatio)
@@ -684,7 +705,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         if (inside) a.samples.push_back(state_observable(*problem, M, s, it.impulses(), step_dt, fm.observable, obs, &energy));
         continue;
       } else if (fm.kind == MeasureKind::Hausdorff) {
-        a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable, obs, &energy));
+        a.graph.add(s.t, state_observable(*problem, M, s, it.impulses(), s.t - t_prev, fm.observable_for(fp.label), obs, &energy));
       } else if (fm.kind == MeasureKind::Energy) {
         e = energy_error(fm, energy.total());
         a.drift.add(s.t, e);
@@ -814,12 +835,15 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         break;
       }
       case MeasureKind::Hausdorff: {
-        const Polyline ref = reference.graph(fm.observable, t_end, obs_ref);
-        double largest = 0.0;
-        for (double x : ref.x) largest = std::max(largest, std::abs(x));
-        const double T = fm.time_scale > 0.0 ? fm.time_scale : t_end;
-        const double V = fm.value_scale > 0.0 ? fm.value_scale : largest > 0.0 ? largest : 1.0;
-        v = hausdorff(scaled(a.graph, T, V), scaled(ref, T, V));
+        const std::string& observable = fm.observable_for(fp.label);
+        const Polyline ref = reference.graph(observable, t_end, obs_ref);
+        const GraphErrors e = graph_errors(a.graph, ref, [&](double t) { return reference.observable(t, observable, obs_ref); },
+                                           fm.time_scale > 0.0 ? fm.time_scale : t_end, fm.value_scale);
+        v = fm.norm == "to reference"     ? e.to_reference
+            : fm.norm == "from reference" ? e.from_reference
+            : fm.norm == "max error"      ? e.max_error
+            : fm.norm == "value scale"    ? e.value_scale
+                                          : e.hausdorff;
         break;
       }
     }
@@ -862,7 +886,7 @@ bool is_event_time(const FileMeasure& m) {
          ((m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime || m.kind == MeasureKind::RestStart) && m.exact);
 }
 bool measure_converges(const FileMeasure& m) {
-  return m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff || is_event_time(m) ||
+  return m.kind == MeasureKind::Error || (m.kind == MeasureKind::Hausdorff && m.norm != "value scale") || is_event_time(m) ||
          (m.kind == MeasureKind::FlightEnergy && m.norm == "max");
 }
 
@@ -1458,7 +1482,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   for (const auto& m : spec.measures)
     if (m.kind == MeasureKind::Hausdorff)
       t.caption += fmt::format(" {}: Hausdorff distance between the graphs of {} (jumps of the exact solution as vertical segments) "
-                               "in scaled coordinates (t / {}, value / {}).", m.label, m.observable,
+                               "in scaled coordinates (t / {}, value / {}).", m.label, graph_observables(m),
                                m.time_scale > 0.0 ? fmt::format("{:g} s", m.time_scale) : "t_end",
                                m.value_scale > 0.0 ? fmt::format("{:g}", m.value_scale) : "the reference's largest |value|");
   for (const auto& m : spec.measures)

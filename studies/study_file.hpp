@@ -95,11 +95,16 @@ struct FileMeasure {
   MeasureKind kind = MeasureKind::Error;
   std::string label;             // the column's name
   std::string observable = "u";  // Error: "u", "v" or one of the problem's observables; Hausdorff: an observable
+  // Hausdorff: the observable of each problem by label (observable = { LABEL = NAME }; the
+  // problems' graphs differ, e.g. v and v_contact, in one column); empty: `observable`.
+  std::map<std::string, std::string> problem_observables;
+  const std::string& observable_for(const std::string& problem_label) const;
   // Error of an observable: against the problem's own observable of this name at the run's state
   // (its exact column, e.g. contact_force_exact: an impulse's force is no function of the exact
   // state), not against the reference; "": the reference.
   std::string against;
-  // Error: final|max|l2|rms|step rms; Energy: max|final|final abs|drift|offset; ImpactTime, FlightEnergy: max|count
+  // Error: final|max|l2|rms|step rms; Energy: max|final|final abs|drift|offset; ImpactTime, FlightEnergy: max|count;
+  // Hausdorff: distance|to reference|from reference|max error|value scale
   std::string norm = "max";
   int count = 3;                 // ImpactTime, FlightEnergy: the first `count` impacts (flights)
   // ImpactTime, FlightEnergy: > 0: the impacts (flights) compared end at the first whose exact
@@ -139,6 +144,9 @@ struct FileMeasure {
   double every = 0.0, from = 0.0;
   double time_scale = 0.0;       // Hausdorff: T (0: t_end)
   double value_scale = 0.0;      // Hausdorff: V (0: the reference's largest |value|)
+  // Hausdorff's norm: distance (H, the larger directed distance), "to reference" (run -> ref),
+  // "from reference" (ref -> run), "max error" (max over the run's samples of |o - o_ref(t)| / V)
+  // or "value scale" (V itself): GraphErrors, studies/hausdorff.hpp.
   std::vector<std::string> problems;  // the labels of the problems it is measured on (empty: all)
   // The measures of an observable's events (README, "Studies from a file"): impact-ratio's
   // law ("housner" | "moreau", "": the ratio itself), the impact it is taken at (impact-ratio,
@@ -284,6 +292,10 @@ struct StudySpec {
   // study.case_order = "integrator": the runs integrator by integrator (each over the problems
   // in their order); by default problem by problem (each over the integrators).
   bool integrator_major = false;
+  // study.case_order = "sweep": problem by problem, each over the integrators, a joint
+  // refinement's problems (one family) as one problem: each integrator's runs over its refined
+  // problems together.
+  bool sweep_major = false;
   // study.measure_over_budget: an over-budget run's measures up to its stop (default: none).
   bool measure_over_budget = false;
   std::vector<FileExclusion> exclusions;

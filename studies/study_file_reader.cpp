@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <memory>
 #include <numeric>
@@ -786,6 +787,10 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const S
   for (const auto& m : measures) run_columns.push_back(m.label);
   run_columns.insert(run_columns.end(), {"CPU", "steps", "F_int evals"});
   run_columns.insert(run_columns.end(), parameters.begin(), parameters.end());  // a problem parameter: e.g. a panel per mass model
+  // Drawn from a declared case table: any column it may show too (e.g. a panel per "problem name").
+  if (c.find(root, "table"))
+    for (const auto& name : run_column_names())
+      if (std::find(run_columns.begin(), run_columns.end(), name) == run_columns.end()) run_columns.push_back(name);
   for (std::size_t i = 0; i < list->size(); ++i) {
     const Json& j = (*list)[i];
     const std::string path = element("figure", i);
@@ -1116,6 +1121,59 @@ void read_end_at_impact(const Checker& c, const Json& j, const std::string& path
   p.t_end = times[static_cast<std::size_t>(n) - 1];
 }
 
+// t_end_exact = { NAME = factor, ..., plus = seconds }: the problem's t_end is the sum of each
+// factor times the exact solution's event time or value NAME (ExactEvent, ExactValue: e.g.
+// contact_start, slip_stop, rest, contact_duration; impact_K: its K-th impact time), then plus
+// (`instance`: the problem; a horizon set by the solution's own events, per problem).
+void read_t_end_exact(const Checker& c, const Json& j, const std::string& path, const Problem& instance, FileProblem& p) {
+  const Json* v = c.find(j, "t_end_exact");
+  if (!v) return;
+  const std::string at = child(path, "t_end_exact");
+  if (c.find(j, "t_end") || c.find(j, "full_t_end") || c.find(j, "end_at_impact"))
+    c.fail(at, "the run's end given twice", "one of t_end (with full_t_end), end_at_impact or t_end_exact");
+  c.expect(*v, at, v->is_object() && !v->empty(), "a table of exact time or value = factor (and plus = seconds)");
+  static const std::vector<std::pair<std::string, ExactEvent>> events{{"contact_start", ExactEvent::contact_start},
+                                                                      {"slip_stop", ExactEvent::slip_stop},
+                                                                      {"rest", ExactEvent::rest},
+                                                                      {"roll_onset", ExactEvent::roll_onset},
+                                                                      {"jam", ExactEvent::jam}};
+  static const std::vector<std::pair<std::string, ExactValue>> values{{"contact_duration", ExactValue::contact_duration},
+                                                                      {"stop_distance", ExactValue::stop_distance}};
+  const ExactSolution* exact = instance.exact();
+  const std::vector<double> impacts = exact ? exact->impact_times(std::numeric_limits<double>::infinity()) : std::vector<double>{};
+  std::vector<std::string> known;  // what this problem's exact solution gives
+  for (const auto& [name, e] : events)
+    if (exact && exact->event_time(e)) known.push_back(name);
+  for (const auto& [name, w] : values)
+    if (exact && exact->value(w)) known.push_back(name);
+  if (!impacts.empty()) known.push_back(fmt::format("impact_1 .. impact_{}", impacts.size()));
+  const std::string valid = fmt::format("{}{}plus", fmt::join(known, ", "), known.empty() ? "" : ", ");
+  double t_end = 0.0;
+  for (const auto& [name, factor] : v->items()) {
+    if (name == "plus") continue;
+    const std::string key = child(at, name);
+    c.expect(factor, key, factor.is_number(), "a number (the factor)");
+    std::optional<double> time;
+    if (const auto e = std::find_if(events.begin(), events.end(), [&](const auto& x) { return x.first == name; }); exact && e != events.end())
+      time = exact->event_time(e->second);
+    else if (const auto w = std::find_if(values.begin(), values.end(), [&](const auto& x) { return x.first == name; });
+             exact && w != values.end())
+      time = exact->value(w->second);
+    else if (std::size_t k = 0; name.rfind("impact_", 0) == 0 && std::from_chars(name.data() + 7, name.data() + name.size(), k).ptr ==
+                                                                        name.data() + name.size() && k >= 1 && k <= impacts.size())
+      time = impacts[k - 1];  // impact_K: digits only, in [1, the impacts known]
+    if (!time || !std::isfinite(*time))
+      c.fail(key, fmt::format("problem '{}' has no exact time or value '{}'", p.label, name), valid);
+    t_end += factor.get<double>() * *time;
+  }
+  if (const Json* plus = c.find(*v, "plus")) {
+    c.expect(*plus, child(at, "plus"), plus->is_number(), "a number of seconds");
+    t_end += plus->get<double>();
+  }
+  if (!(t_end > 0.0) || !std::isfinite(t_end)) c.fail(at, fmt::format("t_end = {} on problem '{}'", t_end, p.label), "a sum > 0");
+  p.t_end = t_end;
+}
+
 // study.counters: names of integrators' work counters (Work::extra), each once.
 std::vector<std::string> counter_names(const Checker& c, const Json& j, const std::string& path) {
   c.expect(j, path, j.is_array() && !j.empty(), "an array of one or more counter names");
@@ -1182,7 +1240,11 @@ void read_energy_sampling(const Checker& c, const Json& j, const std::string& pa
 void read_study_order_and_budget(const Checker& c, const Json& study, StudySpec& spec) {
   if (const Json* v = c.find(study, "measure_over_budget")) spec.measure_over_budget = c.boolean(*v, "study.measure_over_budget");
   if (const Json* v = c.find(study, "case_order"))
-    spec.integrator_major = c.choice(*v, "study.case_order", {"problem", "integrator"}) == "integrator";
+  {
+    const std::string order = c.choice(*v, "study.case_order", {"problem", "integrator", "sweep"});
+    spec.integrator_major = order == "integrator";
+    spec.sweep_major = order == "sweep";
+  }
   if (const Json* v = c.find(study, "max_force_evaluations_per_step")) {
     const std::string at = "study.max_force_evaluations_per_step";
     if (c.find(study, "max_force_evaluations")) c.fail(at, "given beside study.max_force_evaluations", "one of the two budgets");
@@ -1236,6 +1298,11 @@ bool FileMeasure::applies_to(const std::string& problem_label) const {
   return problems.empty() || std::find(problems.begin(), problems.end(), problem_label) != problems.end();
 }
 
+const std::string& FileMeasure::observable_for(const std::string& problem_label) const {
+  const auto it = problem_observables.find(problem_label);
+  return it == problem_observables.end() ? observable : it->second;
+}
+
 std::pair<double, double> FileMeasure::window_for(const std::string& problem_label) const {
   const auto it = problem_windows.find(problem_label);
   if (it != problem_windows.end()) return it->second;
@@ -1244,6 +1311,7 @@ std::pair<double, double> FileMeasure::window_for(const std::string& problem_lab
 
 bool FileMeasure::rankable() const {
   if (kind >= MeasureKind::ImpactRatio || kind == MeasureKind::RestStart) return !law.empty() || exact;  // a difference from a closed form, not a value
+  if (kind == MeasureKind::Hausdorff) return norm != "value scale";  // a scale, not an error
   return (kind != MeasureKind::Energy && kind != MeasureKind::FlightEnergy && kind != MeasureKind::ImpactTime) || norm == "max";
 }
 
@@ -1304,7 +1372,10 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       c.fail("study.energy_blow_up", fmt::format("{} is not positive", spec.energy_blow_up), "(0, inf]; inf: no energy blow-up status");
   }
   if (const Json* v = c.find(study, "max_penetration")) spec.max_penetration = c.positive(*v, "study.max_penetration");
-  const bool all_integrators = c.find(study, "integrators") && c.choice(study["integrators"], "study.integrators", {"all"}) == "all";
+  // study.integrators = "all": every registered integrator; "schemes": those not peers and not references.
+  const std::string registered_integrators =
+      c.find(study, "integrators") ? c.choice(study["integrators"], "study.integrators", {"all", "schemes"}) : "";
+  const bool all_integrators = !registered_integrators.empty();
   if (const Json* v = c.find(study, "figures")) spec.declared_figures_only = c.choice(*v, "study.figures", {"all", "declared"}) == "declared";
 
   const auto list = [&](const char* key) -> const Json& {
@@ -1320,7 +1391,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     const std::string path = element("problem", i);
     c.keys(j, path, {"name", "label", "parameters", "grid", "refine", "t_end", "max_force_evaluations", "steps", "full_steps", "stable_steps",
                      "reference", "energy_blow_up", "max_penetration", "energy_scale", "full_only", "default_only", "full_t_end",
-                     "end_at_impact", "min_flight"});
+                     "end_at_impact", "t_end_exact", "min_flight"});
     FileProblem p;
     p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
     p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
@@ -1341,6 +1412,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         c.fail(child(path, c.find(j, "grid") ? "grid" : "parameters"), e.what());
       }
       read_end_at_impact(c, j, path, *instances.back(), q);
+      read_t_end_exact(c, j, path, *instances.back(), q);
       FileSweep own_steps;  // its stable steps against its end time
       own_steps.stable_fractions = q.stable_fractions;
       check_steps(c, own_steps, path, spec, q, instances.back()->stable_step());
@@ -1402,6 +1474,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   if (!all_integrators) spec.integrators = std::move(declared);
   for (const auto& entry : integrator_registry()) {
     if (!all_integrators) break;
+    if (registered_integrators == "schemes" && (entry.reference || entry.peer)) continue;
     const auto named = [&](const FileIntegrator& it) { return it.name == entry.name; };
     if (std::any_of(declared.begin(), declared.end(), named)) {
       std::copy_if(declared.begin(), declared.end(), std::back_inserter(spec.integrators), named);
@@ -1453,8 +1526,28 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     } else if (m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff) {
       const bool hausdorff = m.kind == MeasureKind::Hausdorff;
       if (hausdorff) {
-        keys({"observable", "time_scale", "value_scale"});
-        m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
+        keys({"observable", "time_scale", "value_scale", "norm"});
+        // An observable, or one per problem (by label, or a joint refinement's by its family
+        // label: each problem it is measured on named).
+        if (const Json& o = c.require(j, path, "observable"); o.is_object()) {
+          const std::string at = child(path, "observable");
+          std::vector<std::string> labels;
+          for (const std::size_t p : on)
+            for (const std::string& label : {spec.problems[p].label, spec.problems[p].family_label()})
+              if (std::find(labels.begin(), labels.end(), label) == labels.end()) labels.push_back(label);
+          c.keys(o, at, labels);
+          for (const std::size_t p : on) {
+            const FileProblem& fp = spec.problems[p];
+            const std::string& key = o.contains(fp.label) ? fp.label : fp.family_label();
+            m.problem_observables[fp.label] = c.string(c.require(o, at, key), child(at, key));
+          }
+          m.observable.clear();
+        } else {
+          m.observable = c.string(o, child(path, "observable"));
+        }
+        m.norm = "distance";
+        if (const Json* v = c.find(j, "norm"))
+          m.norm = c.choice(*v, child(path, "norm"), {"distance", "to reference", "from reference", "max error", "value scale"});
         if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
         if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
       } else {
@@ -1476,8 +1569,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
           c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",
                  "[reference] solution = \"exact\" or a cached integrator (lockstep = false)");
       }
-      if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2", "rms", "step rms"});
-      if (const Json* v = c.find(j, "observable")) m.observable = c.string(*v, child(path, "observable"));
+      if (const Json* v = c.find(j, "norm"); v && !hausdorff) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2", "rms", "step rms"});
+      if (const Json* v = c.find(j, "observable"); v && !hausdorff) m.observable = c.string(*v, child(path, "observable"));
       for (const std::size_t p : on) {
         if (!m.against.empty()) {
           check_against(c, path, m, instances[p]->observable_names(), spec.problems[p].label);
@@ -1491,12 +1584,15 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
           if (std::find(valid.begin(), valid.end(), "v") == valid.end()) valid.insert(valid.begin(), "v");
           valid.insert(valid.begin(), "u");
         }
-        if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
-          c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'{}", m.observable, spec.problems[p].label,
+        const std::string& observable = m.observable_for(spec.problems[p].label);
+        const std::string at = m.problem_observables.empty() ? child(path, "observable") : child(child(path, "observable"), spec.problems[p].label);
+        if (std::find(valid.begin(), valid.end(), observable) == valid.end())
+          c.fail(at, fmt::format("'{}' is not an observable of problem '{}'{}", observable, spec.problems[p].label,
                                                         ref.exact ? "" : " recorded by its reference run"),
                  fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
       }
-      m.label = hausdorff           ? fmt::format("hausdorff {}", m.observable)
+      const std::string graph = m.observable.empty() ? "hausdorff" : fmt::format("hausdorff {}", m.observable);  // "": per problem
+      m.label = hausdorff           ? (m.norm == "distance" ? graph : fmt::format("{} {}", graph, m.norm))
                 : m.against.empty() ? fmt::format("err {} {}", m.observable, m.norm)
                                     : fmt::format("err {} {} against {}", m.observable, m.norm, m.against);
     } else if (m.kind == MeasureKind::ImpactTime) {

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -15,6 +16,7 @@
 #include "integrators/registry.hpp"
 #include "problems/bouncing_bar.hpp"
 #include "problems/bouncing_mass.hpp"
+#include "problems/exact_solution.hpp"
 #include "problems/registry.hpp"
 #include "studies/registry.hpp"
 #include "studies/study_file.hpp"
@@ -465,4 +467,55 @@ TEST_CASE("draft bouncing.toml: impact times, flight energies and Zeno times equ
     ++compared;
   }
   CHECK(compared == 3 * 3 * 2);
+}
+
+// The draft studies/builtin/drafts/hausdorff.toml against the C++ study it is to replace
+// (studies/hausdorff_study.cpp): its runs on the four problems the draft says (bouncing-mass,
+// signorini-bar, sliding-mass, rolling-disk; the C++ study's subjects 0, 1, 4, 5), in its order
+// (problem, integrator, level), each with the C++ study's parameters, step (4 ms / 2^level; the
+// bar: N = 25 2^level at 0.9 of its stable step) and end time (from the exact events).
+TEST_CASE("draft hausdorff.toml: the C++ study hausdorff's runs, in its order, with its steps and end times", "[studies]") {
+  const nsb::StudySpec spec =
+      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "hausdorff.toml");
+  const auto& registry = nsb::study_registry();
+  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "hausdorff"; });
+  REQUIRE(cpp != registry.end());
+  REQUIRE(cpp->source == "studies/hausdorff_study.cpp");
+  using Overrides = std::map<std::string, std::string>;
+  const std::vector<std::pair<std::string, Overrides>> subjects = {
+      {"bouncing-mass", {{"e", "0.9"}, {"h0", "1"}}},
+      {"signorini-bar", {{"mass", "lumped"}}},
+      {"bouncing-bar", {{"mass", "lumped"}}},
+      {"spring-chain", {{"n", "3"}, {"wall", "left"}}},
+      {"sliding-mass", {{"alpha", "30"}, {"mu", "0.8"}, {"v0", "2"}}},
+      {"rolling-disk", {{"h0", "0.05"}, {"omega0", "20"}, {"e", "0.5"}, {"mu", "0.3"}}},
+  };
+  std::vector<nsb::Json> expected;
+  for (const auto& c : nsb::study_cases(*cpp, {false}))
+    if (const auto s = c["subject"].get<std::size_t>(); s != 2 && s != 3) expected.push_back(c);
+  const auto cases = nsb::study_cases(nsb::file_study(spec), {false});
+  REQUIRE(cases.size() == expected.size());
+  const auto& integrators = nsb::integrator_registry();
+  const auto schemes = std::count_if(integrators.begin(), integrators.end(), [](const nsb::IntegratorEntry& e) { return !e.reference && !e.peer; });
+  REQUIRE(cases.size() == 4 * 4 * static_cast<std::size_t>(schemes));
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    INFO("case " << k << ": " << expected[k].dump());
+    const auto& [name, parameters] = subjects[expected[k]["subject"].get<std::size_t>()];
+    const int level = expected[k]["level"];
+    Overrides want = parameters;
+    if (name == "signorini-bar") want["N"] = fmt::format("{}", 25L << level);
+    const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+    CHECK(p.name == name);
+    CHECK(p.parameters == want);
+    CHECK(spec.integrators[cases[k]["integrator"].get<std::size_t>()].name == expected[k]["integrator"].get<std::string>());
+    const auto problem = nsb::make_problem(name, want);
+    CHECK(cases[k]["dt"].get<double>() == (name == "signorini-bar" ? 0.9 * problem->stable_step() : 4e-3 / std::pow(2.0, level)));
+    const nsb::ExactSolution& exact = *problem->exact();
+    const double t_end = name == "bouncing-mass"   ? exact.impact_times(1e3).at(2) + 0.2
+                         : name == "signorini-bar" ? exact.event_time(nsb::ExactEvent::contact_start).value() +
+                                                         1.5 * exact.value(nsb::ExactValue::contact_duration).value()
+                         : name == "sliding-mass"  ? 1.5 * exact.event_time(nsb::ExactEvent::slip_stop).value()
+                                                   : 1.2 * exact.event_time(nsb::ExactEvent::rest).value();
+    CHECK(spec.t_end_of(p) == t_end);
+  }
 }

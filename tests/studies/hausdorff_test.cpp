@@ -158,3 +158,22 @@ TEST_CASE("Hausdorff: order about 1 on the bouncing mass for cd-lagrange and mor
     CHECK(emax.back() > 0.3);
   }
 }
+
+TEST_CASE("Hausdorff: graph errors of a step a shift late, their value scale the reference's largest |value| or the one given",
+          "[hausdorff]") {
+  // Steps of height 2 at 0.4 (the reference) and 0.5 (the run): in (t / 1, x / V) a shift of
+  // 0.1 against a jump of 2 / V > 0.1, so both directed distances are 0.1; the run's vertex
+  // (0.5, 0) is 2 below the reference there, a max-norm error of 2 / V.
+  const Polyline ref = step_polyline(0.4, 2.0), late = step_polyline(0.5, 2.0);
+  const auto ref_at = [](double t) { return t > 0.4 ? 2.0 : 0.0; };
+  const GraphErrors own = graph_errors(late, ref, ref_at, 1.0);
+  CHECK(own.value_scale == 2.0);
+  CHECK(own.max_error == 1.0);
+  CHECK(own.to_reference == Approx(0.1).epsilon(1e-9));
+  CHECK(own.from_reference == Approx(0.1).epsilon(1e-9));
+  CHECK(own.hausdorff == std::max(own.to_reference, own.from_reference));
+  const GraphErrors given = graph_errors(late, ref, ref_at, 1.0, 4.0);
+  CHECK(given.value_scale == 4.0);
+  CHECK(given.max_error == 0.5);
+  CHECK(given.hausdorff == Approx(0.1).epsilon(1e-9));  // jump 0.5 > shift 0.1: still the shift
+}

@@ -640,6 +640,155 @@ TEST_CASE("study file: a hausdorff measure converges where the max-norm velocity
              Catch::Contains("not an observable"));
 }
 
+// The pieces the hausdorff study's file needs (studies/builtin/drafts/hausdorff.toml): the
+// graph errors of a Hausdorff measure (norm), an observable per problem, an end time from the
+// exact solution's events (t_end_exact), the schemes alone (integrators = "schemes") and the runs
+// of a joint refinement together (case_order = "sweep").
+TEST_CASE("study file: Hausdorff norms, observables per problem, t_end_exact, schemes, sweep order", "[studies][study_file]") {
+  const std::string text = R"([study]
+title = "t"
+t_end = 1.0
+cpu_repeats = 0
+[[problem]]
+name = "bouncing-mass"
+parameters = { e = 0.9, h0 = 1 }
+t_end_exact = { impact_2 = 1.0, plus = 0.1 }
+steps = [1e-3]
+[[problem]]
+name = "sliding-mass"
+parameters = { alpha = 30, mu = 0.8, v0 = 2 }
+t_end_exact = { slip_stop = 1.5 }
+steps = [1e-3]
+[[integrator]]
+name = "moreau-jean"
+[reference]
+solution = "exact"
+[[measure]]
+kind = "hausdorff"
+observable = { "bouncing-mass" = "v", "sliding-mass" = "v" }
+[[measure]]
+kind = "hausdorff"
+observable = "v"
+norm = "to reference"
+[[measure]]
+kind = "hausdorff"
+observable = "v"
+norm = "from reference"
+[[measure]]
+kind = "hausdorff"
+observable = "v"
+norm = "max error"
+[[measure]]
+kind = "hausdorff"
+observable = "v"
+norm = "value scale"
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "f.toml", false);
+  const auto mass = nsb::make_problem("bouncing-mass", spec.problems[0].parameters);
+  const auto slide = nsb::make_problem("sliding-mass", spec.problems[1].parameters);
+  CHECK(spec.problems[0].t_end == mass->exact()->impact_times(10.0).at(1) + 0.1);
+  CHECK(spec.problems[1].t_end == 1.5 * slide->exact()->event_time(nsb::ExactEvent::slip_stop).value());
+  CHECK(spec.measures[0].label == "hausdorff");
+  CHECK(spec.measures[1].label == "hausdorff v to reference");
+  CHECK(spec.measures[4].label == "hausdorff v value scale");
+  CHECK_FALSE(spec.measures[4].rankable());
+  CHECK_FALSE(nsb::measure_converges(spec.measures[4]));
+  std::vector<nsb::Json> results;
+  run_all(spec, &results);
+  REQUIRE(results.size() == 2);
+  for (const auto& r : results) {
+    INFO(r.dump());
+    REQUIRE(r["status"] == "ok");
+    const auto& v = r["values"];
+    CHECK(v[0].get<double>() == std::max(v[1].get<double>(), v[2].get<double>()));  // H: the larger directed distance
+    CHECK(v[1].get<double>() > 0.0);
+    CHECK(v[3].get<double>() >= 0.0);
+  }
+  // The largest |v| of the bouncing mass is its impact speed sqrt(2 g h0) (both sides of each
+  // impact are vertices of the exact graph, at the impact times' round-off); the sliding mass's
+  // its initial speed, 2.
+  CHECK(results[0]["values"][4].get<double>() == Approx(std::sqrt(2.0 * 9.81)).epsilon(1e-8));
+  CHECK(results[1]["values"][4].get<double>() == 2.0);
+
+  // integrators = "schemes": the registered integrators but peers and references, in order.
+  const nsb::StudySpec schemes = nsb::parse_study_text(replaced(replaced(text, "[[integrator]]\nname = \"moreau-jean\"\n", ""),
+                                                                 "cpu_repeats = 0", "cpu_repeats = 0\nintegrators = \"schemes\""),
+                                                        "f.toml", false);
+  std::vector<std::string> want, got;
+  for (const auto& e : nsb::integrator_registry())
+    if (!e.reference && !e.peer) want.push_back(e.name);
+  for (const auto& it : schemes.integrators) got.push_back(it.name);
+  CHECK(got == want);
+
+  // case_order = "sweep": a joint refinement's runs of one integrator together, then the next integrator's.
+  const std::string bar = R"([study]
+title = "t"
+t_end = 1.0
+case_order = "sweep"
+[[problem]]
+name = "signorini-bar"
+grid = { N = [10, 20] }
+refine = "N"
+stable_steps = [0.9]
+[[problem]]
+name = "bouncing-mass"
+steps = [1e-3, 5e-4]
+[[integrator]]
+name = "cd-lagrange"
+[[integrator]]
+name = "moreau-jean"
+[reference]
+solution = "exact"
+[[measure]]
+kind = "error"
+)";
+  const nsb::StudySpec sweeps = nsb::parse_study_text(bar, "f.toml", false);
+  std::vector<std::string> order;
+  for (const auto& c : nsb::study_cases(nsb::file_study(sweeps), {false}))
+    order.push_back(fmt::format("{} {} {}", sweeps.problems[c["problem"].get<std::size_t>()].label,
+                                sweeps.integrators[c["integrator"].get<std::size_t>()].name, c["dt"].get<double>()));
+  CHECK(order == std::vector<std::string>{"signorini-bar, N = 10 cd-lagrange " + order[0].substr(order[0].rfind(' ') + 1),
+                                          "signorini-bar, N = 20 cd-lagrange " + order[1].substr(order[1].rfind(' ') + 1),
+                                          "signorini-bar, N = 10 moreau-jean " + order[0].substr(order[0].rfind(' ') + 1),
+                                          "signorini-bar, N = 20 moreau-jean " + order[1].substr(order[1].rfind(' ') + 1),
+                                          "bouncing-mass cd-lagrange 0.001", "bouncing-mass cd-lagrange 0.0005",
+                                          "bouncing-mass moreau-jean 0.001", "bouncing-mass moreau-jean 0.0005"});
+
+  // Bad input: one line naming file, line, key and what is valid.
+  using Catch::StartsWith;
+  using Catch::Contains;
+  const auto at_slide = [&](const std::string& to) { return replaced(text, "t_end_exact = { slip_stop = 1.5 }", to); };
+  CHECK_THAT(study_error_of(at_slide("t_end_exact = { rest = 1.5 }")),
+             StartsWith("f.toml:13: problem[1].t_end_exact.rest: problem 'sliding-mass' has no exact time or value 'rest'; valid: "
+                        "slip_stop, stop_distance, plus"));
+  CHECK_THAT(study_error_of(at_slide("t_end_exact = { slip_stop = \"x\" }")),
+             StartsWith("f.toml:13: problem[1].t_end_exact.slip_stop: expected a number (the factor)"));
+  CHECK_THAT(study_error_of(at_slide("t_end_exact = { slip_stop = 1.0, plus = -5.0 }")),
+             StartsWith("f.toml:13: problem[1].t_end_exact: t_end = ") && Contains("valid: a sum > 0"));
+  CHECK_THAT(study_error_of(at_slide("t_end_exact = 1.5")),
+             StartsWith("f.toml:13: problem[1].t_end_exact: expected a table of exact time or value = factor"));
+  CHECK_THAT(study_error_of(at_slide("t_end_exact = { slip_stop = 1.5 }\nt_end = 2")),
+             StartsWith("f.toml:13: problem[1].t_end_exact: the run's end given twice"));
+  CHECK_THAT(study_error_of(replaced(text, "impact_2 = 1.0", "impact_900 = 1.0")),
+             StartsWith("f.toml:8: problem[0].t_end_exact.impact_900: problem 'bouncing-mass' has no exact time or value 'impact_900'; "
+                        "valid: impact_1 .. impact_"));
+  CHECK_THAT(study_error_of(replaced(text, "impact_2 = 1.0", "impact_99999999999999999999999 = 1.0")),
+             StartsWith("f.toml:8: problem[0].t_end_exact.impact_99999999999999999999999: problem 'bouncing-mass' has no exact time"));
+  CHECK_THAT(study_error_of(replaced(text, "cpu_repeats = 0", "cpu_repeats = 0\nintegrators = \"peers\"")),
+             StartsWith("f.toml:5: study.integrators: 'peers' is not valid") && Contains("valid: all, schemes"));
+  CHECK_THAT(study_error_of(replaced(bar, "case_order = \"sweep\"", "case_order = \"sweeps\"")),
+             StartsWith("f.toml:4: study.case_order: 'sweeps' is not valid (nearest: sweep); valid: problem, integrator, sweep"));
+  CHECK_THAT(study_error_of(replaced(text, "norm = \"max error\"", "norm = \"max\"")),
+             StartsWith("f.toml:33: measure[3].norm: 'max' is not valid") &&
+                 Contains("valid: distance, to reference, from reference, max error, value scale"));
+  CHECK_THAT(study_error_of(replaced(text, "{ \"bouncing-mass\" = \"v\", \"sliding-mass\" = \"v\" }", "{ \"bouncing-mass\" = \"v\" }")),
+             StartsWith("f.toml:21: measure[0].observable: missing key 'sliding-mass'"));
+  CHECK_THAT(study_error_of(replaced(text, "\"sliding-mass\" = \"v\" }", "\"sliding-mass\" = \"v\", slide = \"v\" }")),
+             StartsWith("f.toml:21: measure[0].observable.slide: unknown key") && Contains("valid: bouncing-mass, sliding-mass"));
+  CHECK_THAT(study_error_of(replaced(text, "\"sliding-mass\" = \"v\" }", "\"sliding-mass\" = \"v_contact\" }")),
+             StartsWith("f.toml:21: measure[0].observable.sliding-mass: 'v_contact' is not an observable of problem 'sliding-mass'"));
+}
+
 // Issue 30, finding 9: a newline in a study file's name broke the reports' metadata lines.
 TEST_CASE("study file: a name with a control character is refused in one line", "[studies][study_file]") {
   const fs::path dir = fs::temp_directory_path() / fmt::format("nsbench_study_name_{}", ::getpid());
