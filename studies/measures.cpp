@@ -252,6 +252,25 @@ double rest_bound(double at_most, int power, double dt) {
   return at_most;
 }
 
+double ContactPhases::span(double dt) const {
+  return starts_.empty() ? std::numeric_limits<double>::quiet_NaN() : last_contact_ - starts_.front() + dt;
+}
+
+void Chatter::add(double value) {
+  if (values_ >= 2) {
+    const double d2 = 0.25 * (value - 2.0 * last_ + before_);
+    square_ += d2 * d2;
+  }
+  zeros_ += value == 0.0;
+  before_ = last_;
+  last_ = value;
+  ++values_;
+}
+
+double Chatter::rms() const {
+  return values_ < 3 ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(square_ / static_cast<double>(values_ - 2));
+}
+
 ContactImpacts::ContactImpacts(const Vec& initial_gaps, double initial_value) : previous_(initial_value) {
   const double carrying = -std::numeric_limits<double>::infinity();
   for (Index i = 0; i < initial_gaps.size(); ++i) {

@@ -170,6 +170,10 @@ class ContactPhases {
   // After each step ending at t: whether it had a contact impulse; true when a phase starts.
   bool add(double t, bool contact);
   const std::vector<double>& starts() const { return starts_; }
+  // The contact's span over the run: from the first step with an impulse to the last, each
+  // step carrying one nominal step dt of contact force, t_last - t_first + dt (a contact held
+  // through [t0, t0 + T] gives T to O(dt)); NaN without an impulse.
+  double span(double dt) const;
 
  private:
   double min_flight_;
@@ -236,6 +240,22 @@ class FinalRest {
 // A bound of a step at rest that scales with the step: at_most dt^power, multiplied factor by
 // factor from the left ((at_most dt) dt: the rounding of a study's 2 g dt dt).
 double rest_bound(double at_most, int power, double dt);
+
+// An observable's values at consecutive steps (the contact force over its level inside the exact
+// contact phase): its chatter, the RMS over the interior values of the period-2 component
+// (o_{k+1} - 2 o_k + o_{k-1}) / 4 (an alternation of amplitude a, o_k = 1 +- a, gives a; a
+// smooth variation O(dt^2)), and how many are zero (a contact lost and regained inside the
+// exact contact).
+class Chatter {
+ public:
+  void add(double value);
+  double rms() const;  // NaN with fewer than three values
+  long zeros() const { return zeros_; }
+
+ private:
+  double before_ = 0.0, last_ = 0.0, square_ = 0.0;
+  long values_ = 0, zeros_ = 0;
+};
 
 // Impacts seen per contact: a step at which a contact takes an impulse after steps in which it
 // took none, during which its gap was open (> 0) and then fell (it approached the obstacle):

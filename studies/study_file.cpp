@@ -36,6 +36,13 @@
 //                instead (MeshMomentum, studies/measures.hpp: every impulse counted, angular
 //                per step), max over the steps, relative to its scale there.
 //   penetration  max over the steps of max(0, -g).
+//   chatter      RMS of the period-2 component (o_{k+1} - 2 o_k + o_{k-1}) / (4 scale) of an
+//                observable over consecutive steps (those `inside` a phase, or every step);
+//   zero-steps   how many of those steps have o = 0 (studies/measures.hpp, Chatter): the contact
+//                force inside the exact contact, its chatter and the steps it was lost.
+//   contact-duration  t_last - t_first + dt over the steps with a contact impulse (dt the nominal
+//                step; ContactPhases::span), with exact = true its difference from the problem's
+//                exact contact duration (ExactValue::contact_duration, the Signorini bar's 2L/c).
 // An error, energy or momentum measure with a `window` [t0, t1] is sampled there only (its l2
 // norm the mean over t1 - t0), e.g. a smooth window before the first impact.
 //   hausdorff    H(run, ref) between the graphs {(t, o)} of an observable (the run's samples;
@@ -496,7 +503,8 @@ struct Accumulator {
   double timed_square = 0.0, step_square = 0.0;
   long steps = 0;
   RunningSlope drift;
-  ContactPhases impacts;
+  ContactPhases impacts;  // impact-time; contact-duration: its span
+  Chatter chatter;        // chatter, zero-steps
   Polyline graph;  // Hausdorff: the run's samples
   FlightEnergies flights;
   FinalRest rest;
@@ -701,6 +709,10 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
           a.scale = std::max(a.scale, std::abs(ref));
         }
         if (fm.scale > 0.0) e /= fm.scale;
+      } else if (fm.kind == MeasureKind::Chatter || fm.kind == MeasureKind::ZeroSteps) {
+        const double value = state_observable(*problem, M, s, it.impulses(), step_dt, fm.observable, obs, &energy);
+        if (inside) a.chatter.add(fm.scale > 0.0 ? value / fm.scale : value);
+        continue;
       } else if (fm.kind == MeasureKind::Estimate) {
         if (inside) a.samples.push_back(state_observable(*problem, M, s, it.impulses(), step_dt, fm.observable, obs, &energy));
         continue;
@@ -734,7 +746,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     if (step == 0) e1 = energy.total();
     const bool contact = it.impulses().sum() > 0.0;
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
-      if (on[m] && spec.measures[m].kind == MeasureKind::ImpactTime) acc[m].impacts.add(s.t, contact);
+      if (on[m] && (spec.measures[m].kind == MeasureKind::ImpactTime || spec.measures[m].kind == MeasureKind::ContactDuration))
+        acc[m].impacts.add(s.t, contact);
       else if (acc[m].events) acc[m].events->add(s.t, it.impulses(), s.u, event_observable(*problem, M, it, info.dt, spec.measures[m], obs, energy));
       if (on[m] && spec.measures[m].kind == MeasureKind::FlightEnergy) acc[m].flights.add(s.t, contact, energy.total());
       if (on[m] && spec.measures[m].kind == MeasureKind::RestStart) acc[m].rest.add(s.t, at_rest(spec.measures[m], it, info.dt, energy));
@@ -787,6 +800,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
              : fm.norm == "max"      ? a.largest
              : fm.norm == "rms"      ? std::sqrt(a.timed_square / (a.t_prev - windows[m].first))
              : fm.norm == "step rms" ? std::sqrt(a.step_square / static_cast<double>(a.steps))
+             : fm.norm == "l2 in time" ? std::sqrt(a.timed_square)
                                      : std::sqrt(a.square / (std::min(t_end, windows[m].second) - windows[m].first))) / scale;
         break;
       case MeasureKind::ImpactTime: {
@@ -827,6 +841,13 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         break;
       case MeasureKind::Penetration: v = r.max_penetration; break;
       case MeasureKind::Estimate: break;  // compared with the next run by the tables
+      case MeasureKind::Chatter: v = a.chatter.rms(); break;
+      case MeasureKind::ZeroSteps: v = static_cast<double>(a.chatter.zeros()); break;
+      case MeasureKind::ContactDuration: {
+        const double span = a.impacts.span(options.dt);
+        v = fm.exact ? std::abs(span - problem->exact()->value(ExactValue::contact_duration).value()) : span;
+        break;
+      }
       default: v = a.events->result(*problem); break;
       case MeasureKind::StopTime:
       case MeasureKind::OnsetTime: {
@@ -883,7 +904,8 @@ bool asked_column(const std::string& source) {
 
 bool is_event_time(const FileMeasure& m) {
   return (m.kind == MeasureKind::ImpactTime && m.norm != "count") || m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime ||
-         ((m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime || m.kind == MeasureKind::RestStart) && m.exact);
+         ((m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime || m.kind == MeasureKind::RestStart ||
+           m.kind == MeasureKind::ContactDuration) && m.exact);
 }
 bool measure_converges(const FileMeasure& m) {
   return m.kind == MeasureKind::Error || (m.kind == MeasureKind::Hausdorff && m.norm != "value scale") || is_event_time(m) ||
@@ -968,8 +990,23 @@ bool declined(const Cell& status) {
   return text && text->rfind("n/a", 0) == 0;
 }
 
-// rows = "case": the work-precision rows, their columns picked, ordered and renamed; the first
-// such table carries the work-precision figures whose columns it shows, under the new names.
+// Whether a table of some runs (or a case table) shows the run of this case-table row
+// (FileTable::where, drop_above).
+bool shows_run(const FileTable& d, const Table& runs, const std::vector<Cell>& row) {
+  const auto number = [](const Cell& cell) {
+    return std::holds_alternative<double>(cell) ? std::get<double>(cell) : std::holds_alternative<long>(cell) ? static_cast<double>(std::get<long>(cell)) : kNaN;
+  };
+  for (const auto& [name, want] : d.where) {
+    const Cell& cell = row[column_index(runs, name)];
+    if (std::holds_alternative<std::string>(want) ? cell != want : number(cell) != std::get<double>(want)) return false;
+  }
+  return std::none_of(d.drop_above.begin(), d.drop_above.end(),
+                      [&](const auto& limit) { return std::abs(number(row[column_index(runs, limit.first)])) > limit.second; });
+}
+
+// rows = "case": the work-precision rows (those `where` and `drop_above` keep), their columns
+// picked, ordered and renamed; the first such table carries the work-precision figures whose
+// columns it shows, under the new names.
 Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
   Table out;
   std::vector<std::size_t> at;
@@ -985,7 +1022,8 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
   // integrators = [...] (case rows only): the file's label of each run.
   const std::size_t label = d.integrators.empty() ? 0 : column_index(runs, "integrator label");
   for (const auto& row : runs.rows) {
-    if (!d.applies_to(std::get<std::string>(row[problem]))) continue;
+    // A table of some runs picked its runs itself (its `all` holds their series, not the case columns).
+    if (!d.applies_to(std::get<std::string>(row[problem])) || (d.rows == "case" && !shows_run(d, runs, row))) continue;
     if (!d.integrators.empty() &&
         std::find(d.integrators.begin(), d.integrators.end(), std::get<std::string>(row[label])) == d.integrators.end())
       continue;
@@ -1240,18 +1278,6 @@ const std::vector<Column>& trajectory_columns() {
   return columns;
 }
 
-// Whether a table of some runs shows the run of this case-table row (FileTable::where, drop_above).
-bool shows_run(const FileTable& d, const Table& runs, const std::vector<Cell>& row) {
-  const auto number = [](const Cell& cell) {
-    return std::holds_alternative<double>(cell) ? std::get<double>(cell) : std::holds_alternative<long>(cell) ? static_cast<double>(std::get<long>(cell)) : kNaN;
-  };
-  for (const auto& [name, want] : d.where) {
-    const Cell& cell = row[column_index(runs, name)];
-    if (std::holds_alternative<std::string>(want) ? cell != want : number(cell) != std::get<double>(want)) return false;
-  }
-  return std::none_of(d.drop_above.begin(), d.drop_above.end(),
-                      [&](const auto& limit) { return std::abs(number(row[column_index(runs, limit.first)])) > limit.second; });
-}
 
 // A cell as the text of a pivot's column header.
 std::string pivot_value_text(const Cell& cell) {

@@ -89,7 +89,7 @@ struct FileIntegrator {
 
 // The kinds from ImpactRatio on are the measures of an observable's events (EventFigures).
 enum class MeasureKind { Error, ImpactTime, Energy, Momentum, Penetration, Hausdorff, StopTime, OnsetTime, FlightEnergy, RestStart,
-                         Estimate, ImpactRatio, Amplitude, ImpactCount, RestTime, PeakTime, Value, Summary };
+                         Estimate, Chatter, ZeroSteps, ContactDuration, ImpactRatio, Amplitude, ImpactCount, RestTime, PeakTime, Value, Summary };
 
 struct FileMeasure {
   MeasureKind kind = MeasureKind::Error;
@@ -103,7 +103,7 @@ struct FileMeasure {
   // (its exact column, e.g. contact_force_exact: an impulse's force is no function of the exact
   // state), not against the reference; "": the reference.
   std::string against;
-  // Error: final|max|l2|rms|step rms; Energy: max|final|final abs|drift|offset; ImpactTime, FlightEnergy: max|count;
+  // Error: final|max|l2|rms|step rms|l2 in time; Energy: max|final|final abs|drift|offset; ImpactTime, FlightEnergy: max|count;
   // Hausdorff: distance|to reference|from reference|max error|value scale
   std::string norm = "max";
   int count = 3;                 // ImpactTime, FlightEnergy: the first `count` impacts (flights)
@@ -169,17 +169,22 @@ struct FileMeasure {
   // Error: relative to the largest reference value over the whole run, not the window alone.
   bool scale_over_run = false;
   // Error: > 0: each step's error divided by this fixed value (a drop height, a force level), not
-  // by the largest reference value.
+  // by the largest reference value; chatter: each value divided by it (default 1).
   double scale = 0.0;
-  // Error: measured only at the steps ending at t whose t - dt, t and t + dt all lie where the
+  // Error, chatter, zero-steps: measured only at the steps ending at t whose t - dt, t and t + dt all lie where the
   // problem's exact observable of this name is > 0 (e.g. inside the exact contact phases:
   // contact_force_exact); "": every step.
   std::string inside;
   // Error norms taken over every step (not every sample_every-th), the observables at the step's
   // own length dt: rms (sqrt(sum_k dt_k e_k^2 / (t_last - t0)), in time over the steps measured,
-  // t_last the last of them) and step rms (sqrt(sum_k e_k^2 / n) over the n steps), and any
-  // error measured `inside` an observable's phases.
-  bool every_step() const { return norm == "rms" || norm == "step rms" || !inside.empty(); }
+  // t_last the last of them), l2 in time (sqrt(sum_k dt_k e_k^2), not divided by the time) and
+  // step rms (sqrt(sum_k e_k^2 / n) over the n steps), any error measured `inside` an
+  // observable's phases, and chatter and zero-steps (an observable's values at consecutive
+  // steps: Chatter, studies/measures.hpp).
+  bool every_step() const {
+    return norm == "rms" || norm == "step rms" || norm == "l2 in time" || !inside.empty() || kind == MeasureKind::Chatter ||
+           kind == MeasureKind::ZeroSteps;
+  }
   bool applies_to(const std::string& problem_label) const;
   // Smaller is better and never negative: a measure the ranking may rank by.
   bool rankable() const;
@@ -239,7 +244,7 @@ struct FileTable {
   // description (`of` unused), and the number format of dt or tol in its runs cells.
   std::optional<FileColumn> error;
   std::optional<std::string> runs_format;
-  // Tables of some runs (rows = "pivot", "periodic", "trajectory"): the runs whose case-table
+  // Tables of some runs (rows = "pivot", "periodic", "trajectory", and "case"): the runs whose case-table
   // column equals each value of `where` (a number or a text), less those whose |column| exceeds
   // the value of `drop_above` (a run with no value there is kept).
   std::vector<std::pair<std::string, Cell>> where;
@@ -337,7 +342,7 @@ struct StudySpec {
 bool asked_column(const std::string& source);
 
 // A time measured against the problem's exact event times [s] (impact, stop, onset times; a
-// rest or peak time with exact = true).
+// rest or peak time, a contact duration with exact = true).
 bool is_event_time(const FileMeasure& m);
 // An error that converges with dt: a convergence figure and fitted orders.
 bool measure_converges(const FileMeasure& m);

@@ -565,6 +565,33 @@ void read_inside_phase(const Checker& c, const Json& v, const std::string& path,
   }
 }
 
+// A chatter or zero-steps measure (an observable's values at consecutive steps: `observable`,
+// required, one of the problem's; `scale` > 0; `inside` an exact phase) or a contact-duration
+// (`exact`: against the problem's exact contact duration, which it must know) into `m`.
+void read_step_values_measure(const Checker& c, const Json& j, const std::string& path, const std::string& kind, FileMeasure& m,
+                              const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances,
+                              const std::vector<std::size_t>& on) {
+  if (kind == "contact-duration") {
+    if (const Json* v = c.find(j, "exact")) m.exact = c.boolean(*v, child(path, "exact"));
+    for (const std::size_t p : on)
+      if (m.exact && !(instances[p]->exact() && instances[p]->exact()->value(ExactValue::contact_duration)))
+        c.fail(child(path, "exact"), fmt::format("problem '{}' knows no exact contact duration", spec.problems[p].label),
+               "problems that know it (signorini-bar), exact = false, or problems = [...]");
+    m.label = m.exact ? "contact duration err" : "contact duration";
+    return;
+  }
+  m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
+  for (const std::size_t p : on) {
+    const auto& names = instances[p]->observable_names();
+    if (std::find(names.begin(), names.end(), m.observable) == names.end())
+      c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'", m.observable, spec.problems[p].label),
+             fmt::format("{} (or problems = [...])", fmt::join(names, ", ")));
+  }
+  if (const Json* v = c.find(j, "scale")) m.scale = c.positive(*v, child(path, "scale"));
+  if (const Json* v = c.find(j, "inside")) read_inside_phase(c, *v, child(path, "inside"), m, spec, instances, on);
+  m.label = fmt::format("{} {}", kind == "chatter" ? "chatter" : "zero steps", m.observable);
+}
+
 // `summary` (kind summary, or rest-time, peak-time and rest-start with exact = true) into `m`: the name of
 // a summary value every problem `on` has (Problem::summary_values); as an exact time, finite.
 void read_summary_name(const Checker& c, const Json& j, const std::string& path, const std::string& kind, FileMeasure& m,
@@ -903,7 +930,7 @@ FileColumn read_column(const Checker& c, const Json& j, const std::string& path,
 }
 
 // The keys of a table of some runs (FileTable::of_some_runs) into `t`: where, drop_above (a
-// case-table column each), a pivot's across, a periodic table's measure, a trajectory's
+// case-table column each; a case table takes them too), a pivot's across, a periodic table's measure, a trajectory's
 // observable, exact, last and points (its observables checked against the problems later:
 // check_trajectory_observables); refused on the other tables.
 void read_some_runs(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
@@ -912,9 +939,9 @@ void read_some_runs(const Checker& c, const Json& j, const std::string& path, co
                                                   {"exact", "trajectory"}, {"last", "trajectory"}, {"points", "trajectory"}};
   for (const char* key : {"where", "drop_above", "across", "measure", "observable", "exact", "last", "points"}) {
     const auto whose = own.find(key);
-    if (c.find(j, key) && (whose == own.end() ? !t.of_some_runs() : t.rows != whose->second))
+    if (c.find(j, key) && (whose == own.end() ? !(t.of_some_runs() || t.rows == "case") : t.rows != whose->second))
       c.fail(child(path, key), fmt::format("a table of rows = \"{}\" has no {}", t.rows, key),
-             whose == own.end() ? "rows = \"pivot\", \"periodic\" or \"trajectory\"" : fmt::format("rows = \"{}\"", whose->second));
+             whose == own.end() ? "rows = \"case\", \"pivot\", \"periodic\" or \"trajectory\"" : fmt::format("rows = \"{}\"", whose->second));
   }
   const auto conditions = [&](const char* key, const auto& read) {
     const Json* v = c.find(j, key);
@@ -1312,6 +1339,7 @@ std::pair<double, double> FileMeasure::window_for(const std::string& problem_lab
 bool FileMeasure::rankable() const {
   if (kind >= MeasureKind::ImpactRatio || kind == MeasureKind::RestStart) return !law.empty() || exact;  // a difference from a closed form, not a value
   if (kind == MeasureKind::Hausdorff) return norm != "value scale";  // a scale, not an error
+  if (kind == MeasureKind::ContactDuration) return exact;
   return (kind != MeasureKind::Energy && kind != MeasureKind::FlightEnergy && kind != MeasureKind::ImpactTime) || norm == "max";
 }
 
@@ -1496,7 +1524,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   // A study of declared tables may show its runs' own figures alone (outcome, steps, histories).
   const Json& measures = c.find(root, "measure") || !c.find(root, "table") ? list("measure") : Json::array();
   const std::vector<std::string> kinds{"error",        "impact-time", "energy",      "momentum",     "penetration",
-                                       "hausdorff",    "stop-time",   "onset-time",  "flight-energy", "rest-start", "estimate", "impact-ratio",
+                                       "hausdorff",    "stop-time",   "onset-time",  "flight-energy", "rest-start", "estimate", "chatter",
+                                       "zero-steps",   "contact-duration", "impact-ratio",
                                        "amplitude",    "impact-count", "rest-time",  "peak-time",    "value",
                                        "summary"};
   std::vector<std::string> problem_labels;
@@ -1569,7 +1598,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
           c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",
                  "[reference] solution = \"exact\" or a cached integrator (lockstep = false)");
       }
-      if (const Json* v = c.find(j, "norm"); v && !hausdorff) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2", "rms", "step rms"});
+      if (const Json* v = c.find(j, "norm"); v && !hausdorff) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2", "rms", "step rms", "l2 in time"});
       if (const Json* v = c.find(j, "observable"); v && !hausdorff) m.observable = c.string(*v, child(path, "observable"));
       for (const std::size_t p : on) {
         if (!m.against.empty()) {
@@ -1628,6 +1657,9 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       read_energy_sampling(c, j, path, m);
       if (m.from_first_step && m.norm == "offset")
         c.fail(child(path, "relative_to"), "the offset is E_1 - E0 relative to E0's scale", "relative_to = \"initial\" with norm = \"offset\"");
+    } else if (m.kind == MeasureKind::Chatter || m.kind == MeasureKind::ZeroSteps || m.kind == MeasureKind::ContactDuration) {
+      keys(m.kind == MeasureKind::ContactDuration ? std::vector<std::string>{"exact"} : std::vector<std::string>{"observable", "scale", "inside"});
+      read_step_values_measure(c, j, path, kind, m, spec, instances, on);
     } else if (m.kind == MeasureKind::Estimate) {
       keys({"observable", "order"});
       read_next_run_estimate(c, j, path, m, spec, instances, on);

@@ -519,3 +519,41 @@ TEST_CASE("draft hausdorff.toml: the C++ study hausdorff's runs, in its order, w
     CHECK(spec.t_end_of(p) == t_end);
   }
 }
+
+// The draft studies/builtin/drafts/bar.toml against the C++ study it is to replace
+// (studies/bar.cpp), default and --full: the same runs in the same order (integrator, mass,
+// alpha, N), each with the C++ study's dt = alpha * stable step and end t0 + 1.5 T.
+TEST_CASE("draft bar.toml: the C++ study bar's runs, in its order, with its steps and end time", "[studies]") {
+  const nsb::StudySpec spec =
+      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bar.toml");
+  const auto& registry = nsb::study_registry();
+  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bar"; });
+  REQUIRE(cpp != registry.end());
+  REQUIRE(cpp->source == "studies/bar.cpp");
+  const nsb::ParamSpecs bar = nsb::find_problem("signorini-bar").parameters();
+  for (const bool full : {false, true}) {
+    INFO("full " << full);
+    const auto expected = nsb::study_cases(*cpp, {full});
+    const auto cases = nsb::study_cases(nsb::file_study(spec), {full});
+    REQUIRE(cases.size() == expected.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      INFO("case " << k << ": " << expected[k].dump());
+      const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+      const nsb::Params params(bar, p.parameters);
+      const nsb::FileIntegrator& it = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
+      CHECK(p.name == "signorini-bar");
+      CHECK(it.name == expected[k]["integrator"].get<std::string>());
+      CHECK(it.sweep_for(p.label).parameters.empty());
+      CHECK(p.parameters.size() == 2);  // mass and N: the rest the defaults, as the C++ study's
+      CHECK(params.choice("mass") == expected[k]["mass"].get<std::string>());
+      CHECK(params.integer("N") == expected[k]["N"].get<long>());
+      CHECK(cases[k]["stable_steps"].get<double>() == expected[k]["alpha"].get<double>());
+      const auto problem = nsb::make_problem("signorini-bar", p.parameters);
+      CHECK(cases[k]["dt"].get<double>() == expected[k]["alpha"].get<double>() * problem->stable_step());
+      const auto* exact = problem->exact();
+      REQUIRE(exact != nullptr);
+      CHECK(spec.t_end_of(p, full) ==
+            exact->event_time(nsb::ExactEvent::contact_start).value() + 1.5 * exact->value(nsb::ExactValue::contact_duration).value());
+    }
+  }
+}

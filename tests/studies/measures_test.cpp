@@ -177,3 +177,31 @@ TEST_CASE("cost_column: the stepping time, a timing column", "[studies][measures
   CHECK(c.timing);
   CHECK(c.description.find("observer excluded") != std::string::npos);
 }
+
+TEST_CASE("Chatter: the period-2 component of an alternation is its amplitude, a line has none; zeros counted", "[studies][measures]") {
+  nsb::Chatter alternation, line, few;
+  for (int k = 0; k < 10; ++k) {
+    alternation.add(k % 2 == 0 ? 1.25 : 0.75);  // 1 +- 0.25: (o_{k+1} - 2 o_k + o_{k-1}) / 4 = -+0.25
+    line.add(0.5 * k);
+  }
+  CHECK(alternation.rms() == 0.25);
+  CHECK(alternation.zeros() == 0);
+  CHECK(line.rms() == 0.0);
+  CHECK(line.zeros() == 1);  // the first value, 0
+  few.add(1.0);
+  few.add(0.0);
+  CHECK(std::isnan(few.rms()));  // no interior value
+  CHECK(few.zeros() == 1);
+}
+
+TEST_CASE("ContactPhases::span: from the first step with an impulse to the last, plus one step", "[studies][measures]") {
+  nsb::ContactPhases phases, none;
+  const std::vector<std::pair<double, bool>> steps{{0.1, false}, {0.2, true}, {0.3, true}, {0.4, false},
+                                                   {0.5, true}, {0.6, false}, {0.7, false}};
+  for (const auto& [t, c] : steps) {
+    phases.add(t, c);
+    none.add(t, false);
+  }
+  CHECK(phases.span(0.1) == 0.5 - 0.2 + 0.1);  // a lost step inside does not shorten it
+  CHECK(std::isnan(none.span(0.1)));
+}

@@ -99,6 +99,16 @@ log_x = false
 log_y = false
 )";
 
+// kSomeRuns with a case table of some runs: dt = 0.01, less the runs that reached past t = 0.9.
+const std::string kSomeCaseRuns = kSomeRuns + R"(
+[[table]]
+id = "some_cases"
+title = "some cases"
+where = { dt = 0.01 }
+drop_above = { "t reached" = 0.9 }
+columns = ["problem", "integrator", "dt", "t reached"]
+)";
+
 std::vector<nsb::Table> run_some_runs(const std::string& text) {
   const nsb::StudyEntry entry = nsb::file_study(nsb::parse_study_text(text, "f.toml", false));
   const auto cases = nsb::study_cases(entry, {});
@@ -211,6 +221,21 @@ TEST_CASE("study file: a pivot, a periodic and a trajectory table of the runs wh
   }
 }
 
+TEST_CASE("study file: a case table of the runs where/drop_above pick", "[studies][study_file]") {
+  const auto tables = run_some_runs(kSomeCaseRuns);
+  const nsb::Table& runs = table_of(tables, "runs");
+  const nsb::Table& some = table_of(tables, "some_cases");
+  REQUIRE(runs.rows.size() == 8);
+  // The runs at dt = 0.01 (4) less the elastic problem's (they reach t_end = 1): the stopped
+  // problem's (over budget at 45 F_int evaluations, before t = 0.9), in the runs' order.
+  std::vector<std::vector<nsb::Cell>> expected;
+  for (const auto& row : runs.rows)
+    if (row[2] == nsb::Cell{0.01} && std::get<double>(row[5]) <= 0.9) expected.push_back({row[0], row[1], row[2], row[5]});
+  REQUIRE(expected.size() == 2);
+  CHECK(some.rows == expected);
+  CHECK(expected[0][0] == nsb::Cell{std::string("stopped")});
+}
+
 TEST_CASE("study file: tables of some runs: bad input named", "[studies][study_file][bad-input]") {
   using Catch::StartsWith;
   CHECK(some_runs_error(kSomeRuns) == "(no error)");
@@ -234,6 +259,11 @@ TEST_CASE("study file: tables of some runs: bad input named", "[studies][study_f
              StartsWith("f.toml:59: table[3].observable: 'u_contact' is not an observable of problem 'elastic'; valid: q, v, q_exact, v_exact"));
   CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "last = 0.8\npoints = 10\nwhere", "last = 0.8\npoints = 0\nwhere")),
              StartsWith("f.toml:62: table[3].points: 0 is out of range; valid: [1, 100000]"));
+  CHECK(some_runs_error(kSomeCaseRuns) == "(no error)");
+  CHECK_THAT(some_runs_error(with_replaced(kSomeCaseRuns, "title = \"some cases\"", "title = \"some cases\"\nrows = \"group\"")),
+             StartsWith("f.toml:89: table[5].where: a table of rows = \"group\" has no where; valid: rows = \"case\", \"pivot\", \"periodic\" or \"trajectory\""));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeCaseRuns, "where = { dt = 0.01 }\ndrop", "where = { dtt = 0.01 }\ndrop")),
+             StartsWith("f.toml:88: table[5].where.dtt: 'dtt' is not valid (nearest: dt)"));
   CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "table = \"periodic\"", "table = \"pivot\"")),
              StartsWith("f.toml:78: figure[0].table: 'pivot' is no declared history, samples, periodic or trajectory table"));
 }

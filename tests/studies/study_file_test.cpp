@@ -2077,6 +2077,140 @@ TEST_CASE("study file: a fixed error scale, the rms norms, inside and declined =
              StartsWith("f.toml:55: table[0].declined: 'blank' is not valid (nearest: ") && Catch::Contains("valid: as run, n/a, empty"));
 }
 
+namespace {
+
+// The nondimensional Signorini bar (N = 20, contact on [0, 2], force level 1) to t = 3, one
+// scheme at 0.9 stable step: the contact node's displacement error in L2 over time, the
+// contact force's chatter and zero steps inside the exact contact, and the contact duration.
+std::string bar_contact_study(const std::string& integrator) {
+  return quick_study("3.0") + fmt::format(R"(
+[[problem]]
+name = "signorini-bar"
+label = "bar"
+parameters = {{ mass = "lumped", N = 20 }}
+stable_steps = [0.9]
+[[integrator]]
+name = "{}"
+[[measure]]
+kind = "error"
+observable = "u_contact"
+against = "u_contact_exact"
+scale = 1.0
+norm = "l2 in time"
+label = "u L2"
+[[measure]]
+kind = "chatter"
+observable = "contact_force"
+inside = "contact_force_exact"
+label = "chatter"
+[[measure]]
+kind = "zero-steps"
+observable = "contact_force"
+inside = "contact_force_exact"
+label = "lost"
+[[measure]]
+kind = "contact-duration"
+exact = true
+label = "duration err"
+[[measure]]
+kind = "contact-duration"
+label = "duration"
+)",
+                                          integrator);
+}
+
+}  // namespace
+
+// The known answer: the bar study's formulas, by hand on one run: sqrt(sum dt (u_0 -
+// u_0,exact)^2); over the steps whose t - dt and t + dt lie inside the exact contact (0, 2) the
+// force F_k = Lambda_k / dt, the RMS of (F_{k+1} - 2 F_k + F_{k-1}) / 4 and the count of
+// F_k = 0; and (t_last - t_first + dt) - 2 over the steps with an impulse.
+TEST_CASE("study file: l2 in time, chatter, zero steps and contact duration against the bar study's formulas",
+          "[studies][study_file]") {
+  for (const char* scheme : {"moreau-jean", "schatzman-paoli"}) {
+    INFO(scheme);
+    const auto problem = nsb::make_problem("signorini-bar", {{"mass", "lumped"}, {"N", "20"}});
+    const auto& bar = dynamic_cast<const nsb::SignoriniBar&>(*problem);
+    auto integrator = nsb::make_integrator(scheme);
+    REQUIRE_FALSE(nsb::init_or_decline(*integrator, *problem));
+    nsb::RunOptions options;
+    options.dt = 0.9 * problem->stable_step();
+    options.t_end = 3.0;
+    options.record_series = false;
+    double u_sq = 0.0, first = NAN, last = NAN;
+    std::vector<double> force;
+    nsb::run(*problem, *integrator, options, [&](const nsb::Integrator& it, const nsb::StepInfo& info) {
+      const double t = it.state().t, lambda = it.impulses()[0];
+      const double du = it.state().u[0] - bar.exact_displacement(0.0, t);
+      u_sq += info.dt * du * du;
+      if (lambda > 0.0) {
+        if (std::isnan(first)) first = t;
+        last = t;
+      }
+      if (t - info.dt > 0.0 && t + info.dt < 2.0) force.push_back(lambda / info.dt);
+    });
+    double chatter_sq = 0.0;
+    long zeros = 0;
+    for (std::size_t k = 0; k < force.size(); ++k) {
+      zeros += force[k] == 0.0;
+      if (k > 0 && k + 1 < force.size()) {
+        const double d2 = 0.25 * (force[k + 1] - 2.0 * force[k] + force[k - 1]);
+        chatter_sq += d2 * d2;
+      }
+    }
+    REQUIRE(force.size() > 30);
+    const nsb::StudySpec spec = nsb::parse_study_text(bar_contact_study(scheme), "f.toml", false);
+    std::vector<nsb::Json> results;
+    run_all(spec, &results);
+    REQUIRE(results.size() == 1);
+    const nsb::Json& v = results[0]["values"];
+    CHECK(v[0].get<double>() == std::sqrt(u_sq));  // bit for bit: the same sums in the same order
+    CHECK(v[1].get<double>() == std::sqrt(chatter_sq / static_cast<double>(force.size() - 2)));
+    CHECK(v[2].get<double>() == static_cast<double>(zeros));
+    CHECK(v[3].get<double>() == std::abs(last - first + options.dt - 2.0));
+    CHECK(v[4].get<double>() == last - first + options.dt);
+    CHECK(v[4].get<double>() == Approx(2.0).margin(2.0 * options.dt));
+  }
+}
+
+TEST_CASE("study file: chatter, zero-steps, contact-duration and the l2 in time norm: bad input named",
+          "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  const std::string text = bar_contact_study("moreau-jean");
+  CHECK(study_error_of(text) == "(no error)");
+  CHECK_THAT(study_error_of(replaced(text, "norm = \"l2 in time\"", "norm = \"l2 time\"")),
+             StartsWith("f.toml:19: measure[0].norm: 'l2 time' is not valid (nearest: ") &&
+                 Catch::Contains("valid: final, max, l2, rms, step rms, l2 in time"));
+  CHECK_THAT(study_error_of(replaced(text, "kind = \"chatter\"\nobservable = \"contact_force\"", "kind = \"chatter\"")),
+             StartsWith("f.toml:21: measure[1]: missing key 'observable'"));
+  CHECK_THAT(study_error_of(replaced(text, "kind = \"chatter\"\nobservable = \"contact_force\"", "kind = \"chatter\"\nobservable = \"force\"")),
+             StartsWith("f.toml:23: measure[1].observable: 'force' is not an observable of problem 'bar'; valid: u_contact, "));
+  CHECK_THAT(study_error_of(replaced(text, "kind = \"zero-steps\"\nobservable = \"contact_force\"\ninside = \"contact_force_exact\"",
+                                     "kind = \"zero-steps\"\nobservable = \"contact_force\"\ninside = \"gap\"")),
+             StartsWith("f.toml:29: measure[2].inside: 'gap' is not an observable of problem 'bar'; valid: u_contact, "));
+  CHECK_THAT(study_error_of(replaced(text, "label = \"chatter\"", "label = \"chatter\"\nscale = -1")),
+             StartsWith("f.toml:26: measure[1].scale: -1 is not positive and finite; valid: (0, inf)"));
+  CHECK_THAT(study_error_of(replaced(text, "label = \"lost\"", "label = \"lost\"\nwindow = [0.0, 1.0]")),
+             StartsWith("f.toml:31: measure[2].window: unknown key") && Catch::Contains("valid: observable, scale, inside, kind, label, problems"));
+  CHECK_THAT(study_error_of(replaced(text, "exact = true", "exact = 1")),
+             StartsWith("f.toml:33: measure[3].exact: expected a boolean, got an integer"));
+  CHECK_THAT(study_error_of(replaced(text, "exact = true", "exact = true\nobservable = \"u_contact\"")),
+             StartsWith("f.toml:34: measure[3].observable: unknown key") && Catch::Contains("valid: exact, kind, label, problems"));
+  // The bouncing mass knows its impacts, no contact duration: exact = true names it.
+  const std::string mass = quick_study("1.0") + R"(
+[[problem]]
+name = "bouncing-mass"
+[[integrator]]
+name = "moreau-jean"
+steps = [1e-3]
+[[measure]]
+kind = "contact-duration"
+exact = true
+)";
+  CHECK_THAT(study_error_of(mass),
+             StartsWith("f.toml:14: measure[0].exact: problem 'bouncing-mass' knows no exact contact duration; valid: problems that know it"));
+}
+
 // The features the built-in study reference needs (studies/builtin/reference.toml): a tolerance
 // sweep that sets atol = rtol / 100, impact times the integrator locates itself, a run's own
 // error estimate against the next run of its sweep (plain and under an error law x^q), the rate
