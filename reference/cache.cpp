@@ -151,10 +151,20 @@ std::filesystem::path reference_cache_dir() {
   return env && *env ? std::filesystem::path(env) : std::filesystem::path(".nsbench-cache/reference");
 }
 
+// One lock per cached run: the cases of a study that read the same reference, run in parallel,
+// wait for the first to compute it and then load it, instead of each computing it.
+std::mutex& key_mutex(const std::string& key) {
+  static std::mutex guard;
+  static std::map<std::string, std::mutex> mutexes;  // node-based: the references stay valid
+  const std::lock_guard lock(guard);
+  return mutexes[key];
+}
+
 CachedReference cached_reference(const std::filesystem::path& dir, const ReferenceRequest& request) {
   CachedReference ref;
   ref.metadata = reference_metadata(request);
   const std::string key = reference_key(ref.metadata);
+  const std::lock_guard lock(key_mutex(key));
   const auto json_path = dir / (key + ".json"), csv_path = dir / (key + ".csv");
 
   const std::string text = read_text(json_path);

@@ -45,7 +45,8 @@ std::string reference_key(const nlohmann::json& metadata);
 // Where studies keep reference runs: $NSBENCH_REFERENCE_CACHE, default .nsbench-cache/reference.
 std::filesystem::path reference_cache_dir();
 
-// Loads the run from `dir` when present and current, otherwise runs it and stores it.
+// Loads the run from `dir` when present and current, otherwise runs it and stores it. Callers in
+// several threads asking for the same run wait for one computation of it.
 CachedReference cached_reference(const std::filesystem::path& dir, const ReferenceRequest& request);
 
 }  // namespace nsb

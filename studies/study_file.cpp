@@ -125,9 +125,6 @@ std::string graph_observables(const FileMeasure& m) {
   return fmt::format("{}", fmt::join(each, ", "));
 }
 
-// A reference run once per problem and cached (not the exact solution, not stepped in lockstep).
-bool cached(const FileReference* r) { return r && !r->exact && !r->lockstep; }
-
 // Whether an [[exclude]] rule removes the run of integrator `entry` on problem `p` at
 // `stable_steps` (NaN: a run not set as a fraction of the stable step).
 bool excluded(const FileExclusion& x, const IntegratorEntry& entry, const FileProblem& p, double stable_steps, bool full) {
@@ -186,13 +183,6 @@ std::vector<Json> file_cases(const StudySpec& spec, bool full) {
         if (spec.runs(spec.problems[p], full)) add_cases(spec, p, i, full, cases);
       }
   }
-  // A reference integrator runs once per problem, here, before the cases that read it.
-  for (const auto& p : spec.problems)
-    if (cached(spec.reference_of(p)) && spec.runs(p, full)) try {
-        cached_reference(reference_cache_dir(), reference_request(spec, p));
-      } catch (const InputError& e) {
-        throw InputError(fmt::format("study {}, reference run on {}: {}", spec.name, p.label, e.what()));
-      }
   return cases;
 }
 
@@ -236,7 +226,13 @@ class Reference {
       lockstep_->init(problem, problem.initial_state());
       return;
     }
-    run_ = cached_reference(reference_cache_dir(), reference_request(spec, fp));
+    // Computed by the first case that reads it (cached_reference: once, whatever the threads), so
+    // that listing a study's cases, or running one shard of them, runs no reference it does not read.
+    try {
+      run_ = cached_reference(reference_cache_dir(), reference_request(spec, fp));
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("study {}, reference run on {}: {}", spec.name, fp.label, e.what()));
+    }
     if (run_.summary["status"] != "ok" || run_.series.rows() == 0)
       throw InputError(fmt::format("reference {} on {} failed: {} {}", ref.integrator, fp.label,
                                    run_.summary["status"].dump(), run_.summary["message"].dump()));

@@ -4,7 +4,9 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <fstream>
+#include <thread>
 
 namespace fs = std::filesystem;
 
@@ -55,6 +57,19 @@ TEST_CASE("reference cache: stored, reused, regenerated when missing, stale or c
   const auto rebuilt = nsb::cached_reference(dir.path, request());
   CHECK_FALSE(rebuilt.from_cache);
   CHECK(rebuilt.series.values == first.series.values);
+}
+
+// A study's cases run in parallel and read their reference when they start: the first computes
+// it, the others wait and load it (without the lock, each would find no file and compute it).
+TEST_CASE("reference cache: threads asking for the same run compute it once", "[reference][cache]") {
+  const nsb::test::TempDir dir("cache_threads_test");
+  std::vector<nsb::CachedReference> got(4);
+  {
+    std::vector<std::jthread> threads;
+    for (auto& g : got) threads.emplace_back([&dir, &slot = g] { slot = nsb::cached_reference(dir.path, request()); });
+  }
+  CHECK(std::count_if(got.begin(), got.end(), [](const auto& g) { return !g.from_cache; }) == 1);
+  for (const auto& g : got) CHECK(g.series.values == got.front().series.values);
 }
 
 TEST_CASE("reference cache: unknown names and bad values are input errors", "[reference][cache]") {
