@@ -227,15 +227,19 @@ std::size_t compared_impacts(const std::vector<double>& exact, std::size_t count
 void FlightEnergies::add(double t, bool contact, double energy) {
   if (at_ == At::exact_mid_flight) {
     const std::size_t i = errors_.size();  // flight i + 1, after impact i + 1
-    if (i < flights_ && i + 1 < impacts_.size() && t >= 0.5 * (impacts_[i] + impacts_[i + 1]))
+    if (i < flights_ && i + 1 < impacts_.size() && t >= 0.5 * (impacts_[i] + impacts_[i + 1])) {
+      measured_.push_back(energy);
       errors_.push_back(energy / energies_[i] - 1.0);
+    }
     return;
   }
   if (errors_.size() >= flights_) return;
   if (phases_.add(t, contact)) {
     // Phase n starts at this step: flight n - 1 is over, its steps k_{n-1} .. k_n - 1 buffered.
-    if (const std::size_t n = phases_.starts().size(); n >= 2)
-      errors_.push_back(since_start_[since_start_.size() / 2] / energies_[n - 2] - 1.0);
+    if (const std::size_t n = phases_.starts().size(); n >= 2) {
+      measured_.push_back(since_start_[since_start_.size() / 2]);
+      errors_.push_back(measured_.back() / energies_[n - 2] - 1.0);
+    }
     since_start_.clear();
   }
   if (!phases_.starts().empty()) since_start_.push_back(energy);

@@ -210,9 +210,12 @@ class FlightEnergies {
   double largest() const;
   std::size_t compared() const { return errors_.size(); }
   const std::vector<double>& errors() const { return errors_; }
+  // The energies E of the flights compared, and the exact E_i (the first compared() against them).
+  const std::vector<double>& energies() const { return measured_; }
+  const std::vector<double>& exact() const { return energies_; }
 
  private:
-  std::vector<double> impacts_, energies_, errors_;
+  std::vector<double> impacts_, energies_, errors_, measured_;
   std::size_t flights_ = 0;
   At at_ = At::exact_mid_flight;
   ContactPhases phases_;

@@ -7,7 +7,6 @@
 
 namespace nsb {
 
-extern const StudyEntry bouncing_study;
 extern const StudyEntry bar_study;
 extern const StudyEntry block_study;
 extern const StudyEntry peers_study;
@@ -44,7 +43,8 @@ StudyEntry builtin_file_study(const std::string& name, const std::string& descri
 
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
-      cpp_study(bouncing_study, "studies/bouncing.cpp"),
+      builtin_file_study("bouncing", "bouncing mass: impact times, flight energies, Zeno time, orders, against the exact solution",
+                         "studies/builtin/bouncing.toml"),
       builtin_file_study("hard",
                          "hard cases: Zeno, chattering, 10^4 impacts (--full), resting and grazing contact, steps around the "
                          "CFL limit (bar, block), stiffness ratio 1e6; ok / diverged / energy blow-up / penetration / over budget",

@@ -544,30 +544,52 @@ double periodic_value(const std::string& norm, const std::vector<double>& e) {
 }
 
 // The series of one run that the tables of some runs show (FileTable::of_some_runs): each
-// trajectory table's observable (and exact observable) at the first step at or after each of
-// its points + 1 evenly spaced times over the run's last `last` seconds; and, at the end, each
-// periodic table's energy samples (its measure's own).
+// trajectory table's observable (and exact observable) at its sample steps (FileTable::points,
+// spacing, relative); and, at the end, each periodic table's energy samples (its measure's own).
 class RunSeries {
  public:
-  RunSeries(const StudySpec& spec, const FileProblem& fp, double t_end) : spec_(spec) {
-    for (const FileTable& d : spec.tables)
-      if (d.rows == "trajectory" && d.applies_to(fp.label)) trajectories_.push_back({&d, t_end - d.last, {}, {}, {}});
+  // After the integrator's init: `energy0` its energy at the start (a relative trajectory's start values).
+  RunSeries(const StudySpec& spec, const FileProblem& fp, double t_end, const Problem& problem, const SpMat& M, const Integrator& it,
+            std::span<double> buffer, const Energy& energy0)
+      : spec_(spec) {
+    for (const FileTable& d : spec.tables) {
+      if (d.rows != "trajectory" || !d.applies_to(fp.label)) continue;
+      Trajectory tr{&d, t_end - d.last, 1.0, 1.0, {}, {}, {}};
+      if (d.relative) {
+        const Vec none = Vec::Zero(problem.ncontacts());
+        tr.value0 = state_observable(problem, M, it.state(), none, 0.0, d.observable, buffer, &energy0);
+        if (!d.exact.empty()) tr.exact0 = state_observable(problem, M, it.state(), none, 0.0, d.exact, buffer, &energy0);
+      }
+      trajectories_.push_back(tr);
+    }
   }
   void add(const Problem& problem, const SpMat& M, const Integrator& it, double dt, std::span<double> buffer, const Energy& energy) {
     const State& s = it.state();
     for (Trajectory& tr : trajectories_) {
       const auto n = static_cast<double>(tr.t.size());
-      if (tr.t.size() > static_cast<std::size_t>(tr.table->points) || s.t < tr.start + tr.table->last * n / tr.table->points) continue;
+      const bool due = tr.table->step_spacing ||
+                       (tr.t.size() <= static_cast<std::size_t>(tr.table->points) && s.t >= tr.start + tr.table->last * n / tr.table->points);
+      if (!due) continue;
       tr.t.push_back(s.t);
-      tr.value.push_back(state_observable(problem, M, s, it.impulses(), dt, tr.table->observable, buffer, &energy));
-      if (!tr.table->exact.empty()) tr.exact.push_back(state_observable(problem, M, s, it.impulses(), dt, tr.table->exact, buffer, &energy));
+      tr.value.push_back(state_observable(problem, M, s, it.impulses(), dt, tr.table->observable, buffer, &energy) / tr.value0);
+      if (!tr.table->exact.empty())
+        tr.exact.push_back(state_observable(problem, M, s, it.impulses(), dt, tr.table->exact, buffer, &energy) / tr.exact0);
     }
   }
-  // Into the run's figures: "trajectories" by table id {t, value, exact}, "periodic" by measure
-  // label (the samples of `periodic`, each measure's, in the order of spec.measures).
+  // Into the run's figures: "trajectories" by table id {t, value, exact} (spacing = "steps":
+  // every s-th step kept), "periodic" by measure label (the samples of `periodic`, each
+  // measure's, in the order of spec.measures).
   void write(const std::vector<const std::vector<double>*>& periodic, Json& run) const {
-    for (const Trajectory& tr : trajectories_)
-      run["trajectories"][tr.table->id] = {{"t", tr.t}, {"value", reals(tr.value)}, {"exact", reals(tr.exact)}};
+    for (const Trajectory& tr : trajectories_) {
+      std::vector<double> t, value, exact;
+      const std::size_t stride = tr.table->step_spacing ? std::max<std::size_t>(1, tr.t.size() / static_cast<std::size_t>(tr.table->points)) : 1;
+      for (std::size_t k = 0; k < tr.t.size(); k += stride) {
+        t.push_back(tr.t[k]);
+        value.push_back(tr.value[k]);
+        if (!tr.exact.empty()) exact.push_back(tr.exact[k]);
+      }
+      run["trajectories"][tr.table->id] = {{"t", t}, {"value", reals(value)}, {"exact", reals(exact)}};
+    }
     for (const FileTable& d : spec_.tables)
       for (std::size_t m = 0; m < spec_.measures.size(); ++m)
         if (d.rows == "periodic" && spec_.measures[m].label == d.measure && periodic[m])
@@ -578,6 +600,7 @@ class RunSeries {
   struct Trajectory {
     const FileTable* table;
     double start;
+    double value0 = 1.0, exact0 = 1.0;  // relative: the values at the start
     std::vector<double> t, value, exact;
   };
   const StudySpec& spec_;
@@ -644,7 +667,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     return m.kind == MeasureKind::Energy && m.history;
   });
   RunFigures figures(*problem, spec, fp, t_end, e0, e_scale);
-  RunSeries series(spec, fp, t_end);
+  RunSeries series(spec, fp, t_end, *problem, M, *integrator, obs, energy0);
   double e1 = kNaN;  // the energy after the first step
   // An energy measure's error of E: relative to E_1 (relative_to = "first step") or E0 (its scale).
   const auto energy_error = [&](const FileMeasure& fm, double e) { return fm.from_first_step ? (e - e1) / std::abs(e1) : (e - e0) / e_scale; };
@@ -867,6 +890,17 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     values.push_back(real(v));
   }
   out["values"] = values;  // an estimate's: NaN until the tables compare it with the next run (with_next_run_estimates)
+  for (const FileTable& d : spec.tables)  // a flights table's flights: E_i / E0, exact E_i / E0, E_i / E_i exact - 1
+    for (std::size_t m = 0; m < spec.measures.size(); ++m)
+      if (d.rows == "flights" && on[m] && spec.measures[m].label == d.measure) {
+        const FlightEnergies& f = acc[m].flights;
+        std::vector<double> ratio, exact;
+        for (std::size_t i = 0; i < f.compared(); ++i) {
+          ratio.push_back(f.energies()[i] / e0);
+          exact.push_back(f.exact()[i] / e0);
+        }
+        out["run"]["flights"][d.measure] = {{"ratio", reals(ratio)}, {"exact", reals(exact)}, {"error", reals(f.errors())}};
+      }
   for (std::size_t m = 0; m < spec.measures.size(); ++m)
     if (spec.measures[m].kind == MeasureKind::Estimate) out["samples"][std::to_string(m)] = reals(acc[m].samples);
   if (spec.cpu_repeats > 0) out["cpu"] = median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats);
@@ -1274,6 +1308,13 @@ const std::vector<Column>& trajectory_columns() {
   return columns;
 }
 
+const std::vector<Column>& flights_columns() {
+  static const std::vector<Column> columns = run_series_columns(
+      {{"flight", "", "", "i: the flight after impact i"}, {"energy ratio", "", "", "E_i / E0, E_i the flight's measured energy"},
+       {"exact energy ratio", "", "", "the exact E_i / E0"}, {"|rel. err|", "", "", "|E_i / E_i exact - 1|"}});
+  return columns;
+}
+
 
 // A cell as the text of a pivot's column header.
 std::string pivot_value_text(const Cell& cell) {
@@ -1321,22 +1362,22 @@ Table pivot_table(const FileTable& d, const Table& runs) {
   return out;
 }
 
-// rows = "periodic" or "trajectory": a row per sample of each run shown (its case-table row in
-// `runs`: case_row), in the order of the cases; a trajectory's rows "exact" after the first run
-// shown of each problem, at its times.
+// rows = "periodic", "trajectory" or "flights": a row per sample (flight) of each run shown (its
+// case-table row in `runs`: case_row), in the order of the cases; a trajectory's rows "exact"
+// after the first run shown of each problem, at its times.
 Table run_series_table(const StudySpec& spec, const FileTable& d, const std::vector<Json>& cases, const std::vector<Json>& results,
                        const Table& runs, const std::vector<std::size_t>& case_row) {
-  const bool periodic = d.rows == "periodic";
+  const bool periodic = d.rows == "periodic", flights = d.rows == "flights";
   Table all;
-  all.columns = periodic ? periodic_columns() : trajectory_columns();
+  all.columns = periodic ? periodic_columns() : flights ? flights_columns() : trajectory_columns();
   const std::vector<Column> parameters = parameter_columns(spec);
   all.columns.insert(all.columns.end(), parameters.begin(), parameters.end());
   const std::vector<std::string> parameter_names = parameter_column_names(spec);
   std::vector<std::string> exact_drawn;  // the problems whose exact rows are in
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Json& run = results[k].contains("run") ? results[k]["run"] : Json::object();
-    const char* key = periodic ? "periodic" : "trajectories";
-    const std::string& id = periodic ? d.measure : d.id;
+    const char* key = periodic ? "periodic" : flights ? "flights" : "trajectories";
+    const std::string& id = periodic || flights ? d.measure : d.id;
     const FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
     if (!run.contains(key) || !run[key].contains(id) || !d.applies_to(p.label) || !shows_run(d, runs, runs.rows[case_row[k]])) continue;
     const FileIntegrator& fi = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
@@ -1355,6 +1396,15 @@ Table run_series_table(const StudySpec& spec, const FileTable& d, const std::vec
       }
       continue;
     }
+    if (flights) {
+      for (std::size_t i = 0; i < samples["ratio"].size(); ++i) {
+        std::vector<Cell> row = head;
+        row.insert(row.end(), {static_cast<long>(i + 1), number_cell(samples["ratio"][i]), number_cell(samples["exact"][i]),
+                               number_cell(std::abs(real(samples["error"][i])))});
+        add(row);
+      }
+      continue;
+    }
     const Json& t = samples["t"];
     for (std::size_t i = 0; i < t.size(); ++i) {
       std::vector<Cell> row = head;
@@ -1369,7 +1419,7 @@ Table run_series_table(const StudySpec& spec, const FileTable& d, const std::vec
   for (const FileFigure& f : spec.figures)
     if (f.table == d.id) all.figures.push_back(declared_figure(spec, f));
   Table out = case_table(d, all, true);
-  out.csv_only = true;
+  out.csv_only = !flights;  // a few rows per run: readable as text too
   return out;
 }
 
@@ -1716,6 +1766,11 @@ const std::vector<std::string>& periodic_column_names() {
 
 const std::vector<std::string>& trajectory_column_names() {
   static const std::vector<std::string> names = column_names(trajectory_columns());
+  return names;
+}
+
+const std::vector<std::string>& flights_column_names() {
+  static const std::vector<std::string> names = column_names(flights_columns());
   return names;
 }
 

@@ -244,7 +244,7 @@ struct FileTable {
   // description (`of` unused), and the number format of dt or tol in its runs cells.
   std::optional<FileColumn> error;
   std::optional<std::string> runs_format;
-  // Tables of some runs (rows = "pivot", "periodic", "trajectory", and "case"): the runs whose case-table
+  // Tables of some runs (rows = "pivot", "periodic", "trajectory", "flights", and "case"): the runs whose case-table
   // column equals each value of `where` (a number or a text), less those whose |column| exceeds
   // the value of `drop_above` (a run with no value there is kept).
   std::vector<std::pair<std::string, Cell>> where;
@@ -254,15 +254,23 @@ struct FileTable {
   // (header: the last column's header with {} replaced by that value); a run whose outcome is
   // not ok shows its outcome instead, no run an empty cell.
   std::string across;
-  // rows = "periodic": one row per sample of the energy measure of this label (sampled `every`).
+  // rows = "periodic": one row per sample of the energy measure of this label (sampled `every`);
+  // rows = "flights": one row per flight compared by the flight-energy measure of this label
+  // (flight i, after impact i: E_i / E0, the exact E_i / E0 and |E_i / E_i exact - 1|, E0 the
+  // scheme's energy at the start), for the runs whose measures were taken.
   std::string measure;
   // rows = "trajectory": the observable at the first step at or after each of points + 1 evenly
-  // spaced times over the run's last `last` seconds (t_end - last to t_end), and after the
-  // first run shown of each problem, rows "exact": its observable `exact` at the same times.
+  // spaced times over the run's last `last` seconds (t_end - last to t_end) (spacing = "times"),
+  // or at every s-th step from the first, s = max(1, n / points) in integers, n the run's steps
+  // (spacing = "steps": the whole run, each step kept until the run ends); with `relative`,
+  // divided by its value at the start (total_energy: E / E0). After the first run shown of each
+  // problem, rows "exact": its observable `exact` at the same times (with `relative`, divided by
+  // its own value at the start).
   std::string observable, exact;
   double last = 0.0;
   int points = 400;
-  bool of_some_runs() const { return rows == "pivot" || rows == "periodic" || rows == "trajectory"; }
+  bool step_spacing = false, relative = false;
+  bool of_some_runs() const { return rows == "pivot" || rows == "periodic" || rows == "trajectory" || rows == "flights"; }
 };
 
 // [[exclude]]: runs the study does not make: those of the registered integrators of one kind
@@ -354,6 +362,7 @@ const std::vector<std::string>& history_column_names();
 const std::vector<std::string>& samples_column_names();
 const std::vector<std::string>& periodic_column_names();
 const std::vector<std::string>& trajectory_column_names();
+const std::vector<std::string>& flights_column_names();
 // The columns of a declared case table that compare a run with the next run of its sweep or
 // count the solver's own work: "solver steps", "Jacobians" and, for each converging measure,
 // "rate of <label>".

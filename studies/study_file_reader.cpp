@@ -508,15 +508,22 @@ void read_momentum_component(const Checker& c, const Json& j, const std::string&
   m.label += " " + m.component;
 }
 
+// The observables of a problem's state (state_observable): its own, kinetic, potential,
+// total_energy and, with contacts, min_gap.
+std::vector<std::string> state_observable_names(const Problem& problem) {
+  std::vector<std::string> valid = problem.observable_names();
+  valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
+  if (problem.ncontacts() > 0) valid.push_back("min_gap");
+  return valid;
+}
+
 // A measure's required observable of the state: one of every problem `on`'s own, or kinetic,
 // potential, total_energy, min_gap (a problem with contacts).
 void read_state_observable(const Checker& c, const Json& j, const std::string& path, FileMeasure& m, const StudySpec& spec,
                            const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
   m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
   for (const std::size_t p : on) {
-    std::vector<std::string> valid = instances[p]->observable_names();
-    valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
-    if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
+    const std::vector<std::string> valid = state_observable_names(*instances[p]);
     if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
       c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'", m.observable, spec.problems[p].label),
              fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
@@ -635,9 +642,7 @@ void read_rest_start(const Checker& c, const Json& j, const std::string& path, F
     bound.at_most = c.positive(c.require(b, bp, "at_most"), child(bp, "at_most"));
     if (const Json* v = c.find(b, "dt_power")) bound.dt_power = static_cast<int>(c.integer(*v, child(bp, "dt_power"), 0, 4));
     for (const std::size_t p : on) {
-      std::vector<std::string> valid = instances[p]->observable_names();
-      valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
-      if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
+      const std::vector<std::string> valid = state_observable_names(*instances[p]);
       if (std::find(valid.begin(), valid.end(), bound.observable) == valid.end())
         c.fail(child(bp, "observable"), fmt::format("'{}' is not an observable of problem '{}'", bound.observable, spec.problems[p].label),
                fmt::format("{} (or problems = [...])", fmt::join(valid, ", ")));
@@ -801,7 +806,7 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const S
   const bool declared_only = spec.declared_figures_only;
   // A figure of a history or samples table: any of their columns (its table's checked with the tables).
   std::vector<std::string> table_columns = history_column_names();
-  for (const auto* more : {&samples_column_names(), &periodic_column_names(), &trajectory_column_names()})
+  for (const auto* more : {&samples_column_names(), &periodic_column_names(), &trajectory_column_names(), &flights_column_names()})
     for (const auto& name : *more)
       if (std::find(table_columns.begin(), table_columns.end(), name) == table_columns.end()) table_columns.push_back(name);
   const auto parameters = parameter_column_names(spec);
@@ -886,8 +891,8 @@ std::vector<std::string> table_sources(const std::string& rows, const StudySpec&
         for (const char* what : {"order", "CI low", "CI high", "points"}) sources.push_back(fmt::format("{} of {}", what, m.label));
   } else if (rows == "history" || rows == "samples") {
     sources = rows == "history" ? history_column_names() : samples_column_names();
-  } else if (rows == "periodic" || rows == "trajectory") {
-    sources = rows == "periodic" ? periodic_column_names() : trajectory_column_names();
+  } else if (rows == "periodic" || rows == "trajectory" || rows == "flights") {
+    sources = rows == "periodic" ? periodic_column_names() : rows == "flights" ? flights_column_names() : trajectory_column_names();
   } else if (rows == "pivot") {
     return table_sources("case", spec);
   }
@@ -930,18 +935,23 @@ FileColumn read_column(const Checker& c, const Json& j, const std::string& path,
 }
 
 // The keys of a table of some runs (FileTable::of_some_runs) into `t`: where, drop_above (a
-// case-table column each; a case table takes them too), a pivot's across, a periodic table's measure, a trajectory's
-// observable, exact, last and points (its observables checked against the problems later:
-// check_trajectory_observables); refused on the other tables.
+// case-table column each; a case table takes them too), a pivot's across, a periodic or flights
+// table's measure, a trajectory's observable, exact, last, points, spacing and relative (its
+// observables checked against the problems later: check_trajectory_observables); refused on the
+// other tables.
 void read_some_runs(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
   const std::vector<std::string> runs = table_sources("case", spec);
-  const std::map<std::string, std::string> own = {{"across", "pivot"}, {"measure", "periodic"}, {"observable", "trajectory"},
-                                                  {"exact", "trajectory"}, {"last", "trajectory"}, {"points", "trajectory"}};
-  for (const char* key : {"where", "drop_above", "across", "measure", "observable", "exact", "last", "points"}) {
+  const std::map<std::string, std::vector<std::string>> own = {
+      {"across", {"pivot"}}, {"measure", {"periodic", "flights"}}, {"observable", {"trajectory"}}, {"exact", {"trajectory"}},
+      {"last", {"trajectory"}}, {"points", {"trajectory"}}, {"spacing", {"trajectory"}}, {"relative", {"trajectory"}}};
+  for (const char* key : {"where", "drop_above", "across", "measure", "observable", "exact", "last", "points", "spacing", "relative"}) {
     const auto whose = own.find(key);
-    if (c.find(j, key) && (whose == own.end() ? !(t.of_some_runs() || t.rows == "case") : t.rows != whose->second))
+    const bool taken = whose == own.end() ? t.of_some_runs() || t.rows == "case"
+                                          : std::find(whose->second.begin(), whose->second.end(), t.rows) != whose->second.end();
+    if (c.find(j, key) && !taken)
       c.fail(child(path, key), fmt::format("a table of rows = \"{}\" has no {}", t.rows, key),
-             whose == own.end() ? "rows = \"case\", \"pivot\", \"periodic\" or \"trajectory\"" : fmt::format("rows = \"{}\"", whose->second));
+             whose == own.end() ? "rows = \"case\", \"pivot\", \"periodic\", \"trajectory\" or \"flights\""
+                                : fmt::format("rows = \"{}\"", fmt::join(whose->second, "\" or \"")));
   }
   const auto conditions = [&](const char* key, const auto& read) {
     const Json* v = c.find(j, key);
@@ -965,22 +975,33 @@ void read_some_runs(const Checker& c, const Json& j, const std::string& path, co
     if (sampled.empty()) c.fail(child(path, "rows"), "the study has no energy measure sampled every period", "an energy [[measure]] with every");
     t.measure = c.choice(c.require(j, path, "measure"), child(path, "measure"), sampled);
   }
+  if (t.rows == "flights") {
+    std::vector<std::string> flights;
+    for (const auto& m : spec.measures)
+      if (m.kind == MeasureKind::FlightEnergy) flights.push_back(m.label);
+    if (flights.empty()) c.fail(child(path, "rows"), "the study has no flight-energy measure", "a [[measure]] with kind = \"flight-energy\"");
+    t.measure = c.choice(c.require(j, path, "measure"), child(path, "measure"), flights);
+  }
   if (t.rows == "trajectory") {
     t.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
     if (const Json* v = c.find(j, "exact")) t.exact = c.string(*v, child(path, "exact"));
-    t.last = c.positive(c.require(j, path, "last"), child(path, "last"));
+    if (const Json* v = c.find(j, "spacing")) t.step_spacing = c.choice(*v, child(path, "spacing"), {"times", "steps"}) == "steps";
+    if (t.step_spacing && c.find(j, "last"))
+      c.fail(child(path, "last"), "a trajectory of spacing = \"steps\" spans the whole run", "no last (or spacing = \"times\")");
+    if (!t.step_spacing) t.last = c.positive(c.require(j, path, "last"), child(path, "last"));
     if (const Json* v = c.find(j, "points")) t.points = static_cast<int>(c.integer(*v, child(path, "points"), 1, 100000));
+    if (const Json* v = c.find(j, "relative")) t.relative = c.boolean(*v, child(path, "relative"));
   }
 }
 
-// A trajectory table's observable and exact: observables of every problem it shows.
+// A trajectory table's observable and exact: observables of the state of every problem it shows.
 void check_trajectory_observables(const Checker& c, const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances) {
   for (std::size_t i = 0; i < spec.tables.size(); ++i) {
     const FileTable& t = spec.tables[i];
     if (t.rows != "trajectory") continue;
     for (std::size_t p = 0; p < spec.problems.size(); ++p) {
       if (!t.applies_to(spec.problems[p].label)) continue;
-      const auto& names = instances[p]->observable_names();
+      const std::vector<std::string> names = state_observable_names(*instances[p]);
       for (const auto& [key, name] : {std::pair{"observable", t.observable}, std::pair{"exact", t.exact}})
         if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end())
           c.fail(child(element("table", i), key), fmt::format("'{}' is not an observable of problem '{}'", name, spec.problems[p].label),
@@ -1010,7 +1031,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     const Json& j = list[i];
     const std::string path = element("table", i);
     c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined", "declined_reason", "integrators",
-                     "where", "drop_above", "across", "measure", "observable", "exact", "last", "points"});
+                     "where", "drop_above", "across", "measure", "observable", "exact", "last", "points", "spacing", "relative"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
@@ -1018,7 +1039,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       if (u.id == t.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", t.id), "distinct ids");
     t.title = c.string(c.require(j, path, "title"), child(path, "title"));
     t.caption = optional_string(c, j, path, "caption");
-    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples", "pivot", "periodic", "trajectory"});
+    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples", "pivot", "periodic", "trajectory", "flights"});
     read_some_runs(c, j, path, spec, t);
     if (const Json* v = c.find(j, "declined")) {
       if (t.rows != "case") c.fail(child(path, "declined"), "only a table of one row per run shows declined runs", "rows = \"case\"");
@@ -1094,13 +1115,13 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     auto runs = first_runs;
     if (!spec.figures[i].table.empty()) {
       runs = std::find_if(tables.begin(), tables.end(), [&](const FileTable& t) { return t.id == spec.figures[i].table; });
-      const auto series = [](const FileTable& t) { return t.rows == "history" || t.rows == "samples" || t.rows == "periodic" || t.rows == "trajectory"; };
+      const auto series = [](const FileTable& t) { return t.rows == "history" || t.rows == "samples" || (t.of_some_runs() && t.rows != "pivot"); };
       if (runs == tables.end() || !series(*runs)) {
         std::vector<std::string> histories;
         for (const auto& t : tables)
           if (series(t)) histories.push_back(t.id);
-        c.fail(child(path, "table"), fmt::format("'{}' is no declared history, samples, periodic or trajectory table", spec.figures[i].table),
-               histories.empty() ? "a [[table]] with rows = \"history\", \"samples\", \"periodic\" or \"trajectory\"" : fmt::format("{}", fmt::join(histories, ", ")));
+        c.fail(child(path, "table"), fmt::format("'{}' is no declared history, samples, periodic, trajectory or flights table", spec.figures[i].table),
+               histories.empty() ? "a [[table]] with rows = \"history\", \"samples\", \"periodic\", \"trajectory\" or \"flights\"" : fmt::format("{}", fmt::join(histories, ", ")));
       }
     }
     if (runs == tables.end()) c.fail(path, "declared tables hold no table of one row per run to draw it from", "a [[table]] with rows = \"case\"");
@@ -1606,9 +1627,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
           continue;
         }
         const FileReference& ref = *spec.reference_of(spec.problems[p]);
-        std::vector<std::string> valid = instances[p]->observable_names();
-        valid.insert(valid.end(), {"kinetic", "potential", "total_energy"});
-        if (instances[p]->ncontacts() > 0) valid.push_back("min_gap");
+        std::vector<std::string> valid = state_observable_names(*instances[p]);
         if ((ref.exact || ref.lockstep) && !hausdorff) {  // the state's u and v (a problem's own v: its observable)
           if (std::find(valid.begin(), valid.end(), "v") == valid.end()) valid.insert(valid.begin(), "v");
           valid.insert(valid.begin(), "u");

@@ -387,29 +387,37 @@ TEST_CASE("built-in study reference: reference.toml's runs are the C++ study's a
   for (std::size_t r = 1; r < penalty.size(); ++r) CHECK(std::stod(penalty[r][0]) == expected[24 + r - 1].x);
 }
 
-// The draft studies/builtin/drafts/bouncing.toml against the C++ study it is to replace
-// (studies/bouncing.cpp), default and --full: the same runs in the same order (integrator, e,
-// dt), each to the C++ study's end (e < 1: Zeno time + 0.5 s; e = 1: the 6th impact + 0.1 s).
-TEST_CASE("draft bouncing.toml: the C++ study bouncing's runs, in its order, with its steps and end times", "[studies]") {
-  const nsb::StudySpec spec =
-      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bouncing.toml");
+// bouncing.toml's runs are those of the C++ study it replaced (studies/bouncing.cpp, whose case
+// list and tables this file's equalled, default and --full, before it was deleted), rebuilt here
+// by that study's rule: every registered integrator in the registry's order, then e in {1, 0.9,
+// 0.5}, then dt in {1e-2, 1e-3, 1e-4, 1e-5} (and 1e-6 with --full), each to e < 1: the exact
+// Zeno time + 0.5 s, e = 1: the 6th exact impact + 0.1 s. A run added, removed or moved fails here.
+TEST_CASE("built-in study bouncing: bouncing.toml's runs are the C++ study's, in its order, with its steps and end times", "[studies]") {
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/bouncing.toml");
   const auto& registry = nsb::study_registry();
-  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bouncing"; });
-  REQUIRE(cpp != registry.end());
-  REQUIRE(cpp->source == "studies/bouncing.cpp");
+  const auto study = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bouncing"; });
+  REQUIRE(study != registry.end());
+  CHECK(study->source == "studies/builtin/bouncing.toml");
   for (const bool full : {false, true}) {
     INFO("full " << full);
-    const auto expected = nsb::study_cases(*cpp, {full});
-    const auto cases = nsb::study_cases(nsb::file_study(spec), {full});
+    std::vector<double> steps = {1e-2, 1e-3, 1e-4, 1e-5};
+    if (full) steps.push_back(1e-6);
+    std::vector<std::tuple<std::string, double, double>> expected;  // integrator, e, dt
+    for (const auto& entry : nsb::integrator_registry())
+      for (double e : {1.0, 0.9, 0.5})
+        for (double dt : steps) expected.emplace_back(entry.name, e, dt);
+    const auto cases = nsb::study_cases(*study, {full});
     REQUIRE(cases.size() == expected.size());
     for (std::size_t k = 0; k < cases.size(); ++k) {
-      INFO("case " << k << ": " << expected[k].dump());
+      const auto& [name, e, dt] = expected[k];
+      INFO("case " << k << ": " << name << " e " << e << " dt " << dt);
       const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
-      const double e = expected[k]["e"].get<double>();
-      CHECK(spec.integrators[cases[k]["integrator"].get<std::size_t>()].name == expected[k]["integrator"].get<std::string>());
-      CHECK(spec.integrators[cases[k]["integrator"].get<std::size_t>()].sweep_for(p.label).parameters.empty());
+      const nsb::FileIntegrator& it = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
+      CHECK(it.name == name);
+      CHECK(it.sweep_for(p.label).parameters.empty());
+      CHECK(p.name == "bouncing-mass");
       CHECK(p.parameters == std::map<std::string, std::string>{{"e", fmt::format("{}", e)}});
-      CHECK(cases[k]["dt"].get<double>() == expected[k]["dt"].get<double>());
+      CHECK(cases[k]["dt"].get<double>() == dt);
       const auto problem = nsb::make_problem("bouncing-mass", p.parameters);
       const auto& mass = dynamic_cast<const nsb::BouncingMass&>(*problem);
       CHECK(spec.t_end_of(p, full) == (e < 1.0 ? mass.zeno_time() + 0.5 : mass.impact_time(6) + 0.1));
@@ -417,56 +425,55 @@ TEST_CASE("draft bouncing.toml: the C++ study bouncing's runs, in its order, wit
   }
 }
 
-// The draft's measures against the C++ study's own figures of the same run (its run_case), on
-// the runs at dt = 1e-2 and 1e-3 of three schemes: the impacts compared (the first 5 whose exact
-// flight lasts 10 steps at least), their largest time error, the flight energies at the
-// mid-flight step against E0 e^(2i), the detected Zeno time and its error, bit for bit.
-TEST_CASE("draft bouncing.toml: impact times, flight energies and Zeno times equal the C++ study's", "[studies]") {
-  const nsb::StudySpec spec =
-      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bouncing.toml");
+// Its tables against the committed report (written by the C++ study): the runs at dt = 1e-2 and
+// 1e-3 of cd-lagrange, moreau-jean and schatzman-paoli as the file measures them: their rows of
+// bouncing_mass (impact times, flight energies, Zeno times, penetration, steps; every cell but
+// the CPU time), of bouncing_mass_energy (each flight of the dt = 1e-3 runs) and of
+// bouncing_mass_energy_history (E / E0 every (steps / 400)-th step), cell for cell.
+TEST_CASE("built-in study bouncing: its tables' rows of three schemes equal the committed report's", "[studies]") {
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/bouncing.toml");
   const auto& registry = nsb::study_registry();
-  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bouncing"; });
-  REQUIRE(cpp != registry.end());
-  const auto measure = [&](const std::string& label) {
-    const auto at = std::find_if(spec.measures.begin(), spec.measures.end(), [&](const nsb::FileMeasure& m) { return m.label == label; });
-    REQUIRE(at != spec.measures.end());
-    return static_cast<std::size_t>(at - spec.measures.begin());
-  };
-  const nsb::StudyEntry file = nsb::file_study(spec);
-  const auto expected = nsb::study_cases(*cpp, {false});
-  const auto cases = nsb::study_cases(file, {false});
-  std::size_t compared = 0;
-  for (std::size_t k = 0; k < cases.size(); ++k) {
-    const std::string name = expected[k]["integrator"];
-    const double dt = expected[k]["dt"], e = expected[k]["e"];
-    if ((name != "cd-lagrange" && name != "moreau-jean" && name != "schatzman-paoli") || dt < 1e-3) continue;
-    INFO("case " << expected[k].dump());
-    const nsb::Json want = cpp->run_case(expected[k]), got = file.run_case(cases[k]);
-    REQUIRE(got["status"] == "ok");
-    const auto value = [&](const std::string& label) { return nsb::real(got["values"][measure(label)]); };
-    const std::vector<double> t_err = want["impact_time_error"], flights = want["flight_energy"];
-    double t_max = 0.0, e_max = t_err.empty() ? NAN : 0.0;
-    for (double x : t_err) t_max = std::max(t_max, std::abs(x));
-    const auto mass = nsb::make_problem("bouncing-mass", {{"e", fmt::format("{}", e)}});
-    const auto& bouncing = dynamic_cast<const nsb::BouncingMass&>(*mass);
-    for (std::size_t i = 0; i < flights.size(); ++i)
-      e_max = std::max(e_max, std::abs(flights[i] / bouncing.energy_after_impact(static_cast<int>(i) + 1) - 1.0));
-    CHECK(value("impacts") == static_cast<double>(t_err.size()));
-    CHECK(value("max t_i err") == t_max);
-    CHECK(value("t1 err") == std::abs(t_err.at(0)));
-    if (flights.empty()) CHECK(std::isnan(value("max E_i err")));
-    else CHECK(value("max E_i err") == e_max);
-    const double zeno = nsb::real(want["zeno_detected"]);
-    if (e < 1.0 && !std::isnan(zeno)) {
-      CHECK(value("Zeno detected") == zeno);
-      CHECK(value("Zeno err") == std::abs(zeno - bouncing.zeno_time()));
-    } else {
-      CHECK(std::isnan(value("Zeno detected")));
-      CHECK(std::isnan(value("Zeno err")));
+  const auto study = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bouncing"; });
+  REQUIRE(study != registry.end());
+  const std::vector<std::string> schemes = {"cd-lagrange", "moreau-jean", "schatzman-paoli"};
+  const auto shown = [&](const std::string& name) { return std::find(schemes.begin(), schemes.end(), name) != schemes.end(); };
+  std::vector<nsb::Json> cases, results;
+  for (const auto& c : nsb::study_cases(*study, {}))
+    if (shown(spec.integrators[c["integrator"].get<std::size_t>()].name) && c["dt"].get<double>() >= 1e-3) {
+      cases.push_back(c);
+      results.push_back(nsb::run_study_case(*study, c, {}));
     }
-    ++compared;
+  REQUIRE(cases.size() == 3 * 3 * 2);
+  const auto tables = nsb::study_tables(*study, cases, results, {});
+  const auto fresh_csv = [&](const std::string& id) {
+    const auto table = std::find_if(tables.begin(), tables.end(), [&](const nsb::Table& t) { return t.id == id; });
+    REQUIRE(table != tables.end());
+    return nsb::parse_csv(nsb::to_csv(*table));
+  };
+  const auto report = report_csv("bouncing_mass");
+  const auto fresh = fresh_csv("bouncing_mass");
+  REQUIRE(fresh.size() == 1 + cases.size());
+  CHECK(fresh[0] == report[0]);
+  for (std::size_t r = 1; r < fresh.size(); ++r) {
+    const auto row = std::find_if(report.begin() + 1, report.end(), [&](const std::vector<std::string>& was) {
+      return std::equal(was.begin(), was.begin() + 3, fresh[r].begin());
+    });
+    REQUIRE(row != report.end());
+    REQUIRE(row->size() == fresh[r].size());
+    for (std::size_t c = 0; c < row->size(); ++c) {
+      INFO("row " << r << ", column " << report[0][c]);
+      if (report[0][c] != "CPU [s]") CHECK(fresh[r][c] == (*row)[c]);
+    }
   }
-  CHECK(compared == 3 * 3 * 2);
+  for (const char* id : {"bouncing_mass_energy", "bouncing_mass_energy_history"}) {
+    INFO(id);
+    const auto was = report_csv(id);
+    std::vector<std::vector<std::string>> expected = {was[0]};
+    for (std::size_t r = 1; r < was.size(); ++r)
+      if (shown(was[r][0])) expected.push_back(was[r]);
+    CHECK(expected.size() > 3 * 3);
+    CHECK(fresh_csv(id) == expected);
+  }
 }
 
 // The draft studies/builtin/drafts/hausdorff.toml against the C++ study it is to replace

@@ -99,6 +99,10 @@ TEST_CASE("FlightEnergies: at the exact mid-flight time, and at the mid-flight s
   REQUIRE(step.compared() == 2);
   CHECK(step.errors()[0] == Approx(17.5 / 4.0 - 1.0));
   CHECK(step.errors()[1] == Approx(27.5 / 2.0 - 1.0));
+  // The energies compared, each beside its exact one.
+  CHECK(step.energies() == std::vector<double>{17.5, 27.5});
+  CHECK(exact.energies() == std::vector<double>{15.0, 25.0});
+  CHECK(step.exact() == energies);
   CHECK(one.compared() == 1);  // the flights asked for only
   // A flight whose next impact never comes is not compared; none compared: NaN.
   nsb::FlightEnergies lone(impacts, energies, 2, nsb::FlightEnergies::At::mid_flight_step);

@@ -1,7 +1,11 @@
-// Study files: the tables of some runs (FileTable::of_some_runs): rows = "pivot", "periodic" and
-// "trajectory", their runs picked by `where` and left out by `drop_above`, and their bad input.
+// Study files: the tables of some runs (FileTable::of_some_runs): rows = "pivot", "periodic",
+// "trajectory" (at times or every s-th step) and "flights", their runs picked by `where` and left
+// out by `drop_above`, and their bad input.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -108,6 +112,50 @@ where = { dt = 0.01 }
 drop_above = { "t reached" = 0.9 }
 columns = ["problem", "integrator", "dt", "t reached"]
 )";
+
+// kSomeRuns with a bouncing mass at e = 0.5 to t = 1.5 (impacts near 0.45, 0.90, 1.13, 1.24),
+// the energies of its first 3 flights, in a table at dt = 0.005, and E / E0 of the elastic runs
+// at dt = 0.01 every (steps / 7)-th step.
+const std::string kFlightRuns = kSomeRuns + R"(
+[[problem]]
+name = "bouncing-mass"
+label = "half"
+parameters = { e = 0.5 }
+t_end = 1.5
+
+[[measure]]
+kind = "flight-energy"
+label = "E_i err"
+count = 3
+at = "mid-flight step"
+problems = ["half"]
+
+[[table]]
+id = "flights"
+title = "flights"
+rows = "flights"
+measure = "E_i err"
+where = { dt = 0.005 }
+columns = ["problem", "integrator", "flight", "energy ratio", "exact energy ratio", "|rel. err|"]
+
+[[table]]
+id = "energy_steps"
+title = "E/E0"
+rows = "trajectory"
+observable = "total_energy"
+relative = true
+spacing = "steps"
+points = 7
+where = { dt = 0.01, problem = "elastic" }
+columns = ["integrator", "t", "value"]
+)";
+
+// The line of `text` where `needle` first occurs (1: the first).
+long line_of(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  REQUIRE(at != std::string::npos);
+  return 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+}
 
 std::vector<nsb::Table> run_some_runs(const std::string& text) {
   const nsb::StudyEntry entry = nsb::file_study(nsb::parse_study_text(text, "f.toml", false));
@@ -261,9 +309,58 @@ TEST_CASE("study file: tables of some runs: bad input named", "[studies][study_f
              StartsWith("f.toml:62: table[3].points: 0 is out of range; valid: [1, 100000]"));
   CHECK(some_runs_error(kSomeCaseRuns) == "(no error)");
   CHECK_THAT(some_runs_error(with_replaced(kSomeCaseRuns, "title = \"some cases\"", "title = \"some cases\"\nrows = \"group\"")),
-             StartsWith("f.toml:89: table[5].where: a table of rows = \"group\" has no where; valid: rows = \"case\", \"pivot\", \"periodic\" or \"trajectory\""));
+             StartsWith("f.toml:89: table[5].where: a table of rows = \"group\" has no where; valid: rows = \"case\", \"pivot\", \"periodic\", \"trajectory\" or \"flights\""));
   CHECK_THAT(some_runs_error(with_replaced(kSomeCaseRuns, "where = { dt = 0.01 }\ndrop", "where = { dtt = 0.01 }\ndrop")),
              StartsWith("f.toml:88: table[5].where.dtt: 'dtt' is not valid (nearest: dt)"));
   CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "table = \"periodic\"", "table = \"pivot\"")),
-             StartsWith("f.toml:78: figure[0].table: 'pivot' is no declared history, samples, periodic or trajectory table"));
+             StartsWith("f.toml:78: figure[0].table: 'pivot' is no declared history, samples, periodic, trajectory or flights table"));
+}
+
+TEST_CASE("study file: a flights table and a trajectory every s-th step, relative to its start", "[studies][study_file]") {
+  const auto tables = run_some_runs(kFlightRuns);
+  // Flights: the half problem's runs at dt = 0.005 alone (the elastic runs end before their
+  // second impact, the stopped ones at the first), flights 1, 2, 3 each, against (e^2)^i.
+  const nsb::Table& flights = table_of(tables, "flights");
+  CHECK_FALSE(flights.csv_only);
+  REQUIRE(flights.rows.size() == 2 * 3);
+  for (std::size_t r = 0; r < flights.rows.size(); ++r) {
+    const auto& row = flights.rows[r];
+    const long i = static_cast<long>(r % 3) + 1;
+    CHECK(row[0] == nsb::Cell{std::string("half")});
+    CHECK(row[2] == nsb::Cell{i});
+    const double ratio = std::get<double>(row[3]), exact = std::get<double>(row[4]);
+    CHECK(exact == Approx(std::pow(0.25, static_cast<double>(i))));
+    CHECK(std::abs(ratio / exact - 1.0) < 0.5);  // the 3rd flight lasts 22 steps: coarse
+    CHECK(std::get<double>(row[5]) == Approx(std::abs(ratio / exact - 1.0)).epsilon(1e-12));
+  }
+  // Every step of the 100 of the elastic runs at dt = 0.01: s = 100 / 7 = 14, steps 1, 15, .., 99.
+  const nsb::Table& steps = table_of(tables, "energy_steps");
+  REQUIRE(steps.rows.size() == 2 * 8);
+  for (std::size_t r = 0; r < steps.rows.size(); ++r) {
+    CHECK(std::get<double>(steps.rows[r][1]) == Approx(0.01 + 0.14 * static_cast<double>(r % 8)));
+    CHECK(std::get<double>(steps.rows[r][2]) == Approx(1.0).epsilon(0.05));  // E / E0
+  }
+}
+
+TEST_CASE("study file: flights and step-spaced trajectory tables: bad input named", "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  CHECK(some_runs_error(kFlightRuns) == "(no error)");
+  // Each error names the line of its key (`after`: a key inserted after the needle's line).
+  const auto at = [&](const std::string& needle, long after = 0) { return fmt::format("f.toml:{}: ", line_of(kFlightRuns, needle) + after); };
+  CHECK_THAT(some_runs_error(with_replaced(kFlightRuns, "measure = \"E_i err\"", "measure = \"E end\"")),
+             StartsWith(at("measure = \"E_i err\"") + "table[5].measure: 'E end' is not valid (nearest: E_i err); valid: E_i err"));
+  CHECK_THAT(some_runs_error(with_replaced(kFlightRuns, "spacing = \"steps\"", "spacing = \"step\"")),
+             StartsWith(at("spacing = \"steps\"") + "table[6].spacing: 'step' is not valid (nearest: steps); valid: times, steps"));
+  CHECK_THAT(some_runs_error(with_replaced(kFlightRuns, "points = 7", "points = 7\nlast = 0.5")),
+             StartsWith(at("points = 7", 1) + "table[6].last: a trajectory of spacing = \"steps\" spans the whole run; valid: no last"));
+  CHECK_THAT(some_runs_error(with_replaced(kFlightRuns, "rows = \"flights\"", "rows = \"flights\"\nrelative = true")),
+             StartsWith(at("rows = \"flights\"", 1) + "table[5].relative: a table of rows = \"flights\" has no relative; valid: rows = \"trajectory\""));
+  CHECK_THAT(some_runs_error(with_replaced(kFlightRuns, "relative = true", "relative = 1")),
+             StartsWith(at("relative = true") + "table[6].relative: expected a boolean"));
+  CHECK_THAT(some_runs_error(with_replaced(kFlightRuns, "observable = \"total_energy\"", "observable = \"energy\"")),
+             StartsWith(at("observable = \"total_energy\"") + "table[6].observable: 'energy' is not an observable of problem 'elastic'"));
+  // Without a flight-energy measure, a flights table has nothing to show.
+  CHECK_THAT(some_runs_error(with_replaced(kFlightRuns, "kind = \"flight-energy\"\nlabel = \"E_i err\"\ncount = 3\nat = \"mid-flight step\"",
+                                           "kind = \"penetration\"\nlabel = \"E_i err\"")),
+             StartsWith(at("rows = \"flights\"", -2) + "table[5].rows: the study has no flight-energy measure; valid: a [[measure]] with kind = \"flight-energy\""));
 }
