@@ -508,6 +508,15 @@ void read_momentum_component(const Checker& c, const Json& j, const std::string&
   m.label += " " + m.component;
 }
 
+// Fails at `at` unless `name` is one of `valid`, the observables of problem `label` (`detail`:
+// which of them, e.g. those its reference run records; `instead`: what else the file can say).
+void check_observable(const Checker& c, const std::string& at, const std::string& name, const std::vector<std::string>& valid,
+                      const std::string& label, const std::string& detail = "", const std::string& instead = "problems = [...]") {
+  if (std::find(valid.begin(), valid.end(), name) == valid.end())
+    c.fail(at, fmt::format("'{}' is not an observable of problem '{}'{}", name, label, detail),
+           fmt::format("{} (or {})", fmt::join(valid, ", "), instead));
+}
+
 // The observables of a problem's state (state_observable): its own, kinetic, potential,
 // total_energy and, with contacts, min_gap.
 std::vector<std::string> state_observable_names(const Problem& problem) {
@@ -523,10 +532,8 @@ void read_state_observable(const Checker& c, const Json& j, const std::string& p
                            const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
   m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
   for (const std::size_t p : on) {
-    const std::vector<std::string> valid = state_observable_names(*instances[p]);
-    if (std::find(valid.begin(), valid.end(), m.observable) == valid.end())
-      c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'", m.observable, spec.problems[p].label),
-             fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
+    check_observable(c, child(path, "observable"), m.observable, state_observable_names(*instances[p]), spec.problems[p].label, "",
+                     "name the problems it is measured on: problems = [...]");
   }
 }
 
@@ -550,9 +557,7 @@ void read_next_run_estimate(const Checker& c, const Json& j, const std::string& 
 void check_against(const Checker& c, const std::string& path, const FileMeasure& m, const std::vector<std::string>& names,
                    const std::string& label) {
   for (const auto& [key, o] : {std::pair{"observable", m.observable}, std::pair{"against", m.against}})
-    if (std::find(names.begin(), names.end(), o) == names.end())
-      c.fail(child(path, key), fmt::format("'{}' is not an observable of problem '{}'", o, label),
-             fmt::format("{} (or problems = [...])", fmt::join(names, ", ")));
+    check_observable(c, child(path, key), o, names, label);
   if (m.observable == m.against) c.fail(child(path, "against"), "the observable itself", "its exact column, e.g. o_exact");
 }
 
@@ -562,13 +567,10 @@ void read_inside_phase(const Checker& c, const Json& v, const std::string& path,
                        const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
   m.inside = c.string(v, path);
   for (const std::size_t p : on) {
-    const auto& names = instances[p]->observable_names();
     if (!instances[p]->exact())
       c.fail(path, fmt::format("problem '{}' has no exact solution to find where '{}' is positive", spec.problems[p].label, m.inside),
              "problems with an exact solution (or problems = [...])");
-    if (std::find(names.begin(), names.end(), m.inside) == names.end())
-      c.fail(path, fmt::format("'{}' is not an observable of problem '{}'", m.inside, spec.problems[p].label),
-             fmt::format("{} (or problems = [...])", fmt::join(names, ", ")));
+    check_observable(c, path, m.inside, instances[p]->observable_names(), spec.problems[p].label);
   }
 }
 
@@ -588,12 +590,8 @@ void read_step_values_measure(const Checker& c, const Json& j, const std::string
     return;
   }
   m.observable = c.string(c.require(j, path, "observable"), child(path, "observable"));
-  for (const std::size_t p : on) {
-    const auto& names = instances[p]->observable_names();
-    if (std::find(names.begin(), names.end(), m.observable) == names.end())
-      c.fail(child(path, "observable"), fmt::format("'{}' is not an observable of problem '{}'", m.observable, spec.problems[p].label),
-             fmt::format("{} (or problems = [...])", fmt::join(names, ", ")));
-  }
+  for (const std::size_t p : on)
+    check_observable(c, child(path, "observable"), m.observable, instances[p]->observable_names(), spec.problems[p].label);
   if (const Json* v = c.find(j, "scale")) m.scale = c.positive(*v, child(path, "scale"));
   if (const Json* v = c.find(j, "inside")) read_inside_phase(c, *v, child(path, "inside"), m, spec, instances, on);
   m.label = fmt::format("{} {}", kind == "chatter" ? "chatter" : "zero steps", m.observable);
@@ -641,12 +639,8 @@ void read_rest_start(const Checker& c, const Json& j, const std::string& path, F
     if (const Json* v = c.find(b, "abs")) bound.abs = c.boolean(*v, child(bp, "abs"));
     bound.at_most = c.positive(c.require(b, bp, "at_most"), child(bp, "at_most"));
     if (const Json* v = c.find(b, "dt_power")) bound.dt_power = static_cast<int>(c.integer(*v, child(bp, "dt_power"), 0, 4));
-    for (const std::size_t p : on) {
-      const std::vector<std::string> valid = state_observable_names(*instances[p]);
-      if (std::find(valid.begin(), valid.end(), bound.observable) == valid.end())
-        c.fail(child(bp, "observable"), fmt::format("'{}' is not an observable of problem '{}'", bound.observable, spec.problems[p].label),
-               fmt::format("{} (or problems = [...])", fmt::join(valid, ", ")));
-    }
+    for (const std::size_t p : on)
+      check_observable(c, child(bp, "observable"), bound.observable, state_observable_names(*instances[p]), spec.problems[p].label);
     m.rest.push_back(bound);
   }
   if (const Json* v = c.find(j, "min_rest")) m.min_rest = c.positive(*v, child(path, "min_rest"));
@@ -1003,9 +997,7 @@ void check_trajectory_observables(const Checker& c, const StudySpec& spec, const
       if (!t.applies_to(spec.problems[p].label)) continue;
       const std::vector<std::string> names = state_observable_names(*instances[p]);
       for (const auto& [key, name] : {std::pair{"observable", t.observable}, std::pair{"exact", t.exact}})
-        if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end())
-          c.fail(child(element("table", i), key), fmt::format("'{}' is not an observable of problem '{}'", name, spec.problems[p].label),
-                 fmt::format("{} (or problems = [...])", fmt::join(names, ", ")));
+        if (!name.empty()) check_observable(c, child(element("table", i), key), name, names, spec.problems[p].label);
     }
   }
 }
@@ -1634,10 +1626,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         }
         const std::string& observable = m.observable_for(spec.problems[p].label);
         const std::string at = m.problem_observables.empty() ? child(path, "observable") : child(child(path, "observable"), spec.problems[p].label);
-        if (std::find(valid.begin(), valid.end(), observable) == valid.end())
-          c.fail(at, fmt::format("'{}' is not an observable of problem '{}'{}", observable, spec.problems[p].label,
-                                                        ref.exact ? "" : " recorded by its reference run"),
-                 fmt::format("{} (or name the problems it is measured on: problems = [...])", fmt::join(valid, ", ")));
+        check_observable(c, at, observable, valid, spec.problems[p].label, ref.exact ? "" : " recorded by its reference run",
+                         "name the problems it is measured on: problems = [...]");
       }
       const std::string graph = m.observable.empty() ? "hausdorff" : fmt::format("hausdorff {}", m.observable);  // "": per problem
       m.label = hausdorff           ? (m.norm == "distance" ? graph : fmt::format("{} {}", graph, m.norm))
