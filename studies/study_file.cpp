@@ -43,6 +43,9 @@
 //   contact-duration  t_last - t_first + dt over the steps with a contact impulse (dt the nominal
 //                step; ContactPhases::span), with exact = true its difference from the problem's
 //                exact contact duration (ExactValue::contact_duration, the Signorini bar's 2L/c).
+// An error with semi_discrete = true: |u_dof - u_dof,semi| against the same semi-discrete problem
+// solved exactly (modal-exact, advanced to each sample), the time error alone; with
+// per_nominal_step = true any measure is sampled at most once per nominal step dt.
 // An error, energy or momentum measure with a `window` [t0, t1] is sampled there only (its l2
 // norm the mean over t1 - t0), e.g. a smooth window before the first impact.
 //   hausdorff    H(run, ref) between the graphs {(t, o)} of an observable (the run's samples;
@@ -83,6 +86,7 @@
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "reference/cache.hpp"
+#include "reference/modal_exact.hpp"
 #include "studies/hausdorff_study.hpp"
 #include "studies/measures.hpp"
 #include "studies/parallel.hpp"
@@ -508,6 +512,7 @@ struct Accumulator {
   std::optional<MeshMomentum> mesh_momentum;  // a momentum measure's component
   std::vector<double> periodic;  // Energy with `every`: the error at each sample time from + k every
   std::vector<double> samples;   // Estimate: the observable at each sample (compared with the next run's)
+  double next_sample = 0.0;      // per_nominal_step: the time from which the next step is sampled
 };
 
 // An impact-time measure with `located`: max over the first `count` impacts the integrator
@@ -607,6 +612,26 @@ class RunSeries {
   std::vector<Trajectory> trajectories_;
 };
 
+// The semi-discrete reference of a run's semi_discrete measures (FileMeasure::semi_discrete):
+// modal-exact with its defaults on the run's problem; none on modal-exact's own runs (their
+// error is 0 by construction), where no such measure is measured, or where modal-exact refuses
+// the problem: then `note` says why, "LABEL n/a: reason" (its measures n/a, the run measured).
+std::unique_ptr<ModalExact> semi_discrete_reference(const StudySpec& spec, const FileProblem& fp, const std::string& integrator,
+                                                    const Problem& problem, std::string& note) {
+  std::vector<std::string> labels;
+  for (const FileMeasure& m : spec.measures)
+    if (m.semi_discrete && m.applies_to(fp.label)) labels.push_back(m.label);
+  if (labels.empty() || integrator == ModalExact::kName) return nullptr;
+  auto semi = std::make_unique<ModalExact>(Params(ModalExact::parameters_spec()));
+  try {
+    semi->init(problem, problem.initial_state());
+  } catch (const InputError& e) {
+    note = fmt::format("{} n/a: {}", fmt::join(labels, ", "), e.what());
+    return nullptr;
+  }
+  return semi;
+}
+
 Json run_file_case(const StudySpec& spec, const Json& c) {
   const FileProblem& fp = spec.problems[c["problem"].get<std::size_t>()];
   const FileIntegrator& fi = spec.integrators[c["integrator"].get<std::size_t>()];
@@ -625,6 +650,8 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   if (const auto declined = init_or_decline(*integrator, *problem)) return not_run(*declined);
   const SpMat M = problem->mass_matrix();
   Reference reference(spec, *problem, M, fp);
+  std::string semi_note;
+  const std::unique_ptr<ModalExact> semi = semi_discrete_reference(spec, fp, fi.name, *problem, semi_note);
   const std::size_t nobs = problem->observable_names().size();
   std::vector<double> obs(nobs), obs_ref(nobs);
   std::vector<Accumulator> acc(spec.measures.size());
@@ -712,9 +739,18 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
       if (!on[m] || !(inside || fm.scale_over_run)) continue;  // an error relative to the run: its scale
       if (!fm.inside.empty() && !(inside && inside_phase(fm.inside, s.t, dt))) continue;
       Accumulator& a = acc[m];
+      if (fm.per_nominal_step) {
+        if (s.t < a.next_sample) continue;
+        a.next_sample = s.t + (1.0 - 1e-9) * options.dt;
+      }
       const double step_dt = fm.every_step() ? dt : s.t - t_prev;  // the impulses' step (impulse / dt observables)
       double e = kNaN;
-      if (fm.kind == MeasureKind::Error) {
+      if (fm.semi_discrete) {
+        if (!semi) continue;  // n/a
+        semi->advance_to(s.t);
+        e = std::abs(s.u[fm.dof] - semi->displacement(fm.dof));
+        if (fm.scale > 0.0) e /= fm.scale;
+      } else if (fm.kind == MeasureKind::Error) {
         if (fm.observable == "u" || (fm.observable == "v" && !own_v)) {
           const bool u = fm.observable == "u";
           const Vec ref = u ? reference.u(s.t) : reference.v(s.t);
@@ -787,6 +823,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
               {"lcp_iterations", r.work.lcp_iterations}, {"solver_steps", r.work.steps},
               {"tangent_evaluations", r.work.tangent_evaluations}};
   out.update(figures.result(r, growth.largest() / e_scale));
+  if (r.message.empty() && !semi_note.empty()) out["run"]["note"] = semi_note;  // why its semi-discrete errors are n/a
   std::vector<const std::vector<double>*> periodic;
   for (std::size_t m = 0; m < acc.size(); ++m) periodic.push_back(on[m] && spec.measures[m].every > 0.0 ? &acc[m].periodic : nullptr);
   series.write(periodic, out["run"]);
@@ -809,7 +846,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     const Accumulator& a = acc[m];
     const double scale = fm.scale > 0.0 || !(a.scale > 0.0) ? 1.0 : a.scale;  // a fixed scale: divided at each step
     double v = kNaN;
-    if (!on[m]) {
+    if (!on[m] || (fm.semi_discrete && !semi)) {
       values.push_back(real(v));
       continue;
     }
@@ -1031,7 +1068,15 @@ bool shows_run(const FileTable& d, const Table& runs, const std::vector<Cell>& r
     if (std::holds_alternative<std::string>(want) ? cell != want : number(cell) != std::get<double>(want)) return false;
   }
   return std::none_of(d.drop_above.begin(), d.drop_above.end(),
-                      [&](const auto& limit) { return std::abs(number(row[column_index(runs, limit.first)])) > limit.second; });
+                      [&](const auto& limit) { return std::abs(number(row[column_index(runs, limit.first)])) > limit.second; }) &&
+         std::none_of(d.except.begin(), d.except.end(), [&](const auto& one) { return row[column_index(runs, one.first)] == one.second; });
+}
+
+// Whether column i of case table d shows the run's outcome (not_ok = "outcome": a measure's
+// column of a run whose outcome is not ok).
+bool shows_outcome(const FileTable& d, std::size_t i, const Cell& outcome) {
+  return !d.outcome_columns.empty() && outcome != Cell{std::string("ok")} &&
+         std::find(d.outcome_columns.begin(), d.outcome_columns.end(), d.columns[i].of) != d.outcome_columns.end();
 }
 
 // rows = "case": the work-precision rows (those `where` and `drop_above` keep), their columns
@@ -1051,6 +1096,7 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
   const std::size_t note = d.declined_reason.empty() ? 0 : column_index(runs, "note");  // a declined run's: the scheme's reason
   // integrators = [...] (case rows only): the file's label of each run.
   const std::size_t label = d.integrators.empty() ? 0 : column_index(runs, "integrator label");
+  const std::size_t outcome = d.outcome_columns.empty() ? 0 : column_index(runs, "outcome");  // not_ok = "outcome"
   for (const auto& row : runs.rows) {
     // A table of some runs picked its runs itself (its `all` holds their series, not the case columns).
     if (!d.applies_to(std::get<std::string>(row[problem])) || (d.rows == "case" && !shows_run(d, runs, row))) continue;
@@ -1065,6 +1111,7 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
       const bool missing = std::holds_alternative<std::monostate>(cell) && d.columns[i].missing;
       const Cell blanked = d.columns[i].of == d.declined_reason ? row[note] : none;
       cells.push_back(blank && !asked_column(d.columns[i].of) ? blanked : missing ? Cell(*d.columns[i].missing) : cell);
+      if (shows_outcome(d, i, row[outcome])) cells.back() = row[outcome];
     }
     out.add_row(std::move(cells));
   }
@@ -1158,6 +1205,12 @@ std::vector<Cell> parameter_cells(const FileProblem& p, const std::vector<std::s
   return cells;
 }
 
+// A group's cell of column `name` of `orders` (fits_against_parameter's stable steps): its first row's.
+Cell group_cell(const Table& orders, const Cell& problem, const Cell& integrator, const std::string& name) {
+  const auto row = std::find_if(orders.rows.begin(), orders.rows.end(), [&](const auto& r) { return r[0] == problem && r[1] == integrator; });
+  return row == orders.rows.end() ? Cell{} : (*row)[column_index(orders, name)];
+}
+
 // rows = "group": one row per problem (a joint refinement's family) and integrator of the
 // table's problems (in the order of the runs), the fitted orders' columns ("order of
 // <measure>", ...) side by side, n/a where no fit was made, and the problem's parameters
@@ -1188,7 +1241,7 @@ Table group_table(const StudySpec& spec, const FileTable& d, const Table& orders
         continue;
       }
       if (of == std::string::npos) {
-        cells.push_back(c.of == "problem" ? problem : integrator);
+        cells.push_back(c.of == "problem" ? problem : c.of == "integrator" ? integrator : group_cell(orders, problem, integrator, c.of));
         continue;
       }
       const std::size_t k = column_index(orders, c.of.substr(0, of));
@@ -1324,6 +1377,28 @@ std::string pivot_value_text(const Cell& cell) {
   return "n/a";
 }
 
+// A case-table cell as a number (NaN: none, or a text).
+double pivot_cell_number(const Cell& cell) {
+  return std::holds_alternative<double>(cell) ? std::get<double>(cell) : std::holds_alternative<long>(cell) ? static_cast<double>(std::get<long>(cell)) : kNaN;
+}
+
+// A pivot's order (FileTable::order): the point of one run of its row r, (its column `of`, its
+// value; NaN when its outcome is not ok), in the order of the runs.
+void pivot_order_point(const FileTable& d, const Table& runs, const std::vector<Cell>& row, std::size_t r,
+                       std::vector<std::vector<double>>& x, std::vector<std::vector<double>>& y) {
+  if (x.size() <= r) x.resize(r + 1), y.resize(r + 1);
+  const bool ok = row[column_index(runs, "outcome")] == Cell{std::string("ok")};
+  x[r].push_back(pivot_cell_number(row[column_index(runs, d.order->of)]));
+  y[r].push_back(ok ? pivot_cell_number(row[column_index(runs, d.columns.back().of)]) : kNaN);
+}
+
+// Its column: by default "order against <of>", two decimals.
+Column pivot_order_column(const FileTable& d, const Table& runs) {
+  const Column& of = runs.columns[column_index(runs, d.order->of)];
+  return declared_column({"order against " + of.name, "", "{:.2f}", fmt::format("least-squares slope of log(value) against log({})", of.name)},
+                         *d.order);
+}
+
 // rows = "pivot" (FileTable::across): from the case table `runs` with every column.
 Table pivot_table(const FileTable& d, const Table& runs) {
   const std::size_t across = column_index(runs, d.across), outcome = column_index(runs, "outcome");
@@ -1333,6 +1408,7 @@ Table pivot_table(const FileTable& d, const Table& runs) {
   std::vector<std::vector<Cell>> rows;  // the key cells, then one cell per spread value
   std::vector<std::string> spread;
   std::map<std::pair<std::size_t, std::size_t>, Cell> cells;
+  std::vector<std::vector<double>> order_x, order_y;  // d.order: each row's runs
   for (const auto& row : runs.rows) {
     if (!d.applies_to(std::get<std::string>(row[column_index(runs, "problem")])) || !shows_run(d, runs, row)) continue;
     std::vector<Cell> key;
@@ -1343,6 +1419,7 @@ Table pivot_table(const FileTable& d, const Table& runs) {
     const std::size_t a = static_cast<std::size_t>(std::find(spread.begin(), spread.end(), at) - spread.begin());
     if (a == spread.size()) spread.push_back(at);
     cells[{r, a}] = row[outcome] == Cell{std::string("ok")} ? row[value] : row[outcome];
+    if (d.order) pivot_order_point(d, runs, row, r, order_x, order_y);
   }
   Table out;
   for (std::size_t k = 0; k < keys.size(); ++k) out.columns.push_back(declared_column(runs.columns[keys[k]], d.columns[k]));
@@ -1352,11 +1429,13 @@ Table pivot_table(const FileTable& d, const Table& runs) {
     c.name = hole == std::string::npos ? c.name + ", " + at : c.name.replace(hole, 2, at);
     out.columns.push_back(c);
   }
+  if (d.order) out.columns.push_back(pivot_order_column(d, runs));
   for (std::size_t r = 0; r < rows.size(); ++r) {
     for (std::size_t a = 0; a < spread.size(); ++a) {
       const auto it = cells.find({r, a});
-      rows[r].push_back(it == cells.end() ? Cell(std::string()) : it->second);
+      rows[r].push_back(it == cells.end() ? Cell(d.columns.back().missing.value_or("")) : it->second);
     }
+    if (d.order) rows[r].push_back(number_cell(fitted_order(order_x[r], order_y[r])));
     out.add_row(std::move(rows[r]));
   }
   return out;
@@ -1431,7 +1510,7 @@ std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, con
   bool figures_placed = false;
   for (const FileTable& d : spec.tables) {
     Table t;
-    if (d.rows == "history" || d.rows == "samples" || d.of_some_runs()) {
+    if (d.rows == "history" || d.rows == "samples" || d.of_some_runs() || !d.fit_against.empty()) {
       t = history(d);
     } else if (d.rows == "ranking") {
       t = *rank;  // the reader refuses a ranking without a ranked measure
@@ -1467,6 +1546,40 @@ std::vector<std::vector<std::size_t>> sweep_runs(const StudySpec& spec, const st
       out.push_back({k});
     } else {
       out[static_cast<std::size_t>(it - keys.begin())].push_back(k);
+    }
+  }
+  return out;
+}
+
+// A group table's own fits (FileTable::fit_against = "1/KEY"), in the columns of the engine's
+// `orders`: for each sweep (a family's runs of one integrator) and each measure measured on it,
+// the least-squares order of its values against 1 / KEY of each run's problem (fit_order: every
+// positive finite value a point, no round-off cut).
+Table fits_against_parameter(const StudySpec& spec, const FileTable& d, const std::vector<Json>& cases, const std::vector<Json>& results,
+                             const Table& orders) {
+  Table out;
+  out.columns = orders.columns;
+  out.columns.push_back({"stable steps", "", "{}", "dt / the problem's stable step, when the sweep sets it so"});
+  const std::string key = d.fit_against.substr(2);
+  for (const std::vector<std::size_t>& sweep : sweep_runs(spec, cases)) {
+    const FileProblem& first = spec.problems[cases[sweep.front()]["problem"].get<std::size_t>()];
+    const std::string integrator = shown_label(spec.integrators[cases[sweep.front()]["integrator"].get<std::size_t>()], first.label);
+    std::vector<double> h;
+    for (const std::size_t k : sweep) {
+      const FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+      const ParamSpecs specs = find_problem(p.name).parameters();
+      const Params params(specs, p.parameters);
+      const bool integer = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == key; })->kind == ParamSpec::Kind::Integer;
+      h.push_back(1.0 / (integer ? static_cast<double>(params.integer(key)) : params.real(key)));
+    }
+    for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+      if (!spec.measures[m].applies_to(first.label)) continue;
+      std::vector<double> e;
+      for (const std::size_t k : sweep) e.push_back(results[k].contains("values") ? real(results[k]["values"][m]) : kNaN);
+      const OrderFit fit = fit_order(h, e);
+      const Json& c = cases[sweep.front()];
+      out.add_row({first.family_label(), integrator, spec.measures[m].label, d.fit_against, number_cell(fit.order), number_cell(fit.low),
+                   number_cell(fit.high), static_cast<long>(fit.points), c.contains("stable_steps") ? Cell{c["stable_steps"].get<double>()} : Cell{}});
     }
   }
   return out;
@@ -1718,6 +1831,11 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     for (std::size_t r = 0; r < runs_all.rows.size(); ++r)
       runs_all.rows[r].insert(runs_all.rows[r].end(), counter_rows[r].begin(), counter_rows[r].end());
     tables = declared_tables(spec, runs_all, orders, rank, [&](const FileTable& d) {
+      if (!d.fit_against.empty()) {
+        Table fits = group_table(spec, d, fits_against_parameter(spec, d, cases, results, orders));
+        fits.caption = fmt::format("Least-squares slope of log(value) against log({}) over the runs of each sweep.", d.fit_against);
+        return fits;
+      }
       if (d.rows == "pivot") return pivot_table(d, runs_all);
       return d.of_some_runs() ? run_series_table(spec, d, cases, results, runs_all, case_row) : history_table(spec, d, cases, results);
     });

@@ -188,6 +188,17 @@ struct FileMeasure {
   bool applies_to(const std::string& problem_label) const;
   // Smaller is better and never negative: a measure the ranking may rank by.
   bool rankable() const;
+  // Error with semi_discrete: against the same semi-discrete problem solved exactly (modal-exact
+  // with its defaults, reference/modal_exact.hpp) advanced to each sample's time
+  // (ModalExact::advance_to), not the reference: the time-discretisation error alone, |u_dof -
+  // u_dof,semi| at the dof `dof` (ModalExact::displacement, O(modes) a sample). n/a on
+  // modal-exact's own runs (0 by construction) and, with a note "LABEL n/a: why", where
+  // modal-exact refuses the problem (e.g. above its max_dofs).
+  bool semi_discrete = false;
+  long dof = -1;
+  // Sampled at most once per nominal step dt: at the first step ending at or after the last
+  // sample's time + (1 - 1e-9) dt (an adaptive scheme's smaller steps are not all sampled).
+  bool per_nominal_step = false;
 };
 
 // A figure the file declares, drawn from the work-precision table: y against x (column names:
@@ -271,6 +282,23 @@ struct FileTable {
   int points = 400;
   bool step_spacing = false, relative = false;
   bool of_some_runs() const { return rows == "pivot" || rows == "periodic" || rows == "trajectory" || rows == "flights"; }
+  // rows = "case" with not_ok = "outcome": the columns (by `of`: the measures it shows) whose
+  // cell of a run whose outcome is not ok shows that outcome (n/a, diverged, over budget, ...)
+  // instead of its value, as the C++ studies' tables did.
+  std::vector<std::string> outcome_columns;
+  // rows = "group" with fit_against = "1/KEY" (KEY a numeric parameter of its problems, e.g. the
+  // refined N): its own fits, each measure's least-squares slope of log(value) against
+  // log(1 / KEY) (h = L/N up to log L, which moves no slope) over each sweep's runs, every
+  // positive finite value a point (no round-off cut), as the C++ studies fitted against h; its
+  // columns "order of <measure>" of every measure. "": the engine's fits against dt.
+  std::string fit_against;
+  // Tables of some runs and case tables: the runs whose case-table column equals the value of
+  // `except` are left out (e.g. a reference whose own error is 0 by construction).
+  std::vector<std::pair<std::string, Cell>> except;
+  // rows = "pivot": a last column, the least-squares slope of log(value) against log(the
+  // case-table column `order->of`) over each row's runs (positive finite values; n/a with
+  // fewer than two), under its header, format and description.
+  std::optional<FileColumn> order;
 };
 
 // [[exclude]]: runs the study does not make: those of the registered integrators of one kind

@@ -718,6 +718,26 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
                                    : fmt::format("{} {}", o, m.norm);
 }
 
+// An error's semi_discrete, dof and per_nominal_step (FileMeasure): against the same
+// semi-discrete problem solved exactly, the displacement of the dof `dof` (required, in [0, n - 1]
+// for every problem it is measured on, n its dofs), with no `against` or observable of its own.
+void read_semi_discrete(const Checker& c, const Json& j, const std::string& path, FileMeasure& m,
+                        const std::vector<std::unique_ptr<Problem>>& instances, const std::vector<std::size_t>& on) {
+  if (const Json* v = c.find(j, "per_nominal_step")) m.per_nominal_step = c.boolean(*v, child(path, "per_nominal_step"));
+  if (const Json* v = c.find(j, "semi_discrete")) m.semi_discrete = c.boolean(*v, child(path, "semi_discrete"));
+  if (!m.semi_discrete) {
+    if (c.find(j, "dof")) c.fail(child(path, "dof"), "only a semi-discrete error compares one dof's displacement", "semi_discrete = true beside it");
+    return;
+  }
+  for (const char* key : {"against", "observable"})
+    if (c.find(j, key))
+      c.fail(child(path, key), "a semi-discrete error compares one dof's displacement with modal-exact's",
+             "no against or observable with semi_discrete = true (dof = INDEX)");
+  long last = std::numeric_limits<long>::max();
+  for (const std::size_t p : on) last = std::min(last, static_cast<long>(instances[p]->ndof()) - 1);
+  m.dof = c.integer(c.require(j, path, "dof"), child(path, "dof"), 0, last);
+}
+
 // study.rank_by: the label of a measure the ranking can rank by; by default the first error.
 std::size_t ranked_measure(const Checker& c, const Json& study, const std::vector<FileMeasure>& measures) {
   std::vector<std::string> valid;
@@ -988,6 +1008,75 @@ void read_some_runs(const Checker& c, const Json& j, const std::string& path, co
   }
 }
 
+// A group table's fit_against = "1/KEY" (FileTable::fit_against): KEY a numeric parameter of
+// every problem it shows.
+void read_group_fit(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
+  const Json* v = c.find(j, "fit_against");
+  if (!v) return;
+  const std::string at = child(path, "fit_against");
+  if (t.rows != "group") c.fail(at, "only a table of fitted orders fits", "rows = \"group\"");
+  t.fit_against = c.string(*v, at);
+  const std::string key = t.fit_against.rfind("1/", 0) == 0 ? t.fit_against.substr(2) : "";
+  for (const FileProblem& p : spec.problems) {
+    if (!t.applies_to(p.label) && !t.applies_to(p.family_label())) continue;
+    std::vector<std::string> numeric;
+    for (const ParamSpec& s : find_problem(p.name).parameters())
+      if (s.kind != ParamSpec::Kind::Choice) numeric.push_back("1/" + s.name);
+    if (std::find(numeric.begin(), numeric.end(), "1/" + key) == numeric.end() || key.empty())
+      c.fail(at, fmt::format("'{}' is not 1/KEY, KEY a numeric parameter of problem '{}'", t.fit_against, p.label),
+             fmt::format("{}", fmt::join(numeric, ", ")));
+  }
+}
+
+// The columns of a group table with fit_against: its fits of every measure, the sweep's stable
+// steps (its first run's) and the parameters.
+std::vector<std::string> fitted_group_sources(const StudySpec& spec) {
+  std::vector<std::string> sources{"problem", "integrator", "stable steps"};
+  for (const auto& m : spec.measures)
+    for (const char* what : {"order", "CI low", "CI high", "points"}) sources.push_back(fmt::format("{} of {}", what, m.label));
+  const auto parameters = parameter_column_names(spec);
+  sources.insert(sources.end(), parameters.begin(), parameters.end());
+  return sources;
+}
+
+// except = { column = value, ... } (a case table or a table of some runs: the runs left out) and
+// a pivot's order = { of = COLUMN, header, unit, format, description } (FileTable::except, order).
+void read_except_and_order(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
+  const std::vector<std::string> runs = table_sources("case", spec);
+  if (const Json* v = c.find(j, "except")) {
+    const std::string at = child(path, "except");
+    if (!t.of_some_runs() && t.rows != "case")
+      c.fail(at, fmt::format("a table of rows = \"{}\" has no except", t.rows), "rows = \"case\", \"pivot\", \"periodic\", \"trajectory\" or \"flights\"");
+    c.expect(*v, at, v->is_object() && !v->empty(), "a table of case-table column = value");
+    for (const auto& [name, value] : v->items()) {
+      const std::string column = c.choice(Json(name), child(at, name), runs);
+      c.expect(value, child(at, name), value.is_number() || value.is_string(), "a number or a text");
+      t.except.emplace_back(column, value.is_number() ? Cell{value.get<double>()} : Cell{value.get<std::string>()});
+    }
+  }
+  if (const Json* v = c.find(j, "order")) {
+    const std::string at = child(path, "order");
+    if (t.rows != "pivot") c.fail(at, "only a pivot fits the values of its rows", "rows = \"pivot\"");
+    c.expect(*v, at, v->is_object(), "a table { of = COLUMN, header, unit, format, description }");
+    if (v->contains("missing")) c.fail(child(at, "missing"), "an order is fitted, never missing", "of, header, unit, format, description");
+    t.order = read_column(c, *v, at, runs);
+  }
+}
+
+// A case table's not_ok = "outcome" (FileTable::outcome_columns: the measures it shows) or
+// "values" (the default: the values a run reports).
+void read_not_ok(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
+  const Json* v = c.find(j, "not_ok");
+  if (!v) return;
+  const std::string at = child(path, "not_ok");
+  if (t.rows != "case") c.fail(at, "only a table of one row per run shows a run's outcome", "rows = \"case\"");
+  if (c.choice(*v, at, {"values", "outcome"}) == "values") return;
+  for (const FileColumn& col : t.columns)
+    if (std::any_of(spec.measures.begin(), spec.measures.end(), [&](const FileMeasure& m) { return m.label == col.of; }))
+      t.outcome_columns.push_back(col.of);
+  if (t.outcome_columns.empty()) c.fail(at, "the table shows no measure's column", "a measure's label among its columns, or no not_ok");
+}
+
 // A trajectory table's observable and exact: observables of the state of every problem it shows.
 void check_trajectory_observables(const Checker& c, const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances) {
   for (std::size_t i = 0; i < spec.tables.size(); ++i) {
@@ -1023,7 +1112,8 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     const Json& j = list[i];
     const std::string path = element("table", i);
     c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined", "declined_reason", "integrators",
-                     "where", "drop_above", "across", "measure", "observable", "exact", "last", "points", "spacing", "relative"});
+                     "where", "drop_above", "across", "measure", "observable", "exact", "last", "points", "spacing", "relative",
+                     "not_ok", "fit_against", "except", "order"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
@@ -1033,6 +1123,8 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     t.caption = optional_string(c, j, path, "caption");
     if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples", "pivot", "periodic", "trajectory", "flights"});
     read_some_runs(c, j, path, spec, t);
+    read_group_fit(c, j, path, spec, t);
+    read_except_and_order(c, j, path, spec, t);
     if (const Json* v = c.find(j, "declined")) {
       if (t.rows != "case") c.fail(child(path, "declined"), "only a table of one row per run shows declined runs", "rows = \"case\"");
       const std::string shown = c.choice(*v, child(path, "declined"), {"as run", "n/a", "empty"});
@@ -1080,12 +1172,14 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       const std::string at = child(path, "columns");
       const Json& cols = c.require(j, path, "columns");
       c.expect(cols, at, cols.is_array() && !cols.empty(), "a non-empty array of columns");
-      const auto sources = table_sources(t.rows, spec);
+      const auto sources = t.fit_against.empty() ? table_sources(t.rows, spec) : fitted_group_sources(spec);
       for (std::size_t k = 0; k < cols.size(); ++k) {
         t.columns.push_back(read_column(c, cols[k], element(at, k), sources));
-        if (t.columns.back().missing && t.rows != "case")
-          c.fail(child(element(at, k), "missing"), "only a table of one row per run shows its missing cells otherwise", "rows = \"case\"");
+        if (t.columns.back().missing && t.rows != "case" && !(t.rows == "pivot" && k + 1 == cols.size()))
+          c.fail(child(element(at, k), "missing"), "only a table of one row per run shows its missing cells otherwise",
+                 "rows = \"case\", or a pivot's value column (the last)");
       }
+      read_not_ok(c, j, path, spec, t);
       if (t.rows == "pivot" && cols.size() < 2)
         c.fail(at, "a pivot needs the columns naming a row and the value column last", "two or more columns");
     }
@@ -1593,7 +1687,8 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
         if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
         if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
       } else {
-        keys({"observable", "norm", "window", "relative_to", "against", "scale", "inside"});
+        keys({"observable", "norm", "window", "relative_to", "against", "scale", "inside", "semi_discrete", "dof", "per_nominal_step"});
+        read_semi_discrete(c, j, path, m, instances, on);
         if (const Json* v = c.find(j, "against")) m.against = c.string(*v, child(path, "against"));
         if (const Json* v = c.find(j, "relative_to"))
           m.scale_over_run = c.choice(*v, child(path, "relative_to"), {"window", "run"}) == "run";
@@ -1605,7 +1700,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       }
       for (const std::size_t p : on) {
         const FileReference* ref = spec.reference_of(spec.problems[p]);
-        if (!ref && m.against.empty()) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
+        if (!ref && m.against.empty() && !m.semi_discrete) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
                          "[reference] solution = \"exact\" or integrator = NAME (or the problem's own reference = { ... })");
         if (hausdorff && ref->lockstep)
           c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",
@@ -1614,6 +1709,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       if (const Json* v = c.find(j, "norm"); v && !hausdorff) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2", "rms", "step rms", "l2 in time"});
       if (const Json* v = c.find(j, "observable"); v && !hausdorff) m.observable = c.string(*v, child(path, "observable"));
       for (const std::size_t p : on) {
+        if (m.semi_discrete) continue;  // modal-exact's displacement of its dof
         if (!m.against.empty()) {
           check_against(c, path, m, instances[p]->observable_names(), spec.problems[p].label);
           continue;
@@ -1633,6 +1729,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
       m.label = hausdorff           ? (m.norm == "distance" ? graph : fmt::format("{} {}", graph, m.norm))
                 : m.against.empty() ? fmt::format("err {} {}", m.observable, m.norm)
                                     : fmt::format("err {} {} against {}", m.observable, m.norm, m.against);
+      if (m.semi_discrete) m.label = fmt::format("err u[{}] {} against the semi-discrete solution", m.dof, m.norm);
     } else if (m.kind == MeasureKind::ImpactTime) {
       keys({"count", "located", "min_flight_steps", "norm"});
       if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));
