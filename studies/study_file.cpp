@@ -613,23 +613,25 @@ class RunSeries {
 };
 
 // The semi-discrete reference of a run's semi_discrete measures (FileMeasure::semi_discrete):
-// modal-exact with its defaults on the run's problem; none on modal-exact's own runs (their
-// error is 0 by construction), where no such measure is measured, or where modal-exact refuses
-// the problem: then `note` says why, "LABEL n/a: reason" (its measures n/a, the run measured).
+// modal-exact with its defaults on the run's problem, made by the registry so that its declared
+// limits hold (max_dofs: the C++ study bar built it outside the registry, which checked none);
+// none on modal-exact's own runs (their error is 0 by construction), where no such measure is
+// measured, or where modal-exact refuses the problem: then `note` says why, "LABEL n/a: reason"
+// (its measures n/a, the run measured).
 std::unique_ptr<ModalExact> semi_discrete_reference(const StudySpec& spec, const FileProblem& fp, const std::string& integrator,
                                                     const Problem& problem, std::string& note) {
   std::vector<std::string> labels;
   for (const FileMeasure& m : spec.measures)
     if (m.semi_discrete && m.applies_to(fp.label)) labels.push_back(m.label);
   if (labels.empty() || integrator == ModalExact::kName) return nullptr;
-  auto semi = std::make_unique<ModalExact>(Params(ModalExact::parameters_spec()));
+  std::unique_ptr<Integrator> made = make_integrator(ModalExact::kName);
   try {
-    semi->init(problem, problem.initial_state());
+    made->init(problem, problem.initial_state());
   } catch (const InputError& e) {
     note = fmt::format("{} n/a: {}", fmt::join(labels, ", "), e.what());
     return nullptr;
   }
-  return semi;
+  return std::unique_ptr<ModalExact>(&dynamic_cast<ModalExact&>(*made.release()));
 }
 
 Json run_file_case(const StudySpec& spec, const Json& c) {

@@ -1123,8 +1123,6 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     t.caption = optional_string(c, j, path, "caption");
     if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples", "pivot", "periodic", "trajectory", "flights"});
     read_some_runs(c, j, path, spec, t);
-    read_group_fit(c, j, path, spec, t);
-    read_except_and_order(c, j, path, spec, t);
     if (const Json* v = c.find(j, "declined")) {
       if (t.rows != "case") c.fail(child(path, "declined"), "only a table of one row per run shows declined runs", "rows = \"case\"");
       const std::string shown = c.choice(*v, child(path, "declined"), {"as run", "n/a", "empty"});
@@ -1142,6 +1140,8 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       for (std::size_t k = 0; k < v->size(); ++k) t.problems.push_back(c.choice((*v)[k], element(at, k), labels));
     }
     read_table_integrators(c, j, path, spec, t);
+    read_group_fit(c, j, path, spec, t);
+    read_except_and_order(c, j, path, spec, t);
     if (t.rows == "ranking") {
       if (c.find(j, "columns")) c.fail(child(path, "columns"), "a ranking's columns are fixed", "no columns key with rows = \"ranking\"");
       if (spec.ranked >= spec.measures.size()) c.fail(child(path, "rows"), "the study has no measure to rank by", "case, group");

@@ -564,3 +564,54 @@ TEST_CASE("draft bar.toml: the C++ study bar's runs, in its order, with its step
     }
   }
 }
+
+// The draft's tables against the committed reports (written by the C++ study), cell for cell but
+// the CPU time: the runs of cd-lagrange (lumped: every alpha and N, its time error against
+// modal-exact; consistent: declined, every measured cell n/a) and of modal-exact (lumped, alpha
+// = 1: its own time error n/a), their rows of bar, bar_n100, bar_orders (fitted against
+// log(1/N), the energy and chatter errors' too) and bar_time_orders (modal-exact's left out), in
+// the report's order.
+TEST_CASE("draft bar.toml: cd-lagrange's and modal-exact's rows of bar, bar_n100, bar_orders and bar_time_orders are the "
+          "committed report's",
+          "[studies]") {
+  const nsb::StudySpec spec =
+      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bar.toml");
+  const nsb::StudyEntry entry = nsb::file_study(spec);
+  std::vector<nsb::Json> cases, results;
+  for (const auto& c : nsb::study_cases(entry, {})) {
+    const std::string& integrator = spec.integrators[c["integrator"].get<std::size_t>()].name;
+    const std::string& mass = spec.problems[c["problem"].get<std::size_t>()].parameters.at("mass");
+    if ((integrator == "cd-lagrange" && mass != "singular") || (integrator == "modal-exact" && mass == "lumped")) {
+      cases.push_back(c);
+      results.push_back(nsb::run_study_case(entry, c, {}));
+    }
+  }
+  REQUIRE(cases.size() == 45);  // 2 masses x 4 alphas x 5 meshes, and 5 meshes
+  const auto tables = nsb::study_tables(entry, cases, results, {});
+  const std::vector<std::pair<std::string, std::size_t>> ids = {{"bar", 4}, {"bar_n100", 2}, {"bar_orders", 3}, {"bar_time_orders", 3}};
+  const std::vector<std::size_t> rows = {45, 2, 9, 10};
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const auto& [id, keys] = ids[i];
+    INFO(id);
+    const auto table = std::find_if(tables.begin(), tables.end(), [&, &id = id](const nsb::Table& t) { return t.id == id; });
+    REQUIRE(table != tables.end());
+    const auto fresh = nsb::parse_csv(nsb::to_csv(*table));
+    const auto report = report_csv(id);
+    REQUIRE(fresh.size() == rows[i] + 1);
+    CHECK(fresh[0] == report[0]);
+    auto from = report.begin() + 1;
+    for (std::size_t r = 1; r < fresh.size(); ++r) {
+      const auto row = std::find_if(from, report.end(), [&, keys = keys](const std::vector<std::string>& was) {
+        return std::equal(was.begin(), was.begin() + static_cast<long>(keys), fresh[r].begin());
+      });
+      INFO("row " << r << ": " << fresh[r][0] << ", " << fresh[r][1] << ", " << fresh[r][2]);
+      REQUIRE(row != report.end());  // in the report, after the rows before it
+      from = row + 1;
+      REQUIRE(row->size() == fresh[r].size());
+      for (std::size_t c = 0; c < row->size(); ++c) {
+        INFO("column " << report[0][c]);
+        if (report[0][c] != "CPU [s]") CHECK(fresh[r][c] == (*row)[c]);
+      }
+    }
+  }
+}

@@ -9,7 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "integrators/registry.hpp"
 #include "problems/registry.hpp"
+#include "reference/modal_exact.hpp"
+#include "run/run.hpp"
+#include "studies/measures.hpp"
 #include "studies/study.hpp"
 #include "studies/study_file.hpp"
 
@@ -363,4 +367,309 @@ TEST_CASE("study file: flights and step-spaced trajectory tables: bad input name
   CHECK_THAT(some_runs_error(with_replaced(kFlightRuns, "kind = \"flight-energy\"\nlabel = \"E_i err\"\ncount = 3\nat = \"mid-flight step\"",
                                            "kind = \"penetration\"\nlabel = \"E_i err\"")),
              StartsWith(at("rows = \"flights\"", -2) + "table[5].rows: the study has no flight-energy measure; valid: a [[measure]] with kind = \"flight-energy\""));
+}
+
+namespace {
+
+// The Signorini bar (N = 20, lumped) to t = 3 at 0.5 and 0.9 of its stable step: the time error
+// |u_0 - u_0,semi| against modal-exact at most once per nominal step, cd-lagrange (fixed step),
+// cd-lagrange-adaptive (smaller steps in the contact), modal-exact (the reference itself) and
+// event-driven (a reference: at 0.9 only); a pivot of the time error over the steps, its order
+// against dt, modal-exact left out.
+const std::string kSemiDiscrete = R"([study]
+title = "t"
+t_end = 3.0
+cpu_repeats = 0
+targets = [1e-2]
+
+[[problem]]
+name = "signorini-bar"
+label = "bar"
+parameters = { mass = "lumped", N = 20 }
+stable_steps = [0.5, 0.9]
+
+[[integrator]]
+name = "cd-lagrange"
+[[integrator]]
+name = "cd-lagrange-adaptive"
+[[integrator]]
+name = "modal-exact"
+[[integrator]]
+name = "event-driven"
+
+[[exclude]]
+integrators = "references"
+stable_steps_except = [0.9]
+
+[[measure]]
+kind = "error"
+semi_discrete = true
+dof = 0
+per_nominal_step = true
+scale = 1.0
+label = "u time err"
+
+[[table]]
+id = "runs"
+title = "runs"
+columns = ["integrator", "stable steps", "dt", "u time err", "note"]
+
+[[table]]
+id = "time"
+title = "time"
+rows = "pivot"
+across = "stable steps"
+except = { integrator = "modal-exact" }
+order = { of = "dt", header = "time order" }
+columns = ["integrator", { of = "u time err", header = "u time err, alpha = {}", missing = "n/a" }]
+)";
+
+// What the C++ study bar computed (studies/bar.cpp): max over the steps sampled (the first step
+// ending at or after the last sample + (1 - 1e-9) dt) of |u_0 - u_0,semi|, modal-exact advanced to
+// each sample's time; and how many steps were sampled out of how many.
+struct TimeError {
+  double largest = 0.0;
+  long samples = 0, steps = 0;
+};
+TimeError bar_time_error(const std::string& scheme, double alpha) {
+  const auto problem = nsb::make_problem("signorini-bar", {{"mass", "lumped"}, {"N", "20"}});
+  auto integrator = nsb::make_integrator(scheme);
+  REQUIRE_FALSE(nsb::init_or_decline(*integrator, *problem));
+  nsb::ModalExact semi(nsb::Params(nsb::ModalExact::parameters_spec()));
+  semi.init(*problem, problem->initial_state());
+  nsb::RunOptions options;
+  options.dt = alpha * problem->stable_step();
+  options.t_end = 3.0;
+  options.record_series = false;
+  TimeError out;
+  double next = 0.0;
+  nsb::run(*problem, *integrator, options, [&](const nsb::Integrator& it, const nsb::StepInfo&) {
+    ++out.steps;
+    const double t = it.state().t;
+    if (t < next) return;
+    semi.advance_to(t);
+    out.largest = std::max(out.largest, std::abs(it.state().u[0] - semi.displacement(0)));
+    next = t + (1.0 - 1e-9) * options.dt;
+    ++out.samples;
+  });
+  return out;
+}
+
+// A bar study of three meshes refined jointly (N = 20, 40, 80) at 0.9 of the stable step, one
+// converging error and one energy error (no fit of the engine's own), and a case table of a
+// diverging run (N = 100 at 2 stable steps: its state overflows at step 139 of 150) and a
+// declined one (cd-lagrange, consistent mass).
+const std::string kRefined = R"([study]
+title = "t"
+t_end = 3.0
+cpu_repeats = 0
+targets = [1e-2]
+
+[[problem]]
+name = "signorini-bar"
+label = "bar"
+parameters = { mass = "lumped" }
+grid = { N = [20, 40, 80] }
+refine = "N"
+stable_steps = [0.9]
+
+[[problem]]
+name = "signorini-bar"
+label = "unstable"
+parameters = { mass = "lumped", N = 100 }
+stable_steps = [2.0]
+
+[[problem]]
+name = "signorini-bar"
+label = "consistent"
+parameters = { mass = "consistent", N = 20 }
+stable_steps = [0.9]
+
+[[integrator]]
+name = "cd-lagrange"
+
+[[measure]]
+kind = "error"
+observable = "u_contact"
+against = "u_contact_exact"
+scale = 1.0
+label = "u err"
+
+[[measure]]
+kind = "energy"
+label = "E err"
+
+[[table]]
+id = "runs"
+title = "runs"
+not_ok = "outcome"
+columns = ["problem", "dt", "u err", "E err", "CPU", "outcome"]
+
+[[table]]
+id = "orders"
+title = "orders"
+rows = "group"
+fit_against = "1/N"
+problems = ["bar"]
+columns = ["integrator", "stable steps", "order of u err", "order of E err", "points of E err"]
+
+[[table]]
+id = "dt_orders"
+title = "orders against dt"
+rows = "group"
+problems = ["bar"]
+columns = ["integrator", "order of u err"]
+)";
+
+double number_of(const nsb::Cell& cell) {
+  return std::holds_alternative<double>(cell) ? std::get<double>(cell) : std::holds_alternative<long>(cell) ? static_cast<double>(std::get<long>(cell)) : NAN;
+}
+
+}  // namespace
+
+// The known answer: the C++ study bar's time error, bit for bit (the same samples, the same
+// modal-exact calls): every step of the fixed-step scheme sampled, fewer than the adaptive
+// scheme's steps; n/a on modal-exact's own run (no note) and, with a note, above its max_dofs.
+TEST_CASE("study file: an error against the semi-discrete solution, sampled once per nominal step, as the bar study's",
+          "[studies][study_file]") {
+  std::vector<nsb::Json> results;
+  const nsb::StudyEntry entry = nsb::file_study(nsb::parse_study_text(kSemiDiscrete, "f.toml", false));
+  const auto cases = nsb::study_cases(entry, {});
+  REQUIRE(cases.size() == 6);  // cd-lagrange and cd-lagrange-adaptive at 0.5, 0.9; the references at 0.9
+  for (const auto& c : cases) results.push_back(nsb::run_study_case(entry, c, {}));
+  const auto tables = nsb::study_tables(entry, cases, results, {});
+  const nsb::Table& runs = table_of(tables, "runs");
+  REQUIRE(runs.rows.size() == 6);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const std::string scheme = std::get<std::string>(runs.rows[k][0]);
+    const double alpha = std::get<double>(runs.rows[k][1]);
+    INFO(scheme << " at " << alpha);
+    const TimeError want = bar_time_error(scheme, alpha);
+    CHECK(want.largest > 1e-4);
+    CHECK(std::get<double>(runs.rows[k][3]) == want.largest);
+    CHECK(std::get<std::string>(runs.rows[k][4]).empty());
+    if (scheme == "cd-lagrange") CHECK(want.samples == want.steps);
+    else CHECK(want.samples < want.steps / 2);  // the adaptive scheme's small steps are not all sampled
+  }
+  CHECK(runs.rows[4][0] == nsb::Cell{std::string("modal-exact")});
+  CHECK(number_of(runs.rows[4][3]) != number_of(runs.rows[4][3]));  // n/a: its error is 0 by construction
+  CHECK(std::get<std::string>(runs.rows[4][4]).empty());
+  CHECK(runs.rows[5][0] == nsb::Cell{std::string("event-driven")});
+  CHECK(std::get<double>(runs.rows[5][3]) > 0.0);
+  // The pivot: one row per integrator but modal-exact, its order the slope of log(error)
+  // against log(dt) over its steps; event-driven's missing step n/a, no order.
+  const nsb::Table& time = table_of(tables, "time");
+  REQUIRE(time.columns.size() == 4);
+  CHECK(time.columns[1].name == "u time err, alpha = 0.5");
+  CHECK(time.columns[2].name == "u time err, alpha = 0.9");
+  CHECK(time.columns[3].name == "time order");
+  CHECK(time.columns[3].format == "{:.2f}");
+  REQUIRE(time.rows.size() == 3);
+  for (std::size_t r = 0; r < 2; ++r) {
+    const std::vector<double> dt = {std::get<double>(runs.rows[2 * r][2]), std::get<double>(runs.rows[2 * r + 1][2])};
+    const std::vector<double> e = {std::get<double>(runs.rows[2 * r][3]), std::get<double>(runs.rows[2 * r + 1][3])};
+    CHECK(time.rows[r][1] == nsb::Cell{e[0]});
+    CHECK(std::get<double>(time.rows[r][3]) == nsb::fitted_order(dt, e));
+  }
+  CHECK(time.rows[2][0] == nsb::Cell{std::string("event-driven")});
+  CHECK(time.rows[2][1] == nsb::Cell{std::string("n/a")});
+  CHECK(number_of(time.rows[2][3]) != number_of(time.rows[2][3]));
+
+  // Above modal-exact's max_dofs (2000): the run is measured, its time error n/a with the reason.
+  std::string big = with_replaced(kSemiDiscrete, "N = 20 }\nstable_steps = [0.5, 0.9]", "N = 2000 }\nstable_steps = [0.9]\nt_end = 0.01");
+  big = with_replaced(big, "[[integrator]]\nname = \"cd-lagrange-adaptive\"\n", "");
+  big = with_replaced(big, "[[integrator]]\nname = \"event-driven\"\n", "");
+  const auto big_tables = run_some_runs(big);
+  const nsb::Table& big_runs = table_of(big_tables, "runs");
+  REQUIRE(big_runs.rows.size() == 2);
+  CHECK(number_of(big_runs.rows[0][3]) != number_of(big_runs.rows[0][3]));
+  CHECK_THAT(std::get<std::string>(big_runs.rows[0][4]),
+             Catch::StartsWith("u time err n/a: integrator modal-exact") && Catch::Contains("2001 dofs"));
+}
+
+// The known answer: each measure's least-squares order against log(1/N) over the refined runs
+// (fit_order of their values, bit for bit, the energy error's too), the same slope as against
+// log(dt) to round-off; a diverged and a declined run show their outcome in the measures' cells.
+TEST_CASE("study file: group fits against 1/N and a run's outcome in its measured cells", "[studies][study_file]") {
+  std::vector<nsb::Json> results;
+  const nsb::StudyEntry entry = nsb::file_study(nsb::parse_study_text(kRefined, "f.toml", false));
+  const auto cases = nsb::study_cases(entry, {});
+  for (const auto& c : cases) results.push_back(nsb::run_study_case(entry, c, {}));
+  const auto tables = nsb::study_tables(entry, cases, results, {});
+  REQUIRE(cases.size() == 5);
+  std::vector<double> h = {1.0 / 20.0, 1.0 / 40.0, 1.0 / 80.0}, u, e;
+  for (std::size_t k = 0; k < 3; ++k) {
+    u.push_back(results[k]["values"][0].get<double>());
+    e.push_back(results[k]["values"][1].get<double>());
+  }
+  const nsb::Table& orders = table_of(tables, "orders");
+  REQUIRE(orders.rows.size() == 1);
+  CHECK(orders.columns[1].name == "stable steps");
+  CHECK(orders.rows[0][1] == nsb::Cell{0.9});
+  CHECK(std::get<double>(orders.rows[0][2]) == nsb::fit_order(h, u).order);
+  CHECK(std::get<double>(orders.rows[0][3]) == nsb::fit_order(h, e).order);
+  CHECK(std::get<long>(orders.rows[0][4]) == 3);
+  CHECK(std::get<double>(orders.rows[0][2]) == Catch::Detail::Approx(std::get<double>(table_of(tables, "dt_orders").rows[0][1])).epsilon(1e-12));
+  const nsb::Table& runs = table_of(tables, "runs");
+  REQUIRE(runs.rows.size() == 5);
+  CHECK(runs.rows[0][5] == nsb::Cell{std::string("ok")});
+  CHECK(runs.rows[0][2] == nsb::Cell{u[0]});
+  CHECK(runs.rows[3][5] == nsb::Cell{std::string("diverged")});
+  CHECK(runs.rows[3][2] == nsb::Cell{std::string("diverged")});
+  CHECK(runs.rows[3][3] == nsb::Cell{std::string("diverged")});
+  CHECK(std::get<double>(runs.rows[3][4]) > 0.0);  // its CPU: no measure
+  CHECK(runs.rows[4][2] == nsb::Cell{std::string("n/a")});
+  // Without not_ok the values as the runs report them: none.
+  const auto plain = run_some_runs(with_replaced(kRefined, "not_ok = \"outcome\"\n", ""));
+  CHECK(std::holds_alternative<std::monostate>(table_of(plain, "runs").rows[3][2]));
+}
+
+TEST_CASE("study file: semi-discrete errors, not_ok, fit_against, except and a pivot's order: bad input named",
+          "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  const auto error_at = [](const std::string& text, const std::string& needle, const std::string& what) {
+    CHECK_THAT(some_runs_error(text), StartsWith(fmt::format("f.toml:{}: {}", line_of(text, needle), what)));
+  };
+  CHECK(some_runs_error(kSemiDiscrete) == "(no error)");
+  CHECK(some_runs_error(kRefined) == "(no error)");
+  std::string t = with_replaced(kSemiDiscrete, "semi_discrete = true", "semi_discrete = 1");
+  error_at(t, "semi_discrete = 1", "measure[0].semi_discrete: expected a boolean, got an integer");
+  t = with_replaced(kSemiDiscrete, "dof = 0", "dof = 21");
+  error_at(t, "dof = 21", "measure[0].dof: 21 is out of range; valid: [0, 20]");
+  t = with_replaced(kSemiDiscrete, "dof = 0\n", "");
+  error_at(t, "[[measure]]", "measure[0]: missing key 'dof'");
+  t = with_replaced(kSemiDiscrete, "semi_discrete = true", "against = \"u_contact_exact\"\nsemi_discrete = true");
+  error_at(t, "against", "measure[0].against: a semi-discrete error compares one dof's displacement with modal-exact's; valid: no against");
+  t = with_replaced(kSemiDiscrete, "semi_discrete = true", "semi_discrete = false\nobservable = \"u_contact\"\nagainst = \"u_contact_exact\"");
+  error_at(t, "dof = 0", "measure[0].dof: only a semi-discrete error compares one dof's displacement; valid: semi_discrete = true beside it");
+  t = with_replaced(kSemiDiscrete, "per_nominal_step = true", "per_nominal_step = \"yes\"");
+  error_at(t, "per_nominal_step", "measure[0].per_nominal_step: expected a boolean, got a string");
+  t = with_replaced(kRefined, "not_ok = \"outcome\"", "not_ok = \"status\"");
+  error_at(t, "not_ok", "table[0].not_ok: 'status' is not valid (nearest: ");
+  CHECK_THAT(some_runs_error(t), Catch::Contains("valid: values, outcome"));
+  t = with_replaced(kRefined, "fit_against = \"1/N\"", "fit_against = \"1/N\"\nnot_ok = \"outcome\"");
+  error_at(t, "not_ok = \"outcome\"\nproblems", "table[1].not_ok: only a table of one row per run shows a run's outcome; valid: rows = \"case\"");
+  t = with_replaced(kRefined, "columns = [\"problem\", \"dt\", \"u err\", \"E err\", \"CPU\", \"outcome\"]", "columns = [\"problem\", \"dt\"]");
+  error_at(t, "not_ok", "table[0].not_ok: the table shows no measure's column; valid: a measure's label among its columns");
+  t = with_replaced(kRefined, "fit_against = \"1/N\"", "fit_against = \"N\"");
+  error_at(t, "fit_against", "table[1].fit_against: 'N' is not 1/KEY, KEY a numeric parameter of problem 'bar, N = 20'; valid: ");
+  CHECK_THAT(some_runs_error(t), Catch::Contains("1/N"));
+  t = with_replaced(kRefined, "fit_against = \"1/N\"", "fit_against = \"1/mass\"");
+  error_at(t, "fit_against", "table[1].fit_against: '1/mass' is not 1/KEY");
+  t = with_replaced(kRefined, "not_ok = \"outcome\"", "fit_against = \"1/N\"");
+  error_at(t, "fit_against", "table[0].fit_against: only a table of fitted orders fits; valid: rows = \"group\"");
+  t = with_replaced(kRefined, "fit_against = \"1/N\"", "fit_against = \"1/N\"\nexcept = { integrator = \"cd-lagrange\" }");
+  error_at(t, "except", "table[1].except: a table of rows = \"group\" has no except; valid: rows = \"case\", \"pivot\"");
+  t = with_replaced(kSemiDiscrete, "except = { integrator", "except = { integrater");
+  error_at(t, "except = {", "table[1].except.integrater: 'integrater' is not valid (nearest: integrator)");
+  t = with_replaced(kSemiDiscrete, "except = { integrator = \"modal-exact\" }", "except = { integrator = true }");
+  error_at(t, "except = {", "table[1].except.integrator: expected a number or a text, got a boolean");
+  t = with_replaced(kRefined, "not_ok = \"outcome\"", "order = { of = \"dt\" }");
+  error_at(t, "order = ", "table[0].order: only a pivot fits the values of its rows; valid: rows = \"pivot\"");
+  t = with_replaced(kSemiDiscrete, "order = { of = \"dt\", header = \"time order\" }", "order = { header = \"time order\" }");
+  error_at(t, "order = ", "table[1].order: missing key 'of'");
+  t = with_replaced(kSemiDiscrete, "order = { of = \"dt\", header = \"time order\" }", "order = { of = \"dt\", missing = \"-\" }");
+  error_at(t, "order = ", "table[1].order.missing: an order is fitted, never missing; valid: of, header, unit, format, description");
+  t = with_replaced(kSemiDiscrete, "columns = [\"integrator\", {", "columns = [{ of = \"integrator\", missing = \"-\" }, {");
+  error_at(t, "missing = \"-\"", "table[1].columns[0].missing: only a table of one row per run shows its missing cells otherwise; valid: rows = \"case\", or a pivot's value column (the last)");
 }
