@@ -44,8 +44,8 @@
 //                step; ContactPhases::span), with exact = true its difference from the problem's
 //                exact contact duration (ExactValue::contact_duration, the Signorini bar's 2L/c).
 // An error with semi_discrete = true: |u_dof - u_dof,semi| against the same semi-discrete problem
-// solved exactly (modal-exact, advanced to each sample), the time error alone; with
-// per_nominal_step = true any measure is sampled at most once per nominal step dt.
+// solved exactly (modal-exact, advanced to each sample), the time error alone; an error with
+// per_nominal_step = true is sampled at most once per nominal step dt.
 // An error, energy or momentum measure with a `window` [t0, t1] is sampled there only (its l2
 // norm the mean over t1 - t0), e.g. a smooth window before the first impact.
 //   hausdorff    H(run, ref) between the graphs {(t, o)} of an observable (the run's samples;
