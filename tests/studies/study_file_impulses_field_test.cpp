@@ -316,6 +316,15 @@ TEST_CASE("study file: impulses and field tables, space-time figures, metadata l
              StartsWith(impulses_at("exact_per = \"integrator\"") + "table[1].exact_per: 'value' is not valid"));
   CHECK_THAT(impulses_study_error(impulses_replaced(kImpulsesBar, "exact = \"contact_force_exact\"\n", "")),
              StartsWith(impulses_at("exact_per = \"integrator\"", -1) + "table[1].exact_per: where the exact rows go, without exact rows; valid: exact = OBSERVABLE beside it"));
+  // Impulses of a problem without contacts, the exact force of a problem without an exact solution.
+  const std::string chain = "[study]\ntitle = \"t\"\nt_end = 1.0\n[[problem]]\nname = \"spring-chain\"\nparameters = { wall = \"none\" }\n"
+                            "[[integrator]]\nname = \"moreau-jean\"\nsteps = [1e-2]\n[[table]]\nid = \"force\"\ntitle = \"force\"\n"
+                            "rows = \"impulses\"\ncolumns = [\"integrator\", \"value\"]\n";
+  CHECK_THAT(impulses_study_error(chain),
+             StartsWith("f.toml:13: table[0].rows: problem 'spring-chain' has no contacts, hence no impulses; valid: problems with contacts"));
+  CHECK_THAT(impulses_study_error(impulses_replaced(impulses_replaced(chain, "wall = \"none\"", "wall = \"left\""), "rows = \"impulses\"\n",
+                                                    "rows = \"impulses\"\nexact = \"momentum\"\n")),
+             StartsWith("f.toml:14: table[0].exact: problem 'spring-chain' has no exact solution; valid: problems with one"));
   // Field tables.
   CHECK_THAT(impulses_study_error(impulses_replaced(kImpulsesBar, "exact_times = 4", "exact_times = 4\ncomponent = \"tau\"")),
              StartsWith(impulses_at("exact_times = 4", 1) + "table[3].component: 'tau' is not a stress component of problem 'lumped'; valid: sigma"));
