@@ -204,10 +204,10 @@ struct FileFigure {
   bool small_multiples = false;  // one panel per value of the first series column (Figure::small_multiples)
   bool deviation = false;        // y is a ratio to its start: its signed deviation y - 1 drawn (Figure::deviation)
   std::string table;           // a declared history table to draw it from (empty: the runs)
-  // A figure of a field table (rows = "field") is a space-time picture (Figure::kind
-  // "space_time": no x, y the time, a panel per run): its caption is the table's, then this
-  // text, then "." or "; no panel for RUN: outcome, ..." naming the runs the table shows that
-  // have no field (declined); value_label names the colour scale.
+  // Printed under the figure. A figure of a field table (rows = "field") is a space-time
+  // picture (Figure::kind "space_time": no x, y the time, a panel per run): its caption is the
+  // table's, then this text, then "." or "; no panel for RUN: outcome, ..." naming the runs the
+  // table shows that have no field (declined); value_label names its colour scale.
   std::string caption, value_label;
 };
 
