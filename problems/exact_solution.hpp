@@ -52,6 +52,10 @@ class ExactSolution {
   virtual std::vector<double> amplitudes_after_impacts() const { return {}; }
   virtual std::optional<double> event_time(ExactEvent /*event*/) const { return std::nullopt; }
   virtual std::optional<double> value(ExactValue /*what*/) const { return std::nullopt; }
+  // The exact stress of each element cell of the problem's field_mesh() at t, at the cell's
+  // centre (the mean of its points), written into out as Problem::cell_stress() writes a
+  // state's (a study's exact field beside the schemes' element stresses); false where not known.
+  virtual bool exact_cell_stress(double /*t*/, Eigen::Ref<Eigen::MatrixXd> /*out*/) const { return false; }
 };
 
 }  // namespace nsb

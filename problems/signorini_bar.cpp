@@ -208,6 +208,14 @@ std::optional<double> SignoriniBar::value(ExactValue what) const {
   return what == ExactValue::contact_duration ? std::optional<double>(contact_duration()) : std::nullopt;
 }
 
+bool SignoriniBar::exact_cell_stress(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
+  if (stiff_ratio_ != 1.0 || gravity_ > 0.0 || !(t >= 0.0)) return false;  // no d'Alembert solution
+  const FieldMesh mesh = *field_mesh();
+  for (Index e = 0; e < mesh.ncells(); ++e)
+    out(e, 0) = exact_stress(0.5 * (mesh.points(mesh.cells(e, 0), 0) + mesh.points(mesh.cells(e, 1), 0)), t);
+  return true;
+}
+
 std::optional<State> SignoriniBar::state(double t) const {
   if (stiff_ratio_ != 1.0 || !(t >= 0.0)) return std::nullopt;
   const BouncingBarExact* bouncing = gravity_ > 0.0 ? &bouncing_exact(t) : nullptr;

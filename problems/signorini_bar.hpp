@@ -128,6 +128,8 @@ class SignoriniBar final : public LinearProblem, public ExactSolution {
   // contact_start (contact_start()) and contact_duration (contact_duration()).
   std::optional<double> event_time(ExactEvent event) const override;
   std::optional<double> value(ExactValue what) const override;
+  // exact_stress at each element's centre (x_i + x_{i+1}) / 2, component sigma; g = 0 and r = 1 only.
+  bool exact_cell_stress(double t, Eigen::Ref<Eigen::MatrixXd> out) const override;
   // Field output: the bar's nodes x_i = i h (dof i) and elements; one stress component,
   // sigma = E_e (u_{i+1} - u_i) / h on element i (nodes i, i + 1), constant over it (so the
   // exact piecewise-constant sigma of a wave front is met element by element). The same for

@@ -633,6 +633,77 @@ std::unique_ptr<ModalExact> semi_discrete_reference(const StudySpec& spec, const
   }
   return std::unique_ptr<ModalExact>(&dynamic_cast<ModalExact&>(*made.release()));
 }
+// The series of one run that impulses and field tables show (FileTable rows "impulses",
+// "field"), for the runs of the problems and integrators they name: each impulses table's sum
+// of the contact impulses per nominal step bin, each field table's element stresses at the
+// start and after every step.
+class RunImpulsesAndFields {
+ public:
+  // After the integrator's init (its state: the field's first row); `dt` the run's nominal step.
+  RunImpulsesAndFields(const StudySpec& spec, const FileProblem& fp, const FileIntegrator& fi, const Problem& problem,
+                       const Integrator& it, double dt)
+      : dt_(dt) {
+    const auto shown = [&](const FileTable& d) {
+      return d.applies_to(fp.label) &&
+             (d.integrators.empty() || std::find(d.integrators.begin(), d.integrators.end(), fi.label) != d.integrators.end());
+    };
+    for (const FileTable& d : spec.tables) {
+      if (d.rows == "impulses" && shown(d)) bins_.push_back({&d, {}});
+      if (d.rows != "field" || !shown(d)) continue;
+      const FieldMesh mesh = problem.field_mesh().value();  // the reader checked it: 1D, cells of two points
+      const auto& names = mesh.stress_components;
+      const auto component = d.component.empty() ? names.begin() : std::find(names.begin(), names.end(), d.component);
+      fields_.push_back({&d, static_cast<Index>(component - names.begin()), {}, {}});
+      if (stress_.size() == 0) stress_.resize(mesh.nelements(), static_cast<Index>(names.size()));
+    }
+    add_fields(problem, it.state());
+  }
+  void add(const Problem& problem, const Integrator& it) {
+    const double t = it.state().t;
+    for (Bins& b : bins_) {
+      const auto j = static_cast<std::size_t>(std::ceil(t / dt_ - 1e-9));  // (t_j - dt, t_j] holds t
+      if (b.impulses.size() <= j) b.impulses.resize(j + 1, 0.0);
+      b.impulses[j] += it.impulses().sum();
+    }
+    add_fields(problem, it.state());
+  }
+  // Into the run's figures: "impulses" by table id {t, value}, "fields" by table id {t, values:
+  // the cells of each row, row after row}.
+  void write(Json& run) const {
+    for (const Bins& b : bins_) {
+      std::vector<double> t, value;
+      for (std::size_t j = 1; j < b.impulses.size(); ++j) {
+        t.push_back(static_cast<double>(j) * dt_);
+        value.push_back(b.impulses[j] / dt_ / b.table->scale);
+      }
+      run["impulses"][b.table->id] = {{"t", t}, {"value", reals(value)}};
+    }
+    for (const Field& f : fields_) run["fields"][f.table->id] = {{"t", f.t}, {"values", reals(f.values)}};
+  }
+
+ private:
+  void add_fields(const Problem& problem, const State& s) {
+    if (fields_.empty()) return;
+    problem.cell_stress(s.u, stress_);
+    for (Field& f : fields_) {
+      f.t.push_back(s.t);
+      f.values.insert(f.values.end(), stress_.col(f.component).begin(), stress_.col(f.component).end());
+    }
+  }
+  struct Bins {
+    const FileTable* table;
+    std::vector<double> impulses;  // by bin j
+  };
+  struct Field {
+    const FileTable* table;
+    Index component;
+    std::vector<double> t, values;
+  };
+  double dt_;
+  std::vector<Bins> bins_;
+  std::vector<Field> fields_;
+  Eigen::MatrixXd stress_;
+};
 
 Json run_file_case(const StudySpec& spec, const Json& c) {
   const FileProblem& fp = spec.problems[c["problem"].get<std::size_t>()];
@@ -697,6 +768,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   });
   RunFigures figures(*problem, spec, fp, t_end, e0, e_scale);
   RunSeries series(spec, fp, t_end, *problem, M, *integrator, obs, energy0);
+  RunImpulsesAndFields impulses_and_fields(spec, fp, fi, *problem, *integrator, options.dt);
   double e1 = kNaN;  // the energy after the first step
   // An energy measure's error of E: relative to E_1 (relative_to = "first step") or E0 (its scale).
   const auto energy_error = [&](const FileMeasure& fm, double e) { return fm.from_first_step ? (e - e1) / std::abs(e1) : (e - e0) / e_scale; };
@@ -817,6 +889,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
     if (history_measure != spec.measures.end()) history.add(s.t, {std::abs(energy.total() - e0) / e_scale});
     figures.add(it, info.dt, momentum, energy.total());
     series.add(*problem, M, it, info.dt, obs, energy);
+    impulses_and_fields.add(*problem, it);
     sample(it, energy, info.dt, ++step % spec.sample_every == 0, true);
     t_prev = s.t;
   });
@@ -829,6 +902,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   std::vector<const std::vector<double>*> periodic;
   for (std::size_t m = 0; m < acc.size(); ++m) periodic.push_back(on[m] && spec.measures[m].every > 0.0 ? &acc[m].periodic : nullptr);
   series.write(periodic, out["run"]);
+  impulses_and_fields.write(out["run"]);
   if (spec.cpu_repeats == 0) out["cpu"] = r.step_cpu_seconds;  // the observed run's, whatever its end
   // A blow-up or penetration seen before the budget ran out is reported as such.
   if (r.status != RunStatus::Ok && r.status != RunStatus::OverBudget) return out;
@@ -1038,6 +1112,7 @@ Figure declared_figure(const StudySpec& spec, const FileFigure& f) {
   Figure figure{figure_id(spec, f), f.title, f.x, f.y, f.series, f.panels, f.log_x, f.log_y, f.slopes};
   figure.small_multiples = f.small_multiples;
   figure.deviation = f.deviation;
+  figure.caption = f.caption;
   return figure;
 }
 
@@ -1504,6 +1579,231 @@ Table run_series_table(const StudySpec& spec, const FileTable& d, const std::vec
   return out;
 }
 
+// The columns of an impulses and of a field table ("field": one column per cell at table time).
+const std::vector<Column>& impulses_columns() {
+  static const std::vector<Column> columns = [] {
+    std::vector<Column> c = run_series_columns(
+        {{"t", "s", "", "the bin's end t_j = j dt"}, {"value", "", "", "the contact impulses of the bin (t_j - dt, t_j] over dt and the scale"}});
+    c.push_back({"integrator label", "", "", "the integrator's label in the file"});
+    return c;
+  }();
+  return columns;
+}
+
+const std::vector<Column>& field_columns() {
+  static const std::vector<Column> columns = [] {
+    std::vector<Column> c = run_series_columns(
+        {{"t", "s", "", "the step's end (a run's first row: its start)"}, {"field", "", "", "the element stress of each cell"}});
+    c.push_back({"integrator label", "", "", "the integrator's label in the file"});
+    return c;
+  }();
+  return columns;
+}
+
+// The cells of a run's row of an impulses or field table before its own values (the problem,
+// the integrator, the run) and after them (the problem's parameters, the integrator's label).
+std::pair<std::vector<Cell>, std::vector<Cell>> run_series_cells(const StudySpec& spec, const Json& c) {
+  const FileProblem& p = spec.problems[c["problem"].get<std::size_t>()];
+  const FileIntegrator& fi = spec.integrators[c["integrator"].get<std::size_t>()];
+  std::vector<Cell> after = parameter_cells(p, parameter_column_names(spec));
+  after.emplace_back(fi.label);
+  return {{p.label, p.name, shown_label(fi, p.label), fi.name, parameters_text(fi, p.label), run_label(c)}, after};
+}
+
+// rows = "impulses" (FileTable::scale, exact, exact_per, exact_in): the bins of each run shown,
+// in the order of the cases, the exact rows after the first run of each value of exact_per.
+Table impulses_table(const StudySpec& spec, const FileTable& d, const std::vector<Json>& cases, const std::vector<Json>& results,
+                     const Table& runs, const std::vector<std::size_t>& case_row) {
+  Table all;
+  all.columns = impulses_columns();
+  const std::vector<Column> parameters = parameter_columns(spec);
+  all.columns.insert(all.columns.end() - 1, parameters.begin(), parameters.end());
+  const std::size_t per = column_index(all, d.exact_per), in = column_index(all, d.exact_in);
+  std::vector<Cell> exact_shown;  // the values of exact_per whose exact rows are in
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Json& run = results[k].contains("run") ? results[k]["run"] : Json::object();
+    if (!run.contains("impulses") || !run["impulses"].contains(d.id) || !shows_run(d, runs, runs.rows[case_row[k]])) continue;
+    const auto around = run_series_cells(spec, cases[k]);
+    const std::vector<Cell>& before = around.first;
+    const std::vector<Cell>& after = around.second;
+    const auto row = [&](const Json& t, const Json& value) {
+      std::vector<Cell> cells = before;
+      cells.insert(cells.end(), {number_cell(t), number_cell(value)});
+      cells.insert(cells.end(), after.begin(), after.end());
+      return cells;
+    };
+    const Json& bins = run["impulses"][d.id];
+    for (std::size_t i = 0; i < bins["t"].size(); ++i) all.add_row(row(bins["t"][i], bins["value"][i]));
+    if (d.exact.empty() || bins["t"].empty()) continue;
+    const Cell key = row(bins["t"][0], nullptr)[per];
+    if (std::find(exact_shown.begin(), exact_shown.end(), key) != exact_shown.end()) continue;
+    exact_shown.push_back(key);
+    const FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+    const auto problem = make_problem(p.name, p.parameters);
+    const SpMat M = problem->mass_matrix();
+    std::vector<double> buffer(problem->observable_names().size());
+    const Vec none = Vec::Zero(problem->ncontacts());
+    for (const Json& t : bins["t"]) {
+      const std::optional<State> exact = problem->exact()->state(t.get<double>());
+      std::vector<Cell> cells = row(t, real(exact ? state_observable(*problem, M, *exact, none, 0.0, d.exact, buffer, nullptr) / d.scale : kNaN));
+      cells[in] = std::string("exact");
+      all.add_row(std::move(cells));
+    }
+  }
+  for (const FileFigure& f : spec.figures)
+    if (f.table == d.id) all.figures.push_back(declared_figure(spec, f));
+  Table out = case_table(d, all, true);
+  out.csv_only = true;
+  return out;
+}
+
+// rows = "field" (FileTable::component, exact_times): the exact rows first, then a row per step
+// of each run shown, in the order of the cases; the field's columns those of the first problem
+// the table shows (the reader checked that its problems share one mesh). Its figures are
+// space-time pictures, one panel per run (FileFigure::caption).
+Table field_table(const StudySpec& spec, const FileTable& d, const std::vector<Json>& cases, const std::vector<Json>& results,
+                  const Table& runs, const std::vector<std::size_t>& case_row) {
+  const FileProblem& first = *std::find_if(spec.problems.begin(), spec.problems.end(), [&](const FileProblem& p) { return d.applies_to(p.label); });
+  const auto problem = make_problem(first.name, first.parameters);
+  const FieldMesh mesh = problem->field_mesh().value();
+  std::vector<double> centres;
+  for (Index e = 0; e < mesh.ncells(); ++e) centres.push_back(0.5 * (mesh.points(mesh.cells(e, 0), 0) + mesh.points(mesh.cells(e, 1), 0)));
+  const std::string component = d.component.empty() ? mesh.stress_components.front() : d.component;
+  Table all;  // the columns but the field's, by source name
+  all.columns = field_columns();
+  const std::vector<Column> parameters = parameter_columns(spec);
+  all.columns.insert(all.columns.end() - 1, parameters.begin(), parameters.end());
+  const std::size_t field = column_index(all, "field");
+  Table out;
+  std::vector<std::string> field_names;
+  std::map<std::string, std::string> renamed;
+  for (const FileColumn& c : d.columns) {
+    const Column source = all.columns[column_index(all, c.of)];
+    if (c.of != "field") {
+      out.columns.push_back(declared_column(source, c));
+      renamed[c.of] = out.columns.back().name;
+      continue;
+    }
+    const std::string header = c.header.value_or(component + "(x = {})");
+    for (const double x : centres) {
+      Column cell = declared_column(source, c);
+      cell.name = header;
+      cell.name.replace(header.find("{}"), 2, fmt::format("{:g}", x));  // the reader checked the {}
+      field_names.push_back(cell.name);
+      out.columns.push_back(cell);
+    }
+  }
+  // A row from the cells of `all`'s columns but the field, and the field's values from `values[from]` on.
+  const auto add = [&](const std::vector<Cell>& cells, const Json& values, std::size_t from) {
+    std::vector<Cell> row;
+    for (const FileColumn& c : d.columns) {
+      if (c.of != "field") {
+        const std::size_t k = column_index(all, c.of);
+        row.push_back(cells[k < field ? k : k - 1]);
+        continue;
+      }
+      for (std::size_t e = 0; e < centres.size(); ++e) row.push_back(number_cell(values[from + e]));
+    }
+    out.add_row(std::move(row));
+  };
+  if (d.exact_times > 0) {
+    Eigen::MatrixXd stress(mesh.nelements(), static_cast<Index>(mesh.stress_components.size()));
+    const auto k_component = static_cast<Index>(std::find(mesh.stress_components.begin(), mesh.stress_components.end(), component) -
+                                                mesh.stress_components.begin());
+    const double t_end = spec.t_end_of(first);
+    for (int k = 0; k <= d.exact_times; ++k) {
+      const double t = t_end * k / d.exact_times;
+      const bool known = problem->exact()->exact_cell_stress(t, stress);
+      std::vector<Cell> cells = {first.label, first.name, std::string("exact"), std::string(), std::string(), std::string(), t};
+      cells.insert(cells.end(), all.columns.size() - cells.size() - 1, Cell{std::string()});
+      Json values = Json::array();
+      for (Index e = 0; e < stress.rows(); ++e) values.push_back(real(known ? stress(e, k_component) : kNaN));
+      add(cells, values, 0);
+    }
+  }
+  std::vector<std::string> no_field;  // the runs shown without a field: "first panel (other panels): outcome"
+  const std::size_t outcome = column_index(runs, "outcome");
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+    const FileIntegrator& fi = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
+    const bool named = d.integrators.empty() || std::find(d.integrators.begin(), d.integrators.end(), fi.label) != d.integrators.end();
+    if (!d.applies_to(p.label) || !named || !shows_run(d, runs, runs.rows[case_row[k]])) continue;
+    const auto around = run_series_cells(spec, cases[k]);
+    const std::vector<Cell>& before = around.first;
+    const std::vector<Cell>& after = around.second;
+    std::vector<Cell> cells = before;
+    cells.emplace_back();  // t, set below
+    cells.insert(cells.end(), after.begin(), after.end());
+    const Json& run = results[k].contains("run") ? results[k]["run"] : Json::object();
+    if (!run.contains("fields") || !run["fields"].contains(d.id)) {
+      for (const FileFigure& f : spec.figures)
+        if (f.table == d.id && !f.panels.empty()) {
+          std::vector<std::string> rest;
+          for (std::size_t i = 1; i < f.panels.size(); ++i) {
+            const std::size_t at = column_index(all, f.panels[i]);
+            rest.push_back(pivot_value_text(cells[at < field ? at : at - 1]));
+          }
+          const std::size_t at = column_index(all, f.panels.front());
+          no_field.push_back(fmt::format("{}{}: {}", pivot_value_text(cells[at < field ? at : at - 1]),
+                                         rest.empty() ? "" : fmt::format(" ({})", fmt::join(rest, ", ")),
+                                         pivot_value_text(runs.rows[case_row[k]][outcome])));
+          break;
+        }
+      continue;
+    }
+    const Json& f = run["fields"][d.id];
+    for (std::size_t i = 0; i < f["t"].size(); ++i) {
+      cells[6] = number_cell(f["t"][i]);
+      add(cells, f["values"], i * centres.size());
+    }
+  }
+  const auto rename = [&](const std::string& name) {
+    const auto it = renamed.find(name);
+    return it == renamed.end() ? name : it->second;
+  };
+  for (const FileFigure& f : spec.figures) {
+    if (f.table != d.id) continue;
+    Figure figure = declared_figure(spec, f);
+    figure.x.clear();
+    figure.y = rename(f.y);
+    for (auto& name : figure.series) name = rename(name);
+    for (auto& name : figure.panels) name = rename(name);
+    figure.kind = "space_time";
+    figure.values = field_names;
+    figure.positions = centres;
+    figure.value_label = f.value_label;
+    std::string caption = d.caption.value_or("");
+    if (!f.caption.empty()) caption += (caption.empty() ? "" : " ") + f.caption;
+    if (!no_field.empty()) caption += fmt::format("{} panel for {}", caption.empty() ? "No" : "; no", fmt::join(no_field, ", "));
+    figure.caption = caption.empty() ? caption : caption + ".";
+    out.figures.push_back(figure);
+  }
+  out.csv_only = true;
+  return out;
+}
+
+// The study's metadata lines and each declared table's own (MetadataLine) on `tables`, the
+// values of a column from the case table `runs` (every column), each once, in its rows' order.
+void add_metadata_lines(const StudySpec& spec, const Table& runs, std::vector<Table>& tables) {
+  const auto value = [&](const MetadataLine& m) {
+    if (m.of.empty()) return m.text;
+    const std::size_t column = column_index(runs, m.of);
+    std::vector<std::string> seen;
+    for (const auto& row : runs.rows) {
+      if (std::holds_alternative<std::monostate>(row[column])) continue;
+      const std::string text = pivot_value_text(row[column]);
+      if (!text.empty() && std::find(seen.begin(), seen.end(), text) == seen.end()) seen.push_back(text);
+    }
+    return fmt::format("{}", fmt::join(seen, " "));
+  };
+  for (Table& t : tables) {
+    for (const MetadataLine& m : spec.metadata) t.metadata.emplace_back(m.line, value(m));
+    const auto own = std::find_if(spec.tables.begin(), spec.tables.end(), [&](const FileTable& d) { return d.id == t.id; });
+    if (own != spec.tables.end())
+      for (const MetadataLine& m : own->metadata) t.metadata.emplace_back(m.line, value(m));
+  }
+}
+
 // The tables the file declares, built from the engine's work-precision (`runs`), orders and
 // ranking tables.
 std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, const Table& orders, const std::optional<Table>& rank,
@@ -1839,8 +2139,11 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
         return fits;
       }
       if (d.rows == "pivot") return pivot_table(d, runs_all);
+      if (d.rows == "impulses") return impulses_table(spec, d, cases, results, runs_all, case_row);
+      if (d.rows == "field") return field_table(spec, d, cases, results, runs_all, case_row);
       return d.of_some_runs() ? run_series_table(spec, d, cases, results, runs_all, case_row) : history_table(spec, d, cases, results);
     });
+    add_metadata_lines(spec, runs_all, tables);
   } else {
     tables.push_back(t);
     if (!orders.rows.empty()) tables.push_back(orders);
@@ -1891,6 +2194,16 @@ const std::vector<std::string>& trajectory_column_names() {
 
 const std::vector<std::string>& flights_column_names() {
   static const std::vector<std::string> names = column_names(flights_columns());
+  return names;
+}
+
+const std::vector<std::string>& impulses_column_names() {
+  static const std::vector<std::string> names = column_names(impulses_columns());
+  return names;
+}
+
+const std::vector<std::string>& field_column_names() {
+  static const std::vector<std::string> names = column_names(field_columns());
   return names;
 }
 

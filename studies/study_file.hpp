@@ -215,6 +215,18 @@ struct FileFigure {
   bool small_multiples = false;  // one panel per value of the first series column (Figure::small_multiples)
   bool deviation = false;        // y is a ratio to its start: its signed deviation y - 1 drawn (Figure::deviation)
   std::string table;           // a declared history table to draw it from (empty: the runs)
+  // Printed under the figure. A figure of a field table (rows = "field") is a space-time
+  // picture (Figure::kind "space_time": no x, y the time, a panel per run): its caption is the
+  // table's, then this text, then "." or "; no panel for RUN: outcome, ..." naming the runs the
+  // table shows that have no field (declined); value_label names its colour scale.
+  std::string caption, value_label;
+};
+
+// A metadata line of the reports' tables ("# line: value"): a text, or the values the study's
+// runs take in a column of the case table `of` (e.g. "parameter N"), each once, in the order
+// of the runs, separated by spaces.
+struct MetadataLine {
+  std::string line, of, text;
 };
 
 // A column of a declared table: the source column `of` (a work-precision column for rows =
@@ -281,7 +293,6 @@ struct FileTable {
   double last = 0.0;
   int points = 400;
   bool step_spacing = false, relative = false;
-  bool of_some_runs() const { return rows == "pivot" || rows == "periodic" || rows == "trajectory" || rows == "flights"; }
   // rows = "case" with not_ok = "outcome": the columns (by `of`: the measures it shows) whose
   // cell of a run whose outcome is not ok shows that outcome (n/a, diverged, over budget, ...)
   // instead of its value, as the C++ studies' tables did.
@@ -299,6 +310,28 @@ struct FileTable {
   // case-table column `order->of`) over each row's runs (positive finite values; n/a with
   // fewer than two), under its header, format and description.
   std::optional<FileColumn> order;
+  // rows = "impulses": one row per nominal step bin (t_j - dt, t_j], t_j = j dt (dt the run's
+  // nominal step; j = 1, 2, ... up to the bin of its last step) of each run shown: the sum of
+  // the contact impulses (all contacts) of the steps ending in the bin, over dt (the mean
+  // contact force over the bin: a fixed-step run's force step by step, an adaptive run's small
+  // steps summed), divided by `scale`. With `exact` (an observable of the problem's exact
+  // state, e.g. contact_force_exact, divided by `scale` too): after the first run shown of each
+  // value of the column `exact_per`, rows of it at the same t_j, that run's cells but "exact"
+  // in the column `exact_in`.
+  double scale = 1.0;
+  std::string exact_per = "problem", exact_in = "integrator";
+  // rows = "field": one row per step of each run shown, the first its initial state: the
+  // stress component `component` (default: the first) of each element cell of the problem's
+  // field mesh (1D, cells of two points: a column per cell, named by its centre x). With
+  // exact_times = n > 0, first n + 1 rows "exact": the exact field (ExactSolution::
+  // exact_cell_stress) of the first problem the table shows at t = t_end k / n, k = 0..n.
+  std::string component;
+  int exact_times = 0;
+  // Metadata lines of its own, after the study's (StudySpec::metadata).
+  std::vector<MetadataLine> metadata;
+  bool of_some_runs() const {
+    return rows == "pivot" || rows == "periodic" || rows == "trajectory" || rows == "flights" || rows == "impulses" || rows == "field";
+  }
 };
 
 // [[exclude]]: runs the study does not make: those of the registered integrators of one kind
@@ -356,6 +389,8 @@ struct StudySpec {
   // The measure the ranking and the work-precision figures use (study.rank_by, a measure's
   // label; default: the first error measure); measures.size(): none.
   std::size_t ranked = 0;
+  // study.metadata: lines every declared table carries after the engine's (study, file, hash, t_end).
+  std::vector<MetadataLine> metadata;
   double t_end_of(const FileProblem& p) const { return p.t_end > 0.0 ? p.t_end : t_end; }
   double t_end_of(const FileProblem& p, bool full) const { return full && p.full_t_end > 0.0 ? p.full_t_end : t_end_of(p); }
   double energy_blow_up_of(const FileProblem& p) const { return p.energy_blow_up > 0.0 ? p.energy_blow_up : energy_blow_up; }
@@ -391,6 +426,9 @@ const std::vector<std::string>& samples_column_names();
 const std::vector<std::string>& periodic_column_names();
 const std::vector<std::string>& trajectory_column_names();
 const std::vector<std::string>& flights_column_names();
+// The columns of an impulses table and of a field table ("field": one column per cell).
+const std::vector<std::string>& impulses_column_names();
+const std::vector<std::string>& field_column_names();
 // The columns of a declared case table that compare a run with the next run of its sweep or
 // count the solver's own work: "solver steps", "Jacobians" and, for each converging measure,
 // "rate of <label>".

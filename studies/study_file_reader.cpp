@@ -841,7 +841,8 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const S
     const Json& j = (*list)[i];
     const std::string path = element("figure", i);
     c.expect(j, path, j.is_object(), "a table");
-    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes", "table", "small_multiples", "deviation"});
+    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes", "table", "small_multiples", "deviation",
+                     "caption", "value_label"});
     FileFigure f;
     if (const Json* v = c.find(j, "table")) f.table = c.string(*v, child(path, "table"));
     const std::vector<std::string>& columns = f.table.empty() ? run_columns : table_columns;
@@ -855,7 +856,7 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const S
       c.fail(child(path, "id"), fmt::format("'{}' is the id of a figure the study draws itself", f.id),
              "another id than work_precision, work_precision_evals, energy_history, convergence_* (or study.figures = \"declared\")");
     f.title = c.string(c.require(j, path, "title"), child(path, "title"));
-    f.x = c.choice(c.require(j, path, "x"), child(path, "x"), columns);
+    if (const Json* v = c.find(j, "x"); v || f.table.empty()) f.x = c.choice(c.require(j, path, "x"), child(path, "x"), columns);  // a field table's figure: none
     f.y = c.choice(c.require(j, path, "y"), child(path, "y"), columns);
     const auto names = [&](const char* key, std::vector<std::string>& out) {
       if (const Json* v = c.find(j, key)) {
@@ -871,6 +872,8 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const S
     if (const Json* v = c.find(j, "log_y")) f.log_y = c.boolean(*v, child(path, "log_y"));
     if (const Json* v = c.find(j, "small_multiples")) f.small_multiples = c.boolean(*v, child(path, "small_multiples"));
     if (const Json* v = c.find(j, "deviation")) f.deviation = c.boolean(*v, child(path, "deviation"));
+    if (const Json* v = c.find(j, "caption")) f.caption = c.string(*v, child(path, "caption"));
+    if (const Json* v = c.find(j, "value_label")) f.value_label = c.string(*v, child(path, "value_label"));
     if (const Json* v = c.find(j, "slopes")) {
       const std::string at = child(path, "slopes");
       c.expect(*v, at, v->is_array(), "an array of numbers");
@@ -907,6 +910,8 @@ std::vector<std::string> table_sources(const std::string& rows, const StudySpec&
     sources = rows == "history" ? history_column_names() : samples_column_names();
   } else if (rows == "periodic" || rows == "trajectory" || rows == "flights") {
     sources = rows == "periodic" ? periodic_column_names() : rows == "flights" ? flights_column_names() : trajectory_column_names();
+  } else if (rows == "impulses" || rows == "field") {
+    sources = rows == "impulses" ? impulses_column_names() : field_column_names();
   } else if (rows == "pivot") {
     return table_sources("case", spec);
   }
@@ -956,7 +961,7 @@ FileColumn read_column(const Checker& c, const Json& j, const std::string& path,
 void read_some_runs(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
   const std::vector<std::string> runs = table_sources("case", spec);
   const std::map<std::string, std::vector<std::string>> own = {
-      {"across", {"pivot"}}, {"measure", {"periodic", "flights"}}, {"observable", {"trajectory"}}, {"exact", {"trajectory"}},
+      {"across", {"pivot"}}, {"measure", {"periodic", "flights"}}, {"observable", {"trajectory"}}, {"exact", {"trajectory", "impulses"}},
       {"last", {"trajectory"}}, {"points", {"trajectory"}}, {"spacing", {"trajectory"}}, {"relative", {"trajectory"}}};
   for (const char* key : {"where", "drop_above", "across", "measure", "observable", "exact", "last", "points", "spacing", "relative"}) {
     const auto whose = own.find(key);
@@ -1091,12 +1096,141 @@ void check_trajectory_observables(const Checker& c, const StudySpec& spec, const
   }
 }
 
+// A text that goes on one line of a report (a metadata line's name or value): no control character.
+void check_one_line(const Checker& c, const std::string& text, const std::string& path) {
+  const auto control = std::find_if(text.begin(), text.end(), [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; });
+  if (control != text.end())
+    c.fail(path, fmt::format("holds the control character 0x{:02x}", static_cast<unsigned char>(*control)), "a text of one line");
+}
+
+// metadata = [{ line = NAME, of = COLUMN }, { line = NAME, text = TEXT }, ...] (MetadataLine):
+// `of` a column of the case table; each name once.
+std::vector<MetadataLine> read_metadata_lines(const Checker& c, const Json& v, const std::string& path, const StudySpec& spec) {
+  c.expect(v, path, v.is_array() && !v.empty(), "an array of one or more { line, of } or { line, text }");
+  std::vector<MetadataLine> lines;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const std::string at = element(path, k);
+    const Json& j = v[k];
+    c.expect(j, at, j.is_object(), "a table { line, of } or { line, text }");
+    c.keys(j, at, {"line", "of", "text"});
+    MetadataLine m;
+    m.line = c.string(c.require(j, at, "line"), child(at, "line"));
+    if (m.line.empty()) c.fail(child(at, "line"), "an empty name", "the name of the line, e.g. N");
+    check_one_line(c, m.line, child(at, "line"));
+    for (const auto& other : lines)
+      if (other.line == m.line) c.fail(child(at, "line"), fmt::format("line '{}' given twice", m.line), "each name once");
+    if (!c.find(j, "of") == !c.find(j, "text")) c.fail(at, "give one of of = COLUMN (its values over the runs) or text = TEXT");
+    if (const Json* o = c.find(j, "of")) m.of = c.choice(*o, child(at, "of"), table_sources("case", spec));
+    if (const Json* t = c.find(j, "text")) {
+      m.text = c.string(*t, child(at, "text"));
+      check_one_line(c, m.text, child(at, "text"));
+    }
+    lines.push_back(m);
+  }
+  return lines;
+}
+
+// The keys of an impulses table (scale, exact, exact_per, exact_in) and of a field table
+// (component, exact_times) into `t`, refused on the other tables; what they name in the
+// problems is checked once the problems exist (check_impulses_and_fields).
+void read_impulses_and_field(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
+  const std::vector<std::pair<std::string, std::string>> own = {
+      {"scale", "impulses"}, {"exact_per", "impulses"}, {"exact_in", "impulses"}, {"component", "field"}, {"exact_times", "field"}};
+  for (const auto& [key, rows] : own)
+    if (c.find(j, key) && t.rows != rows)
+      c.fail(child(path, key), fmt::format("a table of rows = \"{}\" has no {}", t.rows, key), fmt::format("rows = \"{}\"", rows));
+  if (t.rows == "impulses") {
+    if (const Json* v = c.find(j, "scale")) t.scale = c.positive(*v, child(path, "scale"));
+    if (const Json* v = c.find(j, "exact")) t.exact = c.string(*v, child(path, "exact"));
+    std::vector<std::string> columns = table_sources("impulses", spec);  // of one run: not its values
+    columns.erase(std::remove_if(columns.begin(), columns.end(), [](const std::string& n) { return n == "t" || n == "value"; }), columns.end());
+    for (const char* key : {"exact_per", "exact_in"})
+      if (const Json* v = c.find(j, key)) {
+        if (t.exact.empty()) c.fail(child(path, key), "where the exact rows go, without exact rows", "exact = OBSERVABLE beside it");
+        (std::string(key) == "exact_per" ? t.exact_per : t.exact_in) = c.choice(*v, child(path, key), columns);
+      }
+  }
+  if (t.rows == "field") {
+    if (const Json* v = c.find(j, "component")) t.component = c.string(*v, child(path, "component"));
+    if (const Json* v = c.find(j, "exact_times")) t.exact_times = static_cast<int>(c.integer(*v, child(path, "exact_times"), 1, 100000));
+  }
+}
+
+// Impulses and field tables against the problems they show: an impulses table's problems have
+// contacts (and, with exact, an exact solution with that observable); a field table's have one
+// 1D mesh of bar elements with the stress component (each cell's header naming its position:
+// {} in a field column's header) and, with exact_times, the first of them an exact field.
+void check_impulses_and_fields(const Checker& c, const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances) {
+  for (std::size_t i = 0; i < spec.tables.size(); ++i) {
+    const FileTable& t = spec.tables[i];
+    const std::string path = element("table", i);
+    if (t.rows != "impulses" && t.rows != "field") continue;
+    std::vector<double> centres;  // of the first problem shown
+    std::string first;
+    for (std::size_t p = 0; p < spec.problems.size(); ++p) {
+      const std::string& label = spec.problems[p].label;
+      const Problem& problem = *instances[p];
+      if (!t.applies_to(label)) continue;
+      if (t.rows == "impulses") {
+        if (problem.ncontacts() == 0)
+          c.fail(child(path, "rows"), fmt::format("problem '{}' has no contacts, hence no impulses", label), "problems with contacts (or problems = [...])");
+        if (!t.exact.empty() && !problem.exact())
+          c.fail(child(path, "exact"), fmt::format("problem '{}' has no exact solution", label), "problems with one (or problems = [...])");
+        if (!t.exact.empty()) check_observable(c, child(path, "exact"), t.exact, state_observable_names(problem), label);
+        continue;
+      }
+      const std::optional<FieldMesh> mesh = problem.field_mesh();
+      bool bars = mesh && mesh->dimension == 1 && !mesh->stress_components.empty() && mesh->ncells() > 0;
+      for (Index e = 0; bars && e < mesh->ncells(); ++e) bars = mesh->cell_size(e) == 2;
+      if (!bars)
+        c.fail(child(path, "rows"), fmt::format("problem '{}' has no 1D field mesh of bar elements with a stress", label),
+               "problems of bar elements, e.g. signorini-bar (or problems = [...])");
+      const auto& names = mesh->stress_components;
+      if (!t.component.empty() && std::find(names.begin(), names.end(), t.component) == names.end())
+        c.fail(child(path, "component"), fmt::format("'{}' is not a stress component of problem '{}'", t.component, label),
+               fmt::format("{}", fmt::join(names, ", ")));
+      std::vector<double> own;
+      for (Index e = 0; e < mesh->ncells(); ++e) own.push_back(0.5 * (mesh->points(mesh->cells(e, 0), 0) + mesh->points(mesh->cells(e, 1), 0)));
+      if (first.empty()) {
+        first = label;
+        centres = own;
+        Eigen::MatrixXd stress(mesh->ncells(), static_cast<Index>(names.size()));
+        if (t.exact_times > 0 && !(problem.exact() && problem.exact()->exact_cell_stress(0.0, stress)))
+          c.fail(child(path, "exact_times"), fmt::format("problem '{}' has no exact field", label),
+                 "a first problem whose exact solution gives its element stresses (signorini-bar with g = 0), or no exact_times");
+      } else if (own != centres) {
+        c.fail(child(path, "problems"), fmt::format("problems '{}' and '{}' have different field meshes ({} and {} cells)", first, label,
+                                                    centres.size(), own.size()),
+               "problems of one mesh: problems = [...]");
+      }
+    }
+    for (std::size_t k = 0; k < t.columns.size(); ++k)
+      if (t.columns[k].of == "field" && t.columns[k].header && t.columns[k].header->find("{}") == std::string::npos)
+        c.fail(child(element(child(path, "columns"), k), "header"), fmt::format("'{}' does not name the cell", *t.columns[k].header),
+               "a header with {} where each cell's centre x goes, e.g. sigma(x = {})");
+  }
+}
+
+// A figure of a field table is a space-time picture (no x); the others have an x and no colour scale.
+void check_field_figure(const Checker& c, const std::string& path, const FileFigure& f, const FileTable& table) {
+  if (table.rows == "field") {
+    if (!f.x.empty()) c.fail(child(path, "x"), "a space-time picture's horizontal axis is the cells' position", "no x with a table of rows = \"field\"");
+    if (std::none_of(table.columns.begin(), table.columns.end(), [](const FileColumn& col) { return col.of == "field"; }))
+      c.fail(child(path, "table"), fmt::format("table '{}' shows no field to draw", table.id), "a table whose columns hold \"field\"");
+    return;
+  }
+  if (f.x.empty()) c.fail(path, "missing key 'x'");
+  if (!f.value_label.empty())
+    c.fail(child(path, "value_label"), "only a space-time picture has a colour scale", "table = a table of rows = \"field\"");
+}
+
 // A case table's integrators = [labels]: the runs of those integrators only.
 void read_table_integrators(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
   const Json* v = c.find(j, "integrators");
   if (!v) return;
   const std::string at = child(path, "integrators");
-  if (t.rows != "case") c.fail(at, "only a table of one row per run picks its integrators' runs", "rows = \"case\"");
+  if (t.rows != "case" && t.rows != "impulses" && t.rows != "field")
+    c.fail(at, "only a table of one row per run, or of its impulses or field, picks its integrators' runs", "rows = \"case\", \"impulses\" or \"field\"");
   c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more integrator labels");
   std::vector<std::string> labels;
   for (const auto& it : spec.integrators) labels.push_back(it.label);
@@ -1113,7 +1247,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     const std::string path = element("table", i);
     c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined", "declined_reason", "integrators",
                      "where", "drop_above", "across", "measure", "observable", "exact", "last", "points", "spacing", "relative",
-                     "not_ok", "fit_against", "except", "order"});
+                     "not_ok", "fit_against", "except", "order", "scale", "exact_per", "exact_in", "component", "exact_times", "metadata"});
     FileTable t;
     t.id = c.string(c.require(j, path, "id"), child(path, "id"));
     if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
@@ -1121,8 +1255,10 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       if (u.id == t.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", t.id), "distinct ids");
     t.title = c.string(c.require(j, path, "title"), child(path, "title"));
     t.caption = optional_string(c, j, path, "caption");
-    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples", "pivot", "periodic", "trajectory", "flights"});
+    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples", "pivot", "periodic", "trajectory", "flights", "impulses", "field"});
     read_some_runs(c, j, path, spec, t);
+    read_impulses_and_field(c, j, path, spec, t);
+    if (const Json* v = c.find(j, "metadata")) t.metadata = read_metadata_lines(c, *v, child(path, "metadata"), spec);
     if (const Json* v = c.find(j, "declined")) {
       if (t.rows != "case") c.fail(child(path, "declined"), "only a table of one row per run shows declined runs", "rows = \"case\"");
       const std::string shown = c.choice(*v, child(path, "declined"), {"as run", "n/a", "empty"});
@@ -1214,7 +1350,10 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     std::vector<std::string> shown;
     for (const auto& col : runs->columns) shown.push_back(col.of);
     const FileFigure& f = spec.figures[i];
-    std::vector<std::pair<std::string, std::string>> used{{"x", f.x}, {"y", f.y}};
+    check_field_figure(c, path, f, *runs);
+    std::vector<std::pair<std::string, std::string>> used;
+    if (!f.x.empty()) used.emplace_back("x", f.x);
+    used.emplace_back("y", f.y);
     for (const auto& s : f.series) used.emplace_back("series", s);
     for (const auto& s : f.panels) used.emplace_back("panels", s);
     for (const auto& [key, name] : used)
@@ -1487,7 +1626,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   c.expect(study, "study", study.is_object(), "a table");
   c.keys(study, "study", {"title", "t_end", "sample_every", "check_every", "cpu_repeats", "max_force_evaluations", "targets",
                           "rank_by", "energy_blow_up", "max_penetration", "integrators", "figures", "case_order",
-                          "max_force_evaluations_per_step", "measure_over_budget", "history_intervals", "counters"});
+                          "max_force_evaluations_per_step", "measure_over_budget", "history_intervals", "counters", "metadata"});
   spec.title = c.string(c.require(study, "study", "title"), "study.title");
   spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
   if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
@@ -1806,6 +1945,11 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   spec.figures = read_figures(c, root, spec);
   spec.tables = read_tables(c, root, spec);
   check_trajectory_observables(c, spec, instances);
+  check_impulses_and_fields(c, spec, instances);
+  if (const Json* v = c.find(study, "metadata")) {
+    if (!c.find(root, "table")) c.fail("study.metadata", "metadata lines are written on declared tables", "[[table]]s, or no metadata");
+    spec.metadata = read_metadata_lines(c, *v, "study.metadata", spec);
+  }
   if (std::any_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; }))
     for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
       const auto held = [&](const FileSweep& sweep, const std::string& path) {

@@ -20,6 +20,7 @@
 #include "problems/registry.hpp"
 #include "studies/registry.hpp"
 #include "studies/study_file.hpp"
+#include "studies/table.hpp"
 #include "studies/verify.hpp"
 
 namespace {
@@ -613,5 +614,90 @@ TEST_CASE("draft bar.toml: cd-lagrange's and modal-exact's rows of bar, bar_n100
         if (report[0][c] != "CPU [s]") CHECK(fresh[r][c] == (*row)[c]);
       }
     }
+  }
+}
+
+// The draft's tables bar_contact_force_history (rows = "impulses") and bar_space_time (rows =
+// "field") against the committed report of the C++ study: the runs they show (N = 100 and 50
+// at alpha = 0.9, lumped and singular mass) of the integrators this build has, every other
+// run of the study's list a placeholder that did not run (n/a). Each table equals the
+// report's rows of those integrators cell for cell at rtol 0; its metadata lines N, alpha,
+// mass (and the space-time schemes) the report's; the figures.json entries of the draft's
+// figures (bar_time_error aside: its table is the branch bar-measures') the report's.
+TEST_CASE("draft bar.toml: its contact-force history and space-time tables, metadata and figures equal the C++ study's report",
+          "[studies]") {
+  const nsb::StudySpec spec =
+      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bar.toml");
+  const nsb::StudyEntry entry = nsb::file_study(spec);
+  const auto cases = nsb::study_cases(entry, {false});
+  const auto report_text = [](const std::string& name) {
+    std::ifstream in(std::filesystem::path(NSBENCH_SOURCE_DIR) / "reports" / name);
+    std::stringstream text;
+    text << in.rdbuf();
+    REQUIRE(!text.str().empty());
+    return text.str();
+  };
+  // A report's lines less the rows of integrators this build does not have (optional peers).
+  const auto of_this_build = [&](const std::string& id) {
+    std::stringstream in(report_text(id + ".csv"));
+    std::string out, line;
+    for (bool header = true; std::getline(in, line); header = header && line[0] == '#') {
+      const std::string first = line.substr(0, line.find(','));
+      if (header || line[0] == '#' || first == "exact" || registered(first)) out += line + "\n";
+    }
+    return out;
+  };
+  const std::vector<std::string> shown = {"lumped, alpha = 0.9, N = 100", "singular, alpha = 0.9, N = 100",
+                                          "lumped, alpha = 0.9, N = 50", "singular, alpha = 0.9, N = 50"};
+  const std::string history = of_this_build("bar_contact_force_history");
+  const nsb::Json not_run = {{"status", "n/a"}, {"message", "not run by this test"}, {"steps", 0}, {"force_evaluations", 0},
+                             {"run", {{"t_reached", 0.0}, {"impacts", 0}, {"note", "not run by this test"}}}};
+  std::vector<nsb::Json> results;
+  std::size_t ran = 0;
+  for (const auto& c : cases) {
+    const std::string& problem = spec.problems[c["problem"].get<std::size_t>()].label;
+    const std::string& integrator = spec.integrators[c["integrator"].get<std::size_t>()].name;
+    const bool in_report = history.find("\n" + integrator + ",") != std::string::npos ||
+                           std::find(spec.tables.back().integrators.begin(), spec.tables.back().integrators.end(), integrator) !=
+                               spec.tables.back().integrators.end();
+    const bool run = in_report && std::find(shown.begin(), shown.end(), problem) != shown.end();
+    ran += run;
+    results.push_back(run ? nsb::run_study_case(entry, c, {}) : not_run);
+  }
+  CHECK(ran >= 2 * 5 + 2 * 8);  // the space-time schemes at N = 50, the history's schemes at N = 100
+  const auto tables = nsb::study_tables(entry, cases, results, {});
+  const auto table = [&](const std::string& id) -> const nsb::Table& {
+    const auto t = std::find_if(tables.begin(), tables.end(), [&](const nsb::Table& u) { return u.id == id; });
+    REQUIRE(t != tables.end());
+    return *t;
+  };
+  for (const std::string id : {"bar_contact_force_history", "bar_space_time"}) {
+    INFO(id);
+    const nsb::VerifyResult v = nsb::verify_table(table(id), of_this_build(id), nsb::VerifyTolerance{0.0, 0.0});
+    for (const auto& d : v.differences) INFO(d);
+    CHECK(v.differences.empty());
+    CHECK(v.cells_compared > (id == "bar_space_time" ? 1300 * 53 : 6000 * 4));
+    // The report's metadata lines of the C++ study (its first lines, before the build stamp).
+    std::stringstream in(report_text(id + ".csv"));
+    std::vector<std::pair<std::string, std::string>> expected;
+    for (std::string line; std::getline(in, line) && line.rfind("# nsbench_version", 0) != 0;)
+      if (line.rfind("# study:", 0) != 0) expected.emplace_back(line.substr(2, line.find(": ") - 2), line.substr(line.find(": ") + 2));
+    REQUIRE(expected.size() == (id == "bar_space_time" ? 4 : 3));
+    for (const auto& line : expected) {
+      INFO(line.first);
+      CHECK(std::find(table(id).metadata.begin(), table(id).metadata.end(), line) != table(id).metadata.end());
+    }
+  }
+  // figures.json: the report's entries of the draft's figures.
+  const nsb::Json fresh = nsb::Json::parse(nsb::figures_to_json(tables));
+  const nsb::Json report = nsb::Json::parse(report_text("figures.json"));
+  for (const std::string id : {"bar_convergence", "bar_energy", "bar_force_oscillation", "bar_contact_force", "bar_space_time"}) {
+    INFO(id);
+    const auto by_id = [&](const nsb::Json& all) {
+      const auto f = std::find_if(all.begin(), all.end(), [&](const nsb::Json& e) { return e["id"] == id; });
+      REQUIRE(f != all.end());
+      return *f;
+    };
+    CHECK(by_id(fresh) == by_id(report));
   }
 }
