@@ -17,7 +17,7 @@ namespace nsb {
 
 // Events an exact solution may time (each problem's header says which it knows).
 enum class ExactEvent {
-  contact_start,  // the first impact, which opens the contact phase (signorini-bar: g0 / v0)
+  contact_start,  // the first impact, which opens the contact phase (signorini-bar: g0 / v0; with gravity t1)
   slip_stop,      // the slip stops (sliding-mass)
   rest,           // at rest from here on (rolling-disk: on the floor; rocking-block)
   roll_onset,     // rolling without slip starts (rolling-disk, sphere)
@@ -32,6 +32,7 @@ enum class ExactValue {
   first_rebound_speed,  // the speed just after the first impact (rolling-disk)
   impact_ratio,         // omega+ / omega- at an impact under the suite's law (rocking-block: Moreau's)
   housner_ratio,        // omega+ / omega- under Housner's law, 1 - (3/2) sin^2 alpha (rocking-block)
+  wave_time,            // L / c, the time a wave takes to cross the bar (signorini-bar, bouncing-bar)
 };
 
 class ExactSolution {

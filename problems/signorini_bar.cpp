@@ -201,10 +201,14 @@ const BouncingBarExact& SignoriniBar::bouncing_exact(double t) const {
 }
 
 std::optional<double> SignoriniBar::event_time(ExactEvent event) const {
-  return event == ExactEvent::contact_start ? std::optional<double>(contact_start()) : std::nullopt;
+  if (event != ExactEvent::contact_start) return std::nullopt;
+  if (gravity_ == 0.0) return contact_start();
+  // The fall's end t1 (BouncingBarExact), which holds only for the uniform bar it solves.
+  return stiff_ratio_ == 1.0 ? std::optional<double>(bouncing_exact(0.0).impact_time()) : std::nullopt;
 }
 
 std::optional<double> SignoriniBar::value(ExactValue what) const {
+  if (what == ExactValue::wave_time) return stiff_ratio_ == 1.0 ? std::optional<double>(len_ / c_) : std::nullopt;
   return what == ExactValue::contact_duration ? std::optional<double>(contact_duration()) : std::nullopt;
 }
 

@@ -125,7 +125,9 @@ class SignoriniBar final : public LinearProblem, public ExactSolution {
   void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   const ExactSolution* exact() const override { return this; }
   std::optional<State> state(double t) const override;
-  // contact_start (contact_start()) and contact_duration (contact_duration()).
+  // contact_start (contact_start(); with g > 0 the first impact t1 of BouncingBarExact), contact_duration
+  // (contact_duration()) and wave_time (L / c; the period of DEP's bar is 16 of them); t1 and
+  // wave_time only for the uniform bar (stiff_ratio 1), whose exact solution they belong to.
   std::optional<double> event_time(ExactEvent event) const override;
   std::optional<double> value(ExactValue what) const override;
   // exact_stress at each element's centre (x_i + x_{i+1}) / 2, component sigma; g = 0 and r = 1 only.

@@ -76,7 +76,10 @@ State SpringChain::initial_state() const {
   return s;
 }
 
-void SpringChain::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const { out[0] = momentum(s.v); }
+void SpringChain::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
+  out[0] = momentum(s.v);
+  out[1] = s.v[0];
+}
 
 std::optional<FieldMesh> SpringChain::field_mesh() const {
   // Mass i is point i; the springs (element cells) first, then a vertex cell on each mass.

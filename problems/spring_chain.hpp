@@ -38,7 +38,9 @@ class SpringChain final : public LinearProblem {
   double load_potential(ConstVecRef) const override { return 0.0; }
   State initial_state() const override;
   double stable_step() const override { return stable_step_; }
-  std::vector<std::string> observable_names() const override { return {"momentum"}; }
+  // momentum (below) and v_first, the velocity of the first mass (dof 0: the one at the left
+  // wall, whose graph jumps at each of its impacts).
+  std::vector<std::string> observable_names() const override { return {"momentum", "v_first"}; }
   void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   std::optional<FieldMesh> field_mesh() const override;
   void cell_stress(ConstVecRef u, Eigen::Ref<Eigen::MatrixXd> out) const override;

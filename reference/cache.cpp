@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <sundials/sundials_config.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <mutex>
 #include <set>
@@ -102,6 +103,15 @@ std::optional<Series> parse_series(const std::string& text) {
   return s;
 }
 
+// Whether a stored series has a column for each of the problem's observables: one stored before
+// the problem gained an observable (the metadata names no observables) is stale.
+bool records_observables(const Series& series, const Problem& problem) {
+  const auto names = problem.observable_names();
+  return std::all_of(names.begin(), names.end(), [&](const std::string& name) {
+    return std::find(series.columns.begin(), series.columns.end(), name) != series.columns.end();
+  });
+}
+
 // Stores a computed run; a location that takes no files (NSBENCH_REFERENCE_CACHE=/proc/x,
 // a regular file, a read-only directory, a <key>.csv that is a directory) leaves the run
 // unstored, with a warning: the cache only saves time, a study's results are the same
@@ -172,10 +182,11 @@ CachedReference cached_reference(const std::filesystem::path& dir, const Referen
   const std::string damaged = text.empty() ? "" : damage(stored);
   if (!damaged.empty())
     fmt::print(stderr, "nsbench: warning: reference cache {}: damaged ({}), rebuilt\n", json_path.string(), damaged);
+  auto problem = make_problem(request.problem, request.problem_parameters);
   if (!text.empty() && damaged.empty() && stored["metadata"] == ref.metadata) {
     const std::string csv = read_text(csv_path);
     const auto series = stored["series_fnv1a64"] == fnv1a64(csv) ? parse_series(csv) : std::nullopt;
-    if (series) {
+    if (series && records_observables(*series, *problem)) {
       ref.summary = stored["summary"];
       ref.series = std::move(*series);
       ref.from_cache = true;
@@ -183,7 +194,6 @@ CachedReference cached_reference(const std::filesystem::path& dir, const Referen
     }
   }
 
-  auto problem = make_problem(request.problem, request.problem_parameters);
   auto integrator = make_integrator(request.integrator, request.integrator_parameters);
   integrator->init(*problem, problem->initial_state());
   RunOptions options;

@@ -8,7 +8,8 @@
 // counters) and <dir>/<key>.csv (the series, shortest round-trip numbers: reloads exactly).
 // The .json also holds the FNV-1a 64 of the .csv's bytes (series_fnv1a64). A run is
 // regenerated when a file is missing or unreadable, when the .csv does not match that hash
-// (edited or cut short), or when the stored metadata differs from the requested one (stale: e.g. a parameter default changed). Bump
+// (edited or cut short), when the stored metadata differs from the requested one (stale: e.g. a parameter default changed),
+// or when the series lacks a column of the problem's observables (stored before the problem gained it). Bump
 // kReferenceCacheVersion when the reference integrators change their results.
 #include <filesystem>
 #include <map>

@@ -5,7 +5,7 @@
 //   (1), (6)  cd-lagrange on the Signorini bar (lumped, N 100, dt 0.9 h/c, to t0 + 1.5 T), the
 //             rolling disk (h0 0.05, omega0 20, e 0.5, mu 0.3; dt 1e-3 to 1.2 rest times) and the
 //             spring chain between two walls (n 3, e 1, dt 0.5 stable step, to 20 s): work counters
-//   (2)       cd-lagrange in the hausdorff study's grid (studies/hausdorff_study.cpp)
+//   (2)       cd-lagrange in the hausdorff study's grid (studies/builtin/hausdorff.toml, hausdorff_orders)
 //   (3)       the rolling disk run: linear (x, y) and angular momentum about the origin,
 //                 J = m (x_c v_y - y_c v_x) + I omega,  x_c = x, y_c = y + R,
 //             against the impulses: J_{k} - J_{k-1} = x_c G_y - y_c G_x + G_theta with
@@ -32,7 +32,7 @@
 #include "run/run.hpp"
 #include "problems/registry.hpp"
 #include "studies/claims_conditions.hpp"
-#include "studies/hausdorff_study.hpp"
+#include "studies/hausdorff.hpp"
 #include "studies/measures.hpp"
 
 namespace nsb {

@@ -14,7 +14,6 @@
 #include "problems/signorini_bar.hpp"
 #include "run/run.hpp"
 #include "studies/hausdorff.hpp"
-#include "studies/hausdorff_study.hpp"
 #include "studies/measures.hpp"
 
 namespace nsb {

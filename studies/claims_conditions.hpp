@@ -19,7 +19,7 @@ namespace nsb {
 // (2) Hausdorff distance on the bars, space and time refined together: N = 25, 50, 100, 200
 // linear elements, dt = 0.9 x the stable step; the graph of an observable of the run against
 // the exact one (jumps as vertical segments), scaled by (T = t_end, V = the exact graph's
-// largest |value|) as in the hausdorff study (studies/hausdorff_study.hpp). Problems and horizons:
+// largest |value|) as in the hausdorff study (studies/hausdorff.hpp, graph_errors). Problems and horizons:
 //   signorini-bar  v0 1, g0 0 (nondimensional), to 1.5 contact durations 2 L / c
 //   bouncing-bar   Doyen-Ern-Piperno's drop, to its first impact + one period 16 L / c
 // Observables:

@@ -5,6 +5,15 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <variant>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/parameters.hpp"
+#include "run/run.hpp"
+#include "studies/registry.hpp"
+#include "studies/study_file.hpp"
 
 namespace nsb {
 
@@ -176,6 +185,84 @@ Polyline sampled_graph(const std::function<double(double)>& value, double t_end,
       if (hi < g.t[k]) out.add(hi, x_hi);
     }
     out.add(g.t[k], g.x[k]);
+  }
+  return out;
+}
+
+Polyline run_graph(const Problem& problem, Integrator& integrator, double dt, double t_end,
+                   const std::function<double(const State&, const Vec&, double)>& value, RunResult* result) {
+  Polyline g;
+  g.add(integrator.state().t, value(integrator.state(), Vec::Zero(problem.ncontacts()), 0.0));
+  RunOptions options;
+  options.dt = dt;
+  options.t_end = t_end;
+  options.record_series = false;
+  const RunResult r = run(problem, integrator, options, [&](const Integrator& it, const StepInfo& info) {
+    g.add(it.state().t, value(it.state(), it.impulses(), info.dt));
+  });
+  if (result) *result = r;
+  return g;
+}
+
+Polyline exact_graph(const Problem& problem, const std::function<double(const State&)>& value, double t_end) {
+  const ExactSolution& exact = *problem.exact();
+  return sampled_graph([&](double t) { return value(*exact.state(t)); }, t_end, kHausdorffExactSamples, exact.impact_times(t_end),
+                       kHausdorffJumpFraction);
+}
+
+GraphErrors graph_errors(const Polyline& run, const Polyline& reference, const std::function<double(double)>& reference_at,
+                         double time_scale, double value_scale) {
+  GraphErrors e;
+  e.time_scale = time_scale;
+  e.value_scale = value_scale;
+  if (!(value_scale > 0.0))
+    for (double x : reference.x) e.value_scale = std::max(e.value_scale, std::abs(x));
+  if (!(e.value_scale > 0.0)) e.value_scale = 1.0;
+  for (std::size_t k = 0; k < run.size(); ++k) e.max_error = std::max(e.max_error, std::abs(run.x[k] - reference_at(run.t[k])));
+  e.max_error /= e.value_scale;
+  const Polyline a = scaled(run, e.time_scale, e.value_scale), b = scaled(reference, e.time_scale, e.value_scale);
+  e.to_reference = directed_hausdorff(a, b);
+  e.from_reference = directed_hausdorff(b, a);
+  e.hausdorff = std::max(e.to_reference, e.from_reference);
+  return e;
+}
+
+std::vector<HausdorffOrders> hausdorff_orders(const std::string& integrator) {
+  const std::string path = "studies/builtin/hausdorff.toml";
+  const EmbeddedStudyFile* file = builtin_study_file(path);
+  if (!file) throw std::logic_error(path + " is not embedded (studies/embed_study_files.cmake)");
+  StudySpec spec = parse_study_text(std::string(file->text), path, false);
+  std::vector<std::string> schemes;
+  for (const auto& i : spec.integrators) schemes.push_back(i.name);
+  std::erase_if(spec.integrators, [&](const FileIntegrator& i) { return i.name != integrator; });
+  if (spec.integrators.empty())
+    throw InputError(fmt::format("hausdorff orders: '{}' is no scheme of {}; valid: {}", integrator, path, fmt::join(schemes, ", ")));
+  const StudyEntry study = file_study(spec);
+  const std::vector<Json> cases = study_cases(study, {});
+  std::vector<Json> results;
+  for (const Json& c : cases) results.push_back(run_study_case(study, c, {}));
+  const std::vector<Table> tables = study_tables(study, cases, results, {});
+  const auto orders = std::find_if(tables.begin(), tables.end(), [](const Table& t) { return t.id == "hausdorff_orders"; });
+  if (orders == tables.end()) throw std::logic_error(path + " has no table hausdorff_orders");
+  // Its columns by header (the file's): problem, integrator, max-err order, CI low, CI high,
+  // Hausdorff order, H CI low, H CI high, points, note.
+  const auto column = [&](const std::string& header) {
+    const auto c = std::find_if(orders->columns.begin(), orders->columns.end(), [&](const Column& x) { return x.name == header; });
+    if (c == orders->columns.end()) throw std::logic_error(path + ": table hausdorff_orders has no column " + header);
+    return static_cast<std::size_t>(c - orders->columns.begin());
+  };
+  const auto number = [](const Cell& c) { return std::holds_alternative<double>(c) ? std::get<double>(c) : kNaN; };
+  const auto text = [](const Cell& c) { return std::holds_alternative<std::string>(c) ? std::get<std::string>(c) : std::string(); };
+  const std::size_t problem = column("problem"), points = column("points"), note = column("note");
+  const std::size_t max_order = column("max-err order"), max_low = column("CI low"), max_high = column("CI high");
+  const std::size_t h_order = column("Hausdorff order"), h_low = column("H CI low"), h_high = column("H CI high");
+  std::vector<HausdorffOrders> out;
+  for (const auto& row : orders->rows) {
+    const long n = std::holds_alternative<long>(row[points]) ? std::get<long>(row[points]) : 0;
+    out.push_back({text(row[problem]),
+                   {number(row[max_order]), number(row[max_low]), number(row[max_high]), 0},
+                   {number(row[h_order]), number(row[h_low]), number(row[h_high]), static_cast<int>(n)},
+                   text(row[note])});
   }
   return out;
 }

@@ -30,9 +30,16 @@
 // those windows, fine for 1e5 samples.
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
+#include "problems/problem.hpp"
+#include "studies/measures.hpp"
+
 namespace nsb {
+
+class Integrator;
+struct RunResult;
 
 struct Polyline {
   std::vector<double> t, x;  // same size >= 1, t nondecreasing, all finite
@@ -76,5 +83,39 @@ Polyline sampled_graph(const std::function<double(double)>& value, double t_end,
 inline constexpr int kHausdorffLevels = 4;
 inline constexpr std::size_t kHausdorffExactSamples = 20000;
 inline constexpr double kHausdorffJumpFraction = 0.02;
+
+// ---- Graphs of runs and exact solutions, and the errors between them ----------------------
+// (the study files' hausdorff measure, studies/study_file.hpp; claim (3)'s conditions)
+
+// The graph {(t_k, value_k)} of a run of `integrator` (already init-ed) at step dt to t_end,
+// the initial state first; value(state, impulses of the step, its length). The run's result
+// in *result when given.
+Polyline run_graph(const Problem& problem, Integrator& integrator, double dt, double t_end,
+                   const std::function<double(const State&, const Vec&, double)>& value, RunResult* result);
+// The graph of value(the exact state at t) on [0, t_end]: sampled_graph with
+// kHausdorffExactSamples samples, the problem's impact times and the jumps of more than
+// kHausdorffJumpFraction of the largest |value| made vertical.
+Polyline exact_graph(const Problem& problem, const std::function<double(const State&)>& value, double t_end);
+
+struct GraphErrors {
+  double time_scale = 0.0, value_scale = 0.0;  // T, V (V: the reference's largest |value|, 1 if 0)
+  double max_error = 0.0;                      // max_k |x_k - ref(t_k)| / V
+  double hausdorff = 0.0, to_reference = 0.0, from_reference = 0.0;  // scaled coordinates
+};
+// V: value_scale when > 0, else the reference's largest |value| (1 if 0).
+GraphErrors graph_errors(const Polyline& run, const Polyline& reference, const std::function<double(double)>& reference_at,
+                         double time_scale, double value_scale = 0.0);
+
+// The fits of the built-in study hausdorff (studies/builtin/hausdorff.toml) for one of its
+// schemes: its runs alone (the file's cases of that integrator), and per problem in the
+// file's order the problem and the orders in dt of the max-norm error and of the Hausdorff
+// distance, as its table hausdorff_orders shows them (claim (2) of the claims study).
+struct HausdorffOrders {
+  std::string problem;
+  OrderFit max_error, hausdorff;
+  std::string note;  // "declined", "diverged", ... or empty
+};
+// Throws InputError when `integrator` is none of the study's schemes.
+std::vector<HausdorffOrders> hausdorff_orders(const std::string& integrator);
 
 }  // namespace nsb

@@ -12,7 +12,6 @@ extern const StudyEntry block_study;
 extern const StudyEntry peers_study;
 extern const StudyEntry friction_study;
 extern const StudyEntry bodies_study;
-extern const StudyEntry hausdorff_study;
 extern const StudyEntry claims_study;
 extern const StudyEntry properties_study;
 
@@ -65,7 +64,8 @@ const std::vector<StudyEntry>& study_registry() {
                          "studies/builtin/bouncing-bar.toml"),
       cpp_study(friction_study, "studies/friction.cpp"),
       cpp_study(bodies_study, "studies/bodies.cpp"),
-      cpp_study(hausdorff_study, "studies/hausdorff_study.cpp"),
+      builtin_file_study("hausdorff", "velocity graphs against the exact ones: max-norm error vs Hausdorff distance, orders per scheme",
+                         "studies/builtin/hausdorff.toml"),
       cpp_study(claims_study, "studies/claims.cpp"),
       cpp_study(properties_study, "studies/properties.cpp"),
       builtin_file_study("rigid",

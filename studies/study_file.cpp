@@ -87,7 +87,7 @@
 #include "problems/registry.hpp"
 #include "reference/cache.hpp"
 #include "reference/modal_exact.hpp"
-#include "studies/hausdorff_study.hpp"
+#include "studies/hausdorff.hpp"
 #include "studies/measures.hpp"
 #include "studies/parallel.hpp"
 #include "studies/ranking.hpp"
@@ -1288,11 +1288,29 @@ Cell group_cell(const Table& orders, const Cell& problem, const Cell& integrator
   return row == orders.rows.end() ? Cell{} : (*row)[column_index(orders, name)];
 }
 
+// The column "note" of a group table: why its fits may be n/a.
+Column group_note_column() { return {"note", "", "", "declined (n/a), or the status of the group's first run that failed"}; }
+
+// The note of a group (problem or family label, integrator label): "declined" when its first run
+// that is not ok was declined (status n/a), else that run's status (diverged, over budget, ...);
+// empty when every run is ok. From the runs table's problem, integrator and outcome columns.
+Cell group_note(const StudySpec& spec, const Table& runs, const Cell& problem, const Cell& integrator) {
+  const std::size_t outcome = column_index(runs, "outcome");
+  for (const auto& row : runs.rows) {
+    const auto p = std::find_if(spec.problems.begin(), spec.problems.end(),
+                                [&](const FileProblem& q) { return Cell{q.label} == row[0]; });
+    if (p == spec.problems.end() || Cell{p->family_label()} != problem || row[1] != integrator) continue;
+    const std::string status = std::get<std::string>(row[outcome]);
+    if (status != "ok") return status == "n/a" ? "declined" : status;
+  }
+  return std::string();
+}
+
 // rows = "group": one row per problem (a joint refinement's family) and integrator of the
 // table's problems (in the order of the runs), the fitted orders' columns ("order of
-// <measure>", ...) side by side, n/a where no fit was made, and the problem's parameters
-// ("parameter NAME": the first problem's of a joint refinement's family).
-Table group_table(const StudySpec& spec, const FileTable& d, const Table& orders) {
+// <measure>", ...) side by side, n/a where no fit was made, the problem's parameters
+// ("parameter NAME": the first problem's of a joint refinement's family) and the note.
+Table group_table(const StudySpec& spec, const FileTable& d, const Table& orders, const Table& runs) {
   Table out;
   std::vector<std::pair<Cell, Cell>> groups;  // (problem, integrator)
   for (const auto& row : orders.rows)
@@ -1305,6 +1323,7 @@ Table group_table(const StudySpec& spec, const FileTable& d, const Table& orders
   for (const FileColumn& c : d.columns) {
     const auto of = c.of.find(" of ");
     if (const auto p = parameter(c.of); p != parameters.end()) out.columns.push_back(declared_column(*p, c));
+    else if (c.of == "note") out.columns.push_back(declared_column(group_note_column(), c));
     else out.columns.push_back(declared_column(orders.columns[column_index(orders, of == std::string::npos ? c.of : c.of.substr(0, of))], c));
   }
   for (const auto& [problem, integrator] : groups) {
@@ -1315,6 +1334,10 @@ Table group_table(const StudySpec& spec, const FileTable& d, const Table& orders
       const auto of = c.of.find(" of ");
       if (parameter(c.of) != parameters.end()) {
         cells.push_back(parameter_cells(*fp, {c.of}).front());
+        continue;
+      }
+      if (c.of == "note") {
+        cells.push_back(group_note(spec, runs, problem, integrator));
         continue;
       }
       if (of == std::string::npos) {
@@ -1821,7 +1844,7 @@ std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, con
       t.caption = runs.caption;
       figures_placed = true;
     } else {
-      t = group_table(spec, d, orders);
+      t = group_table(spec, d, orders, runs);
       t.caption = orders.caption;
     }
     t.id = d.id;
@@ -2134,7 +2157,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
       runs_all.rows[r].insert(runs_all.rows[r].end(), counter_rows[r].begin(), counter_rows[r].end());
     tables = declared_tables(spec, runs_all, orders, rank, [&](const FileTable& d) {
       if (!d.fit_against.empty()) {
-        Table fits = group_table(spec, d, fits_against_parameter(spec, d, cases, results, orders));
+        Table fits = group_table(spec, d, fits_against_parameter(spec, d, cases, results, orders), runs_all);
         fits.caption = fmt::format("Least-squares slope of log(value) against log({}) over the runs of each sweep.", d.fit_against);
         return fits;
       }

@@ -906,6 +906,7 @@ std::vector<std::string> table_sources(const std::string& rows, const StudySpec&
     for (const auto& m : measures)
       if (measure_converges(m))
         for (const char* what : {"order", "CI low", "CI high", "points"}) sources.push_back(fmt::format("{} of {}", what, m.label));
+    sources.push_back("note");  // why a group's fits are n/a (group_note, study_file.cpp)
   } else if (rows == "history" || rows == "samples") {
     sources = rows == "history" ? history_column_names() : samples_column_names();
   } else if (rows == "periodic" || rows == "trajectory" || rows == "flights") {
@@ -1396,7 +1397,7 @@ void read_end_at_impact(const Checker& c, const Json& j, const std::string& path
 
 // t_end_exact = { NAME = factor, ..., plus = seconds }: the problem's t_end is the sum of each
 // factor times the exact solution's event time or value NAME (ExactEvent, ExactValue: e.g.
-// contact_start, slip_stop, rest, contact_duration; impact_K: its K-th impact time), then plus
+// contact_start, slip_stop, rest, contact_duration, wave_time; impact_K: its K-th impact time), then plus
 // (`instance`: the problem; a horizon set by the solution's own events, per problem).
 void read_t_end_exact(const Checker& c, const Json& j, const std::string& path, const Problem& instance, FileProblem& p) {
   const Json* v = c.find(j, "t_end_exact");
@@ -1411,7 +1412,8 @@ void read_t_end_exact(const Checker& c, const Json& j, const std::string& path, 
                                                                       {"roll_onset", ExactEvent::roll_onset},
                                                                       {"jam", ExactEvent::jam}};
   static const std::vector<std::pair<std::string, ExactValue>> values{{"contact_duration", ExactValue::contact_duration},
-                                                                      {"stop_distance", ExactValue::stop_distance}};
+                                                                      {"stop_distance", ExactValue::stop_distance},
+                                                                      {"wave_time", ExactValue::wave_time}};
   const ExactSolution* exact = instance.exact();
   const std::vector<double> impacts = exact ? exact->impact_times(std::numeric_limits<double>::infinity()) : std::vector<double>{};
   std::vector<std::string> known;  // what this problem's exact solution gives

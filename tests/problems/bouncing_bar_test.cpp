@@ -217,3 +217,35 @@ TEST_CASE("bouncing-bar and signorini-bar with g > 0: the *_exact observables an
   CHECK(std::isnan(out[3]));
   CHECK_FALSE(soft->exact()->state(1.0));
 }
+
+TEST_CASE("bouncing-bar's ExactSolution: contact_start is the fall's end t1, wave_time L / c; one period later it lands again",
+          "[problems][bouncing-bar]") {
+  // DEP's data: t1 = 1 (g0 = g t1^2 / 2 with g0 = 5, g = 10), L / c = 10 / 30; the study files'
+  // horizons (t_end_exact = { contact_start = 1, wave_time = 16 }) are these times.
+  const auto p = nsb::make_problem("bouncing-bar", {});
+  const nsb::ExactSolution& exact = *p->exact();
+  const BouncingBarExact ex(p->parameters(), 20.0);
+  REQUIRE(exact.event_time(nsb::ExactEvent::contact_start));
+  CHECK(*exact.event_time(nsb::ExactEvent::contact_start) == 1.0);
+  CHECK(*exact.event_time(nsb::ExactEvent::contact_start) == ex.impact_time());
+  CHECK(exact.value(nsb::ExactValue::wave_time).value() == Approx(kTau).epsilon(1e-15));
+  CHECK(exact.value(nsb::ExactValue::wave_time).value() == ex.wave_time());
+  // Periodic with period 16 L / c: at t1 + 16 tau the contact end lands again at speed V = 10,
+  // unstressed (just before: falling at V).
+  const double land = 1.0 + 16.0 * exact.value(nsb::ExactValue::wave_time).value();
+  CHECK(exact.state(land - 1e-9)->v[0] == Approx(-10.0).epsilon(1e-7));
+  CHECK(exact.state(land - 1e-9)->u[0] == Approx(-5.0).margin(1e-7));
+  // Other data: the root of g0 = v0 t1 + g t1^2 / 2, and the gap closes there.
+  const auto other = nsb::make_problem("bouncing-bar", {{"v0", "2"}, {"g0", "6"}});
+  const double t1 = other->exact()->event_time(nsb::ExactEvent::contact_start).value();
+  CHECK(2.0 * t1 + 5.0 * t1 * t1 == Approx(6.0).epsilon(1e-15));
+  CHECK(other->exact()->state(t1)->u[0] == Approx(-6.0).margin(1e-12));
+  // The stiff/soft bar has no exact solution: neither time.
+  const auto soft = nsb::make_problem("bouncing-bar", {{"stiff_ratio", "2"}});
+  CHECK_FALSE(soft->exact()->event_time(nsb::ExactEvent::contact_start));
+  CHECK_FALSE(soft->exact()->value(nsb::ExactValue::wave_time));
+  // Without gravity the bar's contact start stays g0 / v0 (its d'Alembert solution).
+  const auto bar = nsb::make_problem("signorini-bar", {{"g0", "0.5"}, {"v0", "2"}});
+  CHECK(bar->exact()->event_time(nsb::ExactEvent::contact_start).value() == 0.25);
+  CHECK(bar->exact()->value(nsb::ExactValue::wave_time).value() == 1.0);
+}

@@ -70,3 +70,18 @@ TEST_CASE("spring chain: field mesh, springs as lines with their force, masses a
   CHECK(f[2] == Approx(force(1, 0) - force(2, 0)));
   CHECK(f[3] == Approx(force(2, 0)));
 }
+
+TEST_CASE("spring chain: observables momentum (sum m_i v_i) and v_first (the first mass's velocity, -v0 + a at the start)",
+          "[problems][spring-chain]") {
+  const auto p = chain({{"n", "3"}, {"m", "2"}, {"mass_ratio", "3"}, {"v0", "1"}, {"a", "0.25"}, {"wall", "left"}});
+  REQUIRE(p.observable_names() == std::vector<std::string>{"momentum", "v_first"});
+  std::vector<double> out(2);
+  nsb::State s = p.initial_state();
+  p.observe(s, nsb::Vec::Zero(1), 0.0, out);
+  CHECK(out[1] == -0.75);                                    // -v0 + a on mass 0
+  CHECK(out[0] == 2.0 * -0.75 + 6.0 * -1.25 + 2.0 * -0.75);  // masses m, r m, m
+  s.v << 0.5, -2.0, 3.0;
+  p.observe(s, nsb::Vec::Zero(1), 1e-3, out);
+  CHECK(out[1] == 0.5);
+  CHECK(out[0] == 1.0 - 12.0 + 6.0);
+}

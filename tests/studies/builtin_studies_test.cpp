@@ -18,6 +18,7 @@
 #include "problems/bouncing_mass.hpp"
 #include "problems/exact_solution.hpp"
 #include "problems/registry.hpp"
+#include "studies/hausdorff.hpp"
 #include "studies/registry.hpp"
 #include "studies/study_file.hpp"
 #include "studies/table.hpp"
@@ -477,18 +478,18 @@ TEST_CASE("built-in study bouncing: its tables' rows of three schemes equal the 
   }
 }
 
-// The draft studies/builtin/drafts/hausdorff.toml against the C++ study it is to replace
-// (studies/hausdorff_study.cpp): its runs on the four problems the draft says (bouncing-mass,
-// signorini-bar, sliding-mass, rolling-disk; the C++ study's subjects 0, 1, 4, 5), in its order
-// (problem, integrator, level), each with the C++ study's parameters, step (4 ms / 2^level; the
-// bar: N = 25 2^level at 0.9 of its stable step) and end time (from the exact events).
-TEST_CASE("draft hausdorff.toml: the C++ study hausdorff's runs, in its order, with its steps and end times", "[studies]") {
-  const nsb::StudySpec spec =
-      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "hausdorff.toml");
+// hausdorff.toml's runs are those of the C++ study it replaced (studies/hausdorff_study.cpp,
+// whose case list, default and --full, this file's equalled run for run before it was deleted),
+// rebuilt here by that study's rule: six problems in its order, each over the schemes (peers and
+// references aside) in the registry's order, each over four levels: 4 ms / 2^level, the bars N =
+// 25 2^level at 0.9 of their stable step; each to its end from the exact events (the spring
+// chain: 2 s, against modal-exact at output step 2e-5 s). The same with --full (the C++ study had
+// one grid). A run added, removed or moved fails here.
+TEST_CASE("built-in study hausdorff: hausdorff.toml's runs are the C++ study's, in its order, with its steps and end times", "[studies]") {
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/hausdorff.toml");
   const auto& registry = nsb::study_registry();
-  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "hausdorff"; });
-  REQUIRE(cpp != registry.end());
-  REQUIRE(cpp->source == "studies/hausdorff_study.cpp");
+  const auto study = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "hausdorff"; });
+  REQUIRE(study != registry.end());
   using Overrides = std::map<std::string, std::string>;
   const std::vector<std::pair<std::string, Overrides>> subjects = {
       {"bouncing-mass", {{"e", "0.9"}, {"h0", "1"}}},
@@ -498,34 +499,82 @@ TEST_CASE("draft hausdorff.toml: the C++ study hausdorff's runs, in its order, w
       {"sliding-mass", {{"alpha", "30"}, {"mu", "0.8"}, {"v0", "2"}}},
       {"rolling-disk", {{"h0", "0.05"}, {"omega0", "20"}, {"e", "0.5"}, {"mu", "0.3"}}},
   };
-  std::vector<nsb::Json> expected;
-  for (const auto& c : nsb::study_cases(*cpp, {false}))
-    if (const auto s = c["subject"].get<std::size_t>(); s != 2 && s != 3) expected.push_back(c);
-  const auto cases = nsb::study_cases(nsb::file_study(spec), {false});
-  REQUIRE(cases.size() == expected.size());
-  const auto& integrators = nsb::integrator_registry();
-  const auto schemes = std::count_if(integrators.begin(), integrators.end(), [](const nsb::IntegratorEntry& e) { return !e.reference && !e.peer; });
-  REQUIRE(cases.size() == 4 * 4 * static_cast<std::size_t>(schemes));
-  for (std::size_t k = 0; k < cases.size(); ++k) {
-    INFO("case " << k << ": " << expected[k].dump());
-    const auto& [name, parameters] = subjects[expected[k]["subject"].get<std::size_t>()];
-    const int level = expected[k]["level"];
-    Overrides want = parameters;
-    if (name == "signorini-bar") want["N"] = fmt::format("{}", 25L << level);
-    const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
-    CHECK(p.name == name);
-    CHECK(p.parameters == want);
-    CHECK(spec.integrators[cases[k]["integrator"].get<std::size_t>()].name == expected[k]["integrator"].get<std::string>());
-    const auto problem = nsb::make_problem(name, want);
-    CHECK(cases[k]["dt"].get<double>() == (name == "signorini-bar" ? 0.9 * problem->stable_step() : 4e-3 / std::pow(2.0, level)));
-    const nsb::ExactSolution& exact = *problem->exact();
-    const double t_end = name == "bouncing-mass"   ? exact.impact_times(1e3).at(2) + 0.2
-                         : name == "signorini-bar" ? exact.event_time(nsb::ExactEvent::contact_start).value() +
-                                                         1.5 * exact.value(nsb::ExactValue::contact_duration).value()
-                         : name == "sliding-mass"  ? 1.5 * exact.event_time(nsb::ExactEvent::slip_stop).value()
-                                                   : 1.2 * exact.event_time(nsb::ExactEvent::rest).value();
-    CHECK(spec.t_end_of(p) == t_end);
+  std::vector<std::tuple<std::size_t, std::string, int>> expected;  // subject, integrator, level
+  for (std::size_t s = 0; s < subjects.size(); ++s)
+    for (const auto& entry : nsb::integrator_registry())
+      if (!entry.reference && !entry.peer)
+        for (int level = 0; level < 4; ++level) expected.emplace_back(s, entry.name, level);
+  for (const bool full : {false, true}) {
+    INFO("full " << full);
+    const auto cases = nsb::study_cases(nsb::file_study(spec), {full});
+    REQUIRE(cases.size() == expected.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const auto& [s, integrator, level] = expected[k];
+      const auto& [name, parameters] = subjects[s];
+      INFO("case " << k << ": " << name << " " << integrator << " level " << level);
+      const bool bar = name == "signorini-bar" || name == "bouncing-bar";
+      Overrides want = parameters;
+      if (bar) want["N"] = fmt::format("{}", 25L << level);
+      const nsb::FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
+      const nsb::FileIntegrator& it = spec.integrators[cases[k]["integrator"].get<std::size_t>()];
+      CHECK(p.name == name);
+      CHECK(p.parameters == want);
+      CHECK(it.name == integrator);
+      CHECK(it.sweep_for(p.label).parameters.empty());
+      const auto problem = nsb::make_problem(name, want);
+      CHECK(cases[k]["dt"].get<double>() == (bar ? 0.9 * problem->stable_step() : 4e-3 / std::pow(2.0, level)));
+      const nsb::ExactSolution* exact = problem->exact();
+      double t_end = 2.0;
+      if (name == "bouncing-mass") t_end = exact->impact_times(1e3).at(2) + 0.2;
+      if (name == "signorini-bar")
+        t_end = exact->event_time(nsb::ExactEvent::contact_start).value() + 1.5 * exact->value(nsb::ExactValue::contact_duration).value();
+      if (name == "bouncing-bar") {
+        const nsb::BouncingBarExact fall(problem->parameters(), 0.0);
+        t_end = fall.impact_time() + 16.0 * fall.wave_time();
+      }
+      if (name == "sliding-mass") t_end = 1.5 * exact->event_time(nsb::ExactEvent::slip_stop).value();
+      if (name == "rolling-disk") t_end = 1.2 * exact->event_time(nsb::ExactEvent::rest).value();
+      CHECK(spec.t_end_of(p, full) == t_end);
+      const nsb::FileReference& ref = *spec.reference_of(p);
+      CHECK(ref.exact == (name != "spring-chain"));
+      if (name == "spring-chain") {
+        CHECK(ref.integrator == "modal-exact");
+        CHECK(ref.dt == 2e-5);
+        CHECK(ref.sample_every == 1);
+        CHECK(ref.parameters.empty());
+      }
+    }
   }
+  CHECK(study->source == "studies/builtin/hausdorff.toml");
+}
+
+// hausdorff_orders (studies/hausdorff.hpp), claim (2)'s fits: the file's runs of one scheme
+// alone give that scheme's rows of the committed table hausdorff_orders, every number exactly
+// (shortest round-trip text); a name that is no scheme of the study is refused in one line.
+TEST_CASE("built-in study hausdorff: hausdorff_orders(cd-lagrange) are the committed report's cd-lagrange rows", "[studies]") {
+  const auto orders = nsb::hausdorff_orders("cd-lagrange");
+  std::vector<std::vector<std::string>> expected;
+  for (const auto& row : report_csv("hausdorff_orders"))
+    if (row[1] == "cd-lagrange") expected.push_back(row);
+  REQUIRE(orders.size() == 6);
+  REQUIRE(expected.size() == orders.size());
+  const auto same = [](double x, const std::string& text) { return text == "n/a" ? std::isnan(x) : x == std::stod(text); };
+  for (std::size_t k = 0; k < orders.size(); ++k) {
+    const auto& o = orders[k];
+    const auto& row = expected[k];
+    INFO(o.problem);
+    CHECK(o.problem == row[0]);
+    CHECK(same(o.max_error.order, row[2]));
+    CHECK(same(o.max_error.low, row[3]));
+    CHECK(same(o.max_error.high, row[4]));
+    CHECK(same(o.hausdorff.order, row[5]));
+    CHECK(same(o.hausdorff.low, row[6]));
+    CHECK(same(o.hausdorff.high, row[7]));
+    CHECK(o.hausdorff.points == std::stoi(row[8]));
+    CHECK(o.note == row[9]);
+  }
+  CHECK_THROWS_WITH(nsb::hausdorff_orders("modal-exact"),
+                    Catch::StartsWith("hausdorff orders: 'modal-exact' is no scheme of studies/builtin/hausdorff.toml; valid: cd-lagrange"));
 }
 
 // The draft studies/builtin/drafts/bar.toml against the C++ study it is to replace

@@ -131,7 +131,6 @@ TEST_CASE("Hausdorff: sampled_graph makes a jump vertical, at a known time or lo
 
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
-#include "studies/hausdorff_study.hpp"
 
 TEST_CASE("Hausdorff: order about 1 on the bouncing mass for cd-lagrange and moreau-jean, where the max norm stalls", "[hausdorff]") {
   const auto problem = make_problem("bouncing-mass", {{"e", "0.9"}, {"h0", "1"}});

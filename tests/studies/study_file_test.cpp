@@ -2323,3 +2323,112 @@ columns = ["integrator", "tol", "t located", "est", "est law", "rate of err", "s
   CHECK_THAT(study_error_of(replaced(text, "atol = 100", "atol = 1e-300")),
              Catch::StartsWith("f.toml:16: integrator[0].tolerance_divisors.atol: tolerance 0.0001 / 1e-300: parameter 'atol' = 1e+296 is outside its valid range (0, 1]; valid: (0, 1]"));
 }
+
+// The note of a group table (rows = "group", column "note"; the hausdorff study's orders): why a
+// group's fits may be n/a. Known answers: a scheme that declines the problem (newmark-lm declines
+// the spring chain's wall contact) "declined"; one whose second run exceeds the budget (150
+// F_int evaluations: 100 steps of 1e-2 s to 1 s fit, 200 of 5e-3 s do not) "over budget"; one
+// whose runs are all ok, nothing. Opt-in: a group table without it has no such column.
+TEST_CASE("study file: a group table's note says declined, or the status of the group's first run that failed",
+          "[studies][study_file]") {
+  using Catch::StartsWith;
+  const std::string text = quick_study("1.0", "max_force_evaluations = 150\n") + R"(
+[[problem]]
+name = "spring-chain"
+parameters = { n = 3, wall = "left" }
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2, 5e-3]
+
+[[integrator]]
+name = "newmark-lm"
+steps = [1e-2, 5e-3]
+
+[[integrator]]
+name = "moreau-jean"
+steps = [2e-2, 1e-2]
+
+[reference]
+integrator = "modal-exact"
+lockstep = true
+
+[[measure]]
+kind = "error"
+
+[[table]]
+id = "runs"
+title = "Runs"
+columns = ["problem", "integrator", "dt", "status"]
+
+[[table]]
+id = "fits"
+title = "Orders"
+rows = "group"
+columns = ["problem", "integrator", "order of err u max", { of = "note", header = "why" }]
+)";
+  const auto tables = run_all(nsb::parse_study_text(text, "f.toml", false));
+  REQUIRE(tables.size() == 2);
+  const nsb::Table& runs = tables[0];
+  REQUIRE(runs.rows.size() == 6);
+  CHECK(std::get<std::string>(runs.rows[0][3]) == "ok");
+  CHECK(std::get<std::string>(runs.rows[1][3]).rfind("over budget", 0) == 0);
+  CHECK(std::get<std::string>(runs.rows[2][3]).rfind("n/a: ", 0) == 0);
+  const nsb::Table& fits = tables[1];
+  REQUIRE(fits.columns.size() == 4);
+  CHECK(fits.columns[3].name == "why");
+  CHECK(fits.columns[3].description == "declined (n/a), or the status of the group's first run that failed");
+  REQUIRE(fits.rows.size() == 3);
+  CHECK(std::get<std::string>(fits.rows[0][1]) == "cd-lagrange");
+  CHECK(std::get<std::string>(fits.rows[0][3]) == "over budget");
+  CHECK(std::get<std::string>(fits.rows[1][1]) == "newmark-lm");
+  CHECK(std::get<std::string>(fits.rows[1][3]) == "declined");
+  CHECK(std::get<std::string>(fits.rows[2][1]) == "moreau-jean");
+  CHECK(std::get<std::string>(fits.rows[2][3]).empty());
+  CHECK(std::get<double>(fits.rows[2][2]) > 0.0);
+  // Bad input: one line naming file, line, key and what is valid (note among a group's columns,
+  // not one of a ranking's or a history's).
+  CHECK_THAT(study_error_of(replaced(text, "{ of = \"note\", header = \"why\" }", "\"notes\"")),
+             StartsWith("f.toml:40: table[1].columns[3]: 'notes' is not valid (nearest: note); valid: problem, integrator, "
+                        "order of err u max, CI low of err u max, CI high of err u max, points of err u max, note"));
+  CHECK_THAT(study_error_of(replaced(text, "rows = \"group\"\ncolumns = [\"problem\", \"integrator\", \"order of err u max\", "
+                                           "{ of = \"note\", header = \"why\" }]",
+                                     "rows = \"history\"\ncolumns = [\"note\"]")),
+             StartsWith("f.toml:40: table[1].columns[0]: 'note' is not valid"));
+}
+
+// t_end_exact's wave_time (L / c of a bar: the bouncing bar's period is 16 of them) and its
+// contact_start (with gravity the fall's end t1): the hausdorff study's horizon t1 + 16 L / c.
+TEST_CASE("study file: t_end_exact = { contact_start, wave_time } on the bouncing bar; wave_time elsewhere refused",
+          "[studies][study_file][bad-input]") {
+  using Catch::StartsWith;
+  const std::string text = quick_study("1.0") + R"(
+[[problem]]
+name = "bouncing-bar"
+parameters = { N = 20 }
+t_end_exact = { contact_start = 1.0, wave_time = 16.0 }
+stable_steps = [0.9]
+
+[[integrator]]
+name = "cd-lagrange"
+
+[reference]
+solution = "exact"
+
+[[measure]]
+kind = "error"
+observable = "v_contact"
+)";
+  const nsb::StudySpec spec = nsb::parse_study_text(text, "f.toml", false);
+  CHECK(spec.problems[0].t_end == 1.0 + 16.0 * (10.0 / 30.0));  // DEP: t1 = 1, L / c = 1/3
+  CHECK_THAT(study_error_of(replaced(replaced(text, "name = \"bouncing-bar\"\nparameters = { N = 20 }", "name = \"bouncing-mass\""),
+                                     "observable = \"v_contact\"", "observable = \"v\"")),
+             StartsWith("f.toml:9: problem[0].t_end_exact.contact_start: problem 'bouncing-mass' has no exact time or value "
+                        "'contact_start'; valid: impact_1 .. impact_"));
+  CHECK_THAT(study_error_of(replaced(text, "parameters = { N = 20 }", "parameters = { N = 20, stiff_ratio = 2 }")),
+             StartsWith("f.toml:10: problem[0].t_end_exact.contact_start: problem 'bouncing-bar' has no exact time or value "
+                        "'contact_start'; valid: contact_duration, plus"));
+  CHECK_THAT(study_error_of(replaced(text, "contact_start = 1.0, wave_time = 16.0", "contact_start = 1.0, wave_tim = 16.0")),
+             StartsWith("f.toml:10: problem[0].t_end_exact.wave_tim: problem 'bouncing-bar' has no exact time or value 'wave_tim'; "
+                        "valid: contact_start, contact_duration, wave_time, plus"));
+}
