@@ -1500,7 +1500,7 @@ Column pivot_order_column(const FileTable& d, const Table& runs) {
 }
 
 // rows = "pivot" (FileTable::across): from the case table `runs` with every column.
-Table pivot_table(const FileTable& d, const Table& runs) {
+Table pivot_table(const StudySpec& spec, const FileTable& d, const Table& runs) {
   const std::size_t across = column_index(runs, d.across), outcome = column_index(runs, "outcome");
   const std::size_t value = column_index(runs, d.columns.back().of);
   std::vector<std::size_t> keys;
@@ -1537,6 +1537,25 @@ Table pivot_table(const FileTable& d, const Table& runs) {
     }
     if (d.order) rows[r].push_back(number_cell(fitted_order(order_x[r], order_y[r])));
     out.add_row(std::move(rows[r]));
+  }
+  // Its figures: x, series and panels name key columns (by `of`, drawn under their headers), y a
+  // spread column by its header (the reader checked both).
+  const auto header = [&](const std::string& of) {
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      if (d.columns[k].of == of) return out.columns[k].name;
+    throw std::logic_error(fmt::format("pivot table {} has no key column '{}'", d.id, of));
+  };
+  for (const FileFigure& f : spec.figures) {
+    if (f.table != d.id) continue;
+    Figure figure = declared_figure(spec, f);
+    figure.x = header(f.x);
+    for (auto& s : figure.series) s = header(s);
+    for (auto& p : figure.panels) p = header(p);
+    std::vector<std::string> names;
+    for (const Column& c : out.columns) names.push_back(c.name);
+    if (std::find(names.begin(), names.end(), f.y) == names.end())
+      throw InputError(fmt::format("figure {}: y '{}' is not a column of table {}; its runs gave: {}", f.id, f.y, d.id, fmt::join(names, ", ")));
+    out.figures.push_back(figure);
   }
   return out;
 }
@@ -2161,7 +2180,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
         fits.caption = fmt::format("Least-squares slope of log(value) against log({}) over the runs of each sweep.", d.fit_against);
         return fits;
       }
-      if (d.rows == "pivot") return pivot_table(d, runs_all);
+      if (d.rows == "pivot") return pivot_table(spec, d, runs_all);
       if (d.rows == "impulses") return impulses_table(spec, d, cases, results, runs_all, case_row);
       if (d.rows == "field") return field_table(spec, d, cases, results, runs_all, case_row);
       return d.of_some_runs() ? run_series_table(spec, d, cases, results, runs_all, case_row) : history_table(spec, d, cases, results);

@@ -857,7 +857,8 @@ std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const S
              "another id than work_precision, work_precision_evals, energy_history, convergence_* (or study.figures = \"declared\")");
     f.title = c.string(c.require(j, path, "title"), child(path, "title"));
     if (const Json* v = c.find(j, "x"); v || f.table.empty()) f.x = c.choice(c.require(j, path, "x"), child(path, "x"), columns);  // a field table's figure: none
-    f.y = c.choice(c.require(j, path, "y"), child(path, "y"), columns);
+    // Of a named table: checked against that table's columns (a pivot's spread column by its header).
+    f.y = f.table.empty() ? c.choice(c.require(j, path, "y"), child(path, "y"), columns) : c.string(c.require(j, path, "y"), child(path, "y"));
     const auto names = [&](const char* key, std::vector<std::string>& out) {
       if (const Json* v = c.find(j, key)) {
         const std::string at = child(path, key);
@@ -1225,6 +1226,20 @@ void check_field_figure(const Checker& c, const std::string& path, const FileFig
     c.fail(child(path, "value_label"), "only a space-time picture has a colour scale", "table = a table of rows = \"field\"");
 }
 
+// A figure of a pivot table draws one of its spread columns: y is its header, the value
+// column's header with "{}" replaced by a value of `across` (no "{}": the header, ", ", the value).
+void check_pivot_figure_y(const Checker& c, const std::string& at, const std::string& y, const FileTable& pivot) {
+  const FileColumn& value = pivot.columns.back();
+  std::string header = value.header.value_or(value.of);
+  if (header.find("{}") == std::string::npos) header += ", {}";
+  const std::size_t hole = header.find("{}");
+  const std::string before = header.substr(0, hole), after = header.substr(hole + 2);
+  const bool spread = y.size() > before.size() + after.size() && y.starts_with(before) && y.ends_with(after);
+  if (!spread)
+    c.fail(at, fmt::format("'{}' is not a spread column of pivot table '{}'", y, pivot.id),
+           fmt::format("'{}' with {{}} a value of '{}'", header, pivot.across));
+}
+
 // A case table's integrators = [labels]: the runs of those integrators only.
 void read_table_integrators(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
   const Json* v = c.find(j, "integrators");
@@ -1338,7 +1353,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     auto runs = first_runs;
     if (!spec.figures[i].table.empty()) {
       runs = std::find_if(tables.begin(), tables.end(), [&](const FileTable& t) { return t.id == spec.figures[i].table; });
-      const auto series = [](const FileTable& t) { return t.rows == "history" || t.rows == "samples" || (t.of_some_runs() && t.rows != "pivot"); };
+      const auto series = [](const FileTable& t) { return t.rows == "history" || t.rows == "samples" || t.of_some_runs(); };
       if (runs == tables.end() || !series(*runs)) {
         std::vector<std::string> histories;
         for (const auto& t : tables)
@@ -1350,6 +1365,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     if (runs == tables.end()) c.fail(path, "declared tables hold no table of one row per run to draw it from", "a [[table]] with rows = \"case\"");
     std::vector<std::string> shown;
     for (const auto& col : runs->columns) shown.push_back(col.of);
+    if (runs->rows == "pivot") shown.pop_back();  // its value column is drawn by a spread column's header
     const FileFigure& f = spec.figures[i];
     check_field_figure(c, path, f, *runs);
     std::vector<std::pair<std::string, std::string>> used;
@@ -1357,9 +1373,14 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
     used.emplace_back("y", f.y);
     for (const auto& s : f.series) used.emplace_back("series", s);
     for (const auto& s : f.panels) used.emplace_back("panels", s);
-    for (const auto& [key, name] : used)
+    for (const auto& [key, name] : used) {
+      if (runs->rows == "pivot" && key == "y") {
+        check_pivot_figure_y(c, child(path, key), name, *runs);
+        continue;
+      }
       if (std::find(shown.begin(), shown.end(), name) == shown.end())
         c.fail(child(path, key), fmt::format("'{}' is not a column of table '{}'", name, runs->id), fmt::format("{}", fmt::join(shown, ", ")));
+    }
   }
   return tables;
 }

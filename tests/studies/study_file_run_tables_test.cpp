@@ -673,3 +673,35 @@ TEST_CASE("study file: semi-discrete errors, not_ok, fit_against, except and a p
   t = with_replaced(kSemiDiscrete, "columns = [\"integrator\", {", "columns = [{ of = \"integrator\", missing = \"-\" }, {");
   error_at(t, "missing = \"-\"", "table[1].columns[0].missing: only a table of one row per run shows its missing cells otherwise; valid: rows = \"case\", or a pivot's value column (the last)");
 }
+
+// A figure of a pivot table: x, series and panels name its key columns (drawn under their
+// headers), y one of its spread columns by header; the reader refuses a y that is no spread
+// column's header, and a key the pivot does not have, and the tables refuse a spread value
+// no run gave.
+TEST_CASE("study file: a figure of a pivot table draws a spread column", "[studies][study_file]") {
+  using Catch::StartsWith;
+  const std::string figure = R"(
+[[figure]]
+id = "pivot_figure"
+table = "pivot"
+title = "E end at e = 0.5"
+x = "integrator"
+y = "E end, e = 0.5"
+panels = []
+)";
+  const auto tables = run_some_runs(kSomeRuns + figure);
+  const nsb::Table& pivot = table_of(tables, "pivot");
+  REQUIRE(pivot.figures.size() == 1);
+  CHECK(pivot.figures[0].x == "integrator");
+  CHECK(pivot.figures[0].y == "E end, e = 0.5");
+  CHECK(std::any_of(pivot.columns.begin(), pivot.columns.end(), [](const nsb::Column& c) { return c.name == "E end, e = 0.5"; }));
+  const long y = line_of(kSomeRuns + figure, "y = \"E end, e = 0.5\"");
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns + figure, "y = \"E end, e = 0.5\"", "y = \"E end\"")),
+             StartsWith(fmt::format("f.toml:{}: figure[1].y: 'E end' is not a spread column of pivot table 'pivot'; valid: 'E end, e = {{}}' "
+                                    "with {{}} a value of 'parameter e'",
+                                    y)));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns + figure, "x = \"integrator\"\ny", "x = \"problem\"\ny")),
+             StartsWith(fmt::format("f.toml:{}: figure[1].x: 'problem' is not a column of table 'pivot'; valid: integrator", y - 1)));
+  CHECK_THROWS_WITH(run_some_runs(with_replaced(kSomeRuns + figure, "y = \"E end, e = 0.5\"", "y = \"E end, e = 2\"")),
+                    StartsWith("figure pivot_figure: y 'E end, e = 2' is not a column of table pivot; its runs gave: integrator, E end, e = 1"));
+}
