@@ -51,9 +51,14 @@ class BouncingMass final : public RigidProblem, public ExactSolution {
   double energy_after_impact(int i) const;
 
  private:
+  // The exact height and velocity at t (state(t) without its State).
+  void exact_qv(double t, double& q, double& v) const;
+
+  static constexpr int kMaxFlights = 100000;
   Params params_;
   double m_, g_, e_, h0_, v0_;
   double t1_, w1_;
+  std::vector<double> impacts_;  // e < 1: t_1, t_2, ... while they increase (at most kMaxFlights)
 };
 
 }  // namespace nsb

@@ -7,6 +7,9 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <list>
+#include <mutex>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -136,10 +139,93 @@ void ModalExact::init(const Problem& problem, const State& initial) {
 const ModalExact::Mode& ModalExact::mode_for(const std::vector<char>& closed) {
   auto it = modes_.find(closed);
   if (it == modes_.end()) {
-    it = modes_.emplace(closed, build_mode(closed)).first;
+    std::optional<Mode> shared = shared_mode(closed);
+    if (shared) {
+      if (!shared->massless.empty()) ++cholesky_;  // build_mode's K_ZZ factorisation, counted as if made
+    } else {
+      shared = build_mode(closed);
+      share_mode(*shared);
+    }
+    it = modes_.emplace(closed, std::move(*shared)).first;
     ++decompositions_;
   }
   return it->second;
+}
+
+namespace {
+constexpr std::size_t kSharedModeBytes = std::size_t{256} << 20;
+
+bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0;
+}
+bool same_bits(const Vec& a, const Vec& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0;
+}
+bool same_bits(const std::vector<NodeContact>& a, const std::vector<NodeContact>& b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const NodeContact& x, const NodeContact& y) {
+           return x.dof == y.dof && std::memcmp(&x.a, &y.a, sizeof(double)) == 0 &&
+                  std::memcmp(&x.position, &y.position, sizeof(double)) == 0;
+         });
+}
+std::size_t matrix_bytes(const Eigen::MatrixXd& m) { return static_cast<std::size_t>(m.size()) * sizeof(double); }
+}  // namespace
+
+// One system's inputs and its modes, most recently used first; guarded by one mutex.
+struct ModalExact::SharedModes {
+  Eigen::MatrixXd K, M;
+  Vec F;
+  std::vector<NodeContact> contacts;
+  long samples_per_period = 0;
+  std::map<std::vector<char>, Mode> modes;
+  std::size_t bytes = 0;
+  bool holds(const ModalExact& x) const {
+    return samples_per_period == x.samples_per_period_ && same_bits(K, x.K_) && same_bits(M, x.M_) && same_bits(F, x.F_) &&
+           same_bits(contacts, x.contacts_);
+  }
+};
+
+std::list<ModalExact::SharedModes>& ModalExact::shared_modes(std::mutex*& guard) {
+  static std::mutex mutex;
+  static std::list<SharedModes> systems;
+  guard = &mutex;
+  return systems;
+}
+
+std::optional<ModalExact::Mode> ModalExact::shared_mode(const std::vector<char>& closed) const {
+  std::mutex* guard = nullptr;
+  auto& systems = shared_modes(guard);
+  const std::lock_guard lock(*guard);
+  for (auto s = systems.begin(); s != systems.end(); ++s) {
+    if (!s->holds(*this)) continue;
+    systems.splice(systems.begin(), systems, s);  // most recently used first
+    const auto m = s->modes.find(closed);
+    if (m == s->modes.end()) return std::nullopt;
+    return m->second;
+  }
+  return std::nullopt;
+}
+
+void ModalExact::share_mode(const Mode& md) const {
+  const std::size_t bytes = matrix_bytes(md.phi) + matrix_bytes(md.phi_t_m) + matrix_bytes(md.cond) + matrix_bytes(md.signal);
+  std::mutex* guard = nullptr;
+  auto& systems = shared_modes(guard);
+  const std::lock_guard lock(*guard);
+  auto s = std::find_if(systems.begin(), systems.end(), [&](const SharedModes& x) { return x.holds(*this); });
+  if (s == systems.end()) {
+    SharedModes fresh{K_, M_, F_, contacts_, samples_per_period_, {}, matrix_bytes(K_) + matrix_bytes(M_)};
+    systems.push_front(std::move(fresh));
+    s = systems.begin();
+  } else {
+    systems.splice(systems.begin(), systems, s);
+  }
+  if (s->modes.emplace(md.closed, md).second) s->bytes += bytes;
+  std::size_t total = 0;
+  for (const auto& x : systems) total += x.bytes;
+  while (systems.size() > 1 && total > kSharedModeBytes) {  // the least recently used out, never the one just stored
+    total -= systems.back().bytes;
+    systems.pop_back();
+  }
 }
 
 ModalExact::Mode ModalExact::build_mode(const std::vector<char>& closed) {

@@ -93,7 +93,10 @@
 // Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
 // (integrators/capabilities.hpp, one refusal wording): its modal solution holds for
 // linear kinematics only.
+#include <list>
 #include <map>
+#include <mutex>
+#include <optional>
 #include <vector>
 
 #include "integrators/integrator.hpp"
@@ -150,6 +153,15 @@ class ModalExact final : public Integrator {
 
   const Mode& mode_for(const std::vector<char>& closed);
   Mode build_mode(const std::vector<char>& closed);
+  // The modes already built for the same system (K_, M_, F_, contacts_, samples_per_period_,
+  // compared bit for bit) by any ModalExact of the process: a study sets up a reference per case
+  // on a few meshes, and the O(n^3) eigendecompositions were most of a case's CPU time at
+  // n = 800. A pure cache (the same inputs give the same bits), bounded (kSharedModeBytes,
+  // least recently used out).
+  std::optional<Mode> shared_mode(const std::vector<char>& closed) const;
+  void share_mode(const Mode& md) const;
+  struct SharedModes;
+  static std::list<SharedModes>& shared_modes(std::mutex*& guard);
   // q_, qd_ at tau (positions only when qd is null) into qt, qdt.
   void modal_at(double tau, Vec& qt, Vec* qdt) const;
   double signal_value(Index i, const Vec& q) const;

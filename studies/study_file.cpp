@@ -804,11 +804,14 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   };
   // The measures at a step of length dt: every_step() measures at each step (each_step), the
   // others every sample_every steps and at the last step (sampled; `energy`: the state's).
+  // (every_step() compares strings: asked once per run, not at every step of every measure.)
+  std::vector<bool> every_step(spec.measures.size());
+  for (std::size_t m = 0; m < spec.measures.size(); ++m) every_step[m] = spec.measures[m].every_step();
   const auto sample = [&](const Integrator& it, const Energy& energy, double dt, bool sampled, bool each_step) {
     const State& s = it.state();
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {
       const FileMeasure& fm = spec.measures[m];
-      if (fm.every_step() ? !each_step : !sampled) continue;
+      if (every_step[m] ? !each_step : !sampled) continue;
       const bool inside = s.t >= windows[m].first && s.t <= windows[m].second;
       if (!on[m] || !(inside || fm.scale_over_run)) continue;  // an error relative to the run: its scale
       if (!fm.inside.empty() && !(inside && inside_phase(fm.inside, s.t, dt))) continue;
@@ -817,7 +820,7 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
         if (s.t < a.next_sample) continue;
         a.next_sample = s.t + (1.0 - 1e-9) * options.dt;
       }
-      const double step_dt = fm.every_step() ? dt : s.t - t_prev;  // the impulses' step (impulse / dt observables)
+      const double step_dt = every_step[m] ? dt : s.t - t_prev;  // the impulses' step (impulse / dt observables)
       double e = kNaN;
       if (fm.semi_discrete) {
         if (!semi) continue;  // n/a
