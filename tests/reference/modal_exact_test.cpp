@@ -388,3 +388,30 @@ TEST_CASE("modal-exact: its work counts against a run's budget", "[reference][mo
   CHECK(r.work.extra.at("force_equivalents") >= static_cast<double>(r.steps));
   CHECK_THAT(r.message, Catch::StartsWith("budget of 1000 F_int evaluations (or their equivalents) exceeded"));
 }
+
+// The modes a ModalExact builds are shared by every ModalExact of the process set up on the same
+// system (inputs compared bit for bit): a second reference on the same bar gives the same bits
+// and counts the same work (its decompositions are counted as if made); a bar that differs in
+// its load only (gravity: F) is not given the first bar's modes.
+TEST_CASE("modal-exact: a second reference on the same system gives the same bits and counters, another load its own modes",
+          "[reference][modal-exact][signorini-bar]") {
+  const auto run = [](const nsb::SignoriniBar& p) {
+    auto me = make_me();
+    me.init(p, p.initial_state());
+    advance_to(me, 6.0, 0.0731);
+    return std::make_pair(me.state(), me.work());
+  };
+  const auto bar = modal_bar("lumped", 30, {{"g", "0.25"}});
+  const auto [first, first_work] = run(bar);
+  const auto [second, second_work] = run(bar);
+  CHECK(first.u == second.u);
+  CHECK(first.v == second.v);
+  CHECK(first_work.factorizations == second_work.factorizations);
+  CHECK(first_work.extra == second_work.extra);
+  CHECK(first_work.extra.at("eigen_decompositions") >= 2);  // open and closed
+  // Same mesh, another gravity: its own modes (a shared mode would keep the first bar's load).
+  const auto [other, other_work] = run(modal_bar("lumped", 30, {{"g", "0.5"}}));
+  REQUIRE(other.t == Approx(6.0));
+  CHECK(other.u != first.u);
+  CHECK(other_work.extra.at("eigen_decompositions") >= 2);
+}
