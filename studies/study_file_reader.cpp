@@ -1358,8 +1358,10 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
         std::vector<std::string> histories;
         for (const auto& t : tables)
           if (series(t)) histories.push_back(t.id);
-        c.fail(child(path, "table"), fmt::format("'{}' is no declared history, samples, periodic, trajectory or flights table", spec.figures[i].table),
-               histories.empty() ? "a [[table]] with rows = \"history\", \"samples\", \"periodic\", \"trajectory\" or \"flights\"" : fmt::format("{}", fmt::join(histories, ", ")));
+        c.fail(child(path, "table"), fmt::format("'{}' is no declared table a figure names (rows = history, samples, periodic, trajectory, flights, impulses, field or pivot)",
+                                                 spec.figures[i].table),
+               histories.empty() ? "a [[table]] with rows = \"history\", \"samples\", \"periodic\", \"trajectory\", \"flights\", \"impulses\", \"field\" or \"pivot\""
+                                 : fmt::format("{}", fmt::join(histories, ", ")));
       }
     }
     if (runs == tables.end()) c.fail(path, "declared tables hold no table of one row per run to draw it from", "a [[table]] with rows = \"case\"");

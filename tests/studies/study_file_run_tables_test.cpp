@@ -316,8 +316,9 @@ TEST_CASE("study file: tables of some runs: bad input named", "[studies][study_f
              StartsWith("f.toml:89: table[5].where: a table of rows = \"group\" has no where; valid: rows = \"case\", \"pivot\", \"periodic\", \"trajectory\" or \"flights\""));
   CHECK_THAT(some_runs_error(with_replaced(kSomeCaseRuns, "where = { dt = 0.01 }\ndrop", "where = { dtt = 0.01 }\ndrop")),
              StartsWith("f.toml:88: table[5].where.dtt: 'dtt' is not valid (nearest: dt)"));
-  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "table = \"periodic\"", "table = \"pivot\"")),
-             StartsWith("f.toml:78: figure[0].table: 'pivot' is no declared history, samples, periodic, trajectory or flights table"));
+  CHECK_THAT(some_runs_error(with_replaced(kSomeRuns, "table = \"periodic\"", "table = \"runs\"")),
+             StartsWith("f.toml:78: figure[0].table: 'runs' is no declared table a figure names (rows = history, samples, periodic, "
+                        "trajectory, flights, impulses, field or pivot); valid: pivot, periodic, elastic_trajectory, stopped_trajectory"));
 }
 
 TEST_CASE("study file: a flights table and a trajectory every s-th step, relative to its start", "[studies][study_file]") {

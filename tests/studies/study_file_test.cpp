@@ -1263,11 +1263,12 @@ TEST_CASE("study file: a problem's own stable steps and thresholds, full_only, c
              StartsWith("f.toml:22: table[0].columns[1]: 'steps' is not valid (nearest: "));
   const std::string figure = "[[figure]]\nid = \"d\"\ntitle = \"d\"\nx = \"t\"\ny = \"energy deviation\"\ntable = ";
   CHECK_THAT(study_error_of(history + figure + "\"runs\"\n"),
-             StartsWith("f.toml:28: figure[0].table: 'runs' is no declared history, samples, periodic, trajectory or flights table; valid: h"));
+             StartsWith("f.toml:28: figure[0].table: 'runs' is no declared table a figure names (rows = history, samples, periodic, trajectory, "
+                        "flights, impulses, field or pivot); valid: h"));
   CHECK_THAT(study_error_of(history + figure + "\"h\"\n"),
              StartsWith("f.toml:27: figure[0].y: 'energy deviation' is not a column of table 'h'; valid: t, penetration"));
   CHECK_THAT(study_error_of(history + replaced(figure, "\"energy deviation\"", "\"err\"") + "\"h\"\n"),
-             StartsWith("f.toml:27: figure[0].y: 'err' is not valid (nearest: "));
+             StartsWith("f.toml:27: figure[0].y: 'err' is not a column of table 'h'; valid: t, penetration"));
 }
 
 TEST_CASE("study file: a problem's steps serve integrators without a sweep of their own, full_steps under --full; "
