@@ -1137,18 +1137,20 @@ bool declined(const Cell& status) {
   return text && text->rfind("n/a", 0) == 0;
 }
 
+// A case-table cell as a number (NaN: none, or a text).
+double cell_number(const Cell& cell) {
+  return std::holds_alternative<double>(cell) ? std::get<double>(cell) : std::holds_alternative<long>(cell) ? static_cast<double>(std::get<long>(cell)) : kNaN;
+}
+
 // Whether a table of some runs (or a case table) shows the run of this case-table row
 // (FileTable::where, drop_above).
 bool shows_run(const FileTable& d, const Table& runs, const std::vector<Cell>& row) {
-  const auto number = [](const Cell& cell) {
-    return std::holds_alternative<double>(cell) ? std::get<double>(cell) : std::holds_alternative<long>(cell) ? static_cast<double>(std::get<long>(cell)) : kNaN;
-  };
   for (const auto& [name, want] : d.where) {
     const Cell& cell = row[column_index(runs, name)];
-    if (std::holds_alternative<std::string>(want) ? cell != want : number(cell) != std::get<double>(want)) return false;
+    if (std::holds_alternative<std::string>(want) ? cell != want : cell_number(cell) != std::get<double>(want)) return false;
   }
   return std::none_of(d.drop_above.begin(), d.drop_above.end(),
-                      [&](const auto& limit) { return std::abs(number(row[column_index(runs, limit.first)])) > limit.second; }) &&
+                      [&](const auto& limit) { return std::abs(cell_number(row[column_index(runs, limit.first)])) > limit.second; }) &&
          std::none_of(d.except.begin(), d.except.end(), [&](const auto& one) { return row[column_index(runs, one.first)] == one.second; });
 }
 
@@ -1480,19 +1482,14 @@ std::string pivot_value_text(const Cell& cell) {
   return "n/a";
 }
 
-// A case-table cell as a number (NaN: none, or a text).
-double pivot_cell_number(const Cell& cell) {
-  return std::holds_alternative<double>(cell) ? std::get<double>(cell) : std::holds_alternative<long>(cell) ? static_cast<double>(std::get<long>(cell)) : kNaN;
-}
-
 // A pivot's order (FileTable::order): the point of one run of its row r, (its column `of`, its
 // value; NaN when its outcome is not ok), in the order of the runs.
 void pivot_order_point(const FileTable& d, const Table& runs, const std::vector<Cell>& row, std::size_t r,
                        std::vector<std::vector<double>>& x, std::vector<std::vector<double>>& y) {
   if (x.size() <= r) x.resize(r + 1), y.resize(r + 1);
   const bool ok = row[column_index(runs, "outcome")] == Cell{std::string("ok")};
-  x[r].push_back(pivot_cell_number(row[column_index(runs, d.order->of)]));
-  y[r].push_back(ok ? pivot_cell_number(row[column_index(runs, d.columns.back().of)]) : kNaN);
+  x[r].push_back(cell_number(row[column_index(runs, d.order->of)]));
+  y[r].push_back(ok ? cell_number(row[column_index(runs, d.columns.back().of)]) : kNaN);
 }
 
 // Its column: by default "order against <of>", two decimals.
