@@ -1058,6 +1058,20 @@ bool measure_converges(const FileMeasure& m) {
          (m.kind == MeasureKind::FlightEnergy && m.norm == "max");
 }
 
+std::vector<CaptionPlaceholder> caption_placeholders(const std::string& caption) {
+  std::vector<CaptionPlaceholder> out;
+  for (std::size_t at = caption.find("${"); at != std::string::npos; at = caption.find("${", at)) {
+    const std::size_t end = caption.find('}', at);
+    if (end == std::string::npos) {
+      out.push_back({at, std::string::npos, caption.substr(at + 2)});
+      break;
+    }
+    out.push_back({at, end + 1 - at, caption.substr(at + 2, end - at - 2)});
+    at = end + 1;
+  }
+  return out;
+}
+
 std::string file_result_damage(const StudySpec& spec, const Json& r) {
   const auto reals_or_null = [](const Json& a) {
     return a.is_array() && std::all_of(a.begin(), a.end(), [](const Json& x) { return x.is_number() || x.is_null(); });
@@ -1824,19 +1838,44 @@ Table field_table(const StudySpec& spec, const FileTable& d, const std::vector<J
   return out;
 }
 
+// The texts of the case-table column `of` in the runs `shown` keeps (none: no cell), each once,
+// in the order of the runs.
+std::vector<std::string> column_values(const Table& runs, const std::string& of, const std::function<bool(const std::vector<Cell>&)>& shown) {
+  const std::size_t column = column_index(runs, of);
+  std::vector<std::string> seen;
+  for (const auto& row : runs.rows) {
+    if (std::holds_alternative<std::monostate>(row[column]) || !shown(row)) continue;
+    const std::string text = pivot_value_text(row[column]);
+    if (!text.empty() && std::find(seen.begin(), seen.end(), text) == seen.end()) seen.push_back(text);
+  }
+  return seen;
+}
+
+// A declared table's caption with each ${COLUMN} (caption_placeholders; the reader checked that
+// each names a case-table column) replaced by that column's values over the runs the table
+// shows (its problems, integrators, where, drop_above and except), joined by ", ": a caption
+// that says the grid that was run, --full's or the default's.
+std::string expanded_caption(const FileTable& d, const Table& runs) {
+  std::string out = *d.caption;
+  const std::size_t problem = column_index(runs, "problem");
+  const std::size_t label = d.integrators.empty() ? 0 : column_index(runs, "integrator label");
+  const auto shown = [&](const std::vector<Cell>& row) {
+    return d.applies_to(std::get<std::string>(row[problem])) && shows_run(d, runs, row) &&
+           (d.integrators.empty() ||
+            std::find(d.integrators.begin(), d.integrators.end(), std::get<std::string>(row[label])) != d.integrators.end());
+  };
+  const std::vector<CaptionPlaceholder> places = caption_placeholders(out);
+  for (auto p = places.rbegin(); p != places.rend(); ++p)  // from the last: the earlier positions hold
+    out.replace(p->at, p->size, fmt::format("{}", fmt::join(column_values(runs, p->column, shown), ", ")));
+  return out;
+}
+
 // The study's metadata lines and each declared table's own (MetadataLine) on `tables`, the
 // values of a column from the case table `runs` (every column), each once, in its rows' order.
 void add_metadata_lines(const StudySpec& spec, const Table& runs, std::vector<Table>& tables) {
   const auto value = [&](const MetadataLine& m) {
     if (m.of.empty()) return m.text;
-    const std::size_t column = column_index(runs, m.of);
-    std::vector<std::string> seen;
-    for (const auto& row : runs.rows) {
-      if (std::holds_alternative<std::monostate>(row[column])) continue;
-      const std::string text = pivot_value_text(row[column]);
-      if (!text.empty() && std::find(seen.begin(), seen.end(), text) == seen.end()) seen.push_back(text);
-    }
-    return fmt::format("{}", fmt::join(seen, " "));
+    return fmt::format("{}", fmt::join(column_values(runs, m.of, [](const std::vector<Cell>&) { return true; }), " "));
   };
   for (Table& t : tables) {
     for (const MetadataLine& m : spec.metadata) t.metadata.emplace_back(m.line, value(m));
@@ -1868,7 +1907,7 @@ std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, con
     }
     t.id = d.id;
     t.title = d.title;
-    if (d.caption) t.caption = *d.caption;
+    if (d.caption) t.caption = expanded_caption(d, runs);
     t.metadata = runs.metadata;
     out.push_back(std::move(t));
   }

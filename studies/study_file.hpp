@@ -249,6 +249,9 @@ struct FileColumn {
 // Declared tables replace the engine's work-precision, orders and ranking tables.
 struct FileTable {
   std::string id, title;
+  // Its caption; each ${COLUMN} in it (caption_placeholders) the values of that case-table
+  // column over the runs the table shows, each once in the order of the runs, joined by ", ":
+  // the grid that was run (e.g. "N = ${parameter N}": the default's meshes, or --full's).
   std::optional<std::string> caption;
   std::string rows = "case";
   std::vector<FileColumn> columns;
@@ -436,6 +439,14 @@ std::vector<std::string> sweep_work_column_names(const StudySpec& spec);
 // The problems' parameters a declared case, history or samples table may show: "parameter NAME" for each parameter
 // of each problem (the first problem's order first); a problem without it shows an empty cell.
 std::vector<std::string> parameter_column_names(const StudySpec& spec);
+
+// The placeholders ${COLUMN} of a declared table's caption (FileTable::caption), in order: where
+// each starts, its length ("${" to "}") and COLUMN; a "${" without its "}" last, of length npos.
+struct CaptionPlaceholder {
+  std::size_t at = 0, size = 0;
+  std::string column;
+};
+std::vector<CaptionPlaceholder> caption_placeholders(const std::string& caption);
 
 // Reads and checks a study file (.json: JSON, anything else: TOML).
 StudySpec read_study_file(const std::filesystem::path& path);

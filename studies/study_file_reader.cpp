@@ -1253,6 +1253,19 @@ void read_table_integrators(const Checker& c, const Json& j, const std::string& 
   for (std::size_t k = 0; k < v->size(); ++k) t.integrators.push_back(c.choice((*v)[k], element(at, k), labels));
 }
 
+// A declared table's caption: each ${COLUMN} in it names a case-table column (the engine puts
+// that column's values over the table's runs in its place: FileTable::caption).
+void check_caption_placeholders(const Checker& c, const std::string& caption, const std::string& path, const StudySpec& spec) {
+  const std::vector<std::string> columns = table_sources("case", spec);
+  for (const CaptionPlaceholder& p : caption_placeholders(caption)) {
+    if (p.size == std::string::npos)
+      c.fail(path, fmt::format("'${{{}' has no closing }}", p.column), "${COLUMN} with COLUMN a case-table column");
+    if (std::find(columns.begin(), columns.end(), p.column) == columns.end())
+      c.fail(path, fmt::format("'${{{}}}' names no case-table column (nearest: {})", p.column, nearest_name(p.column, columns)),
+             fmt::format("${{COLUMN}} with COLUMN one of {}", fmt::join(columns, ", ")));
+  }
+}
+
 // [[table]]: the tables the study writes instead of the engine's own.
 std::vector<FileTable> read_tables(const Checker& c, const Json& root, const StudySpec& spec) {
   std::vector<FileTable> tables;
@@ -1271,6 +1284,7 @@ std::vector<FileTable> read_tables(const Checker& c, const Json& root, const Stu
       if (u.id == t.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", t.id), "distinct ids");
     t.title = c.string(c.require(j, path, "title"), child(path, "title"));
     t.caption = optional_string(c, j, path, "caption");
+    if (t.caption) check_caption_placeholders(c, *t.caption, child(path, "caption"), spec);
     if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples", "pivot", "periodic", "trajectory", "flights", "impulses", "field"});
     read_some_runs(c, j, path, spec, t);
     read_impulses_and_field(c, j, path, spec, t);

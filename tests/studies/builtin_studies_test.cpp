@@ -750,3 +750,45 @@ TEST_CASE("draft bar.toml: its contact-force history and space-time tables, meta
     CHECK(by_id(fresh) == by_id(report));
   }
 }
+
+// The draft's orders tables say the grid that was run (their captions' ${parameter N} and
+// ${stable steps}: the values over the table's runs): bar_orders the meshes N = 50..800, with
+// --full to 6400, bar_time_orders the alphas. The default captions are the committed reports'
+// (the line under the title of bar_orders.md and bar_time_orders.md), byte for byte. The runs
+// are not made: the captions take the cases' parameters only.
+TEST_CASE("draft bar.toml: the orders tables' captions name the meshes and alphas run, the default's the committed reports'",
+          "[studies]") {
+  const nsb::StudySpec spec =
+      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bar.toml");
+  const nsb::StudyEntry entry = nsb::file_study(spec);
+  const auto report_caption = [](const std::string& id) {
+    std::ifstream in(std::filesystem::path(NSBENCH_SOURCE_DIR) / "reports" / (id + ".md"));
+    std::string title, blank, caption;
+    std::getline(in, title);
+    std::getline(in, blank);
+    std::getline(in, caption);
+    CHECK(title.rfind("## ", 0) == 0);
+    CHECK(blank.empty());
+    return caption;
+  };
+  const nsb::Json not_run = {{"status", "n/a"}, {"message", "not run by this test"}, {"steps", 0}, {"force_evaluations", 0},
+                             {"run", {{"t_reached", 0.0}, {"impacts", 0}, {"note", "not run by this test"}}}};
+  for (const bool full : {false, true}) {
+    INFO("full " << full);
+    const auto cases = nsb::study_cases(entry, {full});
+    const auto tables = nsb::study_tables(entry, cases, std::vector<nsb::Json>(cases.size(), not_run), {full});
+    const auto caption = [&](const std::string& id) {
+      const auto t = std::find_if(tables.begin(), tables.end(), [&](const nsb::Table& u) { return u.id == id; });
+      REQUIRE(t != tables.end());
+      return t->caption;
+    };
+    std::string orders = report_caption("bar_orders");
+    const std::string meshes = "over N = 50, 100, 200, 400, 800 with";
+    REQUIRE(orders.find(meshes) != std::string::npos);
+    if (full) orders.replace(orders.find(meshes), meshes.size(), "over N = 50, 100, 200, 400, 800, 1600, 3200, 6400 with");
+    CHECK(caption("bar_orders") == orders);
+    const std::string time_orders = report_caption("bar_time_orders");
+    CHECK(time_orders.find("over alpha = 0.25, 0.5, 0.9, 1 at each N") != std::string::npos);
+    CHECK(caption("bar_time_orders") == time_orders);
+  }
+}
