@@ -7,7 +7,6 @@
 
 namespace nsb {
 
-extern const StudyEntry bar_study;
 extern const StudyEntry block_study;
 extern const StudyEntry peers_study;
 extern const StudyEntry friction_study;
@@ -55,7 +54,10 @@ const std::vector<StudyEntry>& study_registry() {
       builtin_file_study("reference",
                          "SUNDIALS references (event-driven, penalty): tolerance and penalty sweeps against exact solutions",
                          "studies/builtin/reference.toml"),
-      cpp_study(bar_study, "studies/bar.cpp"),
+      builtin_file_study("bar",
+                         "Signorini bar: contact-node error, contact duration, rebound, energy, force oscillation, orders (exact "
+                         "solution)",
+                         "studies/builtin/bar.toml"),
       cpp_study(block_study, "studies/block.cpp"),
       cpp_study(peers_study, "studies/peers.cpp"),
       builtin_file_study("bouncing-bar",

@@ -473,11 +473,11 @@ TEST_CASE("cli: repeated --set keys, empty values, non-finite tolerances and ove
 TEST_CASE("cli: nsbench-study list names each study's file; show prints a study file, refuses a C++ study and an unknown name", "[app]") {
   const auto list = study("list");
   CHECK(list.code == 0);
-  CHECK_THAT(list.output, Catch::Contains("[studies/bar.cpp]"));
+  CHECK_THAT(list.output, Catch::Contains("[studies/builtin/bar.toml]"));
   for (const auto& s : nsb::study_registry()) CHECK_THAT(list.output, Catch::Contains(s.name) && Catch::Contains("[" + s.source + "]"));
-  const auto cpp = study("show bar");
+  const auto cpp = study("show block");
   CHECK(cpp.code == 2);
-  CHECK_THAT(cpp.output, Catch::Contains("show bar: written in C++ (studies/bar.cpp), not a study file; valid: "));
+  CHECK_THAT(cpp.output, Catch::Contains("show block: written in C++ (studies/block.cpp), not a study file; valid: "));
   const auto unknown = study("show bouncin");
   CHECK(unknown.code == 2);
   CHECK_THAT(unknown.output, Catch::Contains("show: unknown study 'bouncin' (nearest: bouncing)"));

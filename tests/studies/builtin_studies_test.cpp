@@ -577,21 +577,25 @@ TEST_CASE("built-in study hausdorff: hausdorff_orders(cd-lagrange) are the commi
                     Catch::StartsWith("hausdorff orders: 'modal-exact' is no scheme of studies/builtin/hausdorff.toml; valid: cd-lagrange"));
 }
 
-// The draft studies/builtin/drafts/bar.toml against the C++ study it is to replace
-// (studies/bar.cpp), default and --full: the same runs in the same order (integrator, mass,
-// alpha, N), each with the C++ study's dt = alpha * stable step and end t0 + 1.5 T.
-TEST_CASE("draft bar.toml: the C++ study bar's runs, in its order, with its steps and end time", "[studies]") {
-  const nsb::StudySpec spec =
-      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bar.toml");
+namespace nsb {
+extern const StudyEntry bar_study;  // studies/bar.cpp, no longer registered
+}  // namespace nsb
+
+// bar.toml against the C++ study it replaces (studies/bar.cpp), default and --full: the same
+// runs in the same order (integrator, mass, alpha, N), each with the C++ study's dt = alpha *
+// stable step and end t0 + 1.5 T.
+TEST_CASE("built-in study bar: the C++ study bar's runs, in its order, with its steps and end time", "[studies]") {
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/bar.toml");
   const auto& registry = nsb::study_registry();
-  const auto cpp = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bar"; });
-  REQUIRE(cpp != registry.end());
-  REQUIRE(cpp->source == "studies/bar.cpp");
+  const auto file = std::find_if(registry.begin(), registry.end(), [](const nsb::StudyEntry& e) { return e.name == "bar"; });
+  REQUIRE(file != registry.end());
+  CHECK(file->source == "studies/builtin/bar.toml");
+  const nsb::StudyEntry* cpp = &nsb::bar_study;
   const nsb::ParamSpecs bar = nsb::find_problem("signorini-bar").parameters();
   for (const bool full : {false, true}) {
     INFO("full " << full);
     const auto expected = nsb::study_cases(*cpp, {full});
-    const auto cases = nsb::study_cases(nsb::file_study(spec), {full});
+    const auto cases = nsb::study_cases(*file, {full});
     REQUIRE(cases.size() == expected.size());
     for (std::size_t k = 0; k < cases.size(); ++k) {
       INFO("case " << k << ": " << expected[k].dump());
@@ -615,17 +619,16 @@ TEST_CASE("draft bar.toml: the C++ study bar's runs, in its order, with its step
   }
 }
 
-// The draft's tables against the committed reports (written by the C++ study), cell for cell but
+// bar.toml's tables against the committed reports (written by the C++ study), cell for cell but
 // the CPU time: the runs of cd-lagrange (lumped: every alpha and N, its time error against
 // modal-exact; consistent: declined, every measured cell n/a) and of modal-exact (lumped, alpha
 // = 1: its own time error n/a), their rows of bar, bar_n100, bar_orders (fitted against
 // log(1/N), the energy and chatter errors' too) and bar_time_orders (modal-exact's left out), in
 // the report's order.
-TEST_CASE("draft bar.toml: cd-lagrange's and modal-exact's rows of bar, bar_n100, bar_orders and bar_time_orders are the "
+TEST_CASE("built-in study bar: cd-lagrange's and modal-exact's rows of bar, bar_n100, bar_orders and bar_time_orders are the "
           "committed report's",
           "[studies]") {
-  const nsb::StudySpec spec =
-      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bar.toml");
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/bar.toml");
   const nsb::StudyEntry entry = nsb::file_study(spec);
   std::vector<nsb::Json> cases, results;
   for (const auto& c : nsb::study_cases(entry, {})) {
@@ -666,17 +669,16 @@ TEST_CASE("draft bar.toml: cd-lagrange's and modal-exact's rows of bar, bar_n100
   }
 }
 
-// The draft's tables bar_contact_force_history (rows = "impulses") and bar_space_time (rows =
+// bar.toml's tables bar_contact_force_history (rows = "impulses") and bar_space_time (rows =
 // "field") against the committed report of the C++ study: the runs they show (N = 100 and 50
 // at alpha = 0.9, lumped and singular mass) of the integrators this build has, every other
 // run of the study's list a placeholder that did not run (n/a). Each table equals the
 // report's rows of those integrators cell for cell at rtol 0; its metadata lines N, alpha,
-// mass (and the space-time schemes) the report's; the figures.json entries of the draft's
+// mass (and the space-time schemes) the report's; the figures.json entries of the file's
 // figures the report's.
-TEST_CASE("draft bar.toml: its contact-force history and space-time tables, metadata and figures equal the C++ study's report",
+TEST_CASE("built-in study bar: its contact-force history and space-time tables, metadata and figures equal the C++ study's report",
           "[studies]") {
-  const nsb::StudySpec spec =
-      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bar.toml");
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/bar.toml");
   const nsb::StudyEntry entry = nsb::file_study(spec);
   const auto cases = nsb::study_cases(entry, {false});
   const auto report_text = [](const std::string& name) {
@@ -737,7 +739,7 @@ TEST_CASE("draft bar.toml: its contact-force history and space-time tables, meta
       CHECK(std::find(table(id).metadata.begin(), table(id).metadata.end(), line) != table(id).metadata.end());
     }
   }
-  // figures.json: the report's entries of the draft's figures.
+  // figures.json: the report's entries of the file's figures.
   const nsb::Json fresh = nsb::Json::parse(nsb::figures_to_json(tables));
   const nsb::Json report = nsb::Json::parse(report_text("figures.json"));
   for (const std::string id : {"bar_convergence", "bar_energy", "bar_force_oscillation", "bar_time_error", "bar_contact_force", "bar_space_time"}) {
@@ -751,15 +753,14 @@ TEST_CASE("draft bar.toml: its contact-force history and space-time tables, meta
   }
 }
 
-// The draft's orders tables say the grid that was run (their captions' ${parameter N} and
+// bar.toml's orders tables say the grid that was run (their captions' ${parameter N} and
 // ${stable steps}: the values over the table's runs): bar_orders the meshes N = 50..800, with
 // --full to 6400, bar_time_orders the alphas. The default captions are the committed reports'
 // (the line under the title of bar_orders.md and bar_time_orders.md), byte for byte. The runs
 // are not made: the captions take the cases' parameters only.
-TEST_CASE("draft bar.toml: the orders tables' captions name the meshes and alphas run, the default's the committed reports'",
+TEST_CASE("built-in study bar: the orders tables' captions name the meshes and alphas run, the default's the committed reports'",
           "[studies]") {
-  const nsb::StudySpec spec =
-      nsb::read_study_file(std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin" / "drafts" / "bar.toml");
+  const nsb::StudySpec spec = builtin_spec("studies/builtin/bar.toml");
   const nsb::StudyEntry entry = nsb::file_study(spec);
   const auto report_caption = [](const std::string& id) {
     std::ifstream in(std::filesystem::path(NSBENCH_SOURCE_DIR) / "reports" / (id + ".md"));
