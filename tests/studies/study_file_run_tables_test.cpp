@@ -425,9 +425,10 @@ order = { of = "dt", header = "time order" }
 columns = ["integrator", { of = "u time err", header = "u time err, alpha = {}", missing = "n/a" }]
 )";
 
-// What the C++ study bar computed (studies/bar.cpp): max over the steps sampled (the first step
-// ending at or after the last sample + (1 - 1e-9) dt) of |u_0 - u_0,semi|, modal-exact advanced to
-// each sample's time; and how many steps were sampled out of how many.
+// What the C++ study bar computed (studies/bar.cpp, which studies/builtin/bar.toml replaced):
+// max over the steps sampled (the first step ending at or after the last sample + (1 - 1e-9) dt)
+// of |u_0 - u_0,semi|, modal-exact advanced to each sample's time; and how many steps were
+// sampled out of how many.
 struct TimeError {
   double largest = 0.0;
   long samples = 0, steps = 0;
