@@ -7,6 +7,7 @@
 
 #include "core/json.hpp"
 #include "core/output.hpp"
+#include "studies/study.hpp"
 
 namespace nsb {
 
@@ -26,13 +27,14 @@ std::optional<long> decimal(const std::string& text, long lo, long hi) {
 }
 
 // The keys the studies' results share, where present: "status" one of the run statuses
-// (status_name) or "n/a" / "energy blow-up", "message" a string, "steps" and
-// "force_evaluations" whole numbers >= 0. Empty when they hold, else why not.
+// (status_name) or of kStudyStatuses, "message" a string, "steps" and "force_evaluations"
+// whole numbers >= 0. Empty when they hold, else why not.
 std::string result_damage(const Json& r) {
   if (!r.is_object()) return "not an object";
   if (r.contains("status")) {
     const Json& status = r["status"];
-    bool known = status == "n/a" || status == "energy blow-up";
+    bool known = false;
+    for (const std::string_view s : kStudyStatuses) known = known || (status.is_string() && status.get_ref<const std::string&>() == s);
     for (const RunStatus s : {RunStatus::Ok, RunStatus::Diverged, RunStatus::OverBudget, RunStatus::Interrupted})
       known = known || status == status_name(s);
     if (!known) return fmt::format("status {} is not a run status", status.dump());

@@ -12,6 +12,7 @@
 #include <functional>
 
 #include "core/output.hpp"
+#include "studies/study.hpp"
 #include "tests/support/files.hpp"
 #include "../app/run_cli.hpp"
 
@@ -58,6 +59,24 @@ TEST_CASE("shards: written and merged back whole", "[studies][shard]") {
   CHECK(merged[0]["values"][0] == 0.0714);
   CHECK(merged[1]["values"][0] == 0.05);
   CHECK(merged[2]["values"][0] == 0.03);
+}
+
+// Found by the Slurm round trip on `hard`: a study file's outcome statuses were refused.
+TEST_CASE("shards: every status a study's result may carry merges back", "[studies][shard]") {
+  std::vector<std::string> statuses(nsb::kStudyStatuses.begin(), nsb::kStudyStatuses.end());
+  for (const nsb::RunStatus s : {nsb::RunStatus::Ok, nsb::RunStatus::Diverged, nsb::RunStatus::OverBudget,
+                                 nsb::RunStatus::Interrupted})
+    statuses.emplace_back(nsb::status_name(s));
+  for (const std::string& status : statuses) {
+    const nsb::test::TempDir dir("shard_test");
+    fs::create_directories(dir.path / "shards");
+    Json r = result(0.5);
+    r["status"] = status;
+    nsb::write_file_atomic(nsb::shard_path(dir.path, "s", 1, 1),
+                           nsb::shard_text("s", false, {1, 1}, kCases, {0, 1, 2}, {result(0.1), r, result(0.2)}));
+    CAPTURE(status);
+    CHECK(nsb::merge_shards("s", kCases, dir.path, false)[1]["status"] == status);
+  }
 }
 
 TEST_CASE("shards: a damaged shard is refused naming the file", "[studies][shard]") {
