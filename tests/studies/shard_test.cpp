@@ -8,8 +8,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 
 #include "core/output.hpp"
 #include "studies/study.hpp"
@@ -77,6 +79,25 @@ TEST_CASE("shards: every status a study's result may carry merges back", "[studi
     CAPTURE(status);
     CHECK(nsb::merge_shards("s", kCases, dir.path, false)[1]["status"] == status);
   }
+}
+
+// Found by the Slurm round trip on `hard`: JSON has no inf, and a diverged run's energy
+// growth (inf in the single-machine report) came back from its shard as null (n/a).
+TEST_CASE("shards: inf, -inf and NaN in a result merge back as they were", "[studies][shard]") {
+  const nsb::test::TempDir dir("shard_test");
+  fs::create_directories(dir.path / "shards");
+  const double inf = std::numeric_limits<double>::infinity();
+  Json r = result(inf);
+  r["nested"] = {{"growth", -inf}, {"values", {1.0, std::numeric_limits<double>::quiet_NaN()}}};
+  r["lookalike"] = {{"non_finite", "infinite"}};  // not one of the three: kept as written
+  nsb::write_file_atomic(nsb::shard_path(dir.path, "s", 1, 1),
+                         nsb::shard_text("s", false, {1, 1}, kCases, {0, 1, 2}, {result(0.1), r, result(0.2)}));
+  const Json merged = nsb::merge_shards("s", kCases, dir.path, false)[1];
+  CHECK(merged["values"][0].get<double>() == inf);
+  CHECK(merged["nested"]["growth"].get<double>() == -inf);
+  CHECK(merged["nested"]["values"][0] == 1.0);
+  CHECK(std::isnan(merged["nested"]["values"][1].get<double>()));
+  CHECK(merged["lookalike"] == r["lookalike"]);
 }
 
 TEST_CASE("shards: a damaged shard is refused naming the file", "[studies][shard]") {
