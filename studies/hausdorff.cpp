@@ -32,14 +32,36 @@ void check(const Polyline& p) {
 
 std::size_t segments(const Polyline& b) { return std::max<std::size_t>(1, b.size() - 1); }
 
-// Distance from (t, x) to segment j of b (its points j and j + 1; a single point when b has one).
-double segment_distance(double t, double x, const Polyline& b, std::size_t j) {
+// The offset from (t, x) to the nearest point of segment j of b (its points j and j + 1; a
+// single point when b has one).
+struct Offset {
+  double dt, dx;
+};
+Offset segment_offset(double t, double x, const Polyline& b, std::size_t j) {
   const std::size_t k = std::min(j + 1, b.size() - 1);
   const double dt = b.t[k] - b.t[j], dx = b.x[k] - b.x[j];
   const double len2 = dt * dt + dx * dx;
   double s = len2 > 0.0 ? ((t - b.t[j]) * dt + (x - b.x[j]) * dx) / len2 : 0.0;
   s = std::clamp(s, 0.0, 1.0);
-  return std::hypot(t - (b.t[j] + s * dt), x - (b.x[j] + s * dx));
+  return {t - (b.t[j] + s * dt), x - (b.x[j] + s * dx)};
+}
+
+double segment_distance(double t, double x, const Polyline& b, std::size_t j) {
+  const Offset o = segment_offset(t, x, b, j);
+  return std::hypot(o.dt, o.dx);
+}
+
+// Whether hypot(o) < d, deciding from the squares where they leave no doubt: hypot (glibc:
+// under 1 ulp) and the rounded sqrt(dt^2 + dx^2) differ by a few ulp, far inside the 1e-12
+// margin, so the answer is hypot's own, bit for bit, and hypot is called only near the edge.
+// Squares that overflow or underflow fall through to hypot.
+bool shorter_than(Offset o, double d) {
+  const double o2 = o.dt * o.dt + o.dx * o.dx, d2 = d * d;
+  if (std::isfinite(d2) && d2 > 1e-280 && o2 > 1e-280) {
+    if (o2 > d2 * (1.0 + 1e-12)) return false;
+    if (o2 < d2 * (1.0 - 1e-12)) return true;
+  }
+  return std::hypot(o.dt, o.dx) < d;
 }
 
 struct Nearest {
@@ -63,8 +85,9 @@ struct Boxes {
       x1.push_back(*std::max_element(b.x.begin() + first, b.x.begin() + end + 1));
     }
   }
-  double distance(std::size_t k, double t, double x) const {
-    return std::hypot(std::max({0.0, t0[k] - t, t - t1[k]}), std::max({0.0, x0[k] - x, x - x1[k]}));
+  // The offset from (t, x) to block k's box (zero inside it).
+  Offset offset(std::size_t k, double t, double x) const {
+    return {std::max({0.0, t0[k] - t, t - t1[k]}), std::max({0.0, x0[k] - x, x - x1[k]})};
   }
 };
 
@@ -77,9 +100,9 @@ Nearest nearest(double t, double x, const Polyline& b, const Boxes& boxes) {
   const std::size_t j0 = std::min(k > 0 ? k - 1 : 0, n - 1);
   Nearest best{segment_distance(t, x, b, j0), j0};
   const auto scan = [&](std::size_t block) {
-    if (boxes.distance(block, t, x) >= best.d) return;
+    if (!shorter_than(boxes.offset(block, t, x), best.d)) return;
     for (std::size_t j = block * kBlock; j < std::min(n, (block + 1) * kBlock); ++j)
-      if (const double d = segment_distance(t, x, b, j); d < best.d) best = {d, j};
+      if (const Offset o = segment_offset(t, x, b, j); shorter_than(o, best.d)) best = {std::hypot(o.dt, o.dx), j};
   };
   const std::size_t home = j0 / kBlock;
   scan(home);
@@ -134,10 +157,11 @@ double directed_hausdorff(const Polyline& a, const Polyline& b, HausdorffToleran
       stack.pop_back();
       const double t0 = a.t[k] + p.s0 * dt, x0 = a.x[k] + p.s0 * dx, t1 = a.t[k] + p.s1 * dt, x1 = a.x[k] + p.s1 * dx;
       // Bounds on the piece: 1-Lipschitz, and the convexity of the distance to each end's nearest segment.
-      double bound = 0.5 * (p.n0.d + p.n1.d + (p.s1 - p.s0) * length);
-      bound = std::min(bound, std::max(p.n0.d, segment_distance(t1, x1, b, p.n0.j)));
-      bound = std::min(bound, std::max(p.n1.d, segment_distance(t0, x0, b, p.n1.j)));
-      if (bound <= h + tol.rtol * h + tol.atol) continue;
+      // Each bound is computed only while the piece is not yet settled (they only lower it).
+      const double settled = h + tol.rtol * h + tol.atol;
+      if (0.5 * (p.n0.d + p.n1.d + (p.s1 - p.s0) * length) <= settled) continue;
+      if (std::max(p.n0.d, segment_distance(t1, x1, b, p.n0.j)) <= settled) continue;
+      if (std::max(p.n1.d, segment_distance(t0, x0, b, p.n1.j)) <= settled) continue;
       const double sm = 0.5 * (p.s0 + p.s1);
       const Nearest nm = nearest(a.t[k] + sm * dt, a.x[k] + sm * dx, b, boxes);
       h = std::max(h, nm.d);

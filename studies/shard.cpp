@@ -3,10 +3,13 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
+#include <limits>
 #include <regex>
 
 #include "core/json.hpp"
 #include "core/output.hpp"
+#include "studies/study.hpp"
 
 namespace nsb {
 
@@ -26,13 +29,14 @@ std::optional<long> decimal(const std::string& text, long lo, long hi) {
 }
 
 // The keys the studies' results share, where present: "status" one of the run statuses
-// (status_name) or "n/a" / "energy blow-up", "message" a string, "steps" and
-// "force_evaluations" whole numbers >= 0. Empty when they hold, else why not.
+// (status_name) or of kStudyStatuses, "message" a string, "steps" and "force_evaluations"
+// whole numbers >= 0. Empty when they hold, else why not.
 std::string result_damage(const Json& r) {
   if (!r.is_object()) return "not an object";
   if (r.contains("status")) {
     const Json& status = r["status"];
-    bool known = status == "n/a" || status == "energy blow-up";
+    bool known = false;
+    for (const std::string_view s : kStudyStatuses) known = known || (status.is_string() && status.get_ref<const std::string&>() == s);
     for (const RunStatus s : {RunStatus::Ok, RunStatus::Diverged, RunStatus::OverBudget, RunStatus::Interrupted})
       known = known || status == status_name(s);
     if (!known) return fmt::format("status {} is not a run status", status.dump());
@@ -42,6 +46,42 @@ std::string result_damage(const Json& r) {
     if (r.contains(key) && !(r[key].is_number_integer() && r[key].get<long>() >= 0))
       return fmt::format("{} {} is not a whole number >= 0", key, r[key].dump());
   return {};
+}
+
+// JSON has no inf or NaN (nlohmann writes them as null), but a result may hold them (a run
+// whose energy overflowed: its energy growth is inf, a table cell "inf"). A shard writes each
+// as {"non_finite": "inf" | "-inf" | "nan"} and the merge reads it back, so that merged reports
+// equal a single machine's.
+constexpr const char* kNonFinite = "non_finite";
+
+Json portable(const Json& j) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
+    const double v = j.get<double>();
+    return {{kNonFinite, std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"}};
+  }
+  if (!j.is_structured()) return j;
+  Json out = j.is_array() ? Json::array() : Json::object();
+  if (j.is_array())
+    for (const Json& e : j) out.push_back(portable(e));
+  else
+    for (const auto& [k, e] : j.items()) out[k] = portable(e);
+  return out;
+}
+
+Json restored(const Json& j) {
+  if (j.is_object() && j.size() == 1 && j.contains(kNonFinite) && j[kNonFinite].is_string()) {
+    const std::string& v = j[kNonFinite].get_ref<const std::string&>();
+    if (v == "inf") return std::numeric_limits<double>::infinity();
+    if (v == "-inf") return -std::numeric_limits<double>::infinity();
+    if (v == "nan") return std::numeric_limits<double>::quiet_NaN();
+  }
+  if (!j.is_structured()) return j;
+  Json out = j.is_array() ? Json::array() : Json::object();
+  if (j.is_array())
+    for (const Json& e : j) out.push_back(restored(e));
+  else
+    for (const auto& [k, e] : j.items()) out[k] = restored(e);
+  return out;
 }
 
 std::string content_hash(Json file) {
@@ -69,7 +109,7 @@ std::string shard_text(const std::string& study, bool full, const Shard& shard, 
                        const std::vector<std::size_t>& mine, const std::vector<Json>& results) {
   Json file = {{"study", study}, {"full", full}, {"shard", shard.index}, {"of", shard.count},
                {"cases", cases}, {"results", Json::object()}};
-  for (std::size_t j = 0; j < mine.size(); ++j) file["results"][std::to_string(mine[j])] = results[j];
+  for (std::size_t j = 0; j < mine.size(); ++j) file["results"][std::to_string(mine[j])] = portable(results[j]);
   file["content_fnv1a64"] = content_hash(file);
   return file.dump() + "\n";
 }
@@ -107,7 +147,8 @@ std::vector<Json> merge_shards(const std::string& study, const std::vector<Json>
     if (shard["cases"] != Json(cases) || shard["full"] != full)
       throw refuse("made by other study definitions (stale)");
     if (!shard["results"].is_object()) throw refuse("'results' is not an object");
-    for (const auto& [k, r] : shard["results"].items()) {
+    for (const auto& [k, written] : shard["results"].items()) {
+      const Json r = restored(written);
       const auto index = decimal(k, 0, static_cast<long>(cases.size()) - 1);
       if (!index || *index % count != i - 1)
         throw refuse(fmt::format("results key '{}' is not a case of this shard (cases 0 to {}, k % {} = {})", k,

@@ -9,12 +9,14 @@
 // (studies/builtin/). A study written as a single function returning tables (`run`) is a study
 // of one case.
 #include <nlohmann/json.hpp>
+#include <array>
 #include <functional>
 #include <initializer_list>
 #include <limits>
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "run/run.hpp"
@@ -69,6 +71,11 @@ double real_or_nan(const Json& result, const std::string& key);
 
 // "status: message" for a run that did not end ok (n/a, diverged, over budget), else "".
 std::string status_note(const Json& result);
+
+// The statuses a study's result may carry besides the run statuses (status_name): a run the
+// integrator declined, and a study file's outcome thresholds (README: `energy_blow_up`,
+// `max_penetration`) met by a run that otherwise ended ok or over budget.
+inline constexpr std::array<std::string_view, 3> kStudyStatuses = {"n/a", "energy blow-up", "penetration"};
 
 // The rows of a table with a block per integrator: `cases` (each naming its "integrator" and
 // "case") come in runs of one integrator, of which member(k) picks those the table shows. An

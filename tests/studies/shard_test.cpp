@@ -8,10 +8,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 
 #include "core/output.hpp"
+#include "studies/study.hpp"
 #include "tests/support/files.hpp"
 #include "../app/run_cli.hpp"
 
@@ -58,6 +61,43 @@ TEST_CASE("shards: written and merged back whole", "[studies][shard]") {
   CHECK(merged[0]["values"][0] == 0.0714);
   CHECK(merged[1]["values"][0] == 0.05);
   CHECK(merged[2]["values"][0] == 0.03);
+}
+
+// Found by the Slurm round trip on `hard`: a study file's outcome statuses were refused.
+TEST_CASE("shards: every status a study's result may carry merges back", "[studies][shard]") {
+  std::vector<std::string> statuses(nsb::kStudyStatuses.begin(), nsb::kStudyStatuses.end());
+  for (const nsb::RunStatus s : {nsb::RunStatus::Ok, nsb::RunStatus::Diverged, nsb::RunStatus::OverBudget,
+                                 nsb::RunStatus::Interrupted})
+    statuses.emplace_back(nsb::status_name(s));
+  for (const std::string& status : statuses) {
+    const nsb::test::TempDir dir("shard_test");
+    fs::create_directories(dir.path / "shards");
+    Json r = result(0.5);
+    r["status"] = status;
+    nsb::write_file_atomic(nsb::shard_path(dir.path, "s", 1, 1),
+                           nsb::shard_text("s", false, {1, 1}, kCases, {0, 1, 2}, {result(0.1), r, result(0.2)}));
+    CAPTURE(status);
+    CHECK(nsb::merge_shards("s", kCases, dir.path, false)[1]["status"] == status);
+  }
+}
+
+// Found by the Slurm round trip on `hard`: JSON has no inf, and a diverged run's energy
+// growth (inf in the single-machine report) came back from its shard as null (n/a).
+TEST_CASE("shards: inf, -inf and NaN in a result merge back as they were", "[studies][shard]") {
+  const nsb::test::TempDir dir("shard_test");
+  fs::create_directories(dir.path / "shards");
+  const double inf = std::numeric_limits<double>::infinity();
+  Json r = result(inf);
+  r["nested"] = {{"growth", -inf}, {"values", {1.0, std::numeric_limits<double>::quiet_NaN()}}};
+  r["lookalike"] = {{"non_finite", "infinite"}};  // not one of the three: kept as written
+  nsb::write_file_atomic(nsb::shard_path(dir.path, "s", 1, 1),
+                         nsb::shard_text("s", false, {1, 1}, kCases, {0, 1, 2}, {result(0.1), r, result(0.2)}));
+  const Json merged = nsb::merge_shards("s", kCases, dir.path, false)[1];
+  CHECK(merged["values"][0].get<double>() == inf);
+  CHECK(merged["nested"]["growth"].get<double>() == -inf);
+  CHECK(merged["nested"]["values"][0] == 1.0);
+  CHECK(std::isnan(merged["nested"]["values"][1].get<double>()));
+  CHECK(merged["lookalike"] == r["lookalike"]);
 }
 
 TEST_CASE("shards: a damaged shard is refused naming the file", "[studies][shard]") {
