@@ -1,0 +1,306 @@
+// The engine's own tables (work-precision, fitted orders, ranking, energy history) and the
+// declared tables built from them.
+#include "studies/study_file/engine.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "core/output.hpp"
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+#include "reference/cache.hpp"
+#include "reference/modal_exact.hpp"
+#include "studies/hausdorff.hpp"
+#include "studies/measures.hpp"
+#include "studies/parallel.hpp"
+#include "studies/ranking.hpp"
+#include "studies/report_index.hpp"
+#include "studies/slip_stop.hpp"
+
+namespace nsb::study_files {
+
+namespace {
+
+// What a Hausdorff measure's graphs are of: its observable, or each problem's ("v_contact (signorini-bar), ...").
+std::string graph_observables(const FileMeasure& m) {
+  if (m.problem_observables.empty()) return m.observable;
+  std::vector<std::string> each;
+  for (const auto& [label, name] : m.problem_observables) each.push_back(fmt::format("{} ({})", name, label));
+  return fmt::format("{}", fmt::join(each, ", "));
+}
+
+// What the errors on a problem are measured against, as captions and the ranking say it.
+std::string against_text(const FileReference* r) {
+  if (!r) return "no reference";
+  if (!r->against.empty()) return r->against;
+  return r->exact      ? "the exact solution"
+         : r->lockstep ? fmt::format("{} stepped with each run (lockstep)", r->integrator)
+                       : fmt::format("{} (dt = {}, cached)", r->integrator, r->dt);
+}
+
+// The study's metadata lines and each declared table's own (MetadataLine) on `tables`, the
+// values of a column from the case table `runs` (every column), each once, in its rows' order.
+void add_metadata_lines(const StudySpec& spec, const Table& runs, std::vector<Table>& tables) {
+  const auto value = [&](const MetadataLine& m) {
+    if (m.of.empty()) return m.text;
+    const std::size_t column = column_index(runs, m.of);
+    std::vector<std::string> seen;
+    for (const auto& row : runs.rows) {
+      if (std::holds_alternative<std::monostate>(row[column])) continue;
+      const std::string text = pivot_value_text(row[column]);
+      if (!text.empty() && std::find(seen.begin(), seen.end(), text) == seen.end()) seen.push_back(text);
+    }
+    return fmt::format("{}", fmt::join(seen, " "));
+  };
+  for (Table& t : tables) {
+    for (const MetadataLine& m : spec.metadata) t.metadata.emplace_back(m.line, value(m));
+    const auto own = std::find_if(spec.tables.begin(), spec.tables.end(), [&](const FileTable& d) { return d.id == t.id; });
+    if (own != spec.tables.end())
+      for (const MetadataLine& m : own->metadata) t.metadata.emplace_back(m.line, value(m));
+  }
+}
+
+// The tables the file declares, built from the engine's work-precision (`runs`), orders and
+// ranking tables.
+std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, const Table& orders, const std::optional<Table>& rank,
+                                   const std::function<Table(const FileTable&)>& history) {
+  std::vector<Table> out;
+  bool figures_placed = false;
+  for (const FileTable& d : spec.tables) {
+    Table t;
+    if (d.rows == "history" || d.rows == "samples" || d.of_some_runs() || !d.fit_against.empty()) {
+      t = history(d);
+    } else if (d.rows == "ranking") {
+      t = *rank;  // the reader refuses a ranking without a ranked measure
+    } else if (d.rows == "case") {
+      t = case_table(d, runs, !figures_placed);
+      t.caption = runs.caption;
+      figures_placed = true;
+    } else {
+      t = group_table(spec, d, orders, runs);
+      t.caption = orders.caption;
+    }
+    t.id = d.id;
+    t.title = d.title;
+    if (d.caption) t.caption = *d.caption;
+    t.metadata = runs.metadata;
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& cases, const std::vector<Json>& results) {
+  const std::vector<std::pair<std::string, std::string>> meta = {
+      {"study", spec.name}, {"study_file", spec.file}, {"study_file_fnv1a64", spec.hash}, {"t_end", fmt::format("{}", spec.t_end)}};
+  // What the errors are measured against: one text, or one per problem where they differ.
+  std::vector<std::string> per_problem;
+  for (const auto& p : spec.problems) per_problem.push_back(p.label + ": " + against_text(spec.reference_of(p)));
+  const bool one_reference = std::all_of(spec.problems.begin(), spec.problems.end(), [&](const FileProblem& p) {
+    return against_text(spec.reference_of(p)) == against_text(spec.reference_of(spec.problems.front()));
+  });
+  const std::string against = one_reference ? against_text(spec.reference_of(spec.problems.front()))
+                                            : fmt::format("{}", fmt::join(per_problem, "; "));
+  const std::string cpu = spec.cpu_repeats > 0
+                              ? median_cpu_text(spec.cpu_repeats)
+                              : "thread CPU time of the stepping of the observed run (observer excluded)";
+  Table t;
+  t.id = spec.name + "_work_precision";
+  t.title = spec.title + ": work-precision";
+  t.caption = fmt::format("Errors against {}; CPU: {}. Errors of an observable are relative to its largest reference value "
+                          "over the run; an impact time is the end of the step holding the impact (resolution: the step, for "
+                          "event-driven the output step dt). Diverged, over-budget and declined runs are rows with their reason.",
+                          against, cpu);
+  for (const auto& m : spec.measures)
+    if (m.kind == MeasureKind::Hausdorff)
+      t.caption += fmt::format(" {}: Hausdorff distance between the graphs of {} (jumps of the exact solution as vertical segments) "
+                               "in scaled coordinates (t / {}, value / {}).", m.label, graph_observables(m),
+                               m.time_scale > 0.0 ? fmt::format("{:g} s", m.time_scale) : "t_end",
+                               m.value_scale > 0.0 ? fmt::format("{:g}", m.value_scale) : "the reference's largest |value|");
+  for (const auto& m : spec.measures)
+    if (!m.problems.empty())
+      t.caption += fmt::format(" {}: measured on {} only (n/a on the other problems).", m.label, fmt::join(m.problems, ", "));
+  t.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"dt", "s", "{:.2e}", "requested step"},
+               {"tol", "", "{:.1e}", "tolerance of a tolerance sweep"}};
+  for (const auto& m : spec.measures)
+    t.columns.push_back({m.label, (m.kind == MeasureKind::ImpactTime && m.norm != "count") || m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime || m.kind == MeasureKind::RestTime || m.kind == MeasureKind::PeakTime || m.kind == MeasureKind::RestStart ? "s" : m.kind == MeasureKind::Energy && m.norm == "drift" && m.every == 0.0 ? "1/s" : "",
+                         "{:.3e}", ""});
+  t.columns.insert(t.columns.end(), {{"CPU", "s", "{:.2e}", "", true}, {"steps", "", "", ""},
+                                     {"F_int evals", "", "", "internal force evaluations"},
+                                     {"status", "", "", fmt::format("energy blow-up: E rose above E0 by more than {} E scale "
+                                                                    "(|E0|, or the problem's energy scale when E0 = 0) plus the "
+                                                                    "work W a moving obstacle and time-dependent loads can have "
+                                                                    "done; energy lost never counts (not ranked){}", spec.energy_blow_up,
+                                                                    std::isfinite(spec.max_penetration)
+                                                                        ? fmt::format("; penetration: max(0, -g) above {}", spec.max_penetration)
+                                                                        : "")}});
+  t.metadata = meta;
+  Table orders;
+  orders.id = spec.name + "_orders";
+  orders.title = spec.title + ": fitted orders";
+  orders.caption = "Least-squares slope of log(error) against log(dt) (log(tol) for a tolerance sweep) with its 95% "
+                   "confidence interval (Student t, n - 2 degrees of freedom); errors below 1e-11 are round-off and left out.";
+  orders.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"measure", "", "", ""}, {"against", "", "", ""},
+                    {"order", "", "{:.2f}", ""}, {"CI low", "", "{:.2f}", "95% confidence interval"},
+                    {"CI high", "", "{:.2f}", ""}, {"points", "", "", ""}};
+  orders.metadata = meta;
+  Table history;
+  history.id = spec.name + "_energy_history";
+  history.title = spec.title + ": energy error history";
+  history.caption = fmt::format("max |E - E0| / |E0| over each of {} equal intervals of [0, t_end]", kHistoryIntervals);
+  history.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"run", "", "", ""}, {"t", "s", "", ""},
+                     {"energy err", "", "", ""}};
+  history.csv_only = true;
+  history.metadata = meta;
+  if (!spec.declared_figures_only)
+    history.figures = {{spec.name + "_energy_history", spec.title + ": energy error", "t", "energy err", {"integrator", "run"}, {"problem"}, false, true}};
+
+  const auto primary = spec.measures.begin() + static_cast<long>(std::min(spec.ranked, spec.measures.size()));
+  if (primary != spec.measures.end() && !spec.declared_figures_only) {
+    t.figures = {{spec.name + "_work_precision", spec.title + ": " + primary->label + " against CPU time", "CPU", primary->label, {"integrator"}, {"problem"}, true, true},
+                 {spec.name + "_work_precision_evals", spec.title + ": " + primary->label + " against F_int evaluations", "F_int evals", primary->label, {"integrator"}, {"problem"}, true, true}};
+  }
+  for (const auto& m : spec.measures)
+    if (measure_converges(m) && !spec.declared_figures_only)
+      t.figures.push_back({fmt::format("{}_convergence_{}", spec.name, &m - spec.measures.data()), spec.title + ": convergence of " + m.label,
+                           "dt", m.label, {"integrator"}, {"problem"}, true, true, {1, 2}});
+
+  for (const FileFigure& f : spec.figures)
+    if (f.table.empty())  // else drawn from its history table
+      t.figures.push_back(declared_figure(spec, f));
+
+  // Event times are against the problem's exact solution whatever the reference.
+  const bool exact_times = primary != spec.measures.end() && is_event_time(*primary);
+  // One ranked problem per sweep's problem: a joint refinement's problems are one (its family).
+  std::vector<RankingProblem> ranking;
+  std::vector<std::string> ranking_first;  // the label of each ranked problem's first problem
+  for (const auto& p : spec.problems) {
+    if (std::any_of(ranking.begin(), ranking.end(), [&](const RankingProblem& r) { return r.label == p.family_label(); })) continue;
+    const FileReference* ref = spec.reference_of(p);
+    ranking.push_back({p.family_label(), exact_times ? "the exact solution" : against_text(ref), exact_times || !ref ? 0.0 : ref->floor,
+                       spec.targets, {}});
+    ranking_first.push_back(p.label);
+  }
+  const auto ranked_index = [&](const FileProblem& p) {
+    return static_cast<std::size_t>(std::find_if(ranking.begin(), ranking.end(), [&](const RankingProblem& r) { return r.label == p.family_label(); }) -
+                                    ranking.begin());
+  };
+  // The first declared ranking's error column and runs' number format.
+  const auto ranking_declared = std::find_if(spec.tables.begin(), spec.tables.end(), [](const FileTable& d) { return d.rows == "ranking"; });
+  const std::optional<std::string> runs_format = ranking_declared == spec.tables.end() ? std::nullopt : ranking_declared->runs_format;
+  // The columns only declared tables show: work counters, and each error's order against the
+  // run before it (the previous step or tolerance of the same sweep).
+  std::vector<Column> counters = {{"factorizations", "", "", ""}, {"LCP its", "", "", "LCP iterations"}};
+  for (const auto& m : spec.measures)
+    if (measure_converges(m)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
+  counters.insert(counters.end(), run_columns().begin(), run_columns().end());
+  const std::vector<Column> own = study_run_columns(spec), work = sweep_work_columns(spec);
+  counters.insert(counters.end(), own.begin(), own.end());
+  counters.insert(counters.end(), work.begin(), work.end());
+  std::vector<std::vector<Cell>> counter_rows;
+  std::vector<std::size_t> case_row(cases.size());  // each case's row in t
+  for (const std::vector<std::size_t>& sweep : sweep_runs(spec, cases)) {
+    const std::size_t begin = sweep.front();
+    const std::size_t pi = cases[begin]["problem"], ii = cases[begin]["integrator"];
+    const std::string plabel = spec.problems[pi].family_label();
+    const FileIntegrator& fi = spec.integrators[ii];
+    const std::string ilabel = shown_label(fi, spec.problems[pi].label);
+    const IntegratorEntry& entry = find_integrator(fi.name);
+    WorkCurve curve{ilabel, entry.reference, {}, entry.peer};
+    std::vector<double> xs;
+    std::vector<std::vector<double>> ys(spec.measures.size());
+    for (const std::size_t k : sweep) {
+      const Json& r = results[k];
+      const bool tol = !cases[k]["tol"].is_null();
+      xs.push_back(tol ? cases[k]["tol"].get<double>() : cases[k]["dt"].get<double>());
+      std::vector<Cell> row = {spec.problems[cases[k]["problem"].get<std::size_t>()].label, ilabel, cases[k]["dt"].get<double>(),
+                               number_cell(cases[k]["tol"])};
+      for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+        const double v = r.contains("values") ? real(r["values"][m]) : kNaN;
+        ys[m].push_back(v);
+        row.push_back(number_cell(v));
+      }
+      const std::string status = r["status"];
+      row.insert(row.end(), {number_cell(real_or_nan(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
+                             status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
+      case_row[k] = t.rows.size();
+      t.add_row(std::move(row));
+      const auto count = [&](const char* key) { return r.contains(key) ? Cell{r[key].get<long>()} : Cell{}; };
+      std::vector<Cell> more = {count("factorizations"), count("lcp_iterations")};
+      for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+        if (!measure_converges(spec.measures[m])) continue;
+        const std::size_t i = xs.size() - 1;
+        const auto e = [&](std::size_t j) { return is_event_time(spec.measures[m]) ? ys[m][j] : above_round_off(ys[m][j]); };
+        more.push_back(i ? number_cell(observed_order(xs[i - 1], e(i - 1), xs[i], e(i))) : Cell{});
+      }
+      const std::vector<Cell> run = run_cells(spec, cases[k], r), study = study_run_cells(spec, cases[k], r),
+                              work = sweep_work_cells(spec, r);
+      more.insert(more.end(), run.begin(), run.end());
+      more.insert(more.end(), study.begin(), study.end());
+      more.insert(more.end(), work.begin(), work.end());
+      counter_rows.push_back(std::move(more));
+      // A declined run is no point; a run an outcome threshold removed (its values kept: energy
+      // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
+      if (primary != spec.measures.end() && status != "n/a")
+        curve.points.push_back({run_label(cases[k], runs_format), real_or_nan(r, "cpu"), ys[primary - spec.measures.begin()].back(),
+                                status != "ok" && r.contains("values") ? status : ""});
+      if (r.contains("history"))
+        for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
+          history.add_row({spec.problems[cases[k]["problem"].get<std::size_t>()].label, ilabel, run_label(cases[k]),
+                           number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
+    }
+    ranking[ranked_index(spec.problems[pi])].curves.push_back(curve);
+    for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+      if (!measure_converges(spec.measures[m]) || !spec.measures[m].applies_to(spec.problems[pi].label)) continue;
+      std::vector<double> e = ys[m];
+      for (double& x : e)
+        if (!is_event_time(spec.measures[m])) x = above_round_off(x);
+      const OrderFit fit = fit_order(xs, e);
+      orders.add_row({plabel, ilabel, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
+                      number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});
+    }
+  }
+  const auto runs = std::find_if(spec.tables.begin(), spec.tables.end(), [](const FileTable& d) { return d.rows == "case"; });
+  const std::string runs_id = runs == spec.tables.end() ? t.id : runs->id;  // where the ranked errors are shown
+  std::optional<Table> rank;
+  if (primary != spec.measures.end()) {
+    for (std::size_t r = ranking.size(); r-- > 0;)
+      if (!primary->applies_to(ranking_first[r])) ranking.erase(ranking.begin() + static_cast<long>(r));
+    Column error{primary->label, is_event_time(*primary) ? "s" : "", "{:.1e}", primary->label + " of " + runs_id};
+    if (ranking_declared != spec.tables.end() && ranking_declared->error) error = declared_column(error, *ranking_declared->error);
+    rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error", error, cpu, ranking);
+    rank->metadata = meta;
+  }
+  std::vector<Table> tables;
+  if (!spec.tables.empty()) {
+    Table runs_all = t;  // and the columns only declared tables show
+    runs_all.columns.insert(runs_all.columns.end(), counters.begin(), counters.end());
+    for (std::size_t r = 0; r < runs_all.rows.size(); ++r)
+      runs_all.rows[r].insert(runs_all.rows[r].end(), counter_rows[r].begin(), counter_rows[r].end());
+    tables = declared_tables(spec, runs_all, orders, rank, [&](const FileTable& d) {
+      if (!d.fit_against.empty()) {
+        Table fits = group_table(spec, d, fits_against_parameter(spec, d, cases, results, orders), runs_all);
+        fits.caption = fmt::format("Least-squares slope of log(value) against log({}) over the runs of each sweep.", d.fit_against);
+        return fits;
+      }
+      if (d.rows == "pivot") return pivot_table(spec, d, runs_all);
+      if (d.rows == "impulses") return impulses_table(spec, d, cases, results, runs_all, case_row);
+      if (d.rows == "field") return field_table(spec, d, cases, results, runs_all, case_row);
+      return d.of_some_runs() ? run_series_table(spec, d, cases, results, runs_all, case_row) : history_table(spec, d, cases, results);
+    });
+    add_metadata_lines(spec, runs_all, tables);
+  } else {
+    tables.push_back(t);
+    if (!orders.rows.empty()) tables.push_back(orders);
+    if (rank) tables.push_back(*rank);
+  }
+  if (!history.rows.empty()) tables.push_back(history);
+  return tables;
+}
+
+}  // namespace nsb::study_files
