@@ -71,6 +71,12 @@ std::size_t column_index(const Table& t, const std::string& name) {
   return static_cast<std::size_t>(it - t.columns.begin());
 }
 
+std::optional<std::string> declared_header(const FileTable& d, const Table& source, const std::string& of) {
+  const auto c = std::find_if(d.columns.begin(), d.columns.end(), [&](const FileColumn& c) { return c.of == of; });
+  if (c == d.columns.end()) return std::nullopt;
+  return c->header.value_or(source.columns[column_index(source, of)].name);
+}
+
 // A case-table cell as a number (NaN: none, or a text).
 double cell_number(const Cell& cell) {
   return std::holds_alternative<double>(cell) ? std::get<double>(cell) : std::holds_alternative<long>(cell) ? static_cast<double>(std::get<long>(cell)) : kNaN;

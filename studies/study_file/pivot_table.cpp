@@ -84,11 +84,7 @@ Table pivot_table(const StudySpec& spec, const FileTable& d, const Table& runs) 
   }
   // Its figures: x, series and panels name key columns (by `of`, drawn under their headers), y a
   // spread column by its header (the reader checked both).
-  const auto header = [&](const std::string& of) {
-    for (std::size_t k = 0; k < keys.size(); ++k)
-      if (d.columns[k].of == of) return out.columns[k].name;
-    throw std::logic_error(fmt::format("pivot table {} has no key column '{}'", d.id, of));
-  };
+  const auto header = [&](const std::string& of) { return declared_header(d, runs, of).value(); };
   for (const FileFigure& f : spec.figures) {
     if (f.table != d.id) continue;
     Figure figure = declared_figure(spec, f);

@@ -34,6 +34,14 @@ std::vector<Column> run_series_columns(const std::vector<Column>& own) {
   return columns;
 }
 
+// The columns of an impulses or field table: a run series' (its `own` two), then the
+// integrator's label (run_series_cells).
+std::vector<Column> labelled_run_series_columns(const std::vector<Column>& own) {
+  std::vector<Column> columns = run_series_columns(own);
+  columns.push_back({"integrator label", "", "", "the integrator's label in the file"});
+  return columns;
+}
+
 std::vector<std::string> column_names(const std::vector<Column>& columns) {
   std::vector<std::string> names;
   for (const auto& c : columns) names.push_back(c.name);
@@ -185,22 +193,14 @@ const std::vector<Column>& flights_columns() {
 
 // The columns of an impulses and of a field table ("field": one column per cell at table time).
 const std::vector<Column>& impulses_columns() {
-  static const std::vector<Column> columns = [] {
-    std::vector<Column> c = run_series_columns(
-        {{"t", "s", "", "the bin's end t_j = j dt"}, {"value", "", "", "the contact impulses of the bin (t_j - dt, t_j] over dt and the scale"}});
-    c.push_back({"integrator label", "", "", "the integrator's label in the file"});
-    return c;
-  }();
+  static const std::vector<Column> columns = labelled_run_series_columns(
+      {{"t", "s", "", "the bin's end t_j = j dt"}, {"value", "", "", "the contact impulses of the bin (t_j - dt, t_j] over dt and the scale"}});
   return columns;
 }
 
 const std::vector<Column>& field_columns() {
-  static const std::vector<Column> columns = [] {
-    std::vector<Column> c = run_series_columns(
-        {{"t", "s", "", "the step's end (a run's first row: its start)"}, {"field", "", "", "the element stress of each cell"}});
-    c.push_back({"integrator label", "", "", "the integrator's label in the file"});
-    return c;
-  }();
+  static const std::vector<Column> columns = labelled_run_series_columns(
+      {{"t", "s", "", "the step's end (a run's first row: its start)"}, {"field", "", "", "the element stress of each cell"}});
   return columns;
 }
 
