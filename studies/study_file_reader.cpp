@@ -107,7 +107,172 @@ std::vector<FileExclusion> read_exclusions(const Checker& c, const Json& root, c
   return rules;
 }
 
+// [study]'s keys into spec; returns study.integrators: "all" (every registered integrator),
+// "schemes" (those not peers and not references) or "" (the [[integrator]] tables').
+std::string read_study_keys(const Checker& c, const Json& study, StudySpec& spec) {
+  spec.title = c.string(c.require(study, "study", "title"), "study.title");
+  spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
+  if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
+  if (const Json* v = c.find(study, "check_every")) spec.check_every = c.integer(*v, "study.check_every", 1, 1L << 40);
+  if (const Json* v = c.find(study, "history_intervals"))
+    spec.history_intervals = static_cast<int>(c.integer(*v, "study.history_intervals", 1, 100000));
+  if (const Json* v = c.find(study, "counters")) spec.counters = counter_names(c, *v, "study.counters");
+  if (const Json* v = c.find(study, "cpu_repeats")) spec.cpu_repeats = static_cast<int>(c.integer(*v, "study.cpu_repeats", 0, 100));
+  if (const Json* v = c.find(study, "max_force_evaluations"))  // >= 1: no budget (0) would let a case run 2e8 steps
+    spec.max_force_evaluations = c.integer(*v, "study.max_force_evaluations", 1, 1L << 50);
+  read_study_order_and_budget(c, study, spec);
+  if (const Json* v = c.find(study, "targets")) spec.targets = c.positive_list(*v, "study.targets");
+  if (const Json* v = c.find(study, "energy_blow_up")) {  // inf (TOML): no such status
+    c.expect(*v, "study.energy_blow_up", v->is_number(), "a number");
+    spec.energy_blow_up = v->get<double>();
+    if (!(spec.energy_blow_up > 0.0))
+      c.fail("study.energy_blow_up", fmt::format("{} is not positive", spec.energy_blow_up), "(0, inf]; inf: no energy blow-up status");
+  }
+  if (const Json* v = c.find(study, "max_penetration")) spec.max_penetration = c.positive(*v, "study.max_penetration");
+  const std::string registered_integrators =
+      c.find(study, "integrators") ? c.choice(study["integrators"], "study.integrators", {"all", "schemes"}) : "";
+  if (const Json* v = c.find(study, "figures")) spec.declared_figures_only = c.choice(*v, "study.figures", {"all", "declared"}) == "declared";
+  return registered_integrators;
+}
+
+// [[problem]] j into spec.problems (each point of its grid a problem), an instance of each into `instances`.
+void read_problem(const Checker& c, const Json& j, const std::string& path, StudySpec& spec,
+                  std::vector<std::unique_ptr<Problem>>& instances) {
+  c.keys(j, path, {"name", "label", "parameters", "grid", "refine", "t_end", "max_force_evaluations", "steps", "full_steps", "stable_steps",
+                   "reference", "energy_blow_up", "max_penetration", "energy_scale", "full_only", "default_only", "full_t_end",
+                   "end_at_impact", "t_end_exact", "min_flight"});
+  FileProblem p;
+  p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
+  p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
+  const auto& entry = find_problem(p.name);
+  if (const Json* v = c.find(j, "parameters")) p.parameters = c.parameters(*v, child(path, "parameters"), entry.parameters());
+  if (const Json* v = c.find(j, "t_end")) p.t_end = c.positive(*v, child(path, "t_end"));
+  if (const Json* v = c.find(j, "max_force_evaluations"))
+    p.max_force_evaluations = c.integer(*v, child(path, "max_force_evaluations"), 1, 1L << 50);
+  read_problem_outcome(c, j, path, p);
+  read_problem_steps(c, j, path, spec, p);
+  const std::size_t first = spec.problems.size();
+  for (FileProblem q : grid_points(c, j, path, p, entry.parameters())) {
+    for (const auto& r : spec.problems)
+      if (r.label == q.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", q.label), "distinct labels");
+    try {
+      instances.push_back(make_problem(q.name, q.parameters));
+    } catch (const InputError& e) {
+      c.fail(child(path, c.find(j, "grid") ? "grid" : "parameters"), e.what());
+    }
+    read_end_at_impact(c, j, path, *instances.back(), q);
+    read_t_end_exact(c, j, path, *instances.back(), q);
+    FileSweep own_steps;  // its stable steps against its end time
+    own_steps.stable_fractions = q.stable_fractions;
+    check_steps(c, own_steps, path, spec, q, instances.back()->stable_step());
+    spec.problems.push_back(q);
+  }
+  if (const Json* r = c.find(j, "reference")) {
+    std::vector<std::size_t> points(spec.problems.size() - first);
+    std::iota(points.begin(), points.end(), first);
+    const FileReference own = read_reference(c, *r, child(path, "reference"), spec, points, instances);
+    for (const std::size_t q : points) spec.problems[q].reference = own;
+  }
+}
+
+// [[integrator]] j into `declared` (nothing for an optional one this build does not register).
+void read_integrator(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec,
+                     const std::vector<std::unique_ptr<Problem>>& instances, std::vector<FileIntegrator>& declared) {
+  const std::vector<std::string> sweep_keys{"parameters", "steps", "full_steps", "stable_steps", "tolerances", "tolerance_parameter",
+                                           "tolerance_divisors", "dt"};
+  auto keys = sweep_keys;
+  keys.insert(keys.end(), {"name", "label", "per_problem", "optional"});
+  c.keys(j, path, keys);
+  // optional = true: left out of a build that does not register it (a peer whose package is
+  // absent), so that the file still runs there; a name no build knows is still an error there.
+  if (const Json* o = c.find(j, "optional"); o && c.boolean(*o, child(path, "optional"))) {
+    const Json& name = c.require(j, path, "name");
+    const auto names = names_of(integrator_registry());
+    if (name.is_string() && std::find(names.begin(), names.end(), name.get<std::string>()) == names.end()) return;
+  }
+  FileIntegrator it;
+  it.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(integrator_registry()), "integrator");
+  it.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : it.name;
+  const auto& entry = find_integrator(it.name);
+  it.sweep = read_sweep(c, j, path, entry, nullptr);
+  if (const Json* pp = c.find(j, "per_problem")) {
+    const std::string pp_path = child(path, "per_problem");
+    c.expect(*pp, pp_path, pp->is_object(), "a table keyed by problem label");
+    std::vector<std::string> labels;
+    for (const auto& p : spec.problems) labels.push_back(p.label);
+    c.keys(*pp, pp_path, labels);
+    for (const auto& [label, o] : pp->items()) {
+      c.expect(o, child(pp_path, label), o.is_object(), "a table");
+      c.keys(o, child(pp_path, label), sweep_keys);
+      it.per_problem[label] = read_sweep(c, o, child(pp_path, label), entry, &it.sweep);
+    }
+  }
+  sweep_from_problems(c, it, path, spec.problems);
+  for (std::size_t p = 0; p < spec.problems.size(); ++p) {
+    const std::string& label = spec.problems[p].label;
+    const bool own = it.per_problem.count(label) > 0;
+    check_steps(c, it.sweep_for(label), own ? child(child(path, "per_problem"), label) : path, spec, spec.problems[p],
+                instances[p]->stable_step());
+  }
+  add_integrator(c, declared, std::move(it), path);
+}
+
+// The study's integrators: the [[integrator]] tables', or with study.integrators = "all" (or
+// "schemes") each registered one, with the problems' steps, but those the [[integrator]] tables
+// name: in its place, the tables' variants, in their order.
+void read_integrators(const Checker& c, const Json& root, const std::string& registered_integrators, StudySpec& spec,
+                      const std::vector<std::unique_ptr<Problem>>& instances) {
+  const bool all_integrators = !registered_integrators.empty();
+  std::vector<FileIntegrator> declared;
+  const Json& integrators = all_integrators && !c.find(root, "integrator") ? Json::array() : required_tables(c, root, "integrator");
+  for (std::size_t i = 0; i < integrators.size(); ++i) read_integrator(c, integrators[i], element("integrator", i), spec, instances, declared);
+  if (!all_integrators) spec.integrators = std::move(declared);
+  for (const auto& entry : integrator_registry()) {
+    if (!all_integrators) break;
+    if (registered_integrators == "schemes" && (entry.reference || entry.peer)) continue;
+    const auto named = [&](const FileIntegrator& it) { return it.name == entry.name; };
+    if (std::any_of(declared.begin(), declared.end(), named)) {
+      std::copy_if(declared.begin(), declared.end(), std::back_inserter(spec.integrators), named);
+      continue;
+    }
+    FileIntegrator it{entry.name, entry.name, {}, {}};
+    sweep_from_problems(c, it, "study.integrators", spec.problems);
+    add_integrator(c, spec.integrators, std::move(it), "study.integrators");
+  }
+}
+
+// A Hausdorff distance compares a run's whole graph: the samples each run holds for it stay
+// within the limit (check_held_samples).
+void check_hausdorff_samples(const Checker& c, const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances) {
+  if (std::none_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; })) return;
+  for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
+    const auto held = [&](const FileSweep& sweep, const std::string& path) {
+      for (std::size_t k = 0; k < sweep.steps.size(); ++k)
+        check_held_samples(c, sweep.steps[k], spec.sample_every, longest_t_end(spec), element(child(path, "steps"), k),
+                           "a run's graph for a Hausdorff distance", "study.sample_every");
+      for (std::size_t k = 0; k < sweep.stable_fractions.size(); ++k)
+        for (const auto& problem : instances)
+          check_held_samples(c, sweep.stable_fractions[k] * problem->stable_step(), spec.sample_every, longest_t_end(spec),
+                             element(child(path, "stable_steps"), k), "a run's graph for a Hausdorff distance", "study.sample_every");
+      if (!sweep.tolerances.empty())
+        check_held_samples(c, sweep.dt, spec.sample_every, longest_t_end(spec), child(path, "dt"), "a run's graph for a Hausdorff distance",
+                           "study.sample_every");
+    };
+    const std::string path = element("integrator", i);
+    held(spec.integrators[i].sweep, path);
+    for (const auto& [label, sweep] : spec.integrators[i].per_problem) held(sweep, child(child(path, "per_problem"), label));
+  }
+}
+
 }  // namespace
+
+// [[KEY]]: one or more tables.
+const Json& required_tables(const Checker& c, const Json& root, const char* key) {
+  const Json& a = c.require(root, "", key);
+  c.expect(a, key, a.is_array() && !a.empty(), fmt::format("one or more [[{}]] tables", key));
+  for (std::size_t i = 0; i < a.size(); ++i) c.expect(a[i], element(key, i), a[i].is_object(), "a table");
+  return a;
+}
 
 }  // namespace nsb::study_files
 
@@ -132,138 +297,11 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
   c.keys(study, "study", {"title", "t_end", "sample_every", "check_every", "cpu_repeats", "max_force_evaluations", "targets",
                           "rank_by", "energy_blow_up", "max_penetration", "integrators", "figures", "case_order",
                           "max_force_evaluations_per_step", "measure_over_budget", "history_intervals", "counters", "metadata"});
-  spec.title = c.string(c.require(study, "study", "title"), "study.title");
-  spec.t_end = c.positive(c.require(study, "study", "t_end"), "study.t_end");
-  if (const Json* v = c.find(study, "sample_every")) spec.sample_every = c.integer(*v, "study.sample_every", 1, 1L << 40);
-  if (const Json* v = c.find(study, "check_every")) spec.check_every = c.integer(*v, "study.check_every", 1, 1L << 40);
-  if (const Json* v = c.find(study, "history_intervals"))
-    spec.history_intervals = static_cast<int>(c.integer(*v, "study.history_intervals", 1, 100000));
-  if (const Json* v = c.find(study, "counters")) spec.counters = counter_names(c, *v, "study.counters");
-  if (const Json* v = c.find(study, "cpu_repeats")) spec.cpu_repeats = static_cast<int>(c.integer(*v, "study.cpu_repeats", 0, 100));
-  if (const Json* v = c.find(study, "max_force_evaluations"))  // >= 1: no budget (0) would let a case run 2e8 steps
-    spec.max_force_evaluations = c.integer(*v, "study.max_force_evaluations", 1, 1L << 50);
-  read_study_order_and_budget(c, study, spec);
-  if (const Json* v = c.find(study, "targets")) spec.targets = c.positive_list(*v, "study.targets");
-  if (const Json* v = c.find(study, "energy_blow_up")) {  // inf (TOML): no such status
-    c.expect(*v, "study.energy_blow_up", v->is_number(), "a number");
-    spec.energy_blow_up = v->get<double>();
-    if (!(spec.energy_blow_up > 0.0))
-      c.fail("study.energy_blow_up", fmt::format("{} is not positive", spec.energy_blow_up), "(0, inf]; inf: no energy blow-up status");
-  }
-  if (const Json* v = c.find(study, "max_penetration")) spec.max_penetration = c.positive(*v, "study.max_penetration");
-  // study.integrators = "all": every registered integrator; "schemes": those not peers and not references.
-  const std::string registered_integrators =
-      c.find(study, "integrators") ? c.choice(study["integrators"], "study.integrators", {"all", "schemes"}) : "";
-  const bool all_integrators = !registered_integrators.empty();
-  if (const Json* v = c.find(study, "figures")) spec.declared_figures_only = c.choice(*v, "study.figures", {"all", "declared"}) == "declared";
-
-  const auto list = [&](const char* key) -> const Json& {
-    const Json& a = c.require(root, "", key);
-    c.expect(a, key, a.is_array() && !a.empty(), fmt::format("one or more [[{}]] tables", key));
-    for (std::size_t i = 0; i < a.size(); ++i) c.expect(a[i], element(key, i), a[i].is_object(), "a table");
-    return a;
-  };
+  const std::string registered_integrators = read_study_keys(c, study, spec);
   std::vector<std::unique_ptr<Problem>> instances;
-  const Json& problems = list("problem");
-  for (std::size_t i = 0; i < problems.size(); ++i) {
-    const Json& j = problems[i];
-    const std::string path = element("problem", i);
-    c.keys(j, path, {"name", "label", "parameters", "grid", "refine", "t_end", "max_force_evaluations", "steps", "full_steps", "stable_steps",
-                     "reference", "energy_blow_up", "max_penetration", "energy_scale", "full_only", "default_only", "full_t_end",
-                     "end_at_impact", "t_end_exact", "min_flight"});
-    FileProblem p;
-    p.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(problem_registry()), "problem");
-    p.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : p.name;
-    const auto& entry = find_problem(p.name);
-    if (const Json* v = c.find(j, "parameters")) p.parameters = c.parameters(*v, child(path, "parameters"), entry.parameters());
-    if (const Json* v = c.find(j, "t_end")) p.t_end = c.positive(*v, child(path, "t_end"));
-    if (const Json* v = c.find(j, "max_force_evaluations"))
-      p.max_force_evaluations = c.integer(*v, child(path, "max_force_evaluations"), 1, 1L << 50);
-    read_problem_outcome(c, j, path, p);
-    read_problem_steps(c, j, path, spec, p);
-    const std::size_t first = spec.problems.size();
-    for (FileProblem q : grid_points(c, j, path, p, entry.parameters())) {
-      for (const auto& r : spec.problems)
-        if (r.label == q.label) c.fail(child(path, "label"), fmt::format("label '{}' used twice", q.label), "distinct labels");
-      try {
-        instances.push_back(make_problem(q.name, q.parameters));
-      } catch (const InputError& e) {
-        c.fail(child(path, c.find(j, "grid") ? "grid" : "parameters"), e.what());
-      }
-      read_end_at_impact(c, j, path, *instances.back(), q);
-      read_t_end_exact(c, j, path, *instances.back(), q);
-      FileSweep own_steps;  // its stable steps against its end time
-      own_steps.stable_fractions = q.stable_fractions;
-      check_steps(c, own_steps, path, spec, q, instances.back()->stable_step());
-      spec.problems.push_back(q);
-    }
-    if (const Json* r = c.find(j, "reference")) {
-      std::vector<std::size_t> points(spec.problems.size() - first);
-      std::iota(points.begin(), points.end(), first);
-      const FileReference own = read_reference(c, *r, child(path, "reference"), spec, points, instances);
-      for (const std::size_t q : points) spec.problems[q].reference = own;
-    }
-  }
-
-  // study.integrators = "all": each registered one, with the problems' steps, but those the
-  // [[integrator]] tables name: in its place, the tables' variants, in their order.
-  std::vector<FileIntegrator> declared;
-  const Json& integrators = all_integrators && !c.find(root, "integrator") ? Json::array() : list("integrator");
-  const std::vector<std::string> sweep_keys{"parameters", "steps", "full_steps", "stable_steps", "tolerances", "tolerance_parameter",
-                                           "tolerance_divisors", "dt"};
-  for (std::size_t i = 0; i < integrators.size(); ++i) {
-    const Json& j = integrators[i];
-    const std::string path = element("integrator", i);
-    auto keys = sweep_keys;
-    keys.insert(keys.end(), {"name", "label", "per_problem", "optional"});
-    c.keys(j, path, keys);
-    // optional = true: left out of a build that does not register it (a peer whose package is
-    // absent), so that the file still runs there; a name no build knows is still an error there.
-    if (const Json* o = c.find(j, "optional"); o && c.boolean(*o, child(path, "optional"))) {
-      const Json& name = c.require(j, path, "name");
-      const auto names = names_of(integrator_registry());
-      if (name.is_string() && std::find(names.begin(), names.end(), name.get<std::string>()) == names.end()) continue;
-    }
-    FileIntegrator it;
-    it.name = c.registered(c.require(j, path, "name"), child(path, "name"), names_of(integrator_registry()), "integrator");
-    it.label = c.find(j, "label") ? c.string(j["label"], child(path, "label")) : it.name;
-    const auto& entry = find_integrator(it.name);
-    it.sweep = read_sweep(c, j, path, entry, nullptr);
-    if (const Json* pp = c.find(j, "per_problem")) {
-      const std::string pp_path = child(path, "per_problem");
-      c.expect(*pp, pp_path, pp->is_object(), "a table keyed by problem label");
-      std::vector<std::string> labels;
-      for (const auto& p : spec.problems) labels.push_back(p.label);
-      c.keys(*pp, pp_path, labels);
-      for (const auto& [label, o] : pp->items()) {
-        c.expect(o, child(pp_path, label), o.is_object(), "a table");
-        c.keys(o, child(pp_path, label), sweep_keys);
-        it.per_problem[label] = read_sweep(c, o, child(pp_path, label), entry, &it.sweep);
-      }
-    }
-    sweep_from_problems(c, it, path, spec.problems);
-    for (std::size_t p = 0; p < spec.problems.size(); ++p) {
-      const std::string& label = spec.problems[p].label;
-      const bool own = it.per_problem.count(label) > 0;
-      check_steps(c, it.sweep_for(label), own ? child(child(path, "per_problem"), label) : path, spec, spec.problems[p],
-                  instances[p]->stable_step());
-    }
-    add_integrator(c, declared, std::move(it), path);
-  }
-  if (!all_integrators) spec.integrators = std::move(declared);
-  for (const auto& entry : integrator_registry()) {
-    if (!all_integrators) break;
-    if (registered_integrators == "schemes" && (entry.reference || entry.peer)) continue;
-    const auto named = [&](const FileIntegrator& it) { return it.name == entry.name; };
-    if (std::any_of(declared.begin(), declared.end(), named)) {
-      std::copy_if(declared.begin(), declared.end(), std::back_inserter(spec.integrators), named);
-      continue;
-    }
-    FileIntegrator it{entry.name, entry.name, {}, {}};
-    sweep_from_problems(c, it, "study.integrators", spec.problems);
-    add_integrator(c, spec.integrators, std::move(it), "study.integrators");
-  }
-
+  const Json& problems = required_tables(c, root, "problem");
+  for (std::size_t i = 0; i < problems.size(); ++i) read_problem(c, problems[i], element("problem", i), spec, instances);
+  read_integrators(c, root, registered_integrators, spec, instances);
   if (const Json* r = c.find(root, "reference")) {
     std::vector<std::size_t> served;  // the problems without a reference of their own
     for (std::size_t p = 0; p < spec.problems.size(); ++p)
@@ -271,180 +309,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     spec.reference = read_reference(c, *r, "reference", spec, served, instances);
     spec.has_reference = true;
   }
-
-  // A study of declared tables may show its runs' own figures alone (outcome, steps, histories).
-  const Json& measures = c.find(root, "measure") || !c.find(root, "table") ? list("measure") : Json::array();
-  const std::vector<std::string> kinds{"error",        "impact-time", "energy",      "momentum",     "penetration",
-                                       "hausdorff",    "stop-time",   "onset-time",  "flight-energy", "rest-start", "estimate", "chatter",
-                                       "zero-steps",   "contact-duration", "impact-ratio",
-                                       "amplitude",    "impact-count", "rest-time",  "peak-time",    "value",
-                                       "summary"};
-  std::vector<std::string> problem_labels;
-  for (const auto& p : spec.problems) problem_labels.push_back(p.label);
-  for (std::size_t i = 0; i < measures.size(); ++i) {
-    const Json& j = measures[i];
-    const std::string path = element("measure", i);
-    FileMeasure m;
-    const std::string kind = c.choice(c.require(j, path, "kind"), child(path, "kind"), kinds);
-    m.kind = static_cast<MeasureKind>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
-    if (const Json* v = c.find(j, "problems")) {
-      const std::string at = child(path, "problems");
-      c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more problem labels");
-      for (std::size_t k = 0; k < v->size(); ++k) m.problems.push_back(c.choice((*v)[k], element(at, k), problem_labels));
-    }
-    // The keys every kind takes, and its own.
-    const auto keys = [&](std::vector<std::string> own) {
-      own.insert(own.end(), {"kind", "label", "problems"});
-      c.keys(j, path, own);
-    };
-    // The problems it is measured on: their index in spec.problems.
-    std::vector<std::size_t> on;
-    for (std::size_t p = 0; p < instances.size(); ++p)
-      if (m.applies_to(spec.problems[p].label)) on.push_back(p);
-    if (m.kind >= MeasureKind::ImpactRatio) {
-      read_event_measure(c, j, path, kind, m, spec, instances, on);
-    } else if (m.kind == MeasureKind::Error || m.kind == MeasureKind::Hausdorff) {
-      const bool hausdorff = m.kind == MeasureKind::Hausdorff;
-      if (hausdorff) {
-        keys({"observable", "time_scale", "value_scale", "norm"});
-        // An observable, or one per problem (by label, or a joint refinement's by its family
-        // label: each problem it is measured on named).
-        if (const Json& o = c.require(j, path, "observable"); o.is_object()) {
-          const std::string at = child(path, "observable");
-          std::vector<std::string> labels;
-          for (const std::size_t p : on)
-            for (const std::string& label : {spec.problems[p].label, spec.problems[p].family_label()})
-              if (std::find(labels.begin(), labels.end(), label) == labels.end()) labels.push_back(label);
-          c.keys(o, at, labels);
-          for (const std::size_t p : on) {
-            const FileProblem& fp = spec.problems[p];
-            const std::string& key = o.contains(fp.label) ? fp.label : fp.family_label();
-            m.problem_observables[fp.label] = c.string(c.require(o, at, key), child(at, key));
-          }
-          m.observable.clear();
-        } else {
-          m.observable = c.string(o, child(path, "observable"));
-        }
-        m.norm = "distance";
-        if (const Json* v = c.find(j, "norm"))
-          m.norm = c.choice(*v, child(path, "norm"), {"distance", "to reference", "from reference", "max error", "value scale"});
-        if (const Json* v = c.find(j, "time_scale")) m.time_scale = c.positive(*v, child(path, "time_scale"));
-        if (const Json* v = c.find(j, "value_scale")) m.value_scale = c.positive(*v, child(path, "value_scale"));
-      } else {
-        keys({"observable", "norm", "window", "relative_to", "against", "scale", "inside", "semi_discrete", "dof", "per_nominal_step"});
-        read_semi_discrete(c, j, path, m, instances, on);
-        if (const Json* v = c.find(j, "against")) m.against = c.string(*v, child(path, "against"));
-        if (const Json* v = c.find(j, "relative_to"))
-          m.scale_over_run = c.choice(*v, child(path, "relative_to"), {"window", "run"}) == "run";
-        if (const Json* v = c.find(j, "scale")) {
-          m.scale = c.positive(*v, child(path, "scale"));
-          if (c.find(j, "relative_to")) c.fail(child(path, "scale"), "a fixed scale and relative_to both say what the error is relative to", "one of them");
-        }
-        if (const Json* v = c.find(j, "inside")) read_inside_phase(c, *v, child(path, "inside"), m, spec, instances, on);
-      }
-      for (const std::size_t p : on) {
-        const FileReference* ref = spec.reference_of(spec.problems[p]);
-        if (!ref && m.against.empty() && !m.semi_discrete) c.fail(path, fmt::format("{} needs a [reference]", hausdorff ? "a Hausdorff distance" : "an error"),
-                         "[reference] solution = \"exact\" or integrator = NAME (or the problem's own reference = { ... })");
-        if (hausdorff && ref->lockstep)
-          c.fail(path, "a Hausdorff distance needs the reference's whole graph, which a lockstep reference does not keep",
-                 "[reference] solution = \"exact\" or a cached integrator (lockstep = false)");
-      }
-      if (const Json* v = c.find(j, "norm"); v && !hausdorff) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "l2", "rms", "step rms", "l2 in time"});
-      if (const Json* v = c.find(j, "observable"); v && !hausdorff) m.observable = c.string(*v, child(path, "observable"));
-      for (const std::size_t p : on) {
-        if (m.semi_discrete) continue;  // modal-exact's displacement of its dof
-        if (!m.against.empty()) {
-          check_against(c, path, m, instances[p]->observable_names(), spec.problems[p].label);
-          continue;
-        }
-        const FileReference& ref = *spec.reference_of(spec.problems[p]);
-        std::vector<std::string> valid = state_observable_names(*instances[p]);
-        if ((ref.exact || ref.lockstep) && !hausdorff) {  // the state's u and v (a problem's own v: its observable)
-          if (std::find(valid.begin(), valid.end(), "v") == valid.end()) valid.insert(valid.begin(), "v");
-          valid.insert(valid.begin(), "u");
-        }
-        const std::string& observable = m.observable_for(spec.problems[p].label);
-        const std::string at = m.problem_observables.empty() ? child(path, "observable") : child(child(path, "observable"), spec.problems[p].label);
-        check_observable(c, at, observable, valid, spec.problems[p].label, ref.exact ? "" : " recorded by its reference run",
-                         "name the problems it is measured on: problems = [...]");
-      }
-      const std::string graph = m.observable.empty() ? "hausdorff" : fmt::format("hausdorff {}", m.observable);  // "": per problem
-      m.label = hausdorff           ? (m.norm == "distance" ? graph : fmt::format("{} {}", graph, m.norm))
-                : m.against.empty() ? fmt::format("err {} {}", m.observable, m.norm)
-                                    : fmt::format("err {} {} against {}", m.observable, m.norm, m.against);
-      if (m.semi_discrete) m.label = fmt::format("err u[{}] {} against the semi-discrete solution", m.dof, m.norm);
-    } else if (m.kind == MeasureKind::ImpactTime) {
-      keys({"count", "located", "min_flight_steps", "norm"});
-      if (const Json* v = c.find(j, "count")) m.count = static_cast<int>(c.integer(*v, child(path, "count"), 1, 1000));
-      if (const Json* v = c.find(j, "located")) m.located = c.boolean(*v, child(path, "located"));
-      if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"max", "count"});
-      read_min_flight_steps(c, j, path, m);
-      if (m.located && (m.min_flight_steps > 0 || m.norm == "count"))
-        c.fail(child(path, "located"), "located impacts are compared by rank, all of the first count",
-               "located = true without min_flight_steps and norm = \"count\"");
-      for (const std::size_t p : on)
-        if (!instances[p]->exact() || instances[p]->exact()->impact_times(spec.t_end_of(spec.problems[p])).empty())
-          c.fail(child(path, "kind"), fmt::format("problem '{}' knows no impact times before t_end", spec.problems[p].label),
-                 "problems with known impacts (bouncing-mass, rolling-disk dropped from h0 > 0), or problems = [...]");
-      m.label = m.norm == "count" ? "impacts compared" : "impact time err";
-    } else if (m.kind == MeasureKind::StopTime || m.kind == MeasureKind::OnsetTime) {
-      keys({});
-      const bool onset = m.kind == MeasureKind::OnsetTime;
-      for (const std::size_t p : on) {
-        const ExactStop exact = exact_stop(*instances[p]);
-        if (exact.rolling != onset || !(exact.stop_time <= spec.t_end_of(spec.problems[p])))
-          c.fail(child(path, "kind"), fmt::format("problem '{}' has no exact {} by t_end", spec.problems[p].label,
-                                                  onset ? "rolling onset" : "stop time"),
-                 onset ? "rolling-disk problems that roll by t_end, or problems = [...]"
-                       : "sliding-mass problems that stop by t_end (mu > tan alpha, or v0 < 0), or problems = [...]");
-      }
-      m.label = onset ? "onset time err" : "stop time err";
-    } else if (m.kind == MeasureKind::Energy) {
-      keys({"norm", "history", "window", "every", "from", "relative_to"});
-      if (const Json* v = c.find(j, "relative_to"))
-        m.from_first_step = c.choice(*v, child(path, "relative_to"), {"initial", "first step"}) == "first step";
-      read_energy_sampling(c, j, path, m);
-      if (m.from_first_step && m.norm == "offset")
-        c.fail(child(path, "relative_to"), "the offset is E_1 - E0 relative to E0's scale", "relative_to = \"initial\" with norm = \"offset\"");
-    } else if (m.kind == MeasureKind::Chatter || m.kind == MeasureKind::ZeroSteps || m.kind == MeasureKind::ContactDuration) {
-      keys(m.kind == MeasureKind::ContactDuration ? std::vector<std::string>{"exact"} : std::vector<std::string>{"observable", "scale", "inside"});
-      read_step_values_measure(c, j, path, kind, m, spec, instances, on);
-    } else if (m.kind == MeasureKind::Estimate) {
-      keys({"observable", "order"});
-      read_next_run_estimate(c, j, path, m, spec, instances, on);
-    } else if (m.kind == MeasureKind::RestStart) {
-      read_rest_start(c, j, path, m, spec, instances, on);
-    } else if (m.kind == MeasureKind::FlightEnergy) {
-      read_flight_energy(c, j, path, spec, on, instances, m);
-      keys({"count", "norm", "min_flight_steps", "at"});
-    } else {
-      keys(kind == "momentum" ? std::vector<std::string>{"window", "relative_to", "component"} : std::vector<std::string>{});
-      if (const Json* v = c.find(j, "relative_to"))
-        m.initial_speeds_scale = c.choice(*v, child(path, "relative_to"), {"momentum", "initial speeds"}) == "initial speeds";
-      m.label = kind == "momentum" ? "momentum residual" : "penetration";
-      if (const Json* v = c.find(j, "component")) read_momentum_component(c, j, path, *v, m, spec, instances, on);
-    }
-    if (const Json* v = c.find(j, "window")) {
-      const std::string at = child(path, "window");
-      if (v->is_object()) {  // a window per problem, by label
-        c.keys(*v, at, problem_labels);
-        for (const auto& [label, w] : v->items()) {
-          if (!m.applies_to(label)) c.fail(child(at, label), fmt::format("the measure is not measured on problem '{}'", label), "the problems it is measured on");
-          const auto p = static_cast<std::size_t>(std::find(problem_labels.begin(), problem_labels.end(), label) - problem_labels.begin());
-          m.problem_windows[label] = read_window(c, w, child(at, label), spec, {p});
-        }
-        m.label += ", a window per problem";
-      } else {
-        std::tie(m.window_start, m.window_end) = read_window(c, *v, at, spec, on);
-        m.label += fmt::format(", t in [{:g}, {:g}]", m.window_start, m.window_end);
-      }
-    }
-    if (const Json* v = c.find(j, "label")) m.label = c.string(*v, child(path, "label"));
-    for (const auto& q : spec.measures)
-      if (q.label == m.label) c.fail(path, fmt::format("a second measure labelled '{}'", m.label), "distinct labels (label = ...)");
-    spec.measures.push_back(m);
-  }
+  read_measures(c, root, spec, instances);
   spec.exclusions = read_exclusions(c, root, spec);
   spec.ranked = ranked_measure(c, study, spec.measures);
   spec.figures = read_figures(c, root, spec);
@@ -455,24 +320,7 @@ StudySpec parse_study_text(const std::string& text, const std::string& file, boo
     if (!c.find(root, "table")) c.fail("study.metadata", "metadata lines are written on declared tables", "[[table]]s, or no metadata");
     spec.metadata = read_metadata_lines(c, *v, "study.metadata", spec);
   }
-  if (std::any_of(spec.measures.begin(), spec.measures.end(), [](const FileMeasure& m) { return m.kind == MeasureKind::Hausdorff; }))
-    for (std::size_t i = 0; i < spec.integrators.size(); ++i) {
-      const auto held = [&](const FileSweep& sweep, const std::string& path) {
-        for (std::size_t k = 0; k < sweep.steps.size(); ++k)
-          check_held_samples(c, sweep.steps[k], spec.sample_every, longest_t_end(spec), element(child(path, "steps"), k),
-                             "a run's graph for a Hausdorff distance", "study.sample_every");
-        for (std::size_t k = 0; k < sweep.stable_fractions.size(); ++k)
-          for (const auto& problem : instances)
-            check_held_samples(c, sweep.stable_fractions[k] * problem->stable_step(), spec.sample_every, longest_t_end(spec),
-                               element(child(path, "stable_steps"), k), "a run's graph for a Hausdorff distance", "study.sample_every");
-        if (!sweep.tolerances.empty())
-          check_held_samples(c, sweep.dt, spec.sample_every, longest_t_end(spec), child(path, "dt"), "a run's graph for a Hausdorff distance",
-                             "study.sample_every");
-      };
-      const std::string path = element("integrator", i);
-      held(spec.integrators[i].sweep, path);
-      for (const auto& [label, sweep] : spec.integrators[i].per_problem) held(sweep, child(child(path, "per_problem"), label));
-    }
+  check_hausdorff_samples(c, spec, instances);
   return spec;
 }
 

@@ -137,4 +137,46 @@ void check_pivot_figure_y(const Checker& c, const std::string& at, const std::st
            fmt::format("'{}' with {{}} a value of '{}'", header, pivot.across));
 }
 
+// The figures are drawn from the first table of one row per run (or the table they name): it
+// shows their columns.
+void check_table_figures(const Checker& c, const StudySpec& spec, const std::vector<FileTable>& tables) {
+  const auto first_runs = std::find_if(tables.begin(), tables.end(), [](const FileTable& t) { return t.rows == "case"; });
+  for (std::size_t i = 0; i < spec.figures.size(); ++i) {
+    const std::string path = element("figure", i);
+    auto runs = first_runs;
+    if (!spec.figures[i].table.empty()) {
+      runs = std::find_if(tables.begin(), tables.end(), [&](const FileTable& t) { return t.id == spec.figures[i].table; });
+      const auto series = [](const FileTable& t) { return t.rows == "history" || t.rows == "samples" || t.of_some_runs(); };
+      if (runs == tables.end() || !series(*runs)) {
+        std::vector<std::string> histories;
+        for (const auto& t : tables)
+          if (series(t)) histories.push_back(t.id);
+        c.fail(child(path, "table"), fmt::format("'{}' is no declared table a figure names (rows = history, samples, periodic, trajectory, flights, impulses, field or pivot)",
+                                                 spec.figures[i].table),
+               histories.empty() ? "a [[table]] with rows = \"history\", \"samples\", \"periodic\", \"trajectory\", \"flights\", \"impulses\", \"field\" or \"pivot\""
+                                 : fmt::format("{}", fmt::join(histories, ", ")));
+      }
+    }
+    if (runs == tables.end()) c.fail(path, "declared tables hold no table of one row per run to draw it from", "a [[table]] with rows = \"case\"");
+    std::vector<std::string> shown;
+    for (const auto& col : runs->columns) shown.push_back(col.of);
+    if (runs->rows == "pivot") shown.pop_back();  // its value column is drawn by a spread column's header
+    const FileFigure& f = spec.figures[i];
+    check_field_figure(c, path, f, *runs);
+    std::vector<std::pair<std::string, std::string>> used;
+    if (!f.x.empty()) used.emplace_back("x", f.x);
+    used.emplace_back("y", f.y);
+    for (const auto& s : f.series) used.emplace_back("series", s);
+    for (const auto& s : f.panels) used.emplace_back("panels", s);
+    for (const auto& [key, name] : used) {
+      if (runs->rows == "pivot" && key == "y") {
+        check_pivot_figure_y(c, child(path, key), name, *runs);
+        continue;
+      }
+      if (std::find(shown.begin(), shown.end(), name) == shown.end())
+        c.fail(child(path, key), fmt::format("'{}' is not a column of table '{}'", name, runs->id), fmt::format("{}", fmt::join(shown, ", ")));
+    }
+  }
+}
+
 }  // namespace nsb::study_files

@@ -50,6 +50,108 @@ void read_table_integrators(const Checker& c, const Json& j, const std::string& 
   for (std::size_t k = 0; k < v->size(); ++k) t.integrators.push_back(c.choice((*v)[k], element(at, k), labels));
 }
 
+// A table's problems = [labels]: the runs (a group table's fits) on those problems only.
+void read_table_problems(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
+  const Json* v = c.find(j, "problems");
+  if (!v) return;
+  const std::string at = child(path, "problems");
+  if (t.rows == "ranking") c.fail(at, "a ranking ranks every problem of its measure", "rows = \"case\", \"group\", \"history\" or \"samples\"");
+  c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more problem labels");
+  std::vector<std::string> labels;  // a group's problem: a joint refinement's family label too
+  for (const auto& p : spec.problems) labels.push_back(p.label);
+  for (const auto& p : spec.problems)
+    if (t.rows == "group" && !p.family.empty() && std::find(labels.begin(), labels.end(), p.family) == labels.end()) labels.push_back(p.family);
+  for (std::size_t k = 0; k < v->size(); ++k) t.problems.push_back(c.choice((*v)[k], element(at, k), labels));
+}
+
+// A ranking's keys: no columns, its error column and runs' number format (the first ranking's alone).
+void read_ranking_keys(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, const std::vector<FileTable>& tables,
+                       FileTable& t) {
+  if (c.find(j, "columns")) c.fail(child(path, "columns"), "a ranking's columns are fixed", "no columns key with rows = \"ranking\"");
+  if (spec.ranked >= spec.measures.size()) c.fail(child(path, "rows"), "the study has no measure to rank by", "case, group");
+  const bool first = std::none_of(tables.begin(), tables.end(), [](const FileTable& u) { return u.rows == "ranking"; });
+  if (const Json* v = c.find(j, "error")) {
+    const std::string at = child(path, "error");
+    if (!first) c.fail(at, "the first ranking table sets the error column of every ranking", "no error key here");
+    c.expect(*v, at, v->is_object(), "a table { header, unit, format, description }");
+    c.keys(*v, at, {"header", "unit", "format", "description"});
+    FileColumn col;
+    col.header = optional_string(c, *v, at, "header");
+    col.unit = optional_string(c, *v, at, "unit");
+    col.format = optional_string(c, *v, at, "format");
+    col.description = optional_string(c, *v, at, "description");
+    check_number_format(c, col.format, child(at, "format"));
+    t.error = col;
+  }
+  if (const Json* v = c.find(j, "runs_format")) {
+    const std::string at = child(path, "runs_format");
+    if (!first) c.fail(at, "the first ranking table sets the runs' format of every ranking", "no runs_format key here");
+    t.runs_format = c.string(*v, at);
+    if (t.runs_format->empty()) c.fail(at, "an empty format", "a fmt format of one number, e.g. {:.1e}");
+    check_number_format(c, t.runs_format, at);
+  }
+}
+
+// The columns of a table other than a ranking (and a ranking's keys refused).
+void read_table_columns(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t) {
+  for (const char* key : {"error", "runs_format"})
+    if (c.find(j, key)) c.fail(child(path, key), fmt::format("only a ranking has {}", key), "rows = \"ranking\"");
+  const std::string at = child(path, "columns");
+  const Json& cols = c.require(j, path, "columns");
+  c.expect(cols, at, cols.is_array() && !cols.empty(), "a non-empty array of columns");
+  const auto sources = t.fit_against.empty() ? table_sources(t.rows, spec) : fitted_group_sources(spec);
+  for (std::size_t k = 0; k < cols.size(); ++k) {
+    t.columns.push_back(read_column(c, cols[k], element(at, k), sources));
+    if (t.columns.back().missing && t.rows != "case" && !(t.rows == "pivot" && k + 1 == cols.size()))
+      c.fail(child(element(at, k), "missing"), "only a table of one row per run shows its missing cells otherwise",
+             "rows = \"case\", or a pivot's value column (the last)");
+  }
+  read_not_ok(c, j, path, spec, t);
+  if (t.rows == "pivot" && cols.size() < 2)
+    c.fail(at, "a pivot needs the columns naming a row and the value column last", "two or more columns");
+}
+
+// [[table]] j (`tables`: those before it).
+FileTable read_table(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, const std::vector<FileTable>& tables) {
+  c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined", "declined_reason", "integrators",
+                   "where", "drop_above", "across", "measure", "observable", "exact", "last", "points", "spacing", "relative",
+                   "not_ok", "fit_against", "except", "order", "scale", "exact_per", "exact_in", "component", "exact_times", "metadata"});
+  FileTable t;
+  t.id = c.string(c.require(j, path, "id"), child(path, "id"));
+  if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
+  for (const auto& u : tables)
+    if (u.id == t.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", t.id), "distinct ids");
+  t.title = c.string(c.require(j, path, "title"), child(path, "title"));
+  t.caption = optional_string(c, j, path, "caption");
+  if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples", "pivot", "periodic", "trajectory", "flights", "impulses", "field"});
+  read_some_runs(c, j, path, spec, t);
+  read_impulses_and_field(c, j, path, spec, t);
+  if (const Json* v = c.find(j, "metadata")) t.metadata = read_metadata_lines(c, *v, child(path, "metadata"), spec);
+  if (const Json* v = c.find(j, "declined")) {
+    if (t.rows != "case") c.fail(child(path, "declined"), "only a table of one row per run shows declined runs", "rows = \"case\"");
+    const std::string shown = c.choice(*v, child(path, "declined"), {"as run", "n/a", "empty"});
+    t.declined_blank = shown != "as run";
+    t.declined_empty = shown == "empty";
+  }
+  read_table_problems(c, j, path, spec, t);
+  read_table_integrators(c, j, path, spec, t);
+  read_group_fit(c, j, path, spec, t);
+  read_except_and_order(c, j, path, spec, t);
+  if (t.rows == "ranking")
+    read_ranking_keys(c, j, path, spec, tables, t);
+  else
+    read_table_columns(c, j, path, spec, t);
+  if (const Json* v = c.find(j, "declined_reason")) {
+    const std::string at = child(path, "declined_reason");
+    if (!t.declined_blank) c.fail(at, "a declined run's reason replaces one of its blanked cells", "declined = \"n/a\" or \"empty\"");
+    std::vector<std::string> measured;
+    for (const FileColumn& col : t.columns)
+      if (!asked_column(col.of)) measured.push_back(col.of);
+    t.declined_reason = c.choice(*v, at, measured);
+  }
+  return t;
+}
+
 }  // namespace
 
 // The columns a declared table of `rows` may show, by source name.
@@ -71,7 +173,7 @@ std::vector<std::string> table_sources(const std::string& rows, const StudySpec&
     for (const auto& m : measures)
       if (measure_converges(m))
         for (const char* what : {"order", "CI low", "CI high", "points"}) sources.push_back(fmt::format("{} of {}", what, m.label));
-    sources.push_back("note");  // why a group's fits are n/a (group_note, study_file.cpp)
+    sources.push_back("note");  // why a group's fits are n/a (group_note, study_file/sweep_tables.cpp)
   } else if (rows == "history" || rows == "samples") {
     sources = rows == "history" ? history_column_names() : samples_column_names();
   } else if (rows == "periodic" || rows == "trajectory" || rows == "flights") {
@@ -105,136 +207,13 @@ FileColumn read_column(const Checker& c, const Json& j, const std::string& path,
 }
 
 // [[table]]: the tables the study writes instead of the engine's own.
+// [[table]]: the tables the study writes instead of the engine's own.
 std::vector<FileTable> read_tables(const Checker& c, const Json& root, const StudySpec& spec) {
   std::vector<FileTable> tables;
   if (!c.find(root, "table")) return tables;  // the engine's own tables, their figures unchecked here
   const Json& list = optional_tables(c, root, "table");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const Json& j = list[i];
-    const std::string path = element("table", i);
-    c.keys(j, path, {"id", "title", "caption", "rows", "columns", "error", "runs_format", "problems", "declined", "declined_reason", "integrators",
-                     "where", "drop_above", "across", "measure", "observable", "exact", "last", "points", "spacing", "relative",
-                     "not_ok", "fit_against", "except", "order", "scale", "exact_per", "exact_in", "component", "exact_times", "metadata"});
-    FileTable t;
-    t.id = c.string(c.require(j, path, "id"), child(path, "id"));
-    if (!is_file_stem(t.id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", t.id), "[a-z0-9_]+");
-    for (const auto& u : tables)
-      if (u.id == t.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", t.id), "distinct ids");
-    t.title = c.string(c.require(j, path, "title"), child(path, "title"));
-    t.caption = optional_string(c, j, path, "caption");
-    if (const Json* v = c.find(j, "rows")) t.rows = c.choice(*v, child(path, "rows"), {"case", "group", "ranking", "history", "samples", "pivot", "periodic", "trajectory", "flights", "impulses", "field"});
-    read_some_runs(c, j, path, spec, t);
-    read_impulses_and_field(c, j, path, spec, t);
-    if (const Json* v = c.find(j, "metadata")) t.metadata = read_metadata_lines(c, *v, child(path, "metadata"), spec);
-    if (const Json* v = c.find(j, "declined")) {
-      if (t.rows != "case") c.fail(child(path, "declined"), "only a table of one row per run shows declined runs", "rows = \"case\"");
-      const std::string shown = c.choice(*v, child(path, "declined"), {"as run", "n/a", "empty"});
-      t.declined_blank = shown != "as run";
-      t.declined_empty = shown == "empty";
-    }
-    if (const Json* v = c.find(j, "problems")) {
-      const std::string at = child(path, "problems");
-      if (t.rows == "ranking") c.fail(at, "a ranking ranks every problem of its measure", "rows = \"case\", \"group\", \"history\" or \"samples\"");
-      c.expect(*v, at, v->is_array() && !v->empty(), "an array of one or more problem labels");
-      std::vector<std::string> labels;  // a group's problem: a joint refinement's family label too
-      for (const auto& p : spec.problems) labels.push_back(p.label);
-      for (const auto& p : spec.problems)
-        if (t.rows == "group" && !p.family.empty() && std::find(labels.begin(), labels.end(), p.family) == labels.end()) labels.push_back(p.family);
-      for (std::size_t k = 0; k < v->size(); ++k) t.problems.push_back(c.choice((*v)[k], element(at, k), labels));
-    }
-    read_table_integrators(c, j, path, spec, t);
-    read_group_fit(c, j, path, spec, t);
-    read_except_and_order(c, j, path, spec, t);
-    if (t.rows == "ranking") {
-      if (c.find(j, "columns")) c.fail(child(path, "columns"), "a ranking's columns are fixed", "no columns key with rows = \"ranking\"");
-      if (spec.ranked >= spec.measures.size()) c.fail(child(path, "rows"), "the study has no measure to rank by", "case, group");
-      const bool first = std::none_of(tables.begin(), tables.end(), [](const FileTable& u) { return u.rows == "ranking"; });
-      if (const Json* v = c.find(j, "error")) {
-        const std::string at = child(path, "error");
-        if (!first) c.fail(at, "the first ranking table sets the error column of every ranking", "no error key here");
-        c.expect(*v, at, v->is_object(), "a table { header, unit, format, description }");
-        c.keys(*v, at, {"header", "unit", "format", "description"});
-        FileColumn col;
-        col.header = optional_string(c, *v, at, "header");
-        col.unit = optional_string(c, *v, at, "unit");
-        col.format = optional_string(c, *v, at, "format");
-        col.description = optional_string(c, *v, at, "description");
-        check_number_format(c, col.format, child(at, "format"));
-        t.error = col;
-      }
-      if (const Json* v = c.find(j, "runs_format")) {
-        const std::string at = child(path, "runs_format");
-        if (!first) c.fail(at, "the first ranking table sets the runs' format of every ranking", "no runs_format key here");
-        t.runs_format = c.string(*v, at);
-        if (t.runs_format->empty()) c.fail(at, "an empty format", "a fmt format of one number, e.g. {:.1e}");
-        check_number_format(c, t.runs_format, at);
-      }
-    } else {
-      for (const char* key : {"error", "runs_format"})
-        if (c.find(j, key)) c.fail(child(path, key), fmt::format("only a ranking has {}", key), "rows = \"ranking\"");
-      const std::string at = child(path, "columns");
-      const Json& cols = c.require(j, path, "columns");
-      c.expect(cols, at, cols.is_array() && !cols.empty(), "a non-empty array of columns");
-      const auto sources = t.fit_against.empty() ? table_sources(t.rows, spec) : fitted_group_sources(spec);
-      for (std::size_t k = 0; k < cols.size(); ++k) {
-        t.columns.push_back(read_column(c, cols[k], element(at, k), sources));
-        if (t.columns.back().missing && t.rows != "case" && !(t.rows == "pivot" && k + 1 == cols.size()))
-          c.fail(child(element(at, k), "missing"), "only a table of one row per run shows its missing cells otherwise",
-                 "rows = \"case\", or a pivot's value column (the last)");
-      }
-      read_not_ok(c, j, path, spec, t);
-      if (t.rows == "pivot" && cols.size() < 2)
-        c.fail(at, "a pivot needs the columns naming a row and the value column last", "two or more columns");
-    }
-    if (const Json* v = c.find(j, "declined_reason")) {
-      const std::string at = child(path, "declined_reason");
-      if (!t.declined_blank) c.fail(at, "a declined run's reason replaces one of its blanked cells", "declined = \"n/a\" or \"empty\"");
-      std::vector<std::string> measured;
-      for (const FileColumn& col : t.columns)
-        if (!asked_column(col.of)) measured.push_back(col.of);
-      t.declined_reason = c.choice(*v, at, measured);
-    }
-    tables.push_back(t);
-  }
-  // The figures are drawn from the first table of one row per run (or the history table they
-  // name): it shows their columns.
-  const auto first_runs = std::find_if(tables.begin(), tables.end(), [](const FileTable& t) { return t.rows == "case"; });
-  for (std::size_t i = 0; i < spec.figures.size(); ++i) {
-    const std::string path = element("figure", i);
-    auto runs = first_runs;
-    if (!spec.figures[i].table.empty()) {
-      runs = std::find_if(tables.begin(), tables.end(), [&](const FileTable& t) { return t.id == spec.figures[i].table; });
-      const auto series = [](const FileTable& t) { return t.rows == "history" || t.rows == "samples" || t.of_some_runs(); };
-      if (runs == tables.end() || !series(*runs)) {
-        std::vector<std::string> histories;
-        for (const auto& t : tables)
-          if (series(t)) histories.push_back(t.id);
-        c.fail(child(path, "table"), fmt::format("'{}' is no declared table a figure names (rows = history, samples, periodic, trajectory, flights, impulses, field or pivot)",
-                                                 spec.figures[i].table),
-               histories.empty() ? "a [[table]] with rows = \"history\", \"samples\", \"periodic\", \"trajectory\", \"flights\", \"impulses\", \"field\" or \"pivot\""
-                                 : fmt::format("{}", fmt::join(histories, ", ")));
-      }
-    }
-    if (runs == tables.end()) c.fail(path, "declared tables hold no table of one row per run to draw it from", "a [[table]] with rows = \"case\"");
-    std::vector<std::string> shown;
-    for (const auto& col : runs->columns) shown.push_back(col.of);
-    if (runs->rows == "pivot") shown.pop_back();  // its value column is drawn by a spread column's header
-    const FileFigure& f = spec.figures[i];
-    check_field_figure(c, path, f, *runs);
-    std::vector<std::pair<std::string, std::string>> used;
-    if (!f.x.empty()) used.emplace_back("x", f.x);
-    used.emplace_back("y", f.y);
-    for (const auto& s : f.series) used.emplace_back("series", s);
-    for (const auto& s : f.panels) used.emplace_back("panels", s);
-    for (const auto& [key, name] : used) {
-      if (runs->rows == "pivot" && key == "y") {
-        check_pivot_figure_y(c, child(path, key), name, *runs);
-        continue;
-      }
-      if (std::find(shown.begin(), shown.end(), name) == shown.end())
-        c.fail(child(path, key), fmt::format("'{}' is not a column of table '{}'", name, runs->id), fmt::format("{}", fmt::join(shown, ", ")));
-    }
-  }
+  for (std::size_t i = 0; i < list.size(); ++i) tables.push_back(read_table(c, list[i], element("table", i), spec, tables));
+  check_table_figures(c, spec, tables);
   return tables;
 }
 

@@ -180,6 +180,9 @@ void read_end_at_impact(const Checker& c, const Json& j, const std::string& path
 void read_t_end_exact(const Checker& c, const Json& j, const std::string& path, const Problem& instance, FileProblem& p);
 double longest_t_end(const StudySpec& spec);
 
+// read_measure_list.cpp: the [[measure]] list into spec.measures.
+void read_measures(const Checker& c, const Json& root, StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances);
+
 // read_measures.cpp
 void read_min_flight_steps(const Checker& c, const Json& j, const std::string& path, FileMeasure& m);
 void read_flight_energy(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec,
@@ -215,6 +218,7 @@ const Json& optional_tables(const Checker& c, const Json& root, const char* key)
 std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const StudySpec& spec);
 void check_field_figure(const Checker& c, const std::string& path, const FileFigure& f, const FileTable& table);
 void check_pivot_figure_y(const Checker& c, const std::string& at, const std::string& y, const FileTable& pivot);
+void check_table_figures(const Checker& c, const StudySpec& spec, const std::vector<FileTable>& tables);
 
 // read_tables.cpp
 std::vector<std::string> table_sources(const std::string& rows, const StudySpec& spec);
@@ -231,5 +235,8 @@ void check_trajectory_observables(const Checker& c, const StudySpec& spec, const
 std::vector<MetadataLine> read_metadata_lines(const Checker& c, const Json& v, const std::string& path, const StudySpec& spec);
 void read_impulses_and_field(const Checker& c, const Json& j, const std::string& path, const StudySpec& spec, FileTable& t);
 void check_impulses_and_fields(const Checker& c, const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances);
+
+// study_file_reader.cpp: [[KEY]], one or more tables.
+const Json& required_tables(const Checker& c, const Json& root, const char* key);
 
 }  // namespace nsb::study_files
