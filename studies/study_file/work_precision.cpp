@@ -93,22 +93,20 @@ std::vector<Table> declared_tables(const StudySpec& spec, const Table& runs, con
   return out;
 }
 
-}  // namespace
-
-std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& cases, const std::vector<Json>& results) {
-  const std::vector<std::pair<std::string, std::string>> meta = {
-      {"study", spec.name}, {"study_file", spec.file}, {"study_file_fnv1a64", spec.hash}, {"t_end", fmt::format("{}", spec.t_end)}};
-  // What the errors are measured against: one text, or one per problem where they differ.
+// What the errors are measured against: one text, or one per problem where they differ.
+std::string errors_against(const StudySpec& spec) {
   std::vector<std::string> per_problem;
   for (const auto& p : spec.problems) per_problem.push_back(p.label + ": " + against_text(spec.reference_of(p)));
   const bool one_reference = std::all_of(spec.problems.begin(), spec.problems.end(), [&](const FileProblem& p) {
     return against_text(spec.reference_of(p)) == against_text(spec.reference_of(spec.problems.front()));
   });
-  const std::string against = one_reference ? against_text(spec.reference_of(spec.problems.front()))
-                                            : fmt::format("{}", fmt::join(per_problem, "; "));
-  const std::string cpu = spec.cpu_repeats > 0
-                              ? median_cpu_text(spec.cpu_repeats)
-                              : "thread CPU time of the stepping of the observed run (observer excluded)";
+  return one_reference ? against_text(spec.reference_of(spec.problems.front()))
+                       : fmt::format("{}", fmt::join(per_problem, "; "));
+}
+
+// The work-precision table of the study's runs: its caption and columns (its rows: EngineTables::add_sweep).
+Table work_precision_table(const StudySpec& spec, const std::string& cpu) {
+  const std::string against = errors_against(spec);
   Table t;
   t.id = spec.name + "_work_precision";
   t.title = spec.title + ": work-precision";
@@ -139,7 +137,10 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
                                                                     std::isfinite(spec.max_penetration)
                                                                         ? fmt::format("; penetration: max(0, -g) above {}", spec.max_penetration)
                                                                         : "")}});
-  t.metadata = meta;
+  return t;
+}
+
+Table orders_table(const StudySpec& spec) {
   Table orders;
   orders.id = spec.name + "_orders";
   orders.title = spec.title + ": fitted orders";
@@ -148,7 +149,10 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   orders.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"measure", "", "", ""}, {"against", "", "", ""},
                     {"order", "", "{:.2f}", ""}, {"CI low", "", "{:.2f}", "95% confidence interval"},
                     {"CI high", "", "{:.2f}", ""}, {"points", "", "", ""}};
-  orders.metadata = meta;
+  return orders;
+}
+
+Table energy_history_table(const StudySpec& spec) {
   Table history;
   history.id = spec.name + "_energy_history";
   history.title = spec.title + ": energy error history";
@@ -156,11 +160,15 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   history.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"run", "", "", ""}, {"t", "s", "", ""},
                      {"energy err", "", "", ""}};
   history.csv_only = true;
-  history.metadata = meta;
   if (!spec.declared_figures_only)
     history.figures = {{spec.name + "_energy_history", spec.title + ": energy error", "t", "energy err", {"integrator", "run"}, {"problem"}, false, true}};
+  return history;
+}
 
-  const auto primary = spec.measures.begin() + static_cast<long>(std::min(spec.ranked, spec.measures.size()));
+// The work-precision figures of the ranked measure (primary), the convergence figures of the
+// measures that converge (the engine's own, unless study.figures = "declared") and the declared
+// figures drawn from the runs.
+void add_work_precision_figures(const StudySpec& spec, std::vector<FileMeasure>::const_iterator primary, Table& t) {
   if (primary != spec.measures.end() && !spec.declared_figures_only) {
     t.figures = {{spec.name + "_work_precision", spec.title + ": " + primary->label + " against CPU time", "CPU", primary->label, {"integrator"}, {"problem"}, true, true},
                  {spec.name + "_work_precision_evals", spec.title + ": " + primary->label + " against F_int evaluations", "F_int evals", primary->label, {"integrator"}, {"problem"}, true, true}};
@@ -173,28 +181,11 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   for (const FileFigure& f : spec.figures)
     if (f.table.empty())  // else drawn from its history table
       t.figures.push_back(declared_figure(spec, f));
+}
 
-  // Event times are against the problem's exact solution whatever the reference.
-  const bool exact_times = primary != spec.measures.end() && is_event_time(*primary);
-  // One ranked problem per sweep's problem: a joint refinement's problems are one (its family).
-  std::vector<RankingProblem> ranking;
-  std::vector<std::string> ranking_first;  // the label of each ranked problem's first problem
-  for (const auto& p : spec.problems) {
-    if (std::any_of(ranking.begin(), ranking.end(), [&](const RankingProblem& r) { return r.label == p.family_label(); })) continue;
-    const FileReference* ref = spec.reference_of(p);
-    ranking.push_back({p.family_label(), exact_times ? "the exact solution" : against_text(ref), exact_times || !ref ? 0.0 : ref->floor,
-                       spec.targets, {}});
-    ranking_first.push_back(p.label);
-  }
-  const auto ranked_index = [&](const FileProblem& p) {
-    return static_cast<std::size_t>(std::find_if(ranking.begin(), ranking.end(), [&](const RankingProblem& r) { return r.label == p.family_label(); }) -
-                                    ranking.begin());
-  };
-  // The first declared ranking's error column and runs' number format.
-  const auto ranking_declared = std::find_if(spec.tables.begin(), spec.tables.end(), [](const FileTable& d) { return d.rows == "ranking"; });
-  const std::optional<std::string> runs_format = ranking_declared == spec.tables.end() ? std::nullopt : ranking_declared->runs_format;
-  // The columns only declared tables show: work counters, and each error's order against the
-  // run before it (the previous step or tolerance of the same sweep).
+// The columns only declared tables show: work counters, each error's order against the run
+// before it (the previous step or tolerance of the same sweep), the runs' own columns.
+std::vector<Column> declared_only_columns(const StudySpec& spec) {
   std::vector<Column> counters = {{"factorizations", "", "", ""}, {"LCP its", "", "", "LCP iterations"}};
   for (const auto& m : spec.measures)
     if (measure_converges(m)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
@@ -202,86 +193,173 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
   const std::vector<Column> own = study_run_columns(spec), work = sweep_work_columns(spec);
   counters.insert(counters.end(), own.begin(), own.end());
   counters.insert(counters.end(), work.begin(), work.end());
-  std::vector<std::vector<Cell>> counter_rows;
-  std::vector<std::size_t> case_row(cases.size());  // each case's row in t
-  for (const std::vector<std::size_t>& sweep : sweep_runs(spec, cases)) {
-    const std::size_t begin = sweep.front();
-    const std::size_t pi = cases[begin]["problem"], ii = cases[begin]["integrator"];
-    const std::string plabel = spec.problems[pi].family_label();
-    const FileIntegrator& fi = spec.integrators[ii];
-    const std::string ilabel = shown_label(fi, spec.problems[pi].label);
-    const IntegratorEntry& entry = find_integrator(fi.name);
-    WorkCurve curve{ilabel, entry.reference, {}, entry.peer};
-    std::vector<double> xs;
-    std::vector<std::vector<double>> ys(spec.measures.size());
-    for (const std::size_t k : sweep) {
-      const Json& r = results[k];
-      const bool tol = !cases[k]["tol"].is_null();
-      xs.push_back(tol ? cases[k]["tol"].get<double>() : cases[k]["dt"].get<double>());
-      std::vector<Cell> row = {spec.problems[cases[k]["problem"].get<std::size_t>()].label, ilabel, cases[k]["dt"].get<double>(),
-                               number_cell(cases[k]["tol"])};
-      for (std::size_t m = 0; m < spec.measures.size(); ++m) {
-        const double v = r.contains("values") ? real(r["values"][m]) : kNaN;
-        ys[m].push_back(v);
-        row.push_back(number_cell(v));
-      }
-      const std::string status = r["status"];
-      row.insert(row.end(), {number_cell(real_or_nan(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
-                             status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
-      case_row[k] = t.rows.size();
-      t.add_row(std::move(row));
-      const auto count = [&](const char* key) { return r.contains(key) ? Cell{r[key].get<long>()} : Cell{}; };
-      std::vector<Cell> more = {count("factorizations"), count("lcp_iterations")};
-      for (std::size_t m = 0; m < spec.measures.size(); ++m) {
-        if (!measure_converges(spec.measures[m])) continue;
-        const std::size_t i = xs.size() - 1;
-        const auto e = [&](std::size_t j) { return is_event_time(spec.measures[m]) ? ys[m][j] : above_round_off(ys[m][j]); };
-        more.push_back(i ? number_cell(observed_order(xs[i - 1], e(i - 1), xs[i], e(i))) : Cell{});
-      }
-      const std::vector<Cell> run = run_cells(spec, cases[k], r), study = study_run_cells(spec, cases[k], r),
-                              work = sweep_work_cells(spec, r);
-      more.insert(more.end(), run.begin(), run.end());
-      more.insert(more.end(), study.begin(), study.end());
-      more.insert(more.end(), work.begin(), work.end());
-      counter_rows.push_back(std::move(more));
-      // A declined run is no point; a run an outcome threshold removed (its values kept: energy
-      // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
-      if (primary != spec.measures.end() && status != "n/a")
-        curve.points.push_back({run_label(cases[k], runs_format), real_or_nan(r, "cpu"), ys[primary - spec.measures.begin()].back(),
-                                status != "ok" && r.contains("values") ? status : ""});
-      if (r.contains("history"))
-        for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
-          history.add_row({spec.problems[cases[k]["problem"].get<std::size_t>()].label, ilabel, run_label(cases[k]),
-                           number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
-    }
-    ranking[ranked_index(spec.problems[pi])].curves.push_back(curve);
-    for (std::size_t m = 0; m < spec.measures.size(); ++m) {
-      if (!measure_converges(spec.measures[m]) || !spec.measures[m].applies_to(spec.problems[pi].label)) continue;
-      std::vector<double> e = ys[m];
-      for (double& x : e)
-        if (!is_event_time(spec.measures[m])) x = above_round_off(x);
-      const OrderFit fit = fit_order(xs, e);
-      orders.add_row({plabel, ilabel, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
-                      number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});
-    }
+  return counters;
+}
+
+// The engine's own tables of a study's runs, filled sweep by sweep (add_sweep): the
+// work-precision rows and the cells of each run only declared tables show, the fitted orders,
+// the energy histories and the ranking's curves.
+class EngineTables {
+ public:
+  EngineTables(const StudySpec& spec, const std::string& cpu, std::size_t ncases);
+  // The runs of one sweep (sweep_runs), in its order; runs_format: the number format of dt or tol
+  // in the ranking's runs cells.
+  void add_sweep(const std::vector<Json>& cases, const std::vector<Json>& results, const std::vector<std::size_t>& sweep,
+                 const std::optional<std::string>& runs_format);
+  // The ranking of the ranked measure (none: no measure to rank by).
+  std::optional<Table> rank(const std::string& cpu);
+  // The work-precision table with the columns only declared tables show.
+  Table runs_all() const;
+
+  Table t, orders, history;
+  std::vector<std::size_t> case_row;  // each case's row in t
+
+ private:
+  std::size_t ranked_index(const FileProblem& p) const;
+  // The cells of a run (the sweep's k-th: xs, ys up to it) only declared tables show.
+  std::vector<Cell> declared_only_cells(const Json& c, const Json& r, const std::vector<double>& xs,
+                                        const std::vector<std::vector<double>>& ys) const;
+
+  const StudySpec& spec;
+  std::vector<FileMeasure>::const_iterator primary;  // the ranked measure (end: none)
+  std::vector<std::vector<Cell>> counter_rows;       // each row's cells of declared_only_columns
+  std::vector<RankingProblem> ranking;
+  std::vector<std::string> ranking_first;  // the label of each ranked problem's first problem
+  std::vector<std::pair<std::string, std::string>> meta;
+};
+
+EngineTables::EngineTables(const StudySpec& spec, const std::string& cpu, std::size_t ncases)
+    : t(work_precision_table(spec, cpu)), orders(orders_table(spec)), history(energy_history_table(spec)), case_row(ncases), spec(spec),
+      primary(spec.measures.begin() + static_cast<long>(std::min(spec.ranked, spec.measures.size()))),
+      meta({{"study", spec.name}, {"study_file", spec.file}, {"study_file_fnv1a64", spec.hash}, {"t_end", fmt::format("{}", spec.t_end)}}) {
+  t.metadata = orders.metadata = history.metadata = meta;
+  add_work_precision_figures(spec, primary, t);
+  // Event times are against the problem's exact solution whatever the reference.
+  const bool exact_times = primary != spec.measures.end() && is_event_time(*primary);
+  // One ranked problem per sweep's problem: a joint refinement's problems are one (its family).
+  for (const auto& p : spec.problems) {
+    if (std::any_of(ranking.begin(), ranking.end(), [&](const RankingProblem& r) { return r.label == p.family_label(); })) continue;
+    const FileReference* ref = spec.reference_of(p);
+    ranking.push_back({p.family_label(), exact_times ? "the exact solution" : against_text(ref), exact_times || !ref ? 0.0 : ref->floor,
+                       spec.targets, {}});
+    ranking_first.push_back(p.label);
   }
+}
+
+std::size_t EngineTables::ranked_index(const FileProblem& p) const {
+  return static_cast<std::size_t>(std::find_if(ranking.begin(), ranking.end(), [&](const RankingProblem& r) { return r.label == p.family_label(); }) -
+                                  ranking.begin());
+}
+
+void EngineTables::add_sweep(const std::vector<Json>& cases, const std::vector<Json>& results, const std::vector<std::size_t>& sweep,
+                             const std::optional<std::string>& runs_format) {
+  const std::size_t begin = sweep.front();
+  const std::size_t pi = cases[begin]["problem"], ii = cases[begin]["integrator"];
+  const std::string plabel = spec.problems[pi].family_label();
+  const FileIntegrator& fi = spec.integrators[ii];
+  const std::string ilabel = shown_label(fi, spec.problems[pi].label);
+  const IntegratorEntry& entry = find_integrator(fi.name);
+  WorkCurve curve{ilabel, entry.reference, {}, entry.peer};
+  std::vector<double> xs;
+  std::vector<std::vector<double>> ys(spec.measures.size());
+  for (const std::size_t k : sweep) {
+    const Json& r = results[k];
+    const bool tol = !cases[k]["tol"].is_null();
+    xs.push_back(tol ? cases[k]["tol"].get<double>() : cases[k]["dt"].get<double>());
+    std::vector<Cell> row = {spec.problems[cases[k]["problem"].get<std::size_t>()].label, ilabel, cases[k]["dt"].get<double>(),
+                             number_cell(cases[k]["tol"])};
+    for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+      const double v = r.contains("values") ? real(r["values"][m]) : kNaN;
+      ys[m].push_back(v);
+      row.push_back(number_cell(v));
+    }
+    const std::string status = r["status"];
+    row.insert(row.end(), {number_cell(real_or_nan(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
+                           status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
+    case_row[k] = t.rows.size();
+    t.add_row(std::move(row));
+    counter_rows.push_back(declared_only_cells(cases[k], r, xs, ys));
+    // A declined run is no point; a run an outcome threshold removed (its values kept: energy
+    // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
+    if (primary != spec.measures.end() && status != "n/a")
+      curve.points.push_back({run_label(cases[k], runs_format), real_or_nan(r, "cpu"), ys[primary - spec.measures.begin()].back(),
+                              status != "ok" && r.contains("values") ? status : ""});
+    if (r.contains("history"))
+      for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
+        history.add_row({spec.problems[cases[k]["problem"].get<std::size_t>()].label, ilabel, run_label(cases[k]),
+                         number_cell(r["history"]["t"][h]), number_cell(r["history"]["e"][h])});
+  }
+  ranking[ranked_index(spec.problems[pi])].curves.push_back(curve);
+  for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+    if (!measure_converges(spec.measures[m]) || !spec.measures[m].applies_to(spec.problems[pi].label)) continue;
+    std::vector<double> e = ys[m];
+    for (double& x : e)
+      if (!is_event_time(spec.measures[m])) x = above_round_off(x);
+    const OrderFit fit = fit_order(xs, e);
+    orders.add_row({plabel, ilabel, spec.measures[m].label, cases[begin]["tol"].is_null() ? "dt" : "tol",
+                    number_cell(fit.order), number_cell(fit.low), number_cell(fit.high), static_cast<long>(fit.points)});
+  }
+}
+
+std::vector<Cell> EngineTables::declared_only_cells(const Json& c, const Json& r, const std::vector<double>& xs,
+                                                    const std::vector<std::vector<double>>& ys) const {
+  const auto count = [&](const char* key) { return r.contains(key) ? Cell{r[key].get<long>()} : Cell{}; };
+  std::vector<Cell> more = {count("factorizations"), count("lcp_iterations")};
+  for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+    if (!measure_converges(spec.measures[m])) continue;
+    const std::size_t i = xs.size() - 1;
+    const auto e = [&](std::size_t j) { return is_event_time(spec.measures[m]) ? ys[m][j] : above_round_off(ys[m][j]); };
+    more.push_back(i ? number_cell(observed_order(xs[i - 1], e(i - 1), xs[i], e(i))) : Cell{});
+  }
+  const std::vector<Cell> run = run_cells(spec, c, r), study = study_run_cells(spec, c, r),
+                          work = sweep_work_cells(spec, r);
+  more.insert(more.end(), run.begin(), run.end());
+  more.insert(more.end(), study.begin(), study.end());
+  more.insert(more.end(), work.begin(), work.end());
+  return more;
+}
+
+std::optional<Table> EngineTables::rank(const std::string& cpu) {
+  // The first declared ranking's error column.
+  const auto ranking_declared = std::find_if(spec.tables.begin(), spec.tables.end(), [](const FileTable& d) { return d.rows == "ranking"; });
   const auto runs = std::find_if(spec.tables.begin(), spec.tables.end(), [](const FileTable& d) { return d.rows == "case"; });
   const std::string runs_id = runs == spec.tables.end() ? t.id : runs->id;  // where the ranked errors are shown
-  std::optional<Table> rank;
-  if (primary != spec.measures.end()) {
-    for (std::size_t r = ranking.size(); r-- > 0;)
-      if (!primary->applies_to(ranking_first[r])) ranking.erase(ranking.begin() + static_cast<long>(r));
-    Column error{primary->label, is_event_time(*primary) ? "s" : "", "{:.1e}", primary->label + " of " + runs_id};
-    if (ranking_declared != spec.tables.end() && ranking_declared->error) error = declared_column(error, *ranking_declared->error);
-    rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error", error, cpu, ranking);
-    rank->metadata = meta;
-  }
+  if (primary == spec.measures.end()) return std::nullopt;
+  for (std::size_t r = ranking.size(); r-- > 0;)
+    if (!primary->applies_to(ranking_first[r])) ranking.erase(ranking.begin() + static_cast<long>(r));
+  Column error{primary->label, is_event_time(*primary) ? "s" : "", "{:.1e}", primary->label + " of " + runs_id};
+  if (ranking_declared != spec.tables.end() && ranking_declared->error) error = declared_column(error, *ranking_declared->error);
+  Table rank = ranking_table(spec.name + "_ranking", spec.title + ": cheapest integrator at each target error", error, cpu, ranking);
+  rank.metadata = meta;
+  return rank;
+}
+
+Table EngineTables::runs_all() const {
+  Table all = t;
+  const std::vector<Column> declared_only = declared_only_columns(spec);
+  all.columns.insert(all.columns.end(), declared_only.begin(), declared_only.end());
+  for (std::size_t r = 0; r < all.rows.size(); ++r) all.rows[r].insert(all.rows[r].end(), counter_rows[r].begin(), counter_rows[r].end());
+  return all;
+}
+
+}  // namespace
+
+std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& cases, const std::vector<Json>& results) {
+  const std::string cpu = spec.cpu_repeats > 0
+                              ? median_cpu_text(spec.cpu_repeats)
+                              : "thread CPU time of the stepping of the observed run (observer excluded)";
+  EngineTables engine(spec, cpu, cases.size());
+  // The first declared ranking's number format of its runs cells.
+  const auto ranking_declared = std::find_if(spec.tables.begin(), spec.tables.end(), [](const FileTable& d) { return d.rows == "ranking"; });
+  const std::optional<std::string> runs_format = ranking_declared == spec.tables.end() ? std::nullopt : ranking_declared->runs_format;
+  for (const std::vector<std::size_t>& sweep : sweep_runs(spec, cases)) engine.add_sweep(cases, results, sweep, runs_format);
+  const std::optional<Table> rank = engine.rank(cpu);
+  const Table& t = engine.t;
+  const Table& orders = engine.orders;
+  const std::vector<std::size_t>& case_row = engine.case_row;
   std::vector<Table> tables;
   if (!spec.tables.empty()) {
-    Table runs_all = t;  // and the columns only declared tables show
-    runs_all.columns.insert(runs_all.columns.end(), counters.begin(), counters.end());
-    for (std::size_t r = 0; r < runs_all.rows.size(); ++r)
-      runs_all.rows[r].insert(runs_all.rows[r].end(), counter_rows[r].begin(), counter_rows[r].end());
+    const Table runs_all = engine.runs_all();
     tables = declared_tables(spec, runs_all, orders, rank, [&](const FileTable& d) {
       if (!d.fit_against.empty()) {
         Table fits = group_table(spec, d, fits_against_parameter(spec, d, cases, results, orders), runs_all);
@@ -299,7 +377,7 @@ std::vector<Table> file_tables(const StudySpec& spec, const std::vector<Json>& c
     if (!orders.rows.empty()) tables.push_back(orders);
     if (rank) tables.push_back(*rank);
   }
-  if (!history.rows.empty()) tables.push_back(history);
+  if (!engine.history.rows.empty()) tables.push_back(engine.history);
   return tables;
 }
 
