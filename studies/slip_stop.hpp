@@ -2,7 +2,7 @@
 // When a frictional contact stops slipping: the stop time (a sliding mass coming to rest) and
 // the rolling onset (a disk whose contact point stops slipping), measured on a run and given by
 // the problem's exact solution. One definition for the friction study (studies/friction.cpp)
-// and the study files' stop-time and onset-time measures (studies/study_file.cpp).
+// and the study files' stop-time and onset-time measures (studies/study_file/run_case.cpp).
 //
 // Measured from the slip u_T = T v - w of the contacts (T the tangent rows, w the obstacle's
 // tangential velocity), after every step:

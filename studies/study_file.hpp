@@ -376,7 +376,7 @@ struct StudySpec {
   // study.measure_over_budget: an over-budget run's measures up to its stop (default: none).
   bool measure_over_budget = false;
   std::vector<FileExclusion> exclusions;
-  // Outcome thresholds: "energy blow-up" past energy_blow_up E scale (study_file.cpp),
+  // Outcome thresholds: "energy blow-up" past energy_blow_up E scale (study_file/run_case.cpp),
   // "penetration" when max(0, -g) exceeds max_penetration (infinite: never).
   double energy_blow_up = 2.0;
   double max_penetration = std::numeric_limits<double>::infinity();

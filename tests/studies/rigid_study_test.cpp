@@ -1,5 +1,5 @@
 // The rigid study (studies/builtin/rigid.toml) and the study-file measures it is written in:
-// impact-ratio, amplitude, impact-count, rest-time, peak-time, value (studies/study_file.cpp),
+// impact-ratio, amplitude, impact-count, rest-time, peak-time, value (studies/study_file/run_recorders.hpp, EventFigures),
 // ContactImpacts and the closed forms of studies/measures.hpp, and case tables that pick
 // their problems.
 #include <catch2/catch.hpp>
