@@ -636,6 +636,29 @@ def save(fig, spec, meta, reports, paper, legend=None):
     plt.close(fig)
 
 
+def share_mathtext_layouts():
+    """One cache of mathtext layouts for the whole run. matplotlib (3.6) keeps them per parser,
+    50 at most, and every renderer has its own parser: each savefig (PNG at one dpi, PDF at
+    another, each with its tight-bbox pass) parsed the log axes' tick labels ($10^{-3}$...)
+    again with pyparsing, a third of a figure's time. A layout depends on nothing of the parser
+    but its output type (raster or vector), so it is keyed on that and the parser's arguments
+    (string, dpi, font): the same objects come back as from matplotlib's own cache on a hit,
+    the same bytes are drawn. rcParams do not change after main() sets them. Left as it is
+    where matplotlib has no such method."""
+    from matplotlib import mathtext
+    parse = getattr(getattr(mathtext.MathTextParser, "_parse_cached", None), "__wrapped__", None)
+    if parse is None:
+        return
+    layouts = {}
+
+    def shared(self, *args):
+        key = (self._output_type, *args)
+        if key not in layouts:
+            layouts[key] = parse(self, *args)
+        return layouts[key]
+    mathtext.MathTextParser._parse_cached = shared
+
+
 def draw_one(task):
     spec, reports, paper = task
     DRAWERS.get(spec.get("kind"), draw)(spec, reports, paper)
@@ -666,6 +689,7 @@ def main():
     if paper:
         matplotlib.rcParams.update({"font.size": 8, "axes.labelsize": 8, "xtick.labelsize": 7, "ytick.labelsize": 7,
                                     "axes.titlesize": 7})
+    share_mathtext_layouts()  # before the pool: its processes inherit it
     with open(os.path.join(args.reports, "figures.json")) as f:
         specs = json.load(f)
     if args.only:

@@ -243,10 +243,33 @@ def test_figures():
           f"bars {groups}")
     check(list(groups[("bar",)]) == ["b", "a"], "bar categories not in the table's order")
 
+def test_shared_mathtext():
+    """share_mathtext_layouts: log axes' tick labels (mathtext) parsed once for every renderer,
+    the same bytes drawn as with matplotlib's per-renderer caches."""
+    from matplotlib import mathtext
+    with tempfile.TemporaryDirectory() as root:
+        write_report(root)
+        with open(os.path.join(root, "figures.json")) as f:
+            specs = [s for s in json.load(f) if s["id"] in ("conv", "evals")]
+
+        def drawn():
+            for spec in specs:
+                figures.draw_one((spec, root, False))
+            return {name: open(os.path.join(root, "figures", name), "rb").read()
+                    for name in sorted(os.listdir(os.path.join(root, "figures")))}
+        own = drawn()
+        before = mathtext.MathTextParser._parse_cached
+        figures.share_mathtext_layouts()
+        check(mathtext.MathTextParser._parse_cached is not before, "mathtext layouts not shared (matplotlib changed?)")
+        shared = drawn()
+        check(len(own) == 4 and own == shared, "shared mathtext layouts draw other bytes")
+
+
 if __name__ == "__main__":
     test_style_map(sys.argv[1])
     test_distinct_series(sys.argv[1])
     test_figures()
+    test_shared_mathtext()
     for f in failures:
         print("FAILED:", f)
     print(f"figures_test: {len(failures)} failures")
