@@ -132,6 +132,8 @@ class SignoriniBar final : public LinearProblem, public ExactSolution {
   std::optional<double> value(ExactValue what) const override;
   // exact_stress at each element's centre (x_i + x_{i+1}) / 2, component sigma; g = 0 and r = 1 only.
   bool exact_cell_stress(double t, Eigen::Ref<Eigen::MatrixXd> out) const override;
+  // The contact end's u and v (and their *_exact twins) and the exact contact force.
+  std::optional<double> observable(std::string_view name, double t) const override;
   // Field output: the bar's nodes x_i = i h (dof i) and elements; one stress component,
   // sigma = E_e (u_{i+1} - u_i) / h on element i (nodes i, i + 1), constant over it (so the
   // exact piecewise-constant sigma of a wave front is met element by element). The same for

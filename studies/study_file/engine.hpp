@@ -18,6 +18,10 @@ inline constexpr int kHistoryIntervals = 200;
 // run_recorders.cpp
 double state_observable(const Problem& problem, const SpMat& M, const State& s, const Vec& impulses, double dt,
                         const std::string& name, std::span<double> buffer, const Energy* energy);
+// The exact solution's observable `name` at t: ExactSolution::observable where offered (a few
+// points of the solution), else observed on state(t); nullopt where the solution does not hold.
+std::optional<double> exact_observable(const Problem& problem, const SpMat& M, double t, const std::string& name,
+                                       std::span<double> buffer);
 
 // cases.cpp
 std::string shown_label(const FileIntegrator& fi, const std::string& problem_label);

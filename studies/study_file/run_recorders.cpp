@@ -61,6 +61,14 @@ double state_observable(const Problem& problem, const SpMat& M, const State& s, 
   return name == "kinetic" ? e.kinetic : name == "potential" ? e.potential : e.total();
 }
 
+std::optional<double> exact_observable(const Problem& problem, const SpMat& M, double t, const std::string& name,
+                                       std::span<double> buffer) {
+  if (const auto value = problem.exact()->observable(name, t)) return value;
+  const std::optional<State> exact = problem.exact()->state(t);
+  if (!exact) return std::nullopt;
+  return state_observable(problem, M, *exact, Vec::Zero(problem.ncontacts()), 0.0, name, buffer, nullptr);
+}
+
 // The observable of an event measure after a step of length dt (impact-count has none: 0).
 double event_observable(const Problem& problem, const SpMat& M, const Integrator& it, double dt, const FileMeasure& m,
                         std::span<double> buffer, const Energy& energy) {

@@ -55,10 +55,7 @@ class Reference {
       const Energy energy = lockstep_->energy();
       return state_observable(problem_, M_, lockstep_->state(), lockstep_->impulses(), 0.0, name, buffer, &energy);
     }
-    if (exact_) {
-      const State exact = *problem_.exact()->state(t);
-      return state_observable(problem_, M_, exact, Vec::Zero(problem_.ncontacts()), 0.0, name, buffer, nullptr);
-    }
+    if (exact_) return *exact_observable(problem_, M_, t, name, buffer);
     const Series& s = run_.series;
     const std::size_t col = s.column(name);
     std::size_t lo = 0, hi = s.rows() - 1;

@@ -1,5 +1,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
@@ -317,4 +319,30 @@ TEST_CASE("signorini bar: field mesh and element stress (uniform strain, the exa
     CHECK(compared >= 17);
     CHECK(loaded >= 5);
   }
+}
+
+TEST_CASE("signorini bar exact: observable(name, t) is observe() on state(t), bit for bit", "[problems][signorini-bar]") {
+  for (const char* problem : {"signorini-bar", "bouncing-bar"}) {
+    for (const char* mass : {"lumped", "singular"}) {
+      const auto p = nsb::make_problem(problem, {{"N", "40"}, {"mass", mass}});
+      const nsb::ExactSolution& exact = *p->exact();
+      const auto names = p->observable_names();
+      std::vector<double> out(names.size());
+      for (double t = 0.0; t <= 4.0; t += 0.0137) {  // across the contact and the flights after it
+        p->observe(*exact.state(t), Eigen::VectorXd::Zero(p->ncontacts()), 0.0, out);
+        std::size_t offered = 0;
+        for (std::size_t k = 0; k < names.size(); ++k) {
+          if (const auto value = exact.observable(names[k], t)) {
+            CAPTURE(problem, mass, t, names[k]);
+            CHECK(std::bit_cast<std::uint64_t>(*value) == std::bit_cast<std::uint64_t>(out[k]));
+            ++offered;
+          }
+        }
+        CHECK(offered == 5);  // u, v and the contact force, exact, at the contact end; momentum is a sum over nodes
+      }
+    }
+  }
+  const auto stiffened = nsb::make_problem("signorini-bar", {{"stiff_ratio", "4"}});  // no exact solution
+  CHECK_FALSE(stiffened->exact()->state(1.0));
+  CHECK_FALSE(stiffened->exact()->observable("u_contact", 1.0));
 }
