@@ -4,7 +4,9 @@
 
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <regex>
 
 #include "core/json.hpp"
@@ -54,34 +56,35 @@ std::string result_damage(const Json& r) {
 // equal a single machine's.
 constexpr const char* kNonFinite = "non_finite";
 
-Json portable(const Json& j) {
-  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
-    const double v = j.get<double>();
-    return {{kNonFinite, std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"}};
-  }
+// j with each element `replace` gives a value for replaced by it, recursively.
+Json replaced(const Json& j, const std::function<std::optional<Json>(const Json&)>& replace) {
+  if (auto r = replace(j)) return *r;
   if (!j.is_structured()) return j;
   Json out = j.is_array() ? Json::array() : Json::object();
   if (j.is_array())
-    for (const Json& e : j) out.push_back(portable(e));
+    for (const Json& e : j) out.push_back(replaced(e, replace));
   else
-    for (const auto& [k, e] : j.items()) out[k] = portable(e);
+    for (const auto& [k, e] : j.items()) out[k] = replaced(e, replace);
   return out;
 }
 
+Json portable(const Json& j) {
+  return replaced(j, [](const Json& x) -> std::optional<Json> {
+    if (!x.is_number_float() || std::isfinite(x.get<double>())) return std::nullopt;
+    const double v = x.get<double>();
+    return Json{{kNonFinite, std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"}};
+  });
+}
+
 Json restored(const Json& j) {
-  if (j.is_object() && j.size() == 1 && j.contains(kNonFinite) && j[kNonFinite].is_string()) {
-    const std::string& v = j[kNonFinite].get_ref<const std::string&>();
-    if (v == "inf") return std::numeric_limits<double>::infinity();
-    if (v == "-inf") return -std::numeric_limits<double>::infinity();
-    if (v == "nan") return std::numeric_limits<double>::quiet_NaN();
-  }
-  if (!j.is_structured()) return j;
-  Json out = j.is_array() ? Json::array() : Json::object();
-  if (j.is_array())
-    for (const Json& e : j) out.push_back(restored(e));
-  else
-    for (const auto& [k, e] : j.items()) out[k] = restored(e);
-  return out;
+  return replaced(j, [](const Json& x) -> std::optional<Json> {
+    if (!x.is_object() || x.size() != 1 || !x.contains(kNonFinite) || !x[kNonFinite].is_string()) return std::nullopt;
+    const std::string& v = x[kNonFinite].get_ref<const std::string&>();
+    if (v == "inf") return Json(std::numeric_limits<double>::infinity());
+    if (v == "-inf") return Json(-std::numeric_limits<double>::infinity());
+    if (v == "nan") return Json(std::numeric_limits<double>::quiet_NaN());
+    return std::nullopt;
+  });
 }
 
 std::string content_hash(Json file) {
