@@ -94,6 +94,7 @@
 #include "studies/ranking.hpp"
 #include "studies/report_index.hpp"
 #include "studies/slip_stop.hpp"
+#include "studies/study_file/engine.hpp"
 
 namespace nsb::study_files {
 
