@@ -4,22 +4,13 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cmath>
-#include <memory>
-#include <optional>
+#include <filesystem>
+#include <string>
+#include <vector>
 
 #include "core/output.hpp"
-#include "integrators/registry.hpp"
-#include "problems/registry.hpp"
-#include "reference/cache.hpp"
-#include "reference/modal_exact.hpp"
-#include "studies/hausdorff.hpp"
-#include "studies/measures.hpp"
 #include "studies/parallel.hpp"
-#include "studies/ranking.hpp"
 #include "studies/report_index.hpp"
-#include "studies/slip_stop.hpp"
 
 namespace nsb {
 

@@ -6,19 +6,18 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
+#include <cctype>
+#include <filesystem>
+#include <iterator>
 #include <memory>
 #include <numeric>
-#include <set>
-#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/output.hpp"
-#include "integrators/registry.hpp"
 #include "problems/registry.hpp"
-#include "studies/measures.hpp"
 #include "studies/report_text.hpp"
-#include "studies/slip_stop.hpp"
 
 namespace nsb::study_files {
 

@@ -6,20 +6,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
+#include <map>
 #include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
 
-#include "core/output.hpp"
-#include "integrators/registry.hpp"
-#include "problems/registry.hpp"
-#include "reference/cache.hpp"
-#include "reference/modal_exact.hpp"
-#include "studies/hausdorff.hpp"
 #include "studies/measures.hpp"
-#include "studies/parallel.hpp"
-#include "studies/ranking.hpp"
-#include "studies/report_index.hpp"
-#include "studies/slip_stop.hpp"
 
 namespace nsb::study_files {
 

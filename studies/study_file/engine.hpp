@@ -2,13 +2,18 @@
 // The study-file engine's own functions shared between its files (studies/study_file/*.cpp):
 // the cases, the run of one case and the tables. Not part of the library's interface
 // (studies/study_file.hpp is).
+#include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "integrators/integrator.hpp"
+#include "problems/problem.hpp"
+#include "problems/state.hpp"
+#include "studies/study.hpp"
 #include "studies/study_file.hpp"
+#include "studies/table.hpp"
 
 namespace nsb::study_files {
 

@@ -2,24 +2,11 @@
 // themselves.
 #include "studies/study_file/engine.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
-#include <cmath>
-#include <memory>
-#include <optional>
-
-#include "core/output.hpp"
-#include "integrators/registry.hpp"
-#include "problems/registry.hpp"
-#include "reference/cache.hpp"
-#include "reference/modal_exact.hpp"
-#include "studies/hausdorff.hpp"
-#include "studies/measures.hpp"
-#include "studies/parallel.hpp"
-#include "studies/ranking.hpp"
-#include "studies/report_index.hpp"
-#include "studies/slip_stop.hpp"
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace nsb {
 

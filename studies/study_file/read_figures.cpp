@@ -4,19 +4,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
-#include <memory>
-#include <numeric>
-#include <set>
-#include <sstream>
-
-#include "core/output.hpp"
-#include "integrators/registry.hpp"
-#include "problems/registry.hpp"
-#include "studies/measures.hpp"
-#include "studies/report_text.hpp"
-#include "studies/slip_stop.hpp"
+#include <cctype>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace nsb::study_files {
 

@@ -1,11 +1,16 @@
 // Reading the [[measure]] list: each measure's kind, problems, window and label, and the keys of
 // errors, Hausdorff distances, impact times and stop times (the other kinds: read_measures.cpp).
+#include "studies/study_file/reader.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include "studies/slip_stop.hpp"
-#include "studies/study_file/reader.hpp"
 
 namespace nsb::study_files {
 

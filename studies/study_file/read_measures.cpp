@@ -4,19 +4,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <memory>
-#include <numeric>
-#include <set>
-#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
-#include "core/output.hpp"
-#include "integrators/registry.hpp"
-#include "problems/registry.hpp"
+#include "problems/exact_solution.hpp"
 #include "studies/measures.hpp"
-#include "studies/report_text.hpp"
-#include "studies/slip_stop.hpp"
 
 namespace nsb::study_files {
 

@@ -6,17 +6,14 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <memory>
-#include <numeric>
-#include <set>
-#include <sstream>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
-#include "core/output.hpp"
-#include "integrators/registry.hpp"
-#include "problems/registry.hpp"
-#include "studies/measures.hpp"
-#include "studies/report_text.hpp"
-#include "studies/slip_stop.hpp"
+#include "problems/exact_solution.hpp"
 
 namespace nsb::study_files {
 

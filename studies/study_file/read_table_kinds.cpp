@@ -5,19 +5,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
+#include <map>
 #include <memory>
-#include <numeric>
-#include <set>
-#include <sstream>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
-#include "core/output.hpp"
-#include "integrators/registry.hpp"
+#include "problems/problem_output.hpp"
 #include "problems/registry.hpp"
-#include "studies/measures.hpp"
-#include "studies/report_text.hpp"
-#include "studies/slip_stop.hpp"
+#include "problems/state.hpp"
+#include "studies/table.hpp"
 
 namespace nsb::study_files {
 

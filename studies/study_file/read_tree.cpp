@@ -1,12 +1,16 @@
 // A study file's text as one JSON tree: TOML and JSON both read into it, with the line of each
 // key path, so that both formats give the same errors ("FILE:LINE: key.path: what; valid: ...").
-#include <fmt/format.h>
+#include "studies/study_file/reader.hpp"
 
-#include <set>
-#include <sstream>
+#include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include "studies/study_file/reader.hpp"
+#include <algorithm>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
 
 namespace nsb::study_files {
 

@@ -6,15 +6,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "core/output.hpp"
+#include "core/parameters.hpp"
+#include "core/plugin.hpp"
 #include "integrators/registry.hpp"
-#include "problems/registry.hpp"
-#include "studies/report_text.hpp"
+#include "problems/problem.hpp"
+#include "studies/study.hpp"
 #include "studies/study_file.hpp"
 
 namespace nsb::study_files {

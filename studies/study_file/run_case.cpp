@@ -82,17 +82,13 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
-#include "core/output.hpp"
 #include "integrators/registry.hpp"
+#include "problems/exact_solution.hpp"
 #include "problems/registry.hpp"
-#include "reference/cache.hpp"
-#include "reference/modal_exact.hpp"
-#include "studies/hausdorff.hpp"
-#include "studies/measures.hpp"
-#include "studies/parallel.hpp"
-#include "studies/ranking.hpp"
-#include "studies/report_index.hpp"
 #include "studies/slip_stop.hpp"
 #include "studies/study_file/engine.hpp"
 
