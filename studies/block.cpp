@@ -73,7 +73,7 @@ Block2d make_block(long n) {
 
 struct BlockCaseResult {
   bool diverged = false;  // or over budget: `status` says which
-  std::string status = "ok", message;
+  std::string status = status_name(RunStatus::Ok), message;
   std::vector<double> yc;  // centre-of-mass height at t = j kSample
   double energy_max = 0, energy_final = 0, px_error = 0, j_residual = 0, cpu = 0;
   double lcp_residual = NAN;
@@ -190,7 +190,7 @@ Reference penalty_reference(long n, double t_end, double stiffness, double rtol,
                                   {"atol", fmt::format("{}", 1e-3 * rtol)}},
                                  kBlockSamplePeriod, t_end, 1};
   Reference r{{}, cached_reference(reference_cache_dir(), request)};
-  if (r.run.summary["status"] != "ok")
+  if (r.run.summary["status"] != status_name(RunStatus::Ok))
     throw std::runtime_error(fmt::format("block reference: penalty-bdf failed: {}", r.run.summary["message"].get<std::string>()));
   const Block2d b = make_block(n);
   const double weight = b.parameters().real("g") * b.lumped_mass().sum() / 2;
@@ -256,7 +256,7 @@ Json block_case(const Json& c, const StudyOptions& opt) {
     r = run_case(c["integrator"], c["n"], c["dt"], g.t_end, c["dt"] == kDetailDt, pictured);
   } catch (const InputError& e) {
     r.diverged = true;
-    r.status = "n/a";
+    r.status = kDeclinedStatus;
     r.message = fmt::format("unsupported: {}", e.what());
   }
   return {{"diverged", r.diverged}, {"status", r.status}, {"message", r.message}, {"yc", r.yc}, {"energy_max", real(r.energy_max)},
@@ -386,7 +386,7 @@ std::vector<Table> block_tables(const std::vector<Json>& cases, const std::vecto
           momentum.add_row({integrator, mesh, ht[j], number_cell(c["history_px"][j]), number_cell(c["history_j"][j])});
         if (c.contains("snapshots")) add_snapshot_rows(deformed, integrator, c["snapshots"]);
         if (c["diverged"].get<bool>()) {
-          if (c["status"] != "n/a") curve.points.push_back({run, cpu, NAN});
+          if (c["status"] != kDeclinedStatus) curve.points.push_back({run, cpu, NAN});
           cases_table.add_row({integrator, mesh, static_cast<long>(b.ndof()), dt, dt / b.stable_step(), c["status"].get<std::string>(),
                                c["message"].get<std::string>(), {}, {}, {}, {}, {}, {}, {}, n_steps, cpu});
           continue;

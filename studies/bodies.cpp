@@ -134,7 +134,7 @@ Json run_cradle(const BodiesCase& bc, const std::string& integrator_name, double
   const double dt = touching ? knob : knob * kGap;  // v0 = 1
   const BallChain chain(Params(BallChain::parameters_spec(), bc.params));
   auto integrator = make_integrator(integrator_name);
-  if (const auto declined = init_or_decline(*integrator, chain)) return {{"status", "n/a"}, {"message", *declined}};
+  if (const auto declined = init_or_decline(*integrator, chain)) return {{"status", kDeclinedStatus}, {"message", *declined}};
   const Vec v0 = chain.initial_state().v;
   const bool trajectory = bc.id == kBodiesTrajectoryCase && knob == kTrajectoryRatio;
   std::vector<double> trajectory_t = {0.0}, trajectory_u(v0.size(), 0.0);
@@ -180,7 +180,7 @@ Json run_blocks(const BodiesCase& bc, const std::string& integrator_name, double
   constexpr double kEnd = 0.1;
   const TwoBlocks blocks(Params(TwoBlocks::parameters_spec(), bc.params));
   auto integrator = make_integrator(integrator_name);
-  if (const auto declined = init_or_decline(*integrator, blocks)) return {{"status", "n/a"}, {"message", *declined}};
+  if (const auto declined = init_or_decline(*integrator, blocks)) return {{"status", kDeclinedStatus}, {"message", *declined}};
   const Index pf = blocks.floor_contacts();
   const SpMat M = blocks.mass_matrix();
   Vec v_prev = integrator->state().v;
@@ -238,7 +238,7 @@ Json run_bars(const BodiesCase& bc, const std::string& integrator_name, double n
     striker = std::make_unique<MassOnBar>(Params(MassOnBar::parameters_spec(), with(bc.params, "N", N)));
   const Problem* problem = bars ? static_cast<const Problem*>(bars.get()) : striker.get();
   auto integrator = make_integrator(integrator_name);
-  if (const auto declined = init_or_decline(*integrator, *problem)) return {{"status", "n/a"}, {"message", *declined}};
+  if (const auto declined = init_or_decline(*integrator, *problem)) return {{"status", kDeclinedStatus}, {"message", *declined}};
   const double h = bars ? bars->element_size(1) : problem->parameters().real("L") / n;
   const double c = bars ? bars->wave_speed() : std::sqrt(problem->parameters().real("E") / problem->parameters().real("rho"));
   const double dt = 0.9 * h / c;

@@ -149,7 +149,7 @@ class Observables {
 Json measure(const FrictionCase& fc, const std::string& integrator_name, double dt) {
   auto problem = make_problem(fc.problem, fc.params);
   auto integrator = make_integrator(integrator_name);
-  if (const auto declined = init_or_decline(*integrator, *problem)) return {{"status", "n/a"}, {"message", *declined}};
+  if (const auto declined = init_or_decline(*integrator, *problem)) return {{"status", kDeclinedStatus}, {"message", *declined}};
   const ExactStop exact = exact_stop(*problem);
   const Contacts& contacts = problem->contacts();
   const Vec& mu = contacts.mu;
@@ -274,7 +274,7 @@ struct Measure {
 
 // Why a run is n/a, diverged or over budget, or that it stopped where the exact solution never does.
 std::string friction_note(const Json& r) {
-  if (r["status"] != "ok") return status_note(r);
+  if (r["status"] != status_name(RunStatus::Ok)) return status_note(r);
   if (r["never_stops"].get<bool>() && !r["t_stop"].is_null())
     return fmt::format("stops at {:.4g} s; the exact solution never does", r["t_stop"].get<double>());
   return "";

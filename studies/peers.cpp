@@ -140,7 +140,7 @@ Json peers_case(const Json& c) {
     ours->init(*problem, problem->initial_state());
     peer->init(*problem, problem->initial_state());
   } catch (const InputError& e) {
-    return {{"status", "n/a"}, {"message", e.what()}};
+    return {{"status", kDeclinedStatus}, {"message", e.what()}};
   }
   RunOptions options;
   options.dt = pp.dt;
@@ -150,7 +150,7 @@ Json peers_case(const Json& c) {
   double du = 0.0, dv = 0.0, dE = 0.0, dE_end = 0.0, dimp = 0.0, u_scale = 0.0, v_scale = 0.0, imp_scale = 0.0;
   const double E0 = std::abs(ours->energy().total());
   long steps = 0;
-  std::string status = "ok";
+  std::string status = status_name(RunStatus::Ok);
   try {
     while (ours->state().t < pp.t_end * (1.0 - 1e-12)) {
       ours->step(pp.dt);
@@ -158,7 +158,7 @@ Json peers_case(const Json& c) {
       ++steps;
       const State &a = ours->state(), &b = peer->state();
       if (!a.u.allFinite() || !b.u.allFinite()) {
-        status = "diverged";
+        status = status_name(RunStatus::Diverged);
         break;
       }
       du = std::max(du, (a.u - b.u).lpNorm<Eigen::Infinity>());
@@ -173,7 +173,7 @@ Json peers_case(const Json& c) {
       dE = std::max(dE, dE_end);
     }
   } catch (const std::exception& e) {
-    return {{"status", "diverged"}, {"message", e.what()}};
+    return {{"status", status_name(RunStatus::Diverged)}, {"message", e.what()}};
   }
   const double ours_cpu = median_cpu_seconds(*problem, pair.ours, pair.ours_params, options);
   const double peer_cpu = median_cpu_seconds(*problem, pair.peer, pair.peer_params, options);
@@ -206,13 +206,13 @@ std::vector<Table> peers_tables(const std::vector<Json>& cases, const std::vecto
     const PeerProblem& pp = kProblems[cases[i]["problem"].get<std::size_t>()];
     const Json& r = results[i];
     std::vector<Cell> row = {pair.ours, pair.peer, pair.note, pp.label, pp.dt};
-    if (r["status"] != "ok") {
+    if (r["status"] != status_name(RunStatus::Ok)) {
       row.push_back(Cell{});
       row.push_back(fmt::format("{}: {}", r["status"].get<std::string>(), r.value("message", "")));
       row.resize(t.columns.size());
     } else {
       const double ours = r["ours_step"].get<double>() * 1e6, peer = r["peer_step"].get<double>() * 1e6;
-      row.insert(row.end(), {r["steps"].get<long>(), "ok", number_cell(r["du"]), number_cell(r["dv"]), number_cell(r["dE"]),
+      row.insert(row.end(), {r["steps"].get<long>(), status_name(RunStatus::Ok), number_cell(r["du"]), number_cell(r["dv"]), number_cell(r["dE"]),
                              number_cell(r["dE_end"]), number_cell(r["dimp"]), ours, peer, peer / ours});
     }
     t.add_row(std::move(row));

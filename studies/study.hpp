@@ -75,7 +75,10 @@ std::string status_note(const Json& result);
 // The statuses a study's result may carry besides the run statuses (status_name): a run the
 // integrator declined, and a study file's outcome thresholds (README: `energy_blow_up`,
 // `max_penetration`) met by a run that otherwise ended ok or over budget.
-inline constexpr std::array<std::string_view, 3> kStudyStatuses = {"n/a", "energy blow-up", "penetration"};
+inline constexpr const char* kDeclinedStatus = "n/a";
+inline constexpr const char* kEnergyBlowUpStatus = "energy blow-up";
+inline constexpr const char* kPenetrationStatus = "penetration";
+inline constexpr std::array<std::string_view, 3> kStudyStatuses = {kDeclinedStatus, kEnergyBlowUpStatus, kPenetrationStatus};
 
 // The rows of a table with a block per integrator: `cases` (each naming its "integrator" and
 // "case") come in runs of one integrator, of which member(k) picks those the table shows. An

@@ -26,13 +26,13 @@ std::string figure_id(const StudySpec& spec, const FileFigure& f) { return spec.
 // A status cell of a run that never started (declined: "n/a: why").
 bool declined(const Cell& status) {
   const auto* text = std::get_if<std::string>(&status);
-  return text && text->rfind("n/a", 0) == 0;
+  return text && text->rfind(kDeclinedStatus, 0) == 0;
 }
 
 // Whether column i of case table d shows the run's outcome (not_ok = "outcome": a measure's
 // column of a run whose outcome is not ok).
 bool shows_outcome(const FileTable& d, std::size_t i, const Cell& outcome) {
-  return !d.outcome_columns.empty() && outcome != Cell{std::string("ok")} &&
+  return !d.outcome_columns.empty() && outcome != Cell{std::string(status_name(RunStatus::Ok))} &&
          std::find(d.outcome_columns.begin(), d.outcome_columns.end(), d.columns[i].of) != d.outcome_columns.end();
 }
 

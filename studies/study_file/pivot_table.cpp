@@ -22,7 +22,7 @@ namespace {
 void pivot_order_point(const FileTable& d, const Table& runs, const std::vector<Cell>& row, std::size_t r,
                        std::vector<std::vector<double>>& x, std::vector<std::vector<double>>& y) {
   if (x.size() <= r) x.resize(r + 1), y.resize(r + 1);
-  const bool ok = row[column_index(runs, "outcome")] == Cell{std::string("ok")};
+  const bool ok = row[column_index(runs, "outcome")] == Cell{std::string(status_name(RunStatus::Ok))};
   x[r].push_back(cell_number(row[column_index(runs, d.order->of)]));
   y[r].push_back(ok ? cell_number(row[column_index(runs, d.columns.back().of)]) : kNaN);
 }
@@ -55,7 +55,7 @@ Table pivot_table(const StudySpec& spec, const FileTable& d, const Table& runs) 
     const std::string at = pivot_value_text(row[across]);
     const std::size_t a = static_cast<std::size_t>(std::find(spread.begin(), spread.end(), at) - spread.begin());
     if (a == spread.size()) spread.push_back(at);
-    cells[{r, a}] = row[outcome] == Cell{std::string("ok")} ? row[value] : row[outcome];
+    cells[{r, a}] = row[outcome] == Cell{std::string(status_name(RunStatus::Ok))} ? row[value] : row[outcome];
     if (d.order) pivot_order_point(d, runs, row, r, order_x, order_y);
   }
   Table out;

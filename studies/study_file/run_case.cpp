@@ -379,10 +379,10 @@ Json CaseRun::result(const RunResult& r) {
 bool CaseRun::set_outcome(const RunResult& r, Json& out) const {
   if (r.status != RunStatus::Ok && r.status != RunStatus::OverBudget) return false;
   if (const double g = growth_.largest() / e_scale_; g > spec_.energy_blow_up_of(fp_)) {
-    out["status"] = "energy blow-up";
+    out["status"] = kEnergyBlowUpStatus;
     out["message"] = fmt::format("max (E - E0 - W) / E scale = {:.3g} > {}", g, spec_.energy_blow_up_of(fp_));
   } else if (r.max_penetration > spec_.max_penetration_of(fp_)) {
-    out["status"] = "penetration";
+    out["status"] = kPenetrationStatus;
     out["message"] = fmt::format("max penetration {:.3g} > {}", r.max_penetration, spec_.max_penetration_of(fp_));
   }
   return r.status == RunStatus::Ok || (r.status == RunStatus::OverBudget && spec_.measure_over_budget);

@@ -75,7 +75,7 @@ double event_observable(const Problem& problem, const SpMat& M, const Integrator
 // A run that never started: declined by the scheme (its reason), or the lockstep reference
 // itself; its figures those of the initial state (no step, no energy scale).
 Json not_run(const std::string& why) {
-  return {{"status", "n/a"}, {"message", why}, {"steps", 0}, {"force_evaluations", 0}, {"factorizations", 0}, {"lcp_iterations", 0},
+  return {{"status", kDeclinedStatus}, {"message", why}, {"steps", 0}, {"force_evaluations", 0}, {"factorizations", 0}, {"lcp_iterations", 0},
           {"run", {{"t_reached", 0.0}, {"impacts", 0}, {"switches", nullptr}, {"missed_switches", nullptr}, {"max_penetration", 0.0},
                    {"energy_growth", 0.0}, {"final_energy_error", 0.0}, {"energy_scale", 0.0}, {"note", why}}}};
 }
@@ -151,7 +151,7 @@ Reference::Reference(const StudySpec& spec, const Problem& problem, const SpMat&
   } catch (const InputError& e) {
     throw InputError(fmt::format("study {}, reference run on {}: {}", spec.name, fp.label, e.what()));
   }
-  if (run_.summary["status"] != "ok" || run_.series.rows() == 0)
+  if (run_.summary["status"] != status_name(RunStatus::Ok) || run_.series.rows() == 0)
     throw InputError(fmt::format("reference {} on {} failed: {} {}", ref.integrator, fp.label,
                                  run_.summary["status"].dump(), run_.summary["message"].dump()));
   t_ = run_.series.column("t");

@@ -37,7 +37,7 @@ Cell group_note(const StudySpec& spec, const Table& runs, const Cell& problem, c
                                 [&](const FileProblem& q) { return Cell{q.label} == row[0]; });
     if (p == spec.problems.end() || Cell{p->family_label()} != problem || row[1] != integrator) continue;
     const std::string status = std::get<std::string>(row[outcome]);
-    if (status != "ok") return status == "n/a" ? "declined" : status;
+    if (status != status_name(RunStatus::Ok)) return status == kDeclinedStatus ? "declined" : status;
   }
   return std::string();
 }
@@ -157,7 +157,8 @@ std::vector<Json> with_next_run_estimates(const StudySpec& spec, const std::vect
   for (const std::vector<std::size_t>& sweep : sweep_runs(spec, cases))
     for (std::size_t i = 0; i < sweep.size(); ++i) {
       Json& r = results[sweep[i]];
-      const bool next = i + 1 < sweep.size() && results[sweep[i + 1]]["status"] == "ok" && r["status"] == "ok" && r.contains("values");
+      const bool next = i + 1 < sweep.size() && results[sweep[i + 1]]["status"] == status_name(RunStatus::Ok) &&
+                        r["status"] == status_name(RunStatus::Ok) && r.contains("values");
       Json rates = Json::array();
       for (std::size_t m = 0; m < spec.measures.size(); ++m) {
         const FileMeasure& fm = spec.measures[m];

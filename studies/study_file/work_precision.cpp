@@ -296,15 +296,15 @@ void EngineTables::add_sweep(const std::vector<Json>& cases, const std::vector<J
     }
     const std::string status = r["status"];
     row.insert(row.end(), {number_cell(real_or_nan(r, "cpu")), r["steps"].get<long>(), r["force_evaluations"].get<long>(),
-                           status == "ok" ? status : status + ": " + r["message"].get<std::string>()});
+                           status == status_name(RunStatus::Ok) ? status : status + ": " + r["message"].get<std::string>()});
     case_row[k] = t.rows.size();
     t.add_row(std::move(row));
     counter_rows.push_back(declared_only_cells(cases[k], r, xs, ys));
     // A declined run is no point; a run an outcome threshold removed (its values kept: energy
     // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
-    if (primary != spec.measures.end() && status != "n/a")
+    if (primary != spec.measures.end() && status != kDeclinedStatus)
       curve.points.push_back({run_label(cases[k], runs_format), real_or_nan(r, "cpu"), ys[primary - spec.measures.begin()].back(),
-                              status != "ok" && r.contains("values") ? status : ""});
+                              status != status_name(RunStatus::Ok) && r.contains("values") ? status : ""});
     if (r.contains("history"))
       for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
         history.add_row({spec.problems[cases[k]["problem"].get<std::size_t>()].label, ilabel, run_label(cases[k]),
