@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -69,7 +68,7 @@ std::size_t column_index(const Table& t, const std::string& name) {
 std::optional<std::string> declared_header(const FileTable& d, const Table& source, const std::string& of) {
   const auto c = std::find_if(d.columns.begin(), d.columns.end(), [&](const FileColumn& c) { return c.of == of; });
   if (c == d.columns.end()) return std::nullopt;
-  return c->header.value_or(source.columns[column_index(source, of)].name);
+  return declared_column(source.columns[column_index(source, of)], *c).name;
 }
 
 // A case-table cell as a number (NaN: none, or a text).
@@ -95,11 +94,9 @@ bool shows_run(const FileTable& d, const Table& runs, const std::vector<Cell>& r
 Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
   Table out;
   std::vector<std::size_t> at;
-  std::map<std::string, std::string> renamed;
   for (const FileColumn& c : d.columns) {
     at.push_back(column_index(runs, c.of));
     out.columns.push_back(declared_column(runs.columns[at.back()], c));
-    renamed[c.of] = out.columns.back().name;
   }
   const auto status = std::find_if(runs.columns.begin(), runs.columns.end(), [](const Column& c) { return c.name == "status"; });
   const std::size_t problem = column_index(runs, "problem");
@@ -128,8 +125,8 @@ Table case_table(const FileTable& d, const Table& runs, bool with_figures) {
   if (!with_figures) return out;
   for (Figure f : runs.figures) {
     const auto rename = [&](std::string& name) {
-      const auto it = renamed.find(name);
-      return it != renamed.end() && (name = it->second, true);
+      const auto header = declared_header(d, runs, name);
+      return header && (name = *header, true);
     };
     bool shown = rename(f.x) && rename(f.y);
     for (auto& s : f.series) shown = shown && rename(s);

@@ -41,8 +41,9 @@ std::string run_label(const Json& c, const std::optional<std::string>& format = 
 Figure declared_figure(const StudySpec& spec, const FileFigure& f);
 Column declared_column(const Column& source, const FileColumn& d);
 std::size_t column_index(const Table& t, const std::string& name);
-// The header table d shows its column of source `of` under: the declared column's header, else
-// the name of the column of `source` (the table d is built from) it shows; none when d shows no such column.
+// The header table d shows its column of source `of` under (its declared_column's name): the
+// declared column's header, else the name of the column of `source` (the table d is built from)
+// it shows; none when d shows no such column.
 std::optional<std::string> declared_header(const FileTable& d, const Table& source, const std::string& of);
 double cell_number(const Cell& cell);
 bool shows_run(const FileTable& d, const Table& runs, const std::vector<Cell>& row);
