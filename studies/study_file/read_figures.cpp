@@ -27,77 +27,108 @@ const Json& optional_tables(const Checker& c, const Json& root, const char* key)
   return *list;
 }
 
-// [[figure]]: drawn from the work-precision table, its columns named by their headers.
-std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const StudySpec& spec) {
-  const std::vector<FileMeasure>& measures = spec.measures;
-  const bool declared_only = spec.declared_figures_only;
-  // A figure of a history or samples table: any of their columns (its table's checked with the tables).
-  std::vector<std::string> table_columns = history_column_names();
+namespace {
+
+// The columns a figure of a history or samples table may draw: any of their columns (its
+// table's checked with the tables), and the problem parameters.
+std::vector<std::string> figure_table_columns(const std::vector<std::string>& parameters) {
+  std::vector<std::string> columns = history_column_names();
   for (const auto* more : {&samples_column_names(), &periodic_column_names(), &trajectory_column_names(), &flights_column_names()})
     for (const auto& name : *more)
-      if (std::find(table_columns.begin(), table_columns.end(), name) == table_columns.end()) table_columns.push_back(name);
+      if (std::find(columns.begin(), columns.end(), name) == columns.end()) columns.push_back(name);
+  columns.insert(columns.end(), parameters.begin(), parameters.end());
+  return columns;
+}
+
+// The columns a figure of the work-precision table may draw.
+std::vector<std::string> figure_run_columns(const Checker& c, const Json& root, const StudySpec& spec, const std::vector<std::string>& parameters) {
+  std::vector<std::string> columns{"problem", "integrator", "dt", "tol"};
+  for (const auto& m : spec.measures) columns.push_back(m.label);
+  columns.insert(columns.end(), {"CPU", "steps", "F_int evals"});
+  columns.insert(columns.end(), parameters.begin(), parameters.end());  // a problem parameter: e.g. a panel per mass model
+  // Drawn from a declared case table: any column it may show too (e.g. a panel per "problem name").
+  if (c.find(root, "table"))
+    for (const auto& name : run_column_names())
+      if (std::find(columns.begin(), columns.end(), name) == columns.end()) columns.push_back(name);
+  return columns;
+}
+
+// A figure's id: a file stem, not used by an earlier figure, nor (unless the study draws only
+// its declared figures) the id of a figure the study draws itself.
+void check_figure_id(const Checker& c, const std::string& path, const std::string& id, const std::vector<FileFigure>& earlier,
+                     bool declared_only) {
+  if (!is_file_stem(id)) c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", id), "[a-z0-9_]+");
+  for (const auto& g : earlier)
+    if (g.id == id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", id), "distinct ids");
+  if (!declared_only && (id == "work_precision" || id == "work_precision_evals" || id == "energy_history" || id.rfind("convergence_", 0) == 0))
+    c.fail(child(path, "id"), fmt::format("'{}' is the id of a figure the study draws itself", id),
+           "another id than work_precision, work_precision_evals, energy_history, convergence_* (or study.figures = \"declared\")");
+}
+
+// A figure's optional array of column names `key` (series, panels), each one of `columns`.
+void read_figure_names(const Checker& c, const Json& j, const std::string& path, const char* key, const std::vector<std::string>& columns,
+                       std::vector<std::string>& out) {
+  const Json* v = c.find(j, key);
+  if (!v) return;
+  const std::string at = child(path, key);
+  c.expect(*v, at, v->is_array(), "an array of column names");
+  out.clear();
+  for (std::size_t k = 0; k < v->size(); ++k) out.push_back(c.choice((*v)[k], element(at, k), columns));
+}
+
+// A figure's optional keys of its drawing: log axes, small multiples, deviation, caption,
+// colour-scale label and reference slopes.
+void read_figure_options(const Checker& c, const Json& j, const std::string& path, FileFigure& f) {
+  if (const Json* v = c.find(j, "log_x")) f.log_x = c.boolean(*v, child(path, "log_x"));
+  if (const Json* v = c.find(j, "log_y")) f.log_y = c.boolean(*v, child(path, "log_y"));
+  if (const Json* v = c.find(j, "small_multiples")) f.small_multiples = c.boolean(*v, child(path, "small_multiples"));
+  if (const Json* v = c.find(j, "deviation")) f.deviation = c.boolean(*v, child(path, "deviation"));
+  if (const Json* v = c.find(j, "caption")) f.caption = c.string(*v, child(path, "caption"));
+  if (const Json* v = c.find(j, "value_label")) f.value_label = c.string(*v, child(path, "value_label"));
+  if (const Json* v = c.find(j, "slopes")) {
+    const std::string at = child(path, "slopes");
+    c.expect(*v, at, v->is_array(), "an array of numbers");
+    for (std::size_t k = 0; k < v->size(); ++k) {
+      c.expect((*v)[k], element(at, k), (*v)[k].is_number(), "a number");
+      f.slopes.push_back((*v)[k].get<double>());
+    }
+  }
+}
+
+// One [[figure]] at `path`: its columns one of `run_columns`, or of `table_columns` when it names a table.
+FileFigure read_figure(const Checker& c, const Json& j, const std::string& path, const std::vector<FileFigure>& earlier, bool declared_only,
+                       const std::vector<std::string>& run_columns, const std::vector<std::string>& table_columns) {
+  c.expect(j, path, j.is_object(), "a table");
+  c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes", "table", "small_multiples", "deviation",
+                   "caption", "value_label"});
+  FileFigure f;
+  if (const Json* v = c.find(j, "table")) f.table = c.string(*v, child(path, "table"));
+  const std::vector<std::string>& columns = f.table.empty() ? run_columns : table_columns;
+  f.id = c.string(c.require(j, path, "id"), child(path, "id"));
+  check_figure_id(c, path, f.id, earlier, declared_only);
+  f.title = c.string(c.require(j, path, "title"), child(path, "title"));
+  if (const Json* v = c.find(j, "x"); v || f.table.empty()) f.x = c.choice(c.require(j, path, "x"), child(path, "x"), columns);  // a field table's figure: none
+  // Of a named table: checked against that table's columns (a pivot's spread column by its header).
+  f.y = f.table.empty() ? c.choice(c.require(j, path, "y"), child(path, "y"), columns) : c.string(c.require(j, path, "y"), child(path, "y"));
+  read_figure_names(c, j, path, "series", columns, f.series);
+  read_figure_names(c, j, path, "panels", columns, f.panels);
+  read_figure_options(c, j, path, f);
+  return f;
+}
+
+}  // namespace
+
+// [[figure]]: drawn from the work-precision table, its columns named by their headers.
+std::vector<FileFigure> read_figures(const Checker& c, const Json& root, const StudySpec& spec) {
   const auto parameters = parameter_column_names(spec);
-  table_columns.insert(table_columns.end(), parameters.begin(), parameters.end());
+  const std::vector<std::string> table_columns = figure_table_columns(parameters);
   std::vector<FileFigure> figures;
   const Json* list = c.find(root, "figure");
   if (!list) return figures;
   c.expect(*list, "figure", list->is_array(), "one or more [[figure]] tables");
-  std::vector<std::string> run_columns{"problem", "integrator", "dt", "tol"};
-  for (const auto& m : measures) run_columns.push_back(m.label);
-  run_columns.insert(run_columns.end(), {"CPU", "steps", "F_int evals"});
-  run_columns.insert(run_columns.end(), parameters.begin(), parameters.end());  // a problem parameter: e.g. a panel per mass model
-  // Drawn from a declared case table: any column it may show too (e.g. a panel per "problem name").
-  if (c.find(root, "table"))
-    for (const auto& name : run_column_names())
-      if (std::find(run_columns.begin(), run_columns.end(), name) == run_columns.end()) run_columns.push_back(name);
-  for (std::size_t i = 0; i < list->size(); ++i) {
-    const Json& j = (*list)[i];
-    const std::string path = element("figure", i);
-    c.expect(j, path, j.is_object(), "a table");
-    c.keys(j, path, {"id", "title", "x", "y", "series", "panels", "log_x", "log_y", "slopes", "table", "small_multiples", "deviation",
-                     "caption", "value_label"});
-    FileFigure f;
-    if (const Json* v = c.find(j, "table")) f.table = c.string(*v, child(path, "table"));
-    const std::vector<std::string>& columns = f.table.empty() ? run_columns : table_columns;
-    f.id = c.string(c.require(j, path, "id"), child(path, "id"));
-    if (!is_file_stem(f.id))
-      c.fail(child(path, "id"), fmt::format("'{}' is not a file name of a-z, 0-9 and _", f.id), "[a-z0-9_]+");
-    for (const auto& g : figures)
-      if (g.id == f.id) c.fail(child(path, "id"), fmt::format("id '{}' used twice", f.id), "distinct ids");
-    if (!declared_only &&
-        (f.id == "work_precision" || f.id == "work_precision_evals" || f.id == "energy_history" || f.id.rfind("convergence_", 0) == 0))
-      c.fail(child(path, "id"), fmt::format("'{}' is the id of a figure the study draws itself", f.id),
-             "another id than work_precision, work_precision_evals, energy_history, convergence_* (or study.figures = \"declared\")");
-    f.title = c.string(c.require(j, path, "title"), child(path, "title"));
-    if (const Json* v = c.find(j, "x"); v || f.table.empty()) f.x = c.choice(c.require(j, path, "x"), child(path, "x"), columns);  // a field table's figure: none
-    // Of a named table: checked against that table's columns (a pivot's spread column by its header).
-    f.y = f.table.empty() ? c.choice(c.require(j, path, "y"), child(path, "y"), columns) : c.string(c.require(j, path, "y"), child(path, "y"));
-    const auto names = [&](const char* key, std::vector<std::string>& out) {
-      if (const Json* v = c.find(j, key)) {
-        const std::string at = child(path, key);
-        c.expect(*v, at, v->is_array(), "an array of column names");
-        out.clear();
-        for (std::size_t k = 0; k < v->size(); ++k) out.push_back(c.choice((*v)[k], element(at, k), columns));
-      }
-    };
-    names("series", f.series);
-    names("panels", f.panels);
-    if (const Json* v = c.find(j, "log_x")) f.log_x = c.boolean(*v, child(path, "log_x"));
-    if (const Json* v = c.find(j, "log_y")) f.log_y = c.boolean(*v, child(path, "log_y"));
-    if (const Json* v = c.find(j, "small_multiples")) f.small_multiples = c.boolean(*v, child(path, "small_multiples"));
-    if (const Json* v = c.find(j, "deviation")) f.deviation = c.boolean(*v, child(path, "deviation"));
-    if (const Json* v = c.find(j, "caption")) f.caption = c.string(*v, child(path, "caption"));
-    if (const Json* v = c.find(j, "value_label")) f.value_label = c.string(*v, child(path, "value_label"));
-    if (const Json* v = c.find(j, "slopes")) {
-      const std::string at = child(path, "slopes");
-      c.expect(*v, at, v->is_array(), "an array of numbers");
-      for (std::size_t k = 0; k < v->size(); ++k) {
-        c.expect((*v)[k], element(at, k), (*v)[k].is_number(), "a number");
-        f.slopes.push_back((*v)[k].get<double>());
-      }
-    }
-    figures.push_back(f);
-  }
+  const std::vector<std::string> run_columns = figure_run_columns(c, root, spec, parameters);
+  for (std::size_t i = 0; i < list->size(); ++i)
+    figures.push_back(read_figure(c, (*list)[i], element("figure", i), figures, spec.declared_figures_only, run_columns, table_columns));
   return figures;
 }
 
