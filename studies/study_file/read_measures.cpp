@@ -210,6 +210,56 @@ void read_rest_start(const Checker& c, const Json& j, const std::string& path, F
   m.label = m.exact ? "err rest start" : "rest start";
 }
 
+namespace {
+
+// The closed form each problem of an event measure must have (its law, exact amplitude or
+// time, and as many exact impacts as it compares).
+void check_event_closed_forms(const Checker& c, const std::string& path, const std::string& kind, const FileMeasure& m,
+                              const StudySpec& spec, const std::vector<std::unique_ptr<Problem>>& instances,
+                              const std::vector<std::size_t>& on) {
+  for (const std::size_t p : on) {
+    const Problem& problem = *instances[p];
+    const bool rocking = !std::isnan(rocking_law_ratio(problem, ImpactLaw::housner));
+    if ((!m.law.empty() || (m.exact && kind != "peak-time" && m.summary.empty())) && !rocking)
+      c.fail(child(path, m.law.empty() ? "exact" : "law"), fmt::format("problem '{}' has no closed-form impacts", spec.problems[p].label),
+             "rocking-block problems, or problems = [...]");
+    if (rocking && m.law == "moreau" && std::isnan(rocking_law_ratio(problem, ImpactLaw::moreau)))
+      c.fail(child(path, "law"),
+             fmt::format("problem '{}' has no Moreau ratio of a rocking approach (mu below mu_H: its pivot slides before theta = 0)",
+                         spec.problems[p].label),
+             "law = \"housner\", a block with mu >= mu_H, or problems = [...]");
+    const auto last = static_cast<std::size_t>(std::max(m.impact, m.count));
+    if (rocking && (!m.law.empty() || (m.exact && kind == "amplitude")) && last > rocking_exact_impacts(problem))
+      c.fail(child(path, m.count > 0 ? "count" : "impact"),
+             fmt::format("the exact solution of problem '{}' has {} impact(s) (it leaves rocking or rests)", spec.problems[p].label,
+                         rocking_exact_impacts(problem)),
+             fmt::format("1..{}, or problems = [...]", rocking_exact_impacts(problem)));
+    if (!m.summary.empty()) continue;  // its exact time checked by read_summary_name
+    if (m.exact && kind == "rest-time" && !std::isfinite(rocking_rest_time(problem)))
+      c.fail(child(path, "exact"), fmt::format("problem '{}' does not come to rest", spec.problems[p].label),
+             "a rocking block that comes to rest (e = 0), or problems = [...]");
+    if (m.exact && kind == "peak-time" && std::isnan(painleve_jam_time(problem)))
+      c.fail(child(path, "exact"), fmt::format("problem '{}' has no exact dynamic jam", spec.problems[p].label),
+             "painleve-rod problems whose sliding phase ends in a jam, or problems = [...]");
+  }
+}
+
+// An event measure's default label, from its kind, observable and keys.
+std::string event_measure_label(const std::string& kind, const FileMeasure& m) {
+  const std::string o = m.observable;
+  return kind == "impact-ratio" ? (m.law.empty()   ? fmt::format("{} ratio at impact {}", o, m.impact)
+                                   : m.count > 0   ? fmt::format("{} ratio err {}, impacts 1..{}", o, m.law, m.count)
+                                                   : fmt::format("{} ratio err {} at impact {}", o, m.law, m.impact))
+         : kind == "amplitude"  ? fmt::format("{}amplitude of {} after impact {}", m.exact ? "rel err " : "", o, m.impact)
+         : kind == "impact-count" ? std::string("impacts per contact")
+         : kind == "rest-time"  ? fmt::format("{} time |{}| <= {:g}", m.exact ? "err rest" : "rest", o, m.threshold)
+         : kind == "peak-time"  ? fmt::format("{}time of max {}", m.exact ? "err " : "", o)
+         : kind == "summary"    ? m.summary
+                                : fmt::format("{} {}", o, m.norm);
+}
+
+}  // namespace
+
 // The measures of an observable's events (impact-ratio, amplitude, impact-count, rest-time,
 // peak-time, value) into `m`: their keys, the observable of every problem `on`, and for `law`
 // or `exact` the problem's closed form (studies/measures.hpp).
@@ -239,42 +289,8 @@ void read_event_measure(const Checker& c, const Json& j, const std::string& path
   if (kind == "rest-time") m.threshold = c.positive(c.require(j, path, "threshold"), child(path, "threshold"));
   m.norm = "final";
   if (const Json* v = c.find(j, "norm")) m.norm = c.choice(*v, child(path, "norm"), {"final", "max", "min"});
-  // The closed form each problem must have.
-  for (const std::size_t p : on) {
-    const Problem& problem = *instances[p];
-    const bool rocking = !std::isnan(rocking_law_ratio(problem, ImpactLaw::housner));
-    if ((!m.law.empty() || (m.exact && kind != "peak-time" && m.summary.empty())) && !rocking)
-      c.fail(child(path, m.law.empty() ? "exact" : "law"), fmt::format("problem '{}' has no closed-form impacts", spec.problems[p].label),
-             "rocking-block problems, or problems = [...]");
-    if (rocking && m.law == "moreau" && std::isnan(rocking_law_ratio(problem, ImpactLaw::moreau)))
-      c.fail(child(path, "law"),
-             fmt::format("problem '{}' has no Moreau ratio of a rocking approach (mu below mu_H: its pivot slides before theta = 0)",
-                         spec.problems[p].label),
-             "law = \"housner\", a block with mu >= mu_H, or problems = [...]");
-    const auto last = static_cast<std::size_t>(std::max(m.impact, m.count));
-    if (rocking && (!m.law.empty() || (m.exact && kind == "amplitude")) && last > rocking_exact_impacts(problem))
-      c.fail(child(path, m.count > 0 ? "count" : "impact"),
-             fmt::format("the exact solution of problem '{}' has {} impact(s) (it leaves rocking or rests)", spec.problems[p].label,
-                         rocking_exact_impacts(problem)),
-             fmt::format("1..{}, or problems = [...]", rocking_exact_impacts(problem)));
-    if (!m.summary.empty()) continue;  // its exact time checked by read_summary_name
-    if (m.exact && kind == "rest-time" && !std::isfinite(rocking_rest_time(problem)))
-      c.fail(child(path, "exact"), fmt::format("problem '{}' does not come to rest", spec.problems[p].label),
-             "a rocking block that comes to rest (e = 0), or problems = [...]");
-    if (m.exact && kind == "peak-time" && std::isnan(painleve_jam_time(problem)))
-      c.fail(child(path, "exact"), fmt::format("problem '{}' has no exact dynamic jam", spec.problems[p].label),
-             "painleve-rod problems whose sliding phase ends in a jam, or problems = [...]");
-  }
-  const std::string o = m.observable;
-  m.label = kind == "impact-ratio" ? (m.law.empty()   ? fmt::format("{} ratio at impact {}", o, m.impact)
-                                      : m.count > 0   ? fmt::format("{} ratio err {}, impacts 1..{}", o, m.law, m.count)
-                                                      : fmt::format("{} ratio err {} at impact {}", o, m.law, m.impact))
-            : kind == "amplitude"  ? fmt::format("{}amplitude of {} after impact {}", m.exact ? "rel err " : "", o, m.impact)
-            : kind == "impact-count" ? std::string("impacts per contact")
-            : kind == "rest-time"  ? fmt::format("{} time |{}| <= {:g}", m.exact ? "err rest" : "rest", o, m.threshold)
-            : kind == "peak-time"  ? fmt::format("{}time of max {}", m.exact ? "err " : "", o)
-            : kind == "summary"    ? m.summary
-                                   : fmt::format("{} {}", o, m.norm);
+  check_event_closed_forms(c, path, kind, m, spec, instances, on);
+  m.label = event_measure_label(kind, m);
 }
 
 // An error's semi_discrete, dof and per_nominal_step (FileMeasure): against the same
