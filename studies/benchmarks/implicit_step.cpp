@@ -4,7 +4,9 @@
 //   BM_Step/<integrator>/<mass>/N   the Signorini bar (problems/signorini_bar.hpp),
 //                                   N = 1e3 .. 1e5, dt = 0.9 h/c, one step in contact (10
 //                                   steps taken first, so the factorisation and the contact
-//                                   responses are cached). K is constant: each scheme
+//                                   responses are cached; the problem, the scheme, those
+//                                   steps and the bare kernels' W built once per benchmark,
+//                                   later calls step on). K is constant: each scheme
 //                                   factorises once and then does one solve per step plus
 //                                   the contact, so the limit is the bare solve (one
 //                                   right-hand side); the bare factorisation is the counter
@@ -35,8 +37,14 @@
 #include <benchmark/benchmark.h>
 #include <cholmod.h>
 
+#include <fmt/format.h>
+
 #include <functional>
+#include <map>
+#include <memory>
+#include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "integrators/registry.hpp"
 #include "problems/block_2d.hpp"
@@ -121,41 +129,66 @@ const Coefficient kNsga = [](double h) {                                // rho_i
 const Coefficient kNewmark = [](double h) { return 0.25 * h * h; };  // beta = 1/4
 const Coefficient kSchatzmanPaoli = [](double h) { return 0.25 * h * h; };  // theta h^2, theta = 1/4
 
-// `warmup` steps, the limit measured, then the timed steps. refactorised: the scheme
-// factorises every step (the limit is factorise + solve), else once (the limit is the solve).
-void run(benchmark::State& state, nsb::Integrator& integ, const nsb::Problem& problem, double dt, const Coefficient& c,
-         bool refactorised) {
-  for (int k = 0; k < 10; ++k) integ.step(dt);
-  nsb::SpMat K;
-  problem.tangent_stiffness(integ.state().u, K);
-  BareCholmod bare(problem.mass_matrix(), c(dt), K);
-  const double factorise_ns = nsb::bench::least_ns([&] { bare.factorise(); });
-  const double solve_ns = nsb::bench::least_ns([&] { bare.solve(); });
-  nsb::bench::time_steps(state, integ, dt);
+// A problem, its step, a scheme on it 10 steps in (so the factorisation and the contact
+// responses are cached) and the bare CHOLMOD on the W of the state reached: built once per
+// benchmark (limit.hpp's reused_setup), the kernels and the steps timed at every call.
+struct ImplicitStep {
+  struct Made {
+    std::unique_ptr<const nsb::Problem> problem;
+    double dt;
+  };
+  Made made;
+  std::unique_ptr<nsb::Integrator> integ;
+  std::optional<BareCholmod> bare;
+  ImplicitStep(const std::function<Made()>& make, const std::string& integrator,
+               const std::map<std::string, std::string>& overrides, const Coefficient& c)
+      : made(make()), integ(nsb::make_integrator(integrator, overrides)) {
+    integ->init(*made.problem, made.problem->initial_state());
+    for (int k = 0; k < 10; ++k) integ->step(made.dt);
+    nsb::SpMat K;
+    made.problem->tangent_stiffness(integ->state().u, K);
+    bare.emplace(made.problem->mass_matrix(), c(made.dt), K);
+  }
+};
+
+// The limit measured, then the timed steps. refactorised: the scheme factorises every step
+// (the limit is factorise + solve), else once (the limit is the solve).
+void time_against_bare(benchmark::State& state, ImplicitStep& setup, bool refactorised) {
+  const double factorise_ns = nsb::bench::least_ns([&] { setup.bare->factorise(); });
+  const double solve_ns = nsb::bench::least_ns([&] { setup.bare->solve(); });
+  nsb::bench::time_steps(state, *setup.integ, setup.made.dt);
   state.counters["factorise_ns"] = factorise_ns;
   state.counters["solve_ns"] = solve_ns;
-  const auto units = static_cast<double>(problem.ndof());
+  const auto units = static_cast<double>(setup.made.problem->ndof());
   if (refactorised)
     nsb::bench::report_limit(state, units, factorise_ns + solve_ns, "CHOLMOD simplicial factorise + solve, same W");
   else
     nsb::bench::report_limit(state, units, solve_ns, "CHOLMOD simplicial solve, same W");
 }
 
-void bar_step(benchmark::State& state, const std::string& integrator, const std::map<std::string, std::string>& overrides,
-              const std::string& mass, const Coefficient& c) {
+void bar_step(benchmark::State& state, const std::string& label, const std::string& integrator,
+              const std::map<std::string, std::string>& overrides, const std::string& mass, const Coefficient& c) {
   const long N = state.range(0);
-  const nsb::SignoriniBar bar(nsb::Params(nsb::SignoriniBar::parameters_spec(), {{"N", std::to_string(N)}, {"mass", mass}}));
-  auto integ = nsb::make_integrator(integrator, overrides);
-  integ->init(bar, bar.initial_state());
-  run(state, *integ, bar, 0.9 * bar.stable_step(), c, false);
+  const auto make = [&]() -> ImplicitStep::Made {
+    auto bar = std::make_unique<nsb::SignoriniBar>(
+        nsb::Params(nsb::SignoriniBar::parameters_spec(), {{"N", std::to_string(N)}, {"mass", mass}}));
+    const double dt = 0.9 * bar->stable_step();
+    return {std::move(bar), dt};
+  };
+  auto& setup = nsb::bench::reused_setup<ImplicitStep>(fmt::format("BM_Step/{}/{}", label, N), make, integrator, overrides, c);
+  time_against_bare(state, setup, false);
 }
 
 void block_step(benchmark::State& state) {
   const long n = state.range(0);
-  const nsb::Block2d block(nsb::Params(nsb::Block2d::parameters_spec(), {{"nx", std::to_string(n)}, {"ny", std::to_string(n)}}));
-  auto integ = nsb::make_integrator("moreau-jean", {});
-  integ->init(block, block.initial_state());
-  run(state, *integ, block, 1e-4, kMoreauJean, true);
+  const auto make = [&]() -> ImplicitStep::Made {
+    return {std::make_unique<nsb::Block2d>(
+                nsb::Params(nsb::Block2d::parameters_spec(), {{"nx", std::to_string(n)}, {"ny", std::to_string(n)}})),
+            1e-4};
+  };
+  auto& setup = nsb::bench::reused_setup<ImplicitStep>(fmt::format("BM_Step/moreau-jean/block-2d/{}", n), make,
+                                                       "moreau-jean", std::map<std::string, std::string>{}, kMoreauJean);
+  time_against_bare(state, setup, true);
 }
 
 void register_all() {
@@ -176,7 +209,8 @@ void register_all() {
       {"schatzman-paoli-1/4/lumped", "schatzman-paoli", {{"theta", "0.25"}}, "lumped", kSchatzmanPaoli},
   };
   for (const auto& c : cases)
-    benchmark::RegisterBenchmark((std::string("BM_Step/") + c.label).c_str(), bar_step, c.integrator, c.overrides, c.mass, c.c)
+    benchmark::RegisterBenchmark((std::string("BM_Step/") + c.label).c_str(), bar_step, c.label, c.integrator,
+                                 c.overrides, c.mass, c.c)
         ->RangeMultiplier(10)
         ->Range(1000, 100000)
         ->ComputeStatistics("min", min_of)
