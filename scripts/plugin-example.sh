@@ -52,9 +52,9 @@ done
 grep -q '"file": "symplectic_euler.so"' "$sandbox/run/summary.json"
 # Built as a user builds it (no CMAKE_BUILD_TYPE): optimised, and stamped so.
 grep -q '"optimized": true' "$sandbox/run/summary.json" || { echo "the walkthrough's plugin was not built optimised" >&2; exit 1; }
-for t in bouncing_mass bouncing_mass_orders; do
+for t in bouncing_plugin_orders bouncing_plugin_work_precision; do
   for r in "$sandbox/my-reports" "$work/example/reports"; do
-    grep -q '^symplectic-euler,' "$r/$t.csv" || { echo "no symplectic-euler row in $r/$t.csv" >&2; exit 1; }
+    grep -q '^"bouncing mass, e = 0.9",symplectic-euler,' "$r/$t.csv" || { echo "no symplectic-euler row in $r/$t.csv" >&2; exit 1; }
     grep -q '^# plugins: symplectic_euler.so (fnv1a64:[0-9a-f]*; Release (nsbench_add_plugin.s default: no CMAKE_BUILD_TYPE), optimised, flags .*-O3' \
       "$r/$t.csv" || { echo "$r/$t.csv: no plugin stamp with its optimised build" >&2; exit 1; }
   done
