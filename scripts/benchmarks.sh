@@ -7,8 +7,8 @@
 # `nsbench-study performance` writes OUT/performance.{csv,md,tex}, and scripts/python_bench.py
 # OUT/python_overhead.md where the Python module is built. Run on a quiet machine:
 # the table reads the least of the repetitions (3 of at least 0.1 s each). About 2 minutes on
-# 2 cores (measured: 126 s wall, 121 s CPU user + sys, on a 2-core machine shared at a load
-# average of 3 to 5; the step benchmarks build their set-up once, studies/benchmarks/limit.hpp).
+# 2 quiet cores (measured at b9214af: 102 s wall; the step benchmarks build their set-up once,
+# studies/benchmarks/limit.hpp).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${BUILD_DIR:-build}"
