@@ -194,6 +194,7 @@ int main(int argc, char** argv) {
     std::vector<std::vector<Json>> all_cases(selected.size()), all_results(selected.size());
     std::vector<std::vector<std::size_t>> mine(selected.size());
     std::vector<std::pair<std::size_t, std::size_t>> pending;  // (study, case)
+    std::vector<std::string> pending_locks;  // the process-wide lock each takes (parallel.hpp)
     std::vector<std::string> pooled;
     for (std::size_t i = 0; i < selected.size(); ++i) {
       all_cases[i] = nsb::study_cases(*selected[i], options);
@@ -203,6 +204,7 @@ int main(int argc, char** argv) {
         if (!shard.count || static_cast<long>(k % static_cast<std::size_t>(shard.count)) == shard.index - 1) {
           mine[i].push_back(k);
           pending.emplace_back(i, k);
+          pending_locks.push_back(nsb::case_lock(*selected[i], all_cases[i][k]));
         }
       pooled.push_back(selected[i]->name);
     }
@@ -210,7 +212,7 @@ int main(int argc, char** argv) {
     const auto computed = nsb::parallel_map<Json>(pending.size(), [&](std::size_t j) {
       const auto [i, k] = pending[j];
       return nsb::run_study_case(*selected[i], all_cases[i][k], options);
-    }, fmt::format("{}", fmt::join(pooled, "+")));
+    }, fmt::format("{}", fmt::join(pooled, "+")), pending_locks);
     for (std::size_t j = 0; j < pending.size(); ++j)
       all_results[pending[j].first][pending[j].second] = computed[j];
     if (!pending.empty())

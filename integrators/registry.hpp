@@ -8,8 +8,9 @@
 // at namespace scope (inside or outside namespace nsb; outside, qualify nsb::); the last
 // braces declare its Capabilities (integrators/capabilities.hpp; {} when it needs nothing and
 // treats no friction), optionally followed by a CapabilitySwitch when a parameter changes
-// them (schatzman-paoli: {"theta", 0.0, {.explicit_step = true, ...}}). The listing is sorted: the schemes by name, then the peers by name,
-// then the reference solvers by name.
+// them (schatzman-paoli: {"theta", 0.0, {.explicit_step = true, ...}}) and the name of a
+// process-wide lock its runs take (shared_lock below). The listing is sorted: the schemes by
+// name, then the peers by name, then the reference solvers by name.
 #include <map>
 #include <memory>
 #include <string>
@@ -35,6 +36,10 @@ struct IntegratorEntry {
   // What it can run, checked when it binds a problem, and how a parameter changes it.
   Capabilities capabilities = {};
   CapabilitySwitch capabilities_switch = {};
+  // The name of a process-wide lock its runs take (Siconos' BLAS, Python's GIL); empty: none.
+  // Two such runs at once would take turns on it, so the studies never run two cases holding
+  // the same lock at once (studies/parallel.hpp).
+  std::string shared_lock = {};
 
   DeclaredCapabilities declared() const { return {capabilities, capabilities_switch}; }
   // The integrator, named after this entry and holding its capabilities.

@@ -108,6 +108,10 @@ std::array<Slot, kSlots>& slots() {
 }
 std::size_t used_slots = 0;  // changed with the GIL held
 
+// Every call into the class takes the GIL (above): a study runs one case of such an integrator
+// at a time (IntegratorEntry::shared_lock).
+constexpr const char* kPythonLock = "Python (GIL)";
+
 template <std::size_t K>
 ParamSpecs slot_parameters() {
   return slots()[K].specs;
@@ -148,7 +152,8 @@ void register_python_integrator(const std::string& name, const py::object& cls, 
       capabilities.friction_cone = py::getattr(cls, "treats_friction_cone", py::bool_(false)).cast<bool>();
       capabilities.moving_contacts = py::getattr(cls, "treats_moving_contacts", py::bool_(false)).cast<bool>();
       capabilities.explicit_step = py::getattr(cls, "conditionally_stable", py::bool_(false)).cast<bool>();
-      register_integrator({name, description, kSlotFunctions[k].parameters, kSlotFunctions[k].make, reference, false, capabilities},
+      register_integrator({name, description, kSlotFunctions[k].parameters, kSlotFunctions[k].make, reference, false, capabilities,
+                           {}, kPythonLock},
                           NSBENCH_PLUGIN_ABI);
     });
   } catch (...) {

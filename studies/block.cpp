@@ -433,6 +433,7 @@ std::vector<Table> block_table_entry(const std::vector<Json>& cases, const std::
 
 extern const StudyEntry block_study = {
     "block", "2D hyperelastic block on a rigid floor: momentum and energy errors, error against a reference, cost growth",
-    nullptr, &block_case_list, &block_case_entry, &block_table_entry};
+    nullptr, &block_case_list, &block_case_entry, &block_table_entry,
+    [](const Json& c) { return integrators_named(c["case"]); }};
 
 }  // namespace nsb

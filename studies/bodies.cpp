@@ -513,6 +513,6 @@ extern const StudyEntry bodies_study = {
     "bodies", "contacts between bodies: the cradle's impact law by dt v0 / gap; two blocks' momentum identity, energy "
               "and cost against the blocks apart; two bars and a mass on a bar against their exact solutions, orders; "
               "ranking",
-    nullptr, &bodies_cases, &bodies_case, &bodies_tables};
+    nullptr, &bodies_cases, &bodies_case, &bodies_tables, &integrators_named};
 
 }  // namespace nsb

@@ -496,6 +496,6 @@ extern const StudyEntry friction_study = {
     "friction", "Coulomb friction: sliding mass stop time and distance, rolling disk onset and final speed, orders; "
                 "energy never increasing; block momentum identities; sticking, mu = tan alpha, reversal, mu = 10, a "
                 "spinning drop; ranking",
-    nullptr, &friction_cases, &friction_case, &friction_tables};
+    nullptr, &friction_cases, &friction_case, &friction_tables, &integrators_named};
 
 }  // namespace nsb

@@ -129,6 +129,11 @@ std::vector<Json> peers_cases(const StudyOptions&) {
   return cases;
 }
 
+std::vector<std::string> peers_case_integrators(const Json& c) {
+  const PeerPair& pair = kPairs[c["pair"].get<std::size_t>()];
+  return {pair.ours, pair.peer};
+}
+
 Json peers_case(const Json& c) {
   const PeerPair& pair = kPairs[c["pair"].get<std::size_t>()];
   const PeerProblem& pp = kProblems[c["problem"].get<std::size_t>()];
@@ -227,6 +232,6 @@ std::vector<Table> peers_tables(const std::vector<Json>& cases, const std::vecto
 extern const StudyEntry peers_study;
 const StudyEntry peers_study{
     "peers", "our schemes against a peer code's (Siconos) on the bouncing mass, the lumped bar, the spring chain, the sliding mass, the rolling disk, the sphere and bar-3d",
-    nullptr, &peers_cases, &peers_case, &peers_tables};
+    nullptr, &peers_cases, &peers_case, &peers_tables, &peers_case_integrators};
 
 }  // namespace nsb

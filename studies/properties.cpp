@@ -50,26 +50,18 @@ constexpr long kFreeSteps = 10'000, kPropertiesFloorSteps = 2000, kLongRunImpact
 
 // A row's measurements in four parts, each a case of its own so that the cores share one
 // scheme's work (one case per row left a core idle while the last rows ran: docs/measurements.md).
-// The case list starts with the long runs, the longest part.
-// Siconos models share one lock (peers/siconos/siconos_integrator.cpp: Debian's OpenBLAS is not
-// thread-safe), so two Siconos runs at once take as long as one after the other while a core
-// idles: the Siconos peers' long runs are one case, run one after the other while the other
-// core runs the rest. Each case's result holds its part of each row, by integrator; the table
-// merges them (the same numbers whatever the order the cases ran in).
+// The case list starts with the long runs, the longest part. Each case's result holds its part
+// of each row, by integrator; the table merges them (the same numbers whatever the order the
+// cases ran in).
 const std::vector<std::string> kParts = {"long-run", "bars", "block", "runs"};
 
-bool shares_siconos_lock(const std::string& integrator) { return integrator.rfind("siconos-", 0) == 0; }
-
 std::vector<Json> properties_cases(const StudyOptions&) {
-  std::vector<std::string> names, siconos;
+  std::vector<std::string> names;
   for (const auto& entry : integrator_registry())
-    if (!entry.reference) (shares_siconos_lock(entry.name) ? siconos : names).push_back(entry.name);
+    if (!entry.reference) names.push_back(entry.name);
   std::vector<Json> cases;
-  if (!siconos.empty()) cases.push_back({{"integrators", siconos}, {"part", "long-run"}});
-  for (const auto& name : names) cases.push_back({{"integrators", {name}}, {"part", "long-run"}});
-  names.insert(names.end(), siconos.begin(), siconos.end());
-  for (const auto& name : names)
-    for (std::size_t p = 1; p < kParts.size(); ++p) cases.push_back({{"integrators", {name}}, {"part", kParts[p]}});
+  for (const auto& part : kParts)
+    for (const auto& name : names) cases.push_back({{"integrators", {name}}, {"part", part}});
   return cases;
 }
 
@@ -401,6 +393,6 @@ std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::
 
 extern const StudyEntry properties_study = {
     "properties", "every scheme and peer against the talk's claims: a matrix of measured figures and verdicts", nullptr,
-    &properties_cases, &properties_case, &properties_tables};
+    &properties_cases, &properties_case, &properties_tables, &integrators_named};
 
 }  // namespace nsb

@@ -152,6 +152,24 @@ Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOp
   return tables;
 }
 
+std::string case_lock(const StudyEntry& study, const Json& the_case) {
+  if (!study.case_integrators) return "";
+  const auto& registry = integrator_registry();
+  for (const std::string& name : study.case_integrators(the_case)) {
+    const auto entry = std::find_if(registry.begin(), registry.end(), [&](const IntegratorEntry& e) { return e.name == name; });
+    if (entry != registry.end() && !entry->shared_lock.empty()) return entry->shared_lock;
+  }
+  return "";
+}
+
+std::vector<std::string> integrators_named(const Json& the_case) {
+  std::vector<std::string> names;
+  if (const auto it = the_case.find("integrator"); it != the_case.end() && it->is_string()) names.push_back(*it);
+  if (const auto it = the_case.find("integrators"); it != the_case.end() && it->is_array())
+    for (const Json& name : *it) names.push_back(name.get<std::string>());
+  return names;
+}
+
 std::vector<Table> study_tables(const StudyEntry& study, const std::vector<Json>& cases,
                                 const std::vector<Json>& results, const StudyOptions& options) {
   if (!study.run) return study.tables(cases, results, options);

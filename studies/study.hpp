@@ -43,6 +43,9 @@ struct StudyEntry {
   std::function<Json(const Json& the_case)> run_case;
   std::function<std::vector<Table>(const std::vector<Json>& cases, const std::vector<Json>& results,
                                    const StudyOptions&)> tables;
+  // The integrators a case runs, by name: the scheduler runs one case at a time of those whose
+  // integrators take the same process-wide lock (case_lock). Unset: its cases take none.
+  std::function<std::vector<std::string>(const Json& the_case)> case_integrators = nullptr;
   // The file that defines it, relative to the repository: its study file (studies/builtin/, see
   // studies/registry.hpp) or its C++ source. Set by the registry.
   std::string source = "";
@@ -55,6 +58,11 @@ const std::vector<StudyEntry>& study_registry();
 // building the tables from all results.
 std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& options);
 Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOptions& options);
+// The process-wide lock a case's run takes (IntegratorEntry::shared_lock of the first of its
+// integrators that names one); "" when it takes none.
+std::string case_lock(const StudyEntry& study, const Json& the_case);
+// The integrators a C++ study's case names: its "integrator" (a name) and "integrators" (names).
+std::vector<std::string> integrators_named(const Json& the_case);
 std::vector<Table> study_tables(const StudyEntry& study, const std::vector<Json>& cases,
                                 const std::vector<Json>& results, const StudyOptions& options);
 

@@ -20,6 +20,9 @@ StudyEntry file_study(const StudySpec& spec) {
   e.description = fmt::format("{} (study file {}, FNV-1a 64 {})", spec.title, spec.file, spec.hash);
   e.cases = [spec](const StudyOptions& options) { return study_files::file_cases(spec, options.full); };
   e.run_case = [spec](const Json& c) { return study_files::run_file_case(spec, c); };
+  e.case_integrators = [spec](const Json& c) {
+    return std::vector<std::string>{spec.integrators[c["integrator"].get<std::size_t>()].name};
+  };
   e.tables = [spec](const std::vector<Json>& cases, const std::vector<Json>& results, const StudyOptions&) {
     return study_files::file_tables(spec, cases, study_files::with_next_run_estimates(spec, cases, results));
   };
@@ -37,8 +40,10 @@ std::vector<std::string> run_study_file(const StudySpec& spec, const std::filesy
   const StudyEntry study = file_study(spec);
   const StudyOptions options{false};
   const std::vector<Json> cases = study_cases(study, options);
+  std::vector<std::string> locks;
+  for (const Json& c : cases) locks.push_back(case_lock(study, c));
   const auto results = parallel_map<Json>(cases.size(), [&](std::size_t k) { return run_study_case(study, cases[k], options); },
-                                          study.name);
+                                          study.name, locks);
   const auto tables = study_tables(study, cases, results, options);
   claim_output_directory(out, "out");  // a directory the suite did not write is refused
   ReportDirectory report(out, "out");

@@ -21,6 +21,8 @@ namespace {
 // taken without a lock). A study runs cases in parallel, so every use of a Siconos model
 // (building, stepping, destroying) holds this one lock. ThreadSanitizer on the peers study
 // with 2 jobs found the race in dgemm_oncopy under SiconosIntegrator::step before it.
+// The registry entries name it (shared_lock) so that studies do not run two Siconos cases at once.
+constexpr const char* kSiconosLock = "Siconos (BLAS)";
 std::mutex& siconos_mutex() {
   static std::mutex m;
   return m;
@@ -147,10 +149,10 @@ StepInfo SiconosIntegrator::advance(double h) {
 }
 
 NSBENCH_INTEGRATOR({"siconos-moreau-jean", "peer: Siconos MoreauJeanOSI(theta, gamma), TimeStepping, Lemke LCP, or 2D / 3D NSGS FrictionContact with friction (linear problems)", &SiconosPeer<siconos::Scheme::MoreauJean>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::MoreauJean>>, false, true,
-                    {.friction = true, .friction_cone = true, .mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}});
+                    {.friction = true, .friction_cone = true, .mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}, {}, kSiconosLock});
 NSBENCH_INTEGRATOR({"siconos-schatzman-paoli", "peer: Siconos SchatzmanPaoliOSI(theta), TimeStepping, position-level Lemke LCP (linear problems)", &SiconosPeer<siconos::Scheme::SchatzmanPaoli>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::SchatzmanPaoli>>, false, true,
-                    {.mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}});
+                    {.mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}, {}, kSiconosLock});
 NSBENCH_INTEGRATOR({"siconos-d1-minus-linear", "peer: Siconos D1MinusLinearOSI, TimeSteppingD1Minus, impact and contact-force Lemke LCPs (linear problems)", &SiconosPeer<siconos::Scheme::D1MinusLinear>::parameters_spec, &make_from_params<Integrator, SiconosPeer<siconos::Scheme::D1MinusLinear>>, false, true,
-                    {.mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}});
+                    {.mass = MassNeed::NoMasslessDofs, .linear_only = true, .constant_force_only = true, .max_dofs_parameter = "max_dofs"}, {}, kSiconosLock});
 
 }  // namespace nsb

@@ -1,9 +1,14 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include "integrators/registry.hpp"
 #include "studies/parallel.hpp"
@@ -75,6 +80,62 @@ TEST_CASE("parallel: results come back in case order, and a failing case is repo
   CHECK_THROWS_WITH(nsb::parallel_for(50, [](std::size_t i) {
     if (i == 17) throw std::runtime_error("case 17 failed");
   }, "test"), "case 17 failed");
+}
+
+namespace {
+// Runs n tasks on 4 threads (more than the cases need on any machine), task i holding locks[i]
+// for 5 ms; the most tasks that held each lock at once.
+std::map<std::string, int> most_at_once(std::size_t n, const std::vector<std::string>& locks) {
+  setenv("NSBENCH_JOBS", "4", 1);
+  std::mutex mutex;
+  std::map<std::string, int> holding, most;
+  std::vector<int> runs(n, 0);
+  nsb::parallel_for(n, [&](std::size_t i) {
+    {
+      const std::lock_guard lock(mutex);
+      ++runs[i];
+      most[locks[i]] = std::max(most[locks[i]], ++holding[locks[i]]);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const std::lock_guard lock(mutex);
+    --holding[locks[i]];
+  }, "test", locks);
+  unsetenv("NSBENCH_JOBS");
+  CHECK(std::all_of(runs.begin(), runs.end(), [](int r) { return r == 1; }));
+  return most;
+}
+}  // namespace
+
+TEST_CASE("parallel: cases naming the same lock never run at once; the others do not wait for them", "[studies]") {
+  std::vector<std::string> locks(60);
+  for (std::size_t i = 0; i < locks.size(); ++i) locks[i] = i % 3 == 0 ? "A" : i % 5 == 0 ? "B" : "";
+  const auto most = most_at_once(locks.size(), locks);
+  CHECK(most.at("A") == 1);
+  CHECK(most.at("B") == 1);
+  CHECK(most.at("") > 1);  // 4 threads, 5 ms each: lock-free cases overlap
+  // Every case left waiting for the one lock: run one by one, no thread stuck.
+  CHECK(most_at_once(12, std::vector<std::string>(12, "A")).at("A") == 1);
+  // A failing case holding a lock: reported, the others stop, no thread waits for ever.
+  setenv("NSBENCH_JOBS", "4", 1);
+  CHECK_THROWS_WITH(nsb::parallel_for(30, [](std::size_t i) {
+    if (i == 4) throw std::runtime_error("case 4 failed");
+  }, "test", std::vector<std::string>(30, "A")), "case 4 failed");
+  unsetenv("NSBENCH_JOBS");
+  CHECK_THROWS_AS(nsb::parallel_for(3, [](std::size_t) {}, "test", {"A"}), std::logic_error);
+}
+
+TEST_CASE("studies: a case's lock is the one its integrators declare", "[studies]") {
+  nsb::StudyEntry study;
+  study.case_integrators = &nsb::integrators_named;
+  CHECK(nsb::case_lock(study, {{"integrator", "cd-lagrange"}}).empty());
+  CHECK(nsb::case_lock(study, {{"integrators", {"moreau-jean", "nsga"}}}).empty());
+  for (const auto& entry : nsb::integrator_registry())
+    if (entry.name.rfind("siconos-", 0) == 0) {  // built with the Siconos peers
+      CHECK(entry.shared_lock == "Siconos (BLAS)");
+      CHECK(nsb::case_lock(study, {{"integrators", {"moreau-jean", entry.name}}}) == entry.shared_lock);
+    }
+  study.case_integrators = nullptr;  // a study that names none: its cases take no lock
+  CHECK(nsb::case_lock(study, {{"integrator", "siconos-moreau-jean"}}).empty());
 }
 
 TEST_CASE("studies: a bad study definition fails with the study, the case and the reason", "[studies][bad-input]") {
