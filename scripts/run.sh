@@ -12,8 +12,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 what="${1:-}"
 case "$what" in
-  # studies builds only what it runs: the study driver and the benchmarks (no tests, no plugins).
-  studies) build="${BUILD_DIR:-build}"; config=(-DCMAKE_BUILD_TYPE=Release -DNSBENCH_BENCHMARKS=ON)
+  # studies builds only what it runs: the study driver and the benchmarks (no tests, no plugins),
+  # as a unity build like the tests' (CMakeLists.txt: NSBENCH_UNITY_BUILD; the same numbers).
+  studies) build="${BUILD_DIR:-build}"; config=(-DCMAKE_BUILD_TYPE=Release -DNSBENCH_BENCHMARKS=ON -DNSBENCH_UNITY_BUILD=ON)
            targets=(--target nsbench-study nsbench-benchmarks) ;;
   # tests builds everything: README's commands (run after CTest) call the benchmarks too.
   # The test binary is a unity build here (NSBENCH_UNITY_BUILD: CMakeLists.txt says why).
