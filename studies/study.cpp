@@ -154,11 +154,8 @@ Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOp
 
 std::string case_lock(const StudyEntry& study, const Json& the_case) {
   if (!study.case_integrators) return "";
-  const auto& registry = integrator_registry();
-  for (const std::string& name : study.case_integrators(the_case)) {
-    const auto entry = std::find_if(registry.begin(), registry.end(), [&](const IntegratorEntry& e) { return e.name == name; });
-    if (entry != registry.end() && !entry->shared_lock.empty()) return entry->shared_lock;
-  }
+  for (const std::string& name : study.case_integrators(the_case))
+    if (const std::string& lock = find_integrator(name).shared_lock; !lock.empty()) return lock;
   return "";
 }
 

@@ -59,7 +59,8 @@ const std::vector<StudyEntry>& study_registry();
 std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& options);
 Json run_study_case(const StudyEntry& study, const Json& the_case, const StudyOptions& options);
 // The process-wide lock a case's run takes (IntegratorEntry::shared_lock of the first of its
-// integrators that names one); "" when it takes none.
+// integrators that names one); "" when it takes none. Its integrators are registered ones (an
+// unknown name is an InputError listing the valid names, as find_integrator gives it).
 std::string case_lock(const StudyEntry& study, const Json& the_case);
 // The integrators a C++ study's case names: its "integrator" (a name) and "integrators" (names).
 std::vector<std::string> integrators_named(const Json& the_case);
