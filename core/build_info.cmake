@@ -5,7 +5,11 @@ execute_process(COMMAND git -C ${SOURCE_DIR} rev-parse --short=12 HEAD
 if(NOT rc EQUAL 0 OR REV STREQUAL "")
   set(REV "unknown")
 else()
-  execute_process(COMMAND git -C ${SOURCE_DIR} status --porcelain --untracked-files=no
+  # Dirty: a tracked file that builds the binaries differs from HEAD. The reports, the docs and
+  # other prose build nothing: the main command rewrites reports/, and a build after it is not
+  # "-dirty" for that (scripts/report_revisions.py counts the same files as code, and more).
+  execute_process(COMMAND git -C ${SOURCE_DIR} status --porcelain --untracked-files=no -- .
+                          ":(exclude)reports" ":(exclude)docs" ":(exclude)*.md" ":(exclude)CITATION.cff"
                   OUTPUT_VARIABLE DIRTY OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
   if(NOT DIRTY STREQUAL "")
     set(REV "${REV}-dirty")
