@@ -14,8 +14,11 @@ cd "$(dirname "$0")/.."
 build="${BUILD_DIR:-build}"
 out="${1:-reports}"
 mkdir -p "$out/benchmarks"
+# The build's revision goes into each JSON file's context (scripts/report_revisions.py reads it).
+version="$("$build/studies/nsbench-study" --version)"
+revision="$(sed -n 's/.*(revision \([^,]*\),.*/\1/p' <<< "$version")"
 flags=(--benchmark_repetitions=3 --benchmark_report_aggregates_only=true --benchmark_min_time=0.1
-       --benchmark_out_format=json)
+       --benchmark_out_format=json "--benchmark_context=git_revision=$revision")
 run() {  # run NAME THREADS
   local name="$1" threads="$2"
   echo "benchmarks: nsbench-bench-$name, $threads thread(s)" >&2
@@ -34,13 +37,14 @@ run rocking 1
 run sliding 1
 # The memory bound: one run per length is enough (the peak RSS does not vary), 20 s at 1e6 steps.
 echo "benchmarks: nsbench-bench-memory" >&2
-"$build/studies/nsbench-bench-memory" --benchmark_out_format=json --benchmark_out="$out/benchmarks/memory-1.json" > /dev/null
+"$build/studies/nsbench-bench-memory" --benchmark_out_format=json "--benchmark_context=git_revision=$revision" --benchmark_out="$out/benchmarks/memory-1.json" > /dev/null
 # The Python module's overhead (scripts/python_bench.py), where the module is built.
 if [ -d "$build/python/nsbench" ]; then
   echo "benchmarks: scripts/python_bench.py" >&2
   { echo "# Python module overhead"; echo; echo "scripts/python_bench.py: nsbench.run against the command line, and the per-step"
     echo "cost of an integrator written in Python (least of 3 runs each)."; echo
-    PYTHONPATH="$build/python" /usr/bin/python3 scripts/python_bench.py --build "$build"; } > "$out/python_overhead.md"
+    PYTHONPATH="$build/python" /usr/bin/python3 scripts/python_bench.py --build "$build"
+    echo; echo "<sub>$version</sub>"; } > "$out/python_overhead.md"
 fi
 files=()
 for f in "$out"/benchmarks/*.json; do files+=("$f"); done
