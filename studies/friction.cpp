@@ -55,6 +55,7 @@
 #include <numbers>
 #include <optional>
 
+#include "core/deterministic_math.hpp"
 #include "integrators/registry.hpp"
 #include "run/run.hpp"
 #include "problems/registry.hpp"
@@ -93,7 +94,7 @@ const std::vector<double> kSteps = {1e-2, 1e-3, 1e-4};
 const std::vector<double> kFullSteps = {1e-2, 1e-3, 1e-4, 1e-5};
 
 // mu = tan(30 deg) to the last digit (the sliding mass takes it as tan alpha).
-const std::string kTan30 = fmt::format("{:.17g}", std::tan(std::numbers::pi / 6));
+const std::string kTan30 = fmt::format("{:.17g}", nsb::dmath::tan(std::numbers::pi / 6));
 
 const std::vector<FrictionCase> kFrictionCases = {
     {"slide-stop", FrictionGroup::Sliding, "alpha 30, mu 0.8, v0 2: stops, sticks", "sliding-mass",
@@ -251,7 +252,11 @@ Json measure(const FrictionCase& fc, const std::string& integrator_name, double 
     out["trajectory_t"] = trajectory_t;
     out["trajectory_slip"] = reals(trajectory_slip);
   }
-  if (fc.ranked) out["cpu_median"] = median_cpu_seconds(*problem, integrator_name, {}, options);
+  if (fc.ranked) {
+    const CpuCost cpu = cpu_cost(*problem, integrator_name, {}, options);
+    out["cpu_median"] = cpu.median;
+    out["cpu_spread"] = real(cpu.spread);
+  }
   return out;
 }
 
@@ -456,7 +461,7 @@ std::vector<Table> friction_tables(const std::vector<Json>& cases, const std::ve
     if (fc.ranked) ranked.push_back(fc.id);
   add_ranking_curves(ranking, ranked, cases, results, [&](std::size_t i) {
     return WorkPoint{fmt::format("dt = {:.0e}", cases[i]["dt"].get<double>()), real_or_nan(results[i], "cpu_median"),
-                     real_or_nan(results[i], "t_stop_err")};
+                     real_or_nan(results[i], "t_stop_err"), "", real_or_nan(results[i], "cpu_spread")};
   });
   Table rank = ranking_table("friction_ranking", "Cheapest integrator at each target error: Coulomb friction",
                              {"t err", "s", "", "t_stop err of friction_sliding (mu = 0.8) and t_roll err of friction_disk"},

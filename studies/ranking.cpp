@@ -1,4 +1,5 @@
 #include "studies/ranking.hpp"
+#include "core/deterministic_math.hpp"
 
 #include <fmt/format.h>
 
@@ -14,6 +15,9 @@
 namespace nsb {
 
 namespace {
+// The larger of two relative spreads; unknown (NaN) when either is.
+double larger_spread(double a, double b) { return std::isnan(a) || std::isnan(b) ? kNaN : std::max(a, b); }
+
 // "none", and which rule removed which runs: "none (removed: energy blow-up: A dt = 1e-2, A dt =
 // 5e-3; diverged: B dt = 1e-1)".
 std::string none_text(const RankingProblem& p, const std::function<std::string(const WorkCurve&)>& name) {
@@ -43,17 +47,24 @@ TargetCost cost_at_target(const WorkCurve& curve, double target, double floor) {
     const WorkPoint& p = curve.points[i];
     if (p.removed.empty() && usable(p.cost) && usable(p.error)) runs.push_back({p.cost, std::max(p.error, floor), i});
   }
+  const auto spread = [&](const Run& r) { return curve.points[r.index].spread; };
   std::sort(runs.begin(), runs.end(), [](const Run& a, const Run& b) {
     return std::tie(a.cost, a.error, a.index) < std::tie(b.cost, b.error, b.index);
   });
   const auto hit = std::find_if(runs.begin(), runs.end(), [&](const Run& r) { return r.error <= target; });
   if (hit == runs.end()) return {false, kNaN, ""};
   const std::string& at = curve.points[hit->index].run;
-  if (hit == runs.begin()) return {true, hit->cost, at + " (cheapest run)"};
+  if (hit == runs.begin()) return {true, hit->cost, at + " (cheapest run)", spread(*hit)};
   // The first of equally accurate cheaper runs is the cheapest of them.
   const Run& before = *std::min_element(runs.begin(), hit, [](const Run& a, const Run& b) { return a.error < b.error; });
-  const double f = std::log(before.error / target) / std::log(before.error / hit->error);  // in (0, 1]
-  return {true, before.cost * std::pow(hit->cost / before.cost, f), curve.points[before.index].run + " .. " + at};
+  const double f = nsb::dmath::log(before.error / target) / nsb::dmath::log(before.error / hit->error);  // in (0, 1]
+  return {true, before.cost * nsb::dmath::pow(hit->cost / before.cost, f), curve.points[before.index].run + " .. " + at,
+          larger_spread(spread(before), spread(*hit))};
+}
+
+bool told_apart(const TargetCost& winner, const TargetCost& runner_up) {
+  const double spread = larger_spread(winner.spread, runner_up.spread);
+  return !std::isnan(spread) && runner_up.cost > (1.0 + spread) * winner.cost;
 }
 
 std::vector<Standing> rank_at_target(const std::vector<WorkCurve>& curves, double target, double floor) {
@@ -78,8 +89,10 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
       "Cheapest integrator reaching each target error. Cost: {}, interpolated log-log between an integrator's runs "
       "(by increasing cost: the first reaching the target and the most accurate cheaper one), never extrapolated "
       "(\"cheapest run\": that run already reaches the target, its cost is an upper bound); diverged, over-budget "
-      "and n/a runs left out. References are ranked as peers, marked. Errors: {}; below the source's own error they "
-      "count as it, and no target below it is ranked.",
+      "and n/a runs left out. References are ranked as peers, marked. The cheapest wins only when the runner-up costs "
+      "more than (1 + spread) times it, spread the larger relative spread of the two costs' timings; otherwise the "
+      "winner cell reads \"tie\" (and always for costs timed once, whose spread is unknown). Errors: {}; below the "
+      "source's own error they count as it, and no target below it is ranked.",
       cost, fmt::join(sources, "; "));
   t.columns = {{"problem", "", "", ""},
                {"target " + error.name, error.unit, "{:.0e}", error.description},
@@ -90,6 +103,7 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
                {"runner-up CPU", "s", "{:.2e}", "", true},
                {"runner-up runs", "", "", "", true},
                {"ratio", "", "{:.2f}", "runner-up CPU / winner CPU", true},
+               {"spread", "", "{:.2f}", "the larger relative spread of the two CPU times (n/a: timed once)", true},
                {"not reached", "", "", "integrators whose runs never reach the target"}};
   t.headline = true;
   const std::function<std::string(const WorkCurve&)> name = [](const WorkCurve& c) {
@@ -99,7 +113,7 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
     for (double target : p.targets) {
       if (target < p.floor) {
         t.add_row({p.label, target, fmt::format("not ranked: below the error source's own error {:.1e}", p.floor),
-                   {}, {}, {}, {}, {}, {}, {}});
+                   {}, {}, {}, {}, {}, {}, {}, {}});
         continue;
       }
       const auto standings = rank_at_target(p.curves, target, p.floor);
@@ -113,10 +127,15 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
         const Standing& s = standings[k];
         return {name(p.curves[s.curve]), s.cost.cost, s.cost.runs};
       };
-      const auto first = placed(0), second = placed(1);
+      auto first = placed(0);
+      const auto second = placed(1);
       const bool two = standings.size() > 1 && standings[1].cost.reached;
+      if (two && !told_apart(standings[0].cost, standings[1].cost))
+        first[0] = fmt::format("tie: {}, {}", std::get<std::string>(first[0]), std::get<std::string>(second[0]));
+      const double spread = two ? larger_spread(standings[0].cost.spread, standings[1].cost.spread) : kNaN;
       t.add_row({p.label, target, first[0], first[1], first[2], second[0], second[1], second[2],
                  two ? Cell{standings[1].cost.cost / standings[0].cost.cost} : Cell{},
+                 std::isnan(spread) ? Cell{} : Cell{spread},
                  missed.empty() ? std::string("none") : fmt::format("{}", fmt::join(missed, ", "))});
     }
   return t;

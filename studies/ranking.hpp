@@ -12,6 +12,15 @@
 // most accurate cheaper run (the previous point of the curve's Pareto front) and that one.
 // When the cheapest run already reaches T, its cost is kept as it is: an upper bound, since
 // nothing is extrapolated beyond the sweep. No run with error <= T: not reached.
+//
+// Telling the winner from the runner-up. Each run's cost carries its spread, the relative
+// distance between its repeated timings (study.hpp's CpuCost; unknown, NaN, for a run timed
+// once); a cost read off two runs carries the larger of their spreads (the log-linear
+// interpolation moves by at most that). The cheapest is the winner only when the runner-up
+// costs more than (1 + s) times it, s the larger spread of the two costs; otherwise, or when
+// a spread is unknown, the winner cell reads "tie: A, B": a regenerated ranking keeps its
+// winners or says tie, where a cost ratio inside the timing noise would flip between runs.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -26,6 +35,7 @@ struct WorkPoint {
   // The rule that removed the run from the ranking (e.g. "energy blow-up", "diverged"), which
   // an empty winner or runner-up cell then names; empty: the run is ranked.
   std::string removed = {};
+  double spread = std::numeric_limits<double>::quiet_NaN();  // of the cost, relative; NaN: timed once
 };
 
 struct WorkCurve {
@@ -39,7 +49,11 @@ struct TargetCost {
   bool reached = false;
   double cost;       // NaN when not reached
   std::string runs;  // "A .. B" (interpolated between runs A and B) or "A (cheapest run)"
+  double spread = std::numeric_limits<double>::quiet_NaN();  // the larger of those runs' spreads
 };
+
+// Whether `winner` is told from `runner_up` (both reached): the rule above.
+bool told_apart(const TargetCost& winner, const TargetCost& runner_up);
 
 TargetCost cost_at_target(const WorkCurve& curve, double target, double floor);
 
@@ -61,7 +75,8 @@ struct RankingProblem {
 };
 
 // One row per problem and target: the winner, its cost and the runs it is read between, the
-// runner-up, its cost and runs, their cost ratio, and the integrators not reaching the target
+// runner-up, its cost and runs, their cost ratio and the spread it is judged against ("tie: A,
+// B" in the winner cell when the ratio is inside it), and the integrators not reaching the target
 // (a curve without points is an integrator that declined the problem, n/a: not listed).
 // Where no integrator (or no second one) reaches the target, the winner (runner-up) cell says
 // "none" and, when rules removed runs (WorkPoint::removed), which rule removed which runs.

@@ -16,24 +16,28 @@ std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& optio
   return study.cases(options);
 }
 
-double median_cpu_seconds(const Problem& problem, const std::string& integrator,
-                          const std::map<std::string, std::string>& params, RunOptions options, int repeats) {
+CpuCost cpu_cost(const Problem& problem, const std::string& integrator, const std::map<std::string, std::string>& params,
+                 RunOptions options, int repeats) {
   options.sample_every = std::numeric_limits<long>::max();
   std::vector<double> cpu;
+  double warm_up = 0.0;
   for (int k = 0; k <= repeats; ++k) {
     auto timed = make_integrator(integrator, params);
     timed->init(problem, problem.initial_state());
     const double t = run(problem, *timed, options).step_cpu_seconds;
     if (k > 0) cpu.push_back(t);  // run 0 is the warm-up
+    if (k == 0) warm_up = t;
     if (k == 0 && t > kLongRunSeconds) repeats = 1;
   }
   std::sort(cpu.begin(), cpu.end());
-  return cpu[cpu.size() / 2];
+  const double median = cpu[cpu.size() / 2];
+  const double spread = cpu.size() > 1 ? (cpu.back() - cpu.front()) / median : std::abs(median - warm_up) / median;
+  return {median, median > 0.0 ? spread : std::numeric_limits<double>::infinity()};  // a zero time tells nothing
 }
 
 std::string median_cpu_text(int repeats) {
   return fmt::format("median thread CPU time of {} unobserved runs after a warm-up (one run when the warm-up takes "
-                     "over {} s)", repeats, kLongRunSeconds);
+                     "over {} s); its spread (largest - least) / median (one run: |run - warm-up| / run)", repeats, kLongRunSeconds);
 }
 
 

@@ -110,11 +110,22 @@ void add_ranking_curves(std::vector<RankingProblem>& rankings, const std::vector
 // warm-up takes over kLongRunSeconds is timed once after it: the median is there for the
 // scheduler's and the caches' noise, milliseconds, under 1 % of such a run, and each repeat
 // would cost the whole run again (Siconos at the finest steps of `precision`: 5 s a run).
+// The spread says how far apart the timings were: (largest - least) / median over the repeats,
+// or |timed - warm-up| / timed for a run timed once after its warm-up. The rankings declare a
+// winner only when the runner-up costs more than the spread allows (ranking.hpp).
 inline constexpr double kLongRunSeconds = 1.0;
-// What the cost captions say median_cpu_seconds measures.
+struct CpuCost {
+  double median;  // thread CPU seconds
+  double spread;  // relative, >= 0
+};
+// What the cost captions say cpu_cost measures.
 std::string median_cpu_text(int repeats = 3);
-double median_cpu_seconds(const Problem& problem, const std::string& integrator,
-                          const std::map<std::string, std::string>& params, RunOptions options, int repeats = 3);
+CpuCost cpu_cost(const Problem& problem, const std::string& integrator, const std::map<std::string, std::string>& params,
+                 RunOptions options, int repeats = 3);
+inline double median_cpu_seconds(const Problem& problem, const std::string& integrator,
+                                 const std::map<std::string, std::string>& params, RunOptions options, int repeats = 3) {
+  return cpu_cost(problem, integrator, params, options, repeats).median;
+}
 
 // The largest values of a few non-negative quantities over each of `intervals` equal intervals of
 // [0, t_end], each with the time of the interval's last step: a history that, unlike samples,

@@ -514,7 +514,11 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
   const RunResult r = run(*problem, *integrator, options, [&](const Integrator& it, const StepInfo& info) { measured.step(it, info); });
   Json out = measured.result(r);
   if (!out.contains("values")) return out;  // its measures not taken: nor its CPU time
-  if (spec.cpu_repeats > 0) out["cpu"] = median_cpu_seconds(*problem, fi.name, params, options, spec.cpu_repeats);
+  if (spec.cpu_repeats > 0) {
+    const CpuCost cpu = cpu_cost(*problem, fi.name, params, options, spec.cpu_repeats);
+    out["cpu"] = cpu.median;
+    out["cpu_spread"] = real(cpu.spread);
+  }
   if (Json history = measured.history(); !history.is_null()) out["history"] = history;
   return out;
 }
@@ -531,7 +535,8 @@ std::string file_result_damage(const StudySpec& spec, const Json& r) {
     if (!r.contains(key)) return fmt::format("no key '{}'", key);
   if (r.contains("values") && !(reals_or_null(r["values"]) && r["values"].size() == spec.measures.size()))
     return fmt::format("values is not an array of {} numbers (or null)", spec.measures.size());
-  if (r.contains("cpu") && !(r["cpu"].is_number() || r["cpu"].is_null())) return "cpu is not a number";
+  for (const char* key : {"cpu", "cpu_spread"})
+    if (r.contains(key) && !(r[key].is_number() || r[key].is_null())) return fmt::format("{} is not a number", key);
   for (const char* key : {"factorizations", "lcp_iterations"})
     if (r.contains(key) && !r[key].is_number_integer()) return fmt::format("{} is not an integer", key);
   if (r.contains("samples")) {  // an estimate's samples: an array of numbers per estimate measure, by its index

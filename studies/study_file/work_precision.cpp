@@ -304,7 +304,8 @@ void EngineTables::add_sweep(const std::vector<Json>& cases, const std::vector<J
     // blow-up, penetration) names the rule; one without values (diverged, over budget) has no error.
     if (primary != spec.measures.end() && status != kDeclinedStatus)
       curve.points.push_back({run_label(cases[k], runs_format), real_or_nan(r, "cpu"), ys[primary - spec.measures.begin()].back(),
-                              status != status_name(RunStatus::Ok) && r.contains("values") ? status : ""});
+                              status != status_name(RunStatus::Ok) && r.contains("values") ? status : "",
+                              real_or_nan(r, "cpu_spread")});
     if (r.contains("history"))
       for (std::size_t h = 0; h < r["history"]["t"].size(); ++h)
         history.add_row({spec.problems[cases[k]["problem"].get<std::size_t>()].label, ilabel, run_label(cases[k]),

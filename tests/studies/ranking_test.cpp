@@ -12,10 +12,13 @@ using Catch::Detail::Approx;
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// A curve through (cost, error) runs named r0, r1, ...
-nsb::WorkCurve curve(const std::string& name, std::vector<std::pair<double, double>> runs, bool reference = false) {
+// A curve through (cost, error) runs named r0, r1, ..., each cost timed with a relative spread
+// `spread` (NaN: timed once).
+nsb::WorkCurve curve(const std::string& name, std::vector<std::pair<double, double>> runs, bool reference = false,
+                     double spread = 0.05) {
   nsb::WorkCurve c{name, reference, {}};
-  for (std::size_t i = 0; i < runs.size(); ++i) c.points.push_back({fmt::format("r{}", i), runs[i].first, runs[i].second});
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    c.points.push_back({fmt::format("r{}", i), runs[i].first, runs[i].second, "", spread});
   return c;
 }
 
@@ -88,23 +91,25 @@ TEST_CASE("ranking: the table names the winner, the runner-up, their ratio and w
   CHECK(text(t.rows[0][4]) == "r0 (cheapest run)");
   CHECK(text(t.rows[0][5]) == "a");
   CHECK(std::get<double>(t.rows[0][8]) == Approx(std::sqrt(10.0) / 2.0).epsilon(1e-12));
-  CHECK(text(t.rows[0][9]) == "b");
+  CHECK(std::get<double>(t.rows[0][9]) == 0.05);
+  CHECK(text(t.rows[0][10]) == "b");
   // 1e-4: the reference alone; no runner-up, no ratio.
   CHECK(text(t.rows[1][2]) == "ref (reference)");
   CHECK(text(t.rows[1][5]) == "none");
   CHECK(std::holds_alternative<std::monostate>(t.rows[1][8]));
-  CHECK(text(t.rows[1][9]) == "a, b");
+  CHECK(std::holds_alternative<std::monostate>(t.rows[1][9]));
+  CHECK(text(t.rows[1][10]) == "a, b");
   // A target below the error source's own error is not ranked.
   CHECK_THAT(text(t.rows[2][2]), Catch::StartsWith("not ranked"));
   // Nobody reaches it: "none".
   nsb::RankingProblem hard{"hard", "the exact solution", 0.0, {1e-9}, {curve("a", {{1.0, 1e-1}})}};
   const nsb::Table none = nsb::ranking_table("rank", "Ranking", {"err", "", "", ""}, "CPU", {hard});
   CHECK(text(none.rows[0][2]) == "none");
-  CHECK(text(none.rows[0][9]) == "a");
+  CHECK(text(none.rows[0][10]) == "a");
   // An integrator that declined the problem (a curve without runs) is not "not reached".
   hard.curves.push_back({"declined", true, {}});
   const nsb::Table declined = nsb::ranking_table("rank", "Ranking", {"err", "", "", ""}, "CPU", {hard});
-  CHECK(text(declined.rows[0][9]) == "a");
+  CHECK(text(declined.rows[0][10]) == "a");
 }
 
 TEST_CASE("ranking: a peer (another code's implementation) is ranked and marked", "[studies][ranking]") {
@@ -115,4 +120,34 @@ TEST_CASE("ranking: a peer (another code's implementation) is ranked and marked"
   REQUIRE(t.rows.size() == 1);
   CHECK(text(t.rows[0][2]) == "other (peer)");
   CHECK(text(t.rows[0][5]) == "a");
+}
+
+// The tie rule (ranking.hpp): a winner only when the runner-up costs more than (1 + s) times it,
+// s the larger spread of the two costs (an interpolated cost carries the larger spread of its
+// two runs); inside it, or with a cost timed once, the winner cell says "tie".
+TEST_CASE("ranking: a winner only beyond the timings' spread, otherwise a tie", "[studies][ranking]") {
+  const auto winner = [](double cost_b, double spread_a, double spread_b) {
+    nsb::RankingProblem p{"problem", "the exact solution", 0.0, {1e-2},
+                          {curve("a", {{1.0, 1e-3}}, false, spread_a), curve("b", {{cost_b, 1e-3}}, false, spread_b)}};
+    const nsb::Table t = nsb::ranking_table("rank", "Ranking", {"err", "", "", ""}, "CPU", {p});
+    REQUIRE(t.rows.size() == 1);
+    CHECK(text(t.rows[0][5]) == "b");  // the runner-up is named either way
+    return text(t.rows[0][2]);
+  };
+  CHECK(winner(1.16, 0.10, 0.05) == "a");       // 16 % apart, timings 10 % apart
+  CHECK(winner(1.16, 0.05, 0.20) == "tie: a, b");  // the runner-up's spread is the larger
+  CHECK(winner(1.10, 0.10, 0.10) == "tie: a, b");  // exactly at the spread: not told apart
+  CHECK(winner(3.00, kNaN, 0.05) == "tie: a, b");  // timed once: no spread, cannot tell
+  CHECK(winner(3.00, 0.05, kNaN) == "tie: a, b");
+  // Interpolated: the cost between r0 (spread 0.3) and r1 (spread 0.01) carries 0.3.
+  nsb::WorkCurve mixed = curve("m", {{1.0, 1e-1}, {10.0, 1e-3}});
+  mixed.points[0].spread = 0.3;
+  mixed.points[1].spread = 0.01;
+  CHECK(nsb::cost_at_target(mixed, 1e-2, 0.0).spread == 0.3);
+  CHECK(nsb::cost_at_target(mixed, 1.0, 0.0).spread == 0.3);   // r0 alone
+  CHECK(nsb::cost_at_target(mixed, 1e-3, 0.0).spread == 0.3);  // r0 .. r1 at r1
+  nsb::TargetCost a{true, 1.0, "", 0.2}, b{true, 1.21, "", 0.1};
+  CHECK(nsb::told_apart(a, b));
+  b.cost = 1.2;
+  CHECK_FALSE(nsb::told_apart(a, b));
 }
