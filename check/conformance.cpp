@@ -1,4 +1,5 @@
 #include "check/conformance.hpp"
+#include "core/deterministic_math.hpp"
 
 #include <fmt/format.h>
 
@@ -79,7 +80,7 @@ BounceRatios bounce_ratios(const BounceObservation& obs, const BouncingMass& pro
     // <= 2 (lag g dt i) / (e^i w1).
     if (k < obs.flight_energy.size()) {
       const double rel = std::abs(obs.flight_energy[k] / problem.energy_after_impact(i) - 1.0);
-      r.flight_energy = std::max(r.flight_energy, rel / (2.0 * lag * g * dt * i / (std::pow(e, i) * problem.first_impact_speed())));
+      r.flight_energy = std::max(r.flight_energy, rel / (2.0 * lag * g * dt * i / (nsb::dmath::pow(e, i) * problem.first_impact_speed())));
     }
   }
   return r;
@@ -117,7 +118,7 @@ double final_error(const IntegratorEntry& entry, const Problem& chain, const Sta
 // 0.2 sin(1 + i) and 0.9 at 0.5 sin(1 + i).
 State accelerated_start(const SpringChain& chain) {
   State s = chain.initial_state();
-  for (Index i = 0; i < s.u.size(); ++i) s.u[i] = 0.05 * std::sin(1.0 + static_cast<double>(i));
+  for (Index i = 0; i < s.u.size(); ++i) s.u[i] = 0.05 * nsb::dmath::sin(1.0 + static_cast<double>(i));
   return s;
 }
 

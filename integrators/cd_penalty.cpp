@@ -1,4 +1,5 @@
 #include "integrators/cd_penalty.hpp"
+#include "core/deterministic_math.hpp"
 #include "integrators/registry.hpp"
 
 #include <fmt/format.h>
@@ -121,7 +122,7 @@ void CdPenalty::contact_masses(Index i) {
 double CdPenalty::stable_step_with_contacts() const { return problem_->stable_step() * std::sqrt(1.0 - factor_ / 4.0); }
 
 ImpactAccuracy CdPenalty::impact_accuracy() const {
-  return {std::numbers::pi / (2.0 * std::asin(std::sqrt(factor_) / 2.0)) + 1.0, false};
+  return {std::numbers::pi / (2.0 * nsb::dmath::asin(std::sqrt(factor_) / 2.0)) + 1.0, false};
 }
 
 StepInfo CdPenalty::advance(double tau) {

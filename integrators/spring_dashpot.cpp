@@ -1,4 +1,5 @@
 #include "integrators/spring_dashpot.hpp"
+#include "core/deterministic_math.hpp"
 
 #include <Eigen/Dense>
 
@@ -13,13 +14,13 @@ double spring_dashpot_restitution(double zeta) {
   if (zeta == 0.0) return 1.0;
   if (zeta < 1.0) {
     const double wd = std::sqrt(1.0 - zeta * zeta);
-    const double t = (std::numbers::pi - std::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta)) / wd;
-    return std::exp(-zeta * t) * std::abs(std::cos(wd * t) - zeta / wd * std::sin(wd * t));
+    const double t = (std::numbers::pi - nsb::dmath::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta)) / wd;
+    return nsb::dmath::exp(-zeta * t) * std::abs(nsb::dmath::cos(wd * t) - zeta / wd * nsb::dmath::sin(wd * t));
   }
-  if (zeta == 1.0) return std::exp(-2.0);  // critical: x = t e^-t, force zero at t* = 2
+  if (zeta == 1.0) return nsb::dmath::exp(-2.0);  // critical: x = t e^-t, force zero at t* = 2
   const double s = std::sqrt(zeta * zeta - 1.0), r1 = -zeta + s, r2 = -zeta - s;
-  const double t = std::log((1.0 + 2.0 * zeta * r2) / (1.0 + 2.0 * zeta * r1)) / (r1 - r2);
-  return std::abs((r1 * std::exp(r1 * t) - r2 * std::exp(r2 * t)) / (r1 - r2));
+  const double t = nsb::dmath::log((1.0 + 2.0 * zeta * r2) / (1.0 + 2.0 * zeta * r1)) / (r1 - r2);
+  return std::abs((r1 * nsb::dmath::exp(r1 * t) - r2 * nsb::dmath::exp(r2 * t)) / (r1 - r2));
 }
 
 double damping_ratio_for_restitution(double e, double max_ratio, const std::function<double(double)>& restitution) {

@@ -1,4 +1,5 @@
 #include "problems/block_2d.hpp"
+#include "core/deterministic_math.hpp"
 #include "problems/registry.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -141,7 +142,7 @@ double Block2d::material(const Eigen::Matrix2d& F, Eigen::Vector3d& S, Eigen::Ma
   if (neo_hookean_) {
     const double J = F.determinant();
     if (!(J > 0.0)) throw std::runtime_error("block-2d: inverted element (det F <= 0) in the neo-Hookean law");
-    const double lnJ = std::log(J);
+    const double lnJ = nsb::dmath::log(J);
     A = C.inverse();
     Sm = mu_ * (Eigen::Matrix2d::Identity() - A) + lambda_ * lnJ * A;
     m = mu_ - lambda_ * lnJ;
@@ -226,7 +227,7 @@ bool Block2d::add_row_forces(Index j, const double* u, double* f) const {
       if constexpr (kNeoHookean) {
         const double J = (1.0 + H00) * (1.0 + H11) - H01 * H10;
         ok = ok && J > 0.0;
-        const double lnJ = std::log(J), r = 1.0 / (J * J);
+        const double lnJ = nsb::dmath::log(J), r = 1.0 / (J * J);
         // C^{-1} = adj(C) / J^2 with C = I + 2E.
         const double Ci00 = (1.0 + 2.0 * E11) * r, Ci11 = (1.0 + 2.0 * E00) * r, Ci01 = -2.0 * E01 * r;
         const double c = lambda * lnJ - mu;

@@ -1,4 +1,5 @@
 #include "problems/bouncing_mass.hpp"
+#include "core/deterministic_math.hpp"
 #include "problems/registry.hpp"
 
 #include <algorithm>
@@ -55,7 +56,7 @@ State BouncingMass::initial_state() const {
 
 double BouncingMass::impact_time(int i) const {
   if (i <= 1) return t1_;
-  const double flights = (e_ == 1.0) ? (i - 1) : e_ * (1.0 - std::pow(e_, i - 1)) / (1.0 - e_);
+  const double flights = (e_ == 1.0) ? (i - 1) : e_ * (1.0 - nsb::dmath::pow(e_, i - 1)) / (1.0 - e_);
   return t1_ + 2.0 * w1_ / g_ * flights;
 }
 
@@ -80,7 +81,7 @@ double BouncingMass::zeno_time() const {
 std::vector<std::pair<std::string, double>> BouncingMass::summary_values() const { return {{"t_zeno_exact", zeno_time()}}; }
 
 double BouncingMass::energy_after_impact(int i) const {
-  return initial_energy() * std::pow(e_, 2 * i);
+  return initial_energy() * nsb::dmath::pow(e_, 2 * i);
 }
 
 void BouncingMass::exact_qv(double t, double& q, double& v) const {
@@ -106,7 +107,7 @@ void BouncingMass::exact_qv(double t, double& q, double& v) const {
     i = static_cast<int>(after - impacts_.begin());
     ti = impacts_[static_cast<std::size_t>(i - 1)];
   }
-  const double speed = std::pow(e_, i) * w1_;
+  const double speed = nsb::dmath::pow(e_, i) * w1_;
   const double ds = t - ti;
   q = speed * ds - 0.5 * g_ * ds * ds;
   v = speed - g_ * ds;

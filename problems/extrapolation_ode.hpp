@@ -58,7 +58,7 @@ bool try_step(const F& f, double t, Vec<N>& y, double H, double tol, double& nex
     if (j < 2) continue;
     const Vec<N> scale = Vec<N>::Ones() + y.cwiseAbs().cwiseMax(table[j].cwiseAbs());
     const double err = ((table[j] - table[j - 1]).cwiseQuotient(scale)).cwiseAbs().maxCoeff() / tol;
-    const double factor = err == 0.0 ? 4.0 : 0.94 * std::pow(0.65 / err, 1.0 / (2 * j + 1));
+    const double factor = err == 0.0 ? 4.0 : 0.94 * nsb::dmath::pow(0.65 / err, 1.0 / (2 * j + 1));
     next_h = H * std::clamp(factor, 0.2, 4.0);
     if (err <= 1.0) {
       y = table[j];

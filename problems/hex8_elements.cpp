@@ -1,4 +1,5 @@
 #include "problems/hex8_elements.hpp"
+#include "core/deterministic_math.hpp"
 
 #include <Eigen/LU>
 #include <cmath>
@@ -26,7 +27,7 @@ double hex8_material_response(const Eigen::Matrix3d& F, const Hex8Material& mat,
   if (mat.law == Hex8Law::neo_hookean) {
     const double J = F.determinant();
     if (!(J > 0.0)) throw std::runtime_error("hex8: inverted element (det F <= 0) in the neo-Hookean law");
-    const double lnJ = std::log(J);
+    const double lnJ = nsb::dmath::log(J);
     A = C.inverse();
     S = mat.mu * (Eigen::Matrix3d::Identity() - A) + mat.lambda * lnJ * A;
     m = mat.mu - mat.lambda * lnJ;

@@ -1,4 +1,5 @@
 #include "problems/mass_on_bar.hpp"
+#include "core/deterministic_math.hpp"
 
 #include "problems/bar_memory.hpp"
 #include "problems/registry.hpp"
@@ -53,7 +54,7 @@ double exp_integral(const Poly& p, double x) {
     for (std::size_t k = 1; k < d.size(); ++k) next[k - 1] = d[k] * static_cast<double>(k);
     d = std::move(next);
   }
-  return eval(sum, 0.0) - std::exp(-x) * eval(sum, x);
+  return eval(sum, 0.0) - nsb::dmath::exp(-x) * eval(sum, x);
 }
 
 // The first x in (0, end] where f(x) < 0, or nullopt: sampled, then bisected.
@@ -191,7 +192,7 @@ void MassOnBar::sweep_exact() {
     const auto it = std::upper_bound(out.begin(), out.end(), t - T, [&](double x, const Piece& p) { return x < p.t1; });
     if (t >= T && it != out.end()) {
       const double d = (t - T - it->t0) / theta_;
-      B = combine(-std::exp(-d), shift(it->poly, d), 0.0, {});
+      B = combine(-nsb::dmath::exp(-d), shift(it->poly, d), 0.0, {});
       end = it->t1 + T;
     }
     const double width = (end - t) / theta_;
@@ -203,7 +204,7 @@ void MassOnBar::sweep_exact() {
       out.push_back({t, t + x * theta_, combine(1.0, P, -1.0, B)});
       segments_.push_back({t, true, P, std::move(force), 0.0});
       X += v0_ * theta_ * exp_integral(P, x);
-      V = v0_ * std::exp(-x) * eval(P, x);
+      V = v0_ * nsb::dmath::exp(-x) * eval(P, x);
       t += x * theta_;
       if (zero) {
         contact = false;
@@ -240,7 +241,7 @@ double MassOnBar::exact_contact_force(double t) const {
   const Segment& s = segment_at(t);
   if (!s.contact) return 0.0;
   const double x = (t - s.t0) / theta_;
-  return impedance() * v0_ * std::exp(-x) * eval(s.force, x);
+  return impedance() * v0_ * nsb::dmath::exp(-x) * eval(s.force, x);
 }
 
 double MassOnBar::exact_mass_velocity(double t) const {
@@ -248,7 +249,7 @@ double MassOnBar::exact_mass_velocity(double t) const {
   const Segment& s = segment_at(t);
   if (!s.contact) return s.v_free;
   const double x = (t - s.t0) / theta_;
-  return v0_ * std::exp(-x) * eval(s.velocity, x);
+  return v0_ * nsb::dmath::exp(-x) * eval(s.velocity, x);
 }
 
 std::vector<double> MassOnBar::impact_times(double t_end) const {

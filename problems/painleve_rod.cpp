@@ -1,4 +1,5 @@
 #include "problems/painleve_rod.hpp"
+#include "core/deterministic_math.hpp"
 #include "problems/floor_contacts.hpp"
 #include "problems/registry.hpp"
 
@@ -49,7 +50,7 @@ PainleveRod::PainleveRod(const Params& params) : params_(params), s_(params.real
 
 void PainleveRod::evaluate_contacts(ConstVecRef u, ContactGeometry& out) const { write_floor_contact(0, end_contact(u), out); }
 
-void PainleveRod::contact_slide(ConstVecRef u, VecRef s) const { s[0] = u[0] + s_ * std::cos(u[2]); }
+void PainleveRod::contact_slide(ConstVecRef u, VecRef s) const { s[0] = u[0] + s_ * nsb::dmath::cos(u[2]); }
 
 State PainleveRod::initial_state() const { return *state(0.0); }
 
@@ -77,7 +78,7 @@ std::vector<std::string> PainleveRod::observable_names() const {
 void PainleveRod::observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
   const auto ex = exact_.state(s.t);
   out[0] = s.u[2];
-  out[1] = s.u[0] + s_ * std::cos(s.u[2]);
+  out[1] = s.u[0] + s_ * nsb::dmath::cos(s.u[2]);
   out[2] = dt > 0.0 && impulses.size() > 0 ? impulses[0] / dt : 0.0;
   out[3] = ex ? exact_.normal_force(ex->phi, ex->vphi) : nan;
 }
@@ -85,14 +86,14 @@ void PainleveRod::observe(const State& s, const Vec& impulses, double dt, std::s
 std::optional<FieldMesh> PainleveRod::field_mesh() const {
   FieldMesh mesh;
   mesh.dimension = 2;
-  mesh.add_vertex(0.0, s_ * std::sin(params_.real("phi0") * std::numbers::pi / 180.0), {0, 1}, 0);
+  mesh.add_vertex(0.0, s_ * nsb::dmath::sin(params_.real("phi0") * std::numbers::pi / 180.0), {0, 1}, 0);
   mesh.body_arrays = {{"half_length", 1}, {"angle", 1}, {"angular_velocity", 1}, {"orientation", 3}};
   return mesh;
 }
 
 void PainleveRod::body_data(const State& s, Eigen::Ref<Eigen::MatrixXd> out) const {
   const double phi = s.u[2];
-  out.row(0) << s_, phi, s.v[2], std::cos(phi), -std::sin(phi), 0.0;
+  out.row(0) << s_, phi, s.v[2], nsb::dmath::cos(phi), -nsb::dmath::sin(phi), 0.0;
 }
 
 NSBENCH_PROBLEM({"painleve-rod", "rod sliding on one end on a rough floor up to its dynamic jam (moving contact; exact: Genot-Brogliato sliding phase)", &PainleveRod::parameters_spec, &make_from_params<Problem, PainleveRod>});

@@ -1,4 +1,5 @@
 #include "problems/painleve_rod_exact.hpp"
+#include "core/deterministic_math.hpp"
 
 #include <algorithm>
 #include <array>
@@ -25,23 +26,23 @@ struct PainleveRodExact::Equations {
   const PainleveRodExact* rod;
   Vec7 initial() const {
     Vec7 z;
-    z << 0.0, 0.0, rod->s_ * std::sin(rod->phi0_), rod->phi0_, rod->v0_, 0.0, 0.0;
+    z << 0.0, 0.0, rod->s_ * nsb::dmath::sin(rod->phi0_), rod->phi0_, rod->v0_, 0.0, 0.0;
     return z;
   }
   // Positive while sliding, each of order one: D above the jam threshold, lambda (as its
   // numerator), the slip in the initial direction, phi above 0 and below 90 degrees.
   std::array<double, 5> margins(const Vec7& z) const {
     const double phi = z(3), v_scale = std::abs(rod->v0_) + std::sqrt(rod->g_ * rod->s_);
-    return {rod->denominator(phi) - jam_denominator, 1.0 - rod->s_ * z(6) * z(6) * std::sin(phi) / rod->g_,
-            rod->sigma_ * (z(4) - rod->s_ * std::sin(phi) * z(6)) / v_scale, phi, std::numbers::pi / 2 - phi};
+    return {rod->denominator(phi) - jam_denominator, 1.0 - rod->s_ * z(6) * z(6) * nsb::dmath::sin(phi) / rod->g_,
+            rod->sigma_ * (z(4) - rod->s_ * nsb::dmath::sin(phi) * z(6)) / v_scale, phi, std::numbers::pi / 2 - phi};
   }
   Vec7 operator()(double, const Vec7& z) const {
     const double phi = z(3), D = rod->denominator(phi);
-    const double N = rod->m_ * (rod->g_ - rod->s_ * z(6) * z(6) * std::sin(phi));
+    const double N = rod->m_ * (rod->g_ - rod->s_ * z(6) * z(6) * nsb::dmath::sin(phi));
     const double friction = rod->mu_ * rod->sigma_;
     Vec7 dz;
     dz << D, D * z(4), D * z(5), D * z(6), -friction * N / rod->m_, N / rod->m_ - rod->g_ * D,
-        -rod->s_ * N * (std::cos(phi) - friction * std::sin(phi)) / rod->J_;
+        -rod->s_ * N * (nsb::dmath::cos(phi) - friction * nsb::dmath::sin(phi)) / rod->J_;
     return dz;
   }
 };
@@ -81,13 +82,13 @@ PainleveRodExact::PainleveRodExact(const PainleveRodSpec& spec)
   ending_ = endings[nearest];
   if (ending_ == Ending::jam) {  // the time left to reach D = 0, u / phi'* = D / (-D'(phi) phi')
     const double phi = z(3);
-    const double D_prime = -(m_ * s_ * s_ / J_) * (std::sin(2.0 * phi) + mu_ * sigma_ * std::cos(2.0 * phi));
+    const double D_prime = -(m_ * s_ * s_ / J_) * (nsb::dmath::sin(2.0 * phi) + mu_ * sigma_ * nsb::dmath::cos(2.0 * phi));
     t_end_ += denominator(phi) / (-D_prime * z(6));
   }
 }
 
 PointContact PainleveRodExact::end_contact(const Eigen::Vector3d& U) const {
-  const double c = std::cos(U(2)), sn = std::sin(U(2));
+  const double c = nsb::dmath::cos(U(2)), sn = nsb::dmath::sin(U(2));
   PointContact k;
   k.gap = U(1) - s_ * sn;
   k.normal_row << 0.0, 1.0, -s_ * c;
@@ -96,11 +97,11 @@ PointContact PainleveRodExact::end_contact(const Eigen::Vector3d& U) const {
 }
 
 double PainleveRodExact::denominator(double phi) const {
-  return 1.0 + (m_ * s_ * s_ / J_) * std::cos(phi) * (std::cos(phi) - mu_ * sigma_ * std::sin(phi));
+  return 1.0 + (m_ * s_ * s_ / J_) * nsb::dmath::cos(phi) * (nsb::dmath::cos(phi) - mu_ * sigma_ * nsb::dmath::sin(phi));
 }
 
 double PainleveRodExact::normal_force(double phi, double phi_dot) const {
-  return m_ * (g_ - s_ * phi_dot * phi_dot * std::sin(phi)) / denominator(phi);
+  return m_ * (g_ - s_ * phi_dot * phi_dot * nsb::dmath::sin(phi)) / denominator(phi);
 }
 
 std::optional<PainleveRodExact::State> PainleveRodExact::state(double t) const {
@@ -116,7 +117,7 @@ std::optional<PainleveRodExact::State> PainleveRodExact::state(double t) const {
   return State{t, z(1), z(2), z(3), z(4), z(5), z(6)};
 }
 
-double PainleveRodExact::x_end(const State& s) const { return s.x + s_ * std::cos(s.phi); }
-double PainleveRodExact::end_height(const State& s) const { return s.y - s_ * std::sin(s.phi); }
+double PainleveRodExact::x_end(const State& s) const { return s.x + s_ * nsb::dmath::cos(s.phi); }
+double PainleveRodExact::end_height(const State& s) const { return s.y - s_ * nsb::dmath::sin(s.phi); }
 
 }  // namespace nsb

@@ -1,4 +1,5 @@
 #include "problems/rocking_block.hpp"
+#include "core/deterministic_math.hpp"
 #include "problems/floor_contacts.hpp"
 #include "problems/registry.hpp"
 
@@ -63,7 +64,7 @@ void RockingBlock::evaluate_contacts(ConstVecRef u, ContactGeometry& out) const 
 }
 
 void RockingBlock::contact_slide(ConstVecRef u, VecRef s) const {
-  const double c = std::cos(u[2]), sn = std::sin(u[2]);
+  const double c = nsb::dmath::cos(u[2]), sn = nsb::dmath::sin(u[2]);
   s[0] = u[0] + b_ * c + h_ * sn;  // (+b, -h): x + p_x cos theta - p_y sin theta
   s[1] = u[0] - b_ * c + h_ * sn;  // (-b, -h)
 }
@@ -124,7 +125,7 @@ std::optional<FieldMesh> RockingBlock::field_mesh() const {
 
 void RockingBlock::body_data(const State& s, Eigen::Ref<Eigen::MatrixXd> out) const {
   const double theta = s.u[2];
-  out.row(0) << b_, h_, theta, s.v[2], std::cos(theta), std::sin(theta), 0.0;
+  out.row(0) << b_, h_, theta, s.v[2], nsb::dmath::cos(theta), nsb::dmath::sin(theta), 0.0;
 }
 
 NSBENCH_PROBLEM({"rocking-block", "rigid block rocking on two corners whose gaps turn with it (moving contacts; exact: Housner / Moreau)", &RockingBlock::parameters_spec, &make_from_params<Problem, RockingBlock>});

@@ -1,4 +1,5 @@
 #include "problems/rocking_block_exact.hpp"
+#include "core/deterministic_math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +24,7 @@ constexpr double horizon_periods = 1e4;             // first-phase search horizo
 struct Pendulum {
   double p2;
   extrapolation::Vec<2> operator()(double, const extrapolation::Vec<2>& y) const {
-    return {y(1), p2 * std::sin(y(0))};
+    return {y(1), p2 * nsb::dmath::sin(y(0))};
   }
 };
 
@@ -34,7 +35,7 @@ BlockCorners block_corners(double b, double h, const Eigen::Vector3d& U) {
 }
 
 double housner_ratio(double alpha) {
-  const double s = std::sin(alpha);
+  const double s = nsb::dmath::sin(alpha);
   return 1.0 - 1.5 * s * s;
 }
 
@@ -136,18 +137,18 @@ RockingBlockExact::RockingBlockExact(const RockingBlockSpec& spec)
   require_input(std::abs(theta0_) < std::numbers::pi / 2, "rocking-block", "theta0", theta0_,
                 "(-pi/2, pi/2) rad (beyond it an upper corner starts in the floor)");
   require_input(std::isfinite(omega0_), "rocking-block", "omega0", omega0_, "(-inf, inf)");
-  R_ = std::hypot(b_, h_);
-  alpha_ = std::atan2(b_, h_);
+  R_ = nsb::dmath::hypot(b_, h_);
+  alpha_ = nsb::dmath::atan2(b_, h_);
   p_ = std::sqrt(0.75 * g_ / R_);
   first_phase();
 }
 
 double RockingBlockExact::rise_time(double w) const {
   if (topples_from_upright(w)) return kForever;
-  const double half = std::sin(0.5 * alpha_);
+  const double half = nsb::dmath::sin(0.5 * alpha_);
   const double sin_half_m = std::sqrt(half * half - w * w / (4.0 * p_ * p_));
   const double k = std::sqrt(1.0 - sin_half_m * sin_half_m);
-  const double gamma = std::atan2(w, 2.0 * p_ * sin_half_m * std::cos(0.5 * alpha_));
+  const double gamma = nsb::dmath::atan2(w, 2.0 * p_ * sin_half_m * nsb::dmath::cos(0.5 * alpha_));
   return std::ellint_1(k, gamma) / p_;
 }
 
@@ -156,13 +157,13 @@ double RockingBlockExact::amplitude(double w) const {
   // alpha - psi_m = 2 (asin A - asin B), A = sin(alpha / 2), B = sin(psi_m / 2) = sqrt(A^2 - q),
   // q = w^2 / (4 p^2), written without the cancellation: asin A - asin B = asin(q / (A cos(psi_m / 2)
   // + B cos(alpha / 2))).
-  const double A = std::sin(0.5 * alpha_), q = w * w / (4.0 * p_ * p_);
+  const double A = nsb::dmath::sin(0.5 * alpha_), q = w * w / (4.0 * p_ * p_);
   const double B = std::sqrt(A * A - q);
-  return 2.0 * std::asin(q / (A * std::sqrt(1.0 - B * B) + B * std::cos(0.5 * alpha_)));
+  return 2.0 * nsb::dmath::asin(q / (A * std::sqrt(1.0 - B * B) + B * nsb::dmath::cos(0.5 * alpha_)));
 }
 
 bool RockingBlockExact::topples_from_upright(double w) const {
-  const double half = std::sin(0.5 * alpha_);
+  const double half = nsb::dmath::sin(0.5 * alpha_);
   return w * w >= 4.0 * p_ * p_ * half * half;
 }
 
@@ -173,7 +174,7 @@ void RockingBlockExact::first_phase() {
     t_rest_ = 0.0;
     return;
   }
-  x_mid_ = h_ * std::sin(theta0_) - sigma * b_ * (std::cos(theta0_) - 1.0);
+  x_mid_ = h_ * nsb::dmath::sin(theta0_) - sigma * b_ * (nsb::dmath::cos(theta0_) - 1.0);
   const Phase start{0.0, sigma, alpha_ - sigma * theta0_, -sigma * omega0_};
   phases_.push_back(start);
   const Pendulum f{p_ * p_};
@@ -250,7 +251,7 @@ void RockingBlockExact::march_impacts(double t, int sigma, double omega_minus) {
     }
     if (decay < 1.0) {
       // Stop once the phases no longer advance t: what remains is below its rounding.
-      const double tail = 2.0 * w / (p_ * p_ * std::sin(alpha_) * (1.0 - decay));
+      const double tail = 2.0 * w / (p_ * p_ * nsb::dmath::sin(alpha_) * (1.0 - decay));
       if (t_next == t || t + (tail + lost) == t || impacts_.size() >= kMaxImpactsMarched) {
         t_rest_ = t + (tail + lost);
         if (impacts_.size() >= kMaxImpactsMarched) t_end_ = t_next;  // nothing marched beyond it
@@ -272,7 +273,7 @@ RockingBlockExact::State RockingBlockExact::state_in_phase(const Phase& phase, d
   State s;
   s.theta = sigma * (alpha_ - y(0));
   s.omega = -sigma * y(1);
-  const double c = std::cos(s.theta), sn = std::sin(s.theta);
+  const double c = nsb::dmath::cos(s.theta), sn = nsb::dmath::sin(s.theta);
   s.x = x_mid_ - h_ * sn + sigma * b_ * (c - 1.0);
   s.y = h_ * c + sigma * b_ * sn;
   s.vx = (-h_ * c - sigma * b_ * sn) * s.omega;
@@ -297,8 +298,8 @@ std::optional<RockingBlockExact::State> RockingBlockExact::state(double t) const
 Eigen::Vector2d RockingBlockExact::pivot_force(double theta, double omega) const {
   const double sigma = theta > 0.0 ? 1.0 : theta < 0.0 ? -1.0 : omega >= 0.0 ? 1.0 : -1.0;
   const double psi = alpha_ - sigma * theta, rate2 = omega * omega, p2 = p_ * p_;
-  return {sigma * m_ * R_ * std::sin(psi) * (p2 * std::cos(psi) - rate2),
-          m_ * g_ - m_ * R_ * (p2 * std::sin(psi) * std::sin(psi) + rate2 * std::cos(psi))};
+  return {sigma * m_ * R_ * nsb::dmath::sin(psi) * (p2 * nsb::dmath::cos(psi) - rate2),
+          m_ * g_ - m_ * R_ * (p2 * nsb::dmath::sin(psi) * nsb::dmath::sin(psi) + rate2 * nsb::dmath::cos(psi))};
 }
 
 double RockingBlockExact::energy(const State& s) const {

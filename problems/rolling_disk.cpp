@@ -1,4 +1,5 @@
 #include "problems/rolling_disk.hpp"
+#include "core/deterministic_math.hpp"
 #include "problems/registry.hpp"
 
 #include <algorithm>
@@ -54,7 +55,7 @@ RollingDisk::RollingDisk(const Params& params)
       im.t = impact_time(k);
       // Once the times no longer increase the impacts have accumulated to round-off.
       if (!impacts_.empty() && !(im.t > impacts_.back().t)) break;
-      im.V = std::pow(e_, k - 1) * V_;
+      im.V = nsb::dmath::pow(e_, k - 1) * V_;
       im.Lambda_N = m_ * (1.0 + e_) * im.V;
       im.x = prev->x + prev->v * (im.t - prev->t);
       im.theta = prev->theta + prev->omega * (im.t - prev->t);
@@ -124,7 +125,7 @@ State RollingDisk::initial_state() const {
 
 double RollingDisk::impact_time(int i) const {
   if (i <= 1) return t1_;
-  const double flights = (e_ == 1.0) ? (i - 1) : e_ * (1.0 - std::pow(e_, i - 1)) / (1.0 - e_);
+  const double flights = (e_ == 1.0) ? (i - 1) : e_ * (1.0 - nsb::dmath::pow(e_, i - 1)) / (1.0 - e_);
   return t1_ + 2.0 * V_ / g_ * flights;
 }
 
@@ -188,7 +189,7 @@ std::optional<State> RollingDisk::state(double t) const {
   } else {
     while (i < 100000 && impact_time(i + 1) <= t && impact_time(i + 1) > impact_time(i)) ++i;
   }
-  const double speed = std::pow(e_, i) * V_;
+  const double speed = nsb::dmath::pow(e_, i) * V_;
   const double ds = t - impact_time(i);
   s.u[1] = speed * ds - 0.5 * g_ * ds * ds;
   s.v[1] = speed - g_ * ds;
@@ -221,7 +222,7 @@ std::optional<FieldMesh> RollingDisk::field_mesh() const {
 
 void RollingDisk::body_data(const State& s, Eigen::Ref<Eigen::MatrixXd> out) const {
   const double theta = s.u[2];
-  out.row(0) << R_, theta, s.v[2], std::cos(theta), std::sin(theta), 0.0;
+  out.row(0) << R_, theta, s.v[2], nsb::dmath::cos(theta), nsb::dmath::sin(theta), 0.0;
 }
 
 NSBENCH_PROBLEM({"rolling-disk", "rigid disk sliding, rolling and bouncing on a floor with Coulomb friction (exact solution)", &RollingDisk::parameters_spec, &make_from_params<Problem, RollingDisk>});

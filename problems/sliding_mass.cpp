@@ -1,4 +1,5 @@
 #include "problems/sliding_mass.hpp"
+#include "core/deterministic_math.hpp"
 #include "problems/registry.hpp"
 
 #include <algorithm>
@@ -25,7 +26,7 @@ SlidingMass::SlidingMass(const Params& params)
       v0_(params.real("v0")),
       m_(params.real("m")),
       g_(params.real("g")) {
-  const double sin_a = std::sin(alpha_), cos_a = std::cos(alpha_), tan_a = std::tan(alpha_);
+  const double sin_a = nsb::dmath::sin(alpha_), cos_a = nsb::dmath::cos(alpha_), tan_a = nsb::dmath::tan(alpha_);
   // tan(alpha) of an angle in degrees carries a few rounding errors (tan(45 deg) is 1 - 2^-53),
   // so a mu typed as tan(alpha) is the limit case a_down = 0, not a slow stop or a slow slide.
   const bool limit = std::abs(tan_a - mu_) <= 8.0 * std::numeric_limits<double>::epsilon() * std::max(tan_a, mu_);

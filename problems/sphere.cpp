@@ -1,4 +1,5 @@
 #include "problems/sphere.hpp"
+#include "core/deterministic_math.hpp"
 #include "problems/registry.hpp"
 
 #include <cmath>
@@ -49,8 +50,8 @@ Sphere::Sphere(const Params& params) : params_(params), spec_(spec_of(params)), 
   mass_ = Vec(6);
   mass_ << m, m, m, I, I, I;
   load_ = Vec::Zero(6);
-  load_[0] = m * spec_.g * std::sin(alpha);
-  load_[2] = -m * spec_.g * std::cos(alpha);
+  load_[0] = m * spec_.g * nsb::dmath::sin(alpha);
+  load_[2] = -m * spec_.g * nsb::dmath::cos(alpha);
 
   contacts_.normal.resize(1, 6);
   contacts_.normal.insert(0, 2) = 1.0;
@@ -99,7 +100,7 @@ std::vector<std::string> Sphere::observable_names() const { return {"slip_speed"
 
 void Sphere::observe(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
   const double R = spec_.R;
-  out[0] = std::hypot(s.v[0] - R * s.v[4], s.v[1] + R * s.v[3]);
+  out[0] = nsb::dmath::hypot(s.v[0] - R * s.v[4], s.v[1] + R * s.v[3]);
   out[1] = h0_ > 0.0 ? std::numeric_limits<double>::quiet_NaN() : exact_.slip_speed(s.t);
 }
 

@@ -1,4 +1,5 @@
 #include "problems/sphere_incline_exact.hpp"
+#include "core/deterministic_math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +15,7 @@ namespace {
 // for small q lambda; lambda = +inf gives 1 / q (q > 0) or +inf.
 double decay_integral(double q, double lambda) {
   if (q == 0.0) return lambda;
-  return -std::expm1(-q * lambda) / q;
+  return -nsb::dmath::expm1(-q * lambda) / q;
 }
 
 // coef * G(q): zero when coef is (a term absent, even where G is infinite).
@@ -34,8 +35,8 @@ SphereInclineExact::SphereInclineExact(const SphereInclineSpec& spec)
   const double values[] = {spec.vx0, spec.vy0, spec.wx0, spec.wy0, spec.wz0};
   for (int i = 0; i < 5; ++i) require_input(std::isfinite(values[i]), problem, names[i], values[i], "(-inf, inf)");
 
-  a_ = g_ * std::sin(alpha_);
-  b_ = 3.5 * mu_ * g_ * std::cos(alpha_);
+  a_ = g_ * nsb::dmath::sin(alpha_);
+  b_ = 3.5 * mu_ * g_ * nsb::dmath::cos(alpha_);
   k_ = a_ > 0.0 ? b_ / a_ : inf_;
   v0_ = {spec.vx0, spec.vy0};
   omega0_ = {spec.wx0, spec.wy0, spec.wz0};
@@ -67,9 +68,9 @@ double SphereInclineExact::turning_time(double lambda) const {
 SphereInclineExact::SlipIntegrals SphereInclineExact::turning_phase(double lambda) const {
   const double k = k_;
   SlipIntegrals r;
-  const double ea = A_ == 0.0 ? 0.0 : A_ * std::exp(-(k - 1.0) * lambda);
-  const double eb = B_ == 0.0 ? 0.0 : B_ * std::exp(-(k + 1.0) * lambda);
-  r.w = {ea - eb, w0_.y() == 0.0 ? 0.0 : w0_.y() * std::exp(-k * lambda)};
+  const double ea = A_ == 0.0 ? 0.0 : A_ * nsb::dmath::exp(-(k - 1.0) * lambda);
+  const double eb = B_ == 0.0 ? 0.0 : B_ * nsb::dmath::exp(-(k + 1.0) * lambda);
+  r.w = {ea - eb, w0_.y() == 0.0 ? 0.0 : w0_.y() * nsb::dmath::exp(-k * lambda)};
   r.path = {(term(A_ * A_, 2.0 * k - 2.0, lambda) - term(B_ * B_, 2.0 * k + 2.0, lambda)) / a_,
             w0_.y() * (term(A_, 2.0 * k - 1.0, lambda) + term(B_, 2.0 * k + 1.0, lambda)) / a_};
   r.length = (term(A_ * A_, 2.0 * k - 2.0, lambda) + term(2.0 * A_ * B_, 2.0 * k, lambda) +
@@ -86,8 +87,8 @@ double SphereInclineExact::lambda_at(double t) const {
     const double f = turning_time(x) - t;
     if (f == 0.0) return x;
     (f < 0.0 ? lo : hi) = x;
-    const double speed = (A_ == 0.0 ? 0.0 : A_ * std::exp(-(k_ - 1.0) * x)) +
-                         (B_ == 0.0 ? 0.0 : B_ * std::exp(-(k_ + 1.0) * x));
+    const double speed = (A_ == 0.0 ? 0.0 : A_ * nsb::dmath::exp(-(k_ - 1.0) * x)) +
+                         (B_ == 0.0 ? 0.0 : B_ * nsb::dmath::exp(-(k_ + 1.0) * x));
     double next = x - f * a_ / speed;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     if (std::abs(next - x) <= 1e-16 * x) return next;

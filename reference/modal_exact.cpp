@@ -1,4 +1,5 @@
 #include "reference/modal_exact.hpp"
+#include "core/deterministic_math.hpp"
 #include "integrators/registry.hpp"
 
 #include <fmt/format.h>
@@ -340,7 +341,7 @@ void ModalExact::modal_at(double tau, Vec& qt, Vec* qdt) const {
   for (Index j = 0; j < md.size(); ++j) {
     const double w = md.omega[j];
     if (w > 0.0) {
-      const double c = std::cos(w * tau), s = std::sin(w * tau), d = q_[j] - md.q_static[j];
+      const double c = nsb::dmath::cos(w * tau), s = nsb::dmath::sin(w * tau), d = q_[j] - md.q_static[j];
       qt[j] = md.q_static[j] + d * c + qd_[j] / w * s;
       if (qdt) (*qdt)[j] = -d * w * s + qd_[j] * c;
     } else {
@@ -498,8 +499,8 @@ void ModalExact::propagate(double tau) {
     for (Index j = 0; j < m; ++j) {
       const double w = md.omega[j];
       if (w > 0.0) {
-        const double half = std::sin(0.5 * w * tau);
-        qint_[j] = md.q_static[j] * tau + (q_[j] - md.q_static[j]) * std::sin(w * tau) / w + qd_[j] * 2.0 * half * half / (w * w);
+        const double half = nsb::dmath::sin(0.5 * w * tau);
+        qint_[j] = md.q_static[j] * tau + (q_[j] - md.q_static[j]) * nsb::dmath::sin(w * tau) / w + qd_[j] * 2.0 * half * half / (w * w);
       } else {
         qint_[j] = tau * (q_[j] + tau * (0.5 * qd_[j] + tau * md.force[j] / 6.0));
       }

@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libsundials-dev libsuitesparse-dev
   catch2 libbenchmark-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libtomlplusplus-dev  # study files (nsbench-study run FILE.toml)
+  libsleef-dev  # elementary functions with the same bits on every machine (core/deterministic_math.hpp)
   python3 python3-matplotlib
   # The Python module (python/; CMake option NSBENCH_PYTHON): pybind11 to build it, numpy and
   # scipy (its matrices are scipy.sparse) to use it.

@@ -1,4 +1,5 @@
 #include "studies/hausdorff.hpp"
+#include "core/deterministic_math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -48,7 +49,7 @@ Offset segment_offset(double t, double x, const Polyline& b, std::size_t j) {
 
 double segment_distance(double t, double x, const Polyline& b, std::size_t j) {
   const Offset o = segment_offset(t, x, b, j);
-  return std::hypot(o.dt, o.dx);
+  return nsb::dmath::hypot(o.dt, o.dx);
 }
 
 // Whether hypot(o) < d, deciding from the squares where they leave no doubt: hypot (glibc:
@@ -61,7 +62,7 @@ bool shorter_than(Offset o, double d) {
     if (o2 > d2 * (1.0 + 1e-12)) return false;
     if (o2 < d2 * (1.0 - 1e-12)) return true;
   }
-  return std::hypot(o.dt, o.dx) < d;
+  return nsb::dmath::hypot(o.dt, o.dx) < d;
 }
 
 struct Nearest {
@@ -102,7 +103,7 @@ Nearest nearest(double t, double x, const Polyline& b, const Boxes& boxes) {
   const auto scan = [&](std::size_t block) {
     if (!shorter_than(boxes.offset(block, t, x), best.d)) return;
     for (std::size_t j = block * kBlock; j < std::min(n, (block + 1) * kBlock); ++j)
-      if (const Offset o = segment_offset(t, x, b, j); shorter_than(o, best.d)) best = {std::hypot(o.dt, o.dx), j};
+      if (const Offset o = segment_offset(t, x, b, j); shorter_than(o, best.d)) best = {nsb::dmath::hypot(o.dt, o.dx), j};
   };
   const std::size_t home = j0 / kBlock;
   scan(home);
@@ -150,7 +151,7 @@ double directed_hausdorff(const Polyline& a, const Polyline& b, HausdorffToleran
   };
   std::vector<Piece> stack;
   for (std::size_t k = 0; k + 1 < a.size(); ++k) {
-    const double dt = a.t[k + 1] - a.t[k], dx = a.x[k + 1] - a.x[k], length = std::hypot(dt, dx);
+    const double dt = a.t[k + 1] - a.t[k], dx = a.x[k + 1] - a.x[k], length = nsb::dmath::hypot(dt, dx);
     stack.push_back({0.0, 1.0, at[k], at[k + 1]});
     while (!stack.empty()) {
       const Piece p = stack.back();

@@ -1,5 +1,6 @@
 // The measures of studies/measures.hpp.
 #include "studies/measures.hpp"
+#include "core/deterministic_math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -66,7 +67,7 @@ double above_round_off(double error) { return error > kRoundOffError ? error : k
 
 double observed_order(double h1, double e1, double h2, double e2) {
   if (!usable(e1) || !usable(e2) || h1 == h2) return kNaN;
-  return std::log(e1 / e2) / std::log(h1 / h2);
+  return nsb::dmath::log(e1 / e2) / nsb::dmath::log(h1 / h2);
 }
 
 double fitted_order(const std::vector<double>& h, const std::vector<double>& e) { return fit_order(h, e).order; }
@@ -82,15 +83,15 @@ double student_t975(int dof) {
   if (dof < 1) return kNaN;
   if (dof <= 30) return table[dof - 1];
   const double z = 1.959963985, n = dof;
-  return z + (z * z * z + z) / (4 * n) + (5 * std::pow(z, 5) + 16 * z * z * z + 3 * z) / (96 * n * n) +
-         (3 * std::pow(z, 7) + 19 * std::pow(z, 5) + 17 * z * z * z - 15 * z) / (384 * n * n * n);
+  return z + (z * z * z + z) / (4 * n) + (5 * nsb::dmath::pow(z, 5) + 16 * z * z * z + 3 * z) / (96 * n * n) +
+         (3 * nsb::dmath::pow(z, 7) + 19 * nsb::dmath::pow(z, 5) + 17 * z * z * z - 15 * z) / (384 * n * n * n);
 }
 
 OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& e) {
   std::vector<double> x, y, repeats;  // one point per distinct h: the mean of log e over its repeats
   for (std::size_t i = 0; i < h.size() && i < e.size(); ++i)
     if (usable(e[i]) && h[i] > 0.0 && std::isfinite(h[i])) {
-      const double lh = std::log(h[i]);
+      const double lh = nsb::dmath::log(h[i]);
       const auto at = std::find(x.begin(), x.end(), lh) - x.begin();
       if (at == static_cast<std::ptrdiff_t>(x.size())) {
         x.push_back(lh);
@@ -98,7 +99,7 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& e) {
         repeats.push_back(0.0);
       }
       repeats[at] += 1.0;
-      y[at] += (std::log(e[i]) - y[at]) / repeats[at];
+      y[at] += (nsb::dmath::log(e[i]) - y[at]) / repeats[at];
     }
   const LineFit line = fit_line(x, y);
   return {line.slope, line.low, line.high, line.points};

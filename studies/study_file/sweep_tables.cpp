@@ -1,6 +1,7 @@
 // What a sweep (the runs of one integrator on one problem or joint refinement) gives: the group
 // tables of its fitted orders, fits against a problem parameter, and each run compared with the
 // next run of its sweep.
+#include "core/deterministic_math.hpp"
 #include "studies/study_file/engine.hpp"
 
 #include <algorithm>
@@ -177,7 +178,7 @@ std::vector<Json> with_next_run_estimates(const StudySpec& spec, const std::vect
         const auto a = r["samples"][key].get<std::vector<double>>(), b = n["samples"][key].get<std::vector<double>>();
         double d = 0.0;
         for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) d = std::max(d, std::abs(a[k] - b[k]));
-        r["values"][m] = real(fm.order != 0.0 ? d / (1.0 - std::pow(x_next / x, fm.order)) : d);
+        r["values"][m] = real(fm.order != 0.0 ? d / (1.0 - nsb::dmath::pow(x_next / x, fm.order)) : d);
       }
       r["next_rates"] = rates;
     }
