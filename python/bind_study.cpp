@@ -1,4 +1,4 @@
-// nsbench.run_study: a study file (studies/study_file.hpp; README, "Studies from a file") run as
+// nsbench.run_study: a study file (studies/study_file.hpp; docs/study_files.md) run as
 // `nsbench-study run FILE --out DIR` runs it, its cases in parallel without the GIL (an
 // integrator written in Python takes it for its own steps, so those cases run one at a time).
 #include <pybind11/stl.h>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Docs are tests: every command line README.md and examples/plugin/README.md show, extracted
+# Docs are tests: every command line README.md, the docs it links and examples/plugin/README.md show, extracted
 # from them by scripts/doc-commands.py and run as written (those marked smoke in the doc at
 # --help level), in a scratch directory that looks like a checkout with BUILD_DIR (default
 # build, already built) as build/ and HOME inside it (the walkthrough installs nsbench into
@@ -34,8 +34,12 @@ run_doc() {  # FILE DIR [--smoke]: the file's commands, run in DIR
 }
 
 SECONDS=0
-run_doc README.md "$sandbox"
-run_doc README.md "$sandbox" --smoke
+# README, then the docs it links, in README's order (the walkthrough of extending.md installs
+# nsbench into $HOME/nsbench, which the example's README below uses).
+docs=(README.md docs/running.md docs/studies.md docs/cluster.md docs/study_files.md docs/extending.md docs/python.md
+      docs/measurements.md)
+for doc in "${docs[@]}"; do run_doc "$doc" "$sandbox"; done
+for doc in "${docs[@]}"; do run_doc "$doc" "$sandbox" --smoke; done
 prefix="$HOME/nsbench"
 
 # The example's own README, in a copy of the example.
@@ -59,5 +63,5 @@ for t in bouncing_plugin_orders bouncing_plugin_work_precision; do
       "$r/$t.csv" || { echo "$r/$t.csv: no plugin stamp with its optimised build" >&2; exit 1; }
   done
 done
-echo "docs: every command of README.md and examples/plugin/README.md ran as written (${SECONDS} s): the plugin" \
+echo "docs: every command of README.md, ${docs[*]:1} and examples/plugin/README.md ran as written (${SECONDS} s): the plugin" \
   "installed, built out of tree, checked (nsbench check exits 1 on a failed property), run and studied"

@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# README's cluster path on a real Slurm: a single-node Slurm (munged, slurmctld, slurmd from
+# docs/cluster.md's cluster path on a real Slurm: a single-node Slurm (munged, slurmctld, slurmd from
 # Debian's packages, on 127.0.0.1, its configuration, key, state and logs in a scratch
-# directory) runs README's job array as written; then
+# directory) runs docs/cluster.md's job array as written; then
 #   1. the array is submitted held, one task cancelled (scancel JOB_2), the rest released;
-#   2. README's merge names the missing shard (exit 2, "shard 2 of 16 ... is missing");
-#   3. the cancelled task is rerun alone (sbatch --array=2 job.sh, as README says);
-#   4. README's merge block (merge, figures) succeeds, and the merged reports verify against
+#   2. docs/cluster.md's merge names the missing shard (exit 2, "shard 2 of 16 ... is missing");
+#   3. the cancelled task is rerun alone (sbatch --array=2 job.sh, as docs/cluster.md says);
+#   4. docs/cluster.md's merge block (merge, figures) succeeds, and the merged reports verify against
 #      a single-machine run of the study at --rtol 0 (nsbench-study STUDY --verify reports).
-# The job script and the merge block are read from README.md (scripts/doc-commands.py
-# --block) and run as written but for two things: the study (README's `all --full`, hours of
+# The job script and the merge block are read from docs/cluster.md (scripts/doc-commands.py
+# --block) and run as written but for two things: the study (docs/cluster.md's `all --full`, hours of
 # work) is replaced by $STUDY, and `--cpus-per-task=1` is given to sbatch (it overrides the
 # script's #SBATCH line) so that the tasks fit this machine's cores.
 #
@@ -116,24 +116,24 @@ node_idle() { [ "$(sinfo -h -n "$host" -o %t 2> /dev/null)" = idle ]; }
 wait_for 60 "the node to be idle" node_idle
 echo "slurm: single-node Slurm up in ${SECONDS} s (slurmctld :$ctld_port, slurmd :$slurmd_port)"
 
-# A checkout-like directory to submit from: README's paths are relative to the checkout.
+# A checkout-like directory to submit from: docs/cluster.md's paths are relative to the checkout.
 checkout="$work/checkout"
 mkdir -p "$checkout"
 ln -s "$build" "$checkout/build"
 ln -s "$source_dir/scripts" "$checkout/scripts"
-readme_block() {  # NAME: README's block, the study replaced (and that replacement checked)
+readme_block() {  # NAME: docs/cluster.md's block, the study replaced (and that replacement checked)
   local text
-  text="$(/usr/bin/python3 "$source_dir/scripts/doc-commands.py" "$source_dir/README.md" --block "$1")"
-  grep -q -- 'nsbench-study all --full ' <<< "$text" || fail "README's block $1 no longer runs 'nsbench-study all --full'"
+  text="$(/usr/bin/python3 "$source_dir/scripts/doc-commands.py" "$source_dir/docs/cluster.md" --block "$1")"
+  grep -q -- 'nsbench-study all --full ' <<< "$text" || fail "docs/cluster.md's block $1 no longer runs 'nsbench-study all --full'"
   sed "s/nsbench-study all --full /nsbench-study $STUDY /" <<< "$text"
 }
 readme_block slurm-job > "$checkout/job.sh"
 readme_block slurm-merge > "$checkout/merge.sh"
 shards="$(sed -n 's/^#SBATCH .*--array=1-\([0-9]*\).*/\1/p' "$checkout/job.sh")"
-[ -n "$shards" ] || fail "README's job script has no '#SBATCH ... --array=1-N' line"
+[ -n "$shards" ] || fail "docs/cluster.md's job script has no '#SBATCH ... --array=1-N' line"
 grep -q -- "--shard \${SLURM_ARRAY_TASK_ID}/$shards " "$checkout/job.sh" ||
-  fail "README's job script does not shard into its array's $shards tasks"
-echo "slurm: README's job script, study $STUDY, $shards tasks:"
+  fail "docs/cluster.md's job script does not shard into its array's $shards tasks"
+echo "slurm: docs/cluster.md's job script, study $STUDY, $shards tasks:"
 sed 's/^/    /' "$checkout/job.sh"
 
 job_done() { [ -z "$(squeue -h -j "$1" 2> /dev/null)" ]; }
@@ -172,9 +172,9 @@ wait_for "$WAIT_SECONDS" "rerun job $rerun to finish" job_done "$rerun"
 rerun_seconds=$((SECONDS - t0))
 [ -s "reports/shards/$STUDY-2-of-$shards.json" ] || { cat slurm-*.out >&2 || true; fail "the rerun wrote no shard 2"; }
 
-# 4. Merge (README's block: merge, figures), then the merged reports against one machine's run.
+# 4. Merge (docs/cluster.md's block: merge, figures), then the merged reports against one machine's run.
 t0=$SECONDS
-timeout "$WAIT_SECONDS" bash -euo pipefail merge.sh > merge.log 2>&1 || { cat merge.log >&2; fail "README's merge failed"; }
+timeout "$WAIT_SECONDS" bash -euo pipefail merge.sh > merge.log 2>&1 || { cat merge.log >&2; fail "docs/cluster.md's merge failed"; }
 merge_seconds=$((SECONDS - t0))
 timeout "$WAIT_SECONDS" build/studies/nsbench-study "$STUDY" --verify reports --rtol 0 > verify.log 2>&1 ||
   { cat verify.log >&2; fail "the merged reports differ from a single-machine run"; }

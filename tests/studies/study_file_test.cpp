@@ -428,11 +428,11 @@ TEST_CASE("study file: a measure's problems, rank_by and the new kinds are check
                  Contains("a plugin's integrator? load its file with --plugin FILE or NSBENCH_PLUGINS"));
 }
 
-TEST_CASE("study file: the example in README.md is a valid study file", "[studies][study_file]") {
-  const std::string readme = nsb::test::read_text(fs::path(NSBENCH_SOURCE_DIR) / "README.md");
+TEST_CASE("study file: the example in docs/study_files.md is a valid study file", "[studies][study_file]") {
+  const std::string readme = nsb::test::read_text(fs::path(NSBENCH_SOURCE_DIR) / "docs" / "study_files.md");
   const auto begin = readme.find("```toml\n"), end = readme.find("```\n", begin + 8);
   REQUIRE(begin != std::string::npos);
-  const nsb::StudySpec spec = nsb::parse_study_text(readme.substr(begin + 8, end - begin - 8), "README.md", false);
+  const nsb::StudySpec spec = nsb::parse_study_text(readme.substr(begin + 8, end - begin - 8), "docs/study_files.md", false);
   CHECK(spec.measures[spec.ranked].label == "err u max");
   CHECK(spec.measures[1].problems == std::vector<std::string>{"bouncing mass"});
   CHECK(spec.tables.size() == 1);
