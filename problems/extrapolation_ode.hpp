@@ -23,6 +23,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/deterministic_math.hpp"
+
 namespace nsb::extrapolation {
 
 template <int N>
