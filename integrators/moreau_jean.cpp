@@ -168,6 +168,7 @@ StepInfo MoreauJean::advance(double h) {
   impulses_.setZero();
   if (friction_) {
     tangential_impulses_.setZero();
+    if (cone_) tangential_impulses2_.setZero();  // the local solves write the active contacts' only
     restitution_rate_.noalias() = e * gdot_;
   }
   if (!active_.empty()) {
