@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <optional>
+#include <set>
 #include <stdexcept>
 
 #include "core/build_info.hpp"
@@ -13,7 +15,9 @@
 #include "core/output.hpp"
 #include "core/plugin.hpp"
 #include "integrators/registry.hpp"  // peer_versions()
+#include "run/run.hpp"
 #include "studies/report_text.hpp"
+#include "studies/study.hpp"  // kStudyStatuses, kDeclinedStatus
 
 #include <nlohmann/json.hpp>
 
@@ -127,6 +131,73 @@ std::string markdown_escape(const std::string& s) {
   return out;
 }
 
+// The verdict `head` gives a run's reason as Markdown and LaTeX name it (table.hpp): a run status
+// or one of the declined status's other spellings, alone or after labels ("u time err n/a");
+// nullopt for any other text ("alpha 30, mu 0.8, v0 2" before ": stops, sticks").
+std::optional<std::string> reason_verdict(const std::string& head) {
+  static const std::vector<std::pair<std::string, std::string>> verdicts = [] {
+    std::vector<std::pair<std::string, std::string>> v;
+    for (RunStatus s : {RunStatus::Diverged, RunStatus::OverBudget, RunStatus::Interrupted})
+      v.emplace_back(status_name(s), status_name(s));
+    for (std::string_view s : kStudyStatuses) v.emplace_back(s, s);
+    for (const char* older : {"declined", "unsupported"}) v.emplace_back(older, kDeclinedStatus);
+    return v;
+  }();
+  for (const auto& [spelt, name] : verdicts) {
+    if (head == spelt) return name;
+    if (head.ends_with(" " + spelt)) return head.substr(0, head.size() - spelt.size()) + name;
+  }
+  return std::nullopt;
+}
+
+// The first words of a text over kMaxCellChars, as its row shows it: up to 80 bytes, cut at a
+// space so no word is split (or, in one long word, before a UTF-8 character's continuation bytes).
+std::string first_words(const std::string& text) {
+  std::size_t end = text.rfind(' ', 80);
+  if (end == std::string::npos)
+    for (end = 80; end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80; --end) {}
+  return text.substr(0, end) + " ...";
+}
+
+// The footnotes of one table in Markdown or LaTeX (table.hpp): the texts moved out of its cells,
+// each once, numbered from 1 in the order the rows first show them.
+class Footnotes {
+ public:
+  explicit Footnotes(const Table& t) {
+    std::map<std::string, long> cells_of;  // the long texts, by the number of cells showing them
+    for (const auto& row : t.rows)
+      for (const auto& c : row)
+        if (const auto* text = std::get_if<std::string>(&c); text && text->size() > kRepeatedCellChars) ++cells_of[*text];
+    for (const auto& [text, cells] : cells_of)
+      if (cells > 1) repeated_.insert(text);
+  }
+
+  // Text cell `text` as its row shows it.
+  std::string shown(const std::string& text) {
+    if (const std::size_t colon = text.find(": "); colon != std::string::npos)
+      if (const auto verdict = reason_verdict(text.substr(0, colon))) return numbered(*verdict + " ", text.substr(colon + 2));
+    if (text.size() > kMaxCellChars) return numbered(first_words(text) + " ", text);
+    if (repeated_.count(text)) return numbered("", text);
+    return reason_verdict(text).value_or(text);
+  }
+  const std::vector<std::string>& notes() const { return notes_; }
+
+ private:
+  std::string numbered(const std::string& shown, const std::string& note) {
+    auto it = std::find(notes_.begin(), notes_.end(), note);
+    if (it == notes_.end()) it = notes_.insert(notes_.end(), note);
+    return fmt::format("{}[{}]", shown, it - notes_.begin() + 1);
+  }
+  std::set<std::string> repeated_;
+  std::vector<std::string> notes_;
+};
+
+// A cell's text as a Markdown or LaTeX row shows it: a text through the table's footnotes.
+std::string shown_text(const Cell& c, const std::string& format, Footnotes& notes) {
+  const auto* text = std::get_if<std::string>(&c);
+  return text ? notes.shown(*text) : cell_text(c, format);
+}
+
 // A column of numbers, a siunitx S column in LaTeX: one with a number format, or one without
 // (integers, shortest round-trip numbers, texts) holding more numbers than texts (n/a, diverged).
 bool numeric_column(const Table& t, std::size_t i) {
@@ -152,8 +223,8 @@ std::optional<std::string> siunitx_number(const Cell& c, const std::string& form
 }
 
 // What is not a number, in LaTeX: infinities as symbols, the rest as escaped text.
-std::string latex_word(const Cell& c, const std::string& format) {
-  const std::string text = cell_text(c, format);
+std::string latex_word(const Cell& c, const std::string& format, Footnotes& notes) {
+  const std::string text = shown_text(c, format, notes);
   if (std::holds_alternative<double>(c) && std::isinf(std::get<double>(c)))
     return text[0] == '-' ? "$-\\infty$" : "$\\infty$";
   return latex_text(text);
@@ -186,6 +257,50 @@ std::string s_column(const std::vector<std::string>& numbers) {
   return fmt::format("S[table-format={}{}]", format, all_exponents && exponent > 0 ? ",print-zero-exponent" : "");
 }
 
+// The table as Markdown and LaTeX show it: each fitted value and its interval one text cell,
+// "1.9 [1.8, 2.0]" (Column::interval; a value that is n/a alone), the interval's columns left out.
+Table presented(const Table& t) {
+  const auto index = [&](const std::string& name) {
+    const auto it = std::find_if(t.columns.begin(), t.columns.end(), [&](const Column& c) { return c.name == name; });
+    if (it == t.columns.end()) throw std::logic_error(fmt::format("table {}: no interval column '{}'", t.id, name));
+    return static_cast<std::size_t>(it - t.columns.begin());
+  };
+  std::vector<std::optional<std::pair<std::size_t, std::size_t>>> bounds(t.columns.size());
+  std::vector<bool> dropped(t.columns.size(), false);
+  for (std::size_t i = 0; i < t.columns.size(); ++i) {
+    if (t.columns[i].interval.first.empty()) continue;
+    bounds[i] = {index(t.columns[i].interval.first), index(t.columns[i].interval.second)};
+    dropped[bounds[i]->first] = dropped[bounds[i]->second] = true;
+  }
+  if (std::none_of(dropped.begin(), dropped.end(), [](bool d) { return d; })) return t;
+  Table out = t;
+  out.columns.clear();
+  for (std::size_t i = 0; i < t.columns.size(); ++i) {
+    if (dropped[i]) continue;
+    out.columns.push_back(t.columns[i]);
+    if (!bounds[i]) continue;
+    Column& c = out.columns.back();
+    c.description += fmt::format("{}with its 95% interval [{}, {}]", c.description.empty() ? "" : "; ", c.interval.first, c.interval.second);
+    c.format.clear(), c.interval = {};  // its cells are texts now
+  }
+  out.rows.clear();
+  for (const auto& row : t.rows) {
+    std::vector<Cell> cells;
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      if (dropped[i]) continue;
+      const bool number = std::holds_alternative<double>(row[i]) && std::isfinite(std::get<double>(row[i]));
+      if (!bounds[i] || !number) {
+        cells.push_back(row[i]);
+        continue;
+      }
+      const auto text = [&](std::size_t k) { return cell_text(row[k], t.columns[k].format); };
+      cells.push_back(fmt::format("{} [{}, {}]", text(i), text(bounds[i]->first), text(bounds[i]->second)));
+    }
+    out.rows.push_back(std::move(cells));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string to_csv(const Table& t) {
@@ -202,22 +317,30 @@ std::string to_csv(const Table& t) {
   return out;
 }
 
-std::string markdown_grid(const Table& t) {
+std::string markdown_grid(const Table& shown) {
+  const Table t = presented(shown);
   std::vector<std::string> head, rule;
   for (const auto& c : t.columns) {
     head.push_back(markdown_escape(header_text(c)));
     rule.push_back("---");
   }
   std::string out = fmt::format("| {} |\n| {} |\n", fmt::join(head, " | "), fmt::join(rule, " | "));
+  Footnotes notes(t);
   for (const auto& row : t.rows) {
     std::vector<std::string> cells;
-    for (std::size_t i = 0; i < row.size(); ++i) cells.push_back(markdown_escape(cell_text(row[i], t.columns[i].format)));
+    for (std::size_t i = 0; i < row.size(); ++i) cells.push_back(markdown_escape(shown_text(row[i], t.columns[i].format, notes)));
     out += fmt::format("| {} |\n", fmt::join(cells, " | "));
   }
+  // One paragraph under the table, a line per note (a backslash ends a line in GitHub Markdown).
+  std::vector<std::string> lines;
+  for (std::size_t k = 0; k < notes.notes().size(); ++k)
+    lines.push_back(fmt::format("[{}] {}", k + 1, markdown_escape(notes.notes()[k])));
+  if (!lines.empty()) out += fmt::format("\n{}\n", fmt::join(lines, "\\\n"));
   return out;
 }
 
-std::string to_markdown(const Table& t) {
+std::string to_markdown(const Table& shown) {
+  const Table t = presented(shown);
   std::string out = fmt::format("## {}\n\n{}\n\n{}\n", one_line(t.title), one_line(t.caption), markdown_grid(t));
   for (const auto& c : t.columns)
     if (!c.description.empty()) out += fmt::format("- `{}`: {}\n", one_line(c.name), one_line(c.description));
@@ -230,10 +353,12 @@ std::string to_markdown(const Table& t) {
 
 // A longtable (packages booktabs, longtable, siunitx): it breaks across pages, its header
 // repeated on each. The title is the \caption (and the list of tables' entry); the caption's
-// text, the column descriptions and the revision follow the table as its notes. Number columns
+// text, the footnotes ("[k] reason", table.hpp), the column descriptions and the revision follow
+// the table as its notes. Number columns
 // are siunitx S columns; their texts (n/a, diverged) and headers are braced so siunitx sets them
 // as text. The \sisetup inside the table's group keeps numbers as written whatever a paper sets.
-std::string to_latex(const Table& t) {
+std::string to_latex(const Table& shown) {
+  const Table t = presented(shown);
   std::string out;
   for (const auto& [k, v] : stamp(t)) out += fmt::format("% {}: {}\n", one_line(k), one_line(v));
   std::vector<bool> numeric;
@@ -265,13 +390,14 @@ std::string to_latex(const Table& t) {
   out += header + "\\endhead\n";
   out += fmt::format("\\midrule\n\\multicolumn{{{}}}{{r@{{}}}}{{\\footnotesize\\itshape continued on the next page}} \\\\\n"
                      "\\endfoot\n\\bottomrule\n\\endlastfoot\n", t.columns.size());
+  Footnotes notes(t);
   for (const auto& row : t.rows) {
     std::vector<std::string> cells;
     for (std::size_t i = 0; i < row.size(); ++i) {
       if (const auto number = siunitx_number(row[i], t.columns[i].format)) {
         cells.push_back(numeric[i] ? *number : "\\num{" + *number + "}");
       } else {
-        const std::string word = latex_word(row[i], t.columns[i].format);
+        const std::string word = latex_word(row[i], t.columns[i].format, notes);
         cells.push_back(numeric[i] ? "{" + word + "}" : word);
       }
     }
@@ -281,6 +407,10 @@ std::string to_latex(const Table& t) {
   }
   out += "\\end{longtable}\n}\n\\begingroup\\footnotesize\\noindent ";
   out += latex_text(t.caption);
+  for (std::size_t k = 0; k < notes.notes().size(); ++k) {
+    const std::string& note = notes.notes()[k];
+    out += fmt::format(" [{}] {}{}", k + 1, latex_text(note), note.ends_with('.') ? "" : ".");
+  }
   for (const auto& c : t.columns)
     if (!c.description.empty()) out += fmt::format(" {}: {}.", latex_text(c.name), latex_text(c.description));
   const std::string plugins = plugins_stamp();
@@ -376,7 +506,7 @@ std::string table_to_json_text(const Table& t) {
   j["id"] = t.id;
   j["title"] = t.title;
   j["caption"] = t.caption;
-  for (const auto& c : t.columns) j["columns"].push_back({c.name, c.unit, c.format, c.description, c.timing});
+  for (const auto& c : t.columns) j["columns"].push_back({c.name, c.unit, c.format, c.description, c.timing, c.interval});
   j["rows"] = nlohmann::json::array();
   for (const auto& row : t.rows) {
     nlohmann::json r = nlohmann::json::array();
@@ -404,7 +534,9 @@ Table table_from_json_text(const std::string& text) {
   t.id = j["id"];
   t.title = j["title"];
   t.caption = j["caption"];
-  for (const auto& c : j["columns"]) t.columns.push_back({c[0], c[1], c[2], c[3], c.size() > 4 && c[4].get<bool>()});
+  for (const auto& c : j["columns"])
+    t.columns.push_back({c[0], c[1], c[2], c[3], c.size() > 4 && c[4].get<bool>(),
+                         c.size() > 5 ? c[5].get<std::pair<std::string, std::string>>() : std::pair<std::string, std::string>{}});
   for (const auto& r : j["rows"]) {
     std::vector<Cell> row;
     for (const auto& c : r) row.push_back(cell_from_json(c));

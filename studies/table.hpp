@@ -3,6 +3,7 @@
 // metadata needed to cite and regenerate it. Writers give CSV (raw numbers, full
 // precision), Markdown and LaTeX (booktabs, siunitx), each stamped with the parameters, build
 // type, compiler and git revision.
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -14,13 +15,37 @@ namespace nsb {
 struct Column {
   std::string name;
   std::string unit;      // "" when dimensionless
-  std::string format;    // fmt spec for Markdown/LaTeX, e.g. "{:.3e}"; CSV keeps full precision
+  // fmt spec for Markdown/LaTeX, e.g. "{:.3e}"; CSV keeps full precision. Integer cells (long)
+  // print whole whatever it says.
+  std::string format;
   std::string description;
   bool timing = false;   // a CPU time or derived from one (machine, load): not compared by --verify
+  // A fitted value's 95% interval: the names of the columns of its low and high ends. Markdown
+  // and LaTeX show "value [low, high]" in this column ("1.9 [1.8, 2.0]", each in its column's
+  // format) and leave those two out; the CSV keeps the three columns. Empty: none.
+  std::pair<std::string, std::string> interval = {};
 };
+
+// A fitted or observed order and its interval's ends: two significant digits, trailing zeros kept
+// ("1.9", "2.0", "0.93"; fmt's '#' writes 37.2 as "37.0").
+inline constexpr const char* kOrderFormat = "{:#.2g}";
 
 // Empty cell (monostate) reads "n/a"; a diverged case writes text such as "diverged".
 using Cell = std::variant<std::monostate, double, long, std::string>;
+
+// Markdown and LaTeX keep every cell short and every reason said once: a text cell goes to a
+// footnote, numbered once per table (the same text, the same number), listed under the table as
+// "[k] text", when
+// - it is a run's reason, "verdict: reason" with the verdict a run status (n/a, diverged,
+//   over budget, interrupted, energy blow-up, penetration), alone or after labels ("u time err
+//   n/a: ..."): the row says "n/a [k]", the footnote the reason. The declined status has one
+//   name, n/a: "declined" and "unsupported", older spellings of it, print as n/a, alone or so;
+// - it is over kMaxCellChars characters: the row shows its first words, "... [k]";
+// - it is over kRepeatedCellChars characters and more than one row shows it (a declined run's
+//   bare reason in each of its rows): the row says "[k]".
+// Other texts and every number print whole. The CSV keeps every text as it is.
+inline constexpr std::size_t kMaxCellChars = 300;
+inline constexpr std::size_t kRepeatedCellChars = 80;
 
 // A figure drawn from a table's CSV by scripts/figures.py: y against x, one line per
 // distinct value of the `series` columns, one panel per distinct value of the `panels`
@@ -80,7 +105,7 @@ struct Table {
 
 std::string to_csv(const Table& table);
 std::string to_markdown(const Table& table);
-// The Markdown table alone (header, rule, rows), as to_markdown writes it.
+// The Markdown table alone (header, rule, rows) and its footnotes, as to_markdown writes it.
 std::string markdown_grid(const Table& table);
 std::string to_latex(const Table& table);
 
