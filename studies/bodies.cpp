@@ -413,7 +413,7 @@ std::vector<Table> bodies_tables(const std::vector<Json>& cases, const std::vect
       1.5 * two_bars.contact_end(), two_bars.contact_end(), two_bars.contact_force_level(), striker.contact_end(),
       kRoundOffError, peers);
   const auto order_column = [](const std::string& of) {
-    return Column{"order", "", "{:.2f}", "log-log slope of " + of + " against the previous mesh"};
+    return Column{"order", "", kOrderFormat, "log-log slope of " + of + " against the previous mesh"};
   };
   bars.columns = bodies_group_columns({{"N", "", "", "elements (bar 1)"},
                                 {"dt", "", "{:.3e}", ""},

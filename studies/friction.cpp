@@ -327,7 +327,7 @@ Table convergence_table(const std::string& id, const std::string& title, const s
   std::vector<Column> own;
   for (const auto& m : measures) {
     own.push_back(m.column);
-    own.push_back({"order", "", "{:.2f}", "log-log slope of " + m.column.name + " against the previous dt"});
+    own.push_back({"order", "", kOrderFormat, "log-log slope of " + m.column.name + " against the previous dt"});
   }
   t.columns = friction_group_columns(own);
   add_friction_group_rows(t, group, cases, results, [&](std::size_t i, std::optional<std::size_t> previous) {

@@ -27,10 +27,10 @@ void pivot_order_point(const FileTable& d, const Table& runs, const std::vector<
   y[r].push_back(ok ? cell_number(row[column_index(runs, d.columns.back().of)]) : kNaN);
 }
 
-// Its column: by default "order against <of>", two decimals.
+// Its column: by default "order against <of>", two significant digits.
 Column pivot_order_column(const FileTable& d, const Table& runs) {
   const Column& of = runs.columns[column_index(runs, d.order->of)];
-  return declared_column({"order against " + of.name, "", "{:.2f}", fmt::format("least-squares slope of log(value) against log({})", of.name)},
+  return declared_column({"order against " + of.name, "", kOrderFormat, fmt::format("least-squares slope of log(value) against log({})", of.name)},
                          *d.order);
 }
 

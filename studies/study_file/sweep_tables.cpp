@@ -43,6 +43,22 @@ Cell group_note(const StudySpec& spec, const Table& runs, const Cell& problem, c
   return std::string();
 }
 
+// An order shown with both ends of its interval ("order of X", "CI low of X", "CI high of X"
+// among the table's columns, `columns` under their headers): Markdown and LaTeX print the three
+// in its cell (Column::interval).
+void mark_intervals(const FileTable& d, std::vector<Column>& columns) {
+  const auto declared = [&](const std::string& of) {
+    return static_cast<std::size_t>(std::find_if(d.columns.begin(), d.columns.end(), [&](const FileColumn& c) { return c.of == of; }) -
+                                    d.columns.begin());
+  };
+  for (std::size_t i = 0; i < d.columns.size(); ++i) {
+    if (d.columns[i].of.rfind("order of ", 0) != 0) continue;
+    const std::string measure = d.columns[i].of.substr(std::string("order of ").size());
+    const std::size_t low = declared("CI low of " + measure), high = declared("CI high of " + measure);
+    if (low < columns.size() && high < columns.size()) columns[i].interval = {columns[low].name, columns[high].name};
+  }
+}
+
 }  // namespace
 
 // rows = "group": one row per problem (a joint refinement's family) and integrator of the
@@ -65,6 +81,7 @@ Table group_table(const StudySpec& spec, const FileTable& d, const Table& orders
     else if (c.of == "note") out.columns.push_back(declared_column(group_note_column(), c));
     else out.columns.push_back(declared_column(orders.columns[column_index(orders, of == std::string::npos ? c.of : c.of.substr(0, of))], c));
   }
+  mark_intervals(d, out.columns);
   for (const auto& [problem, integrator] : groups) {
     const auto fp = std::find_if(spec.problems.begin(), spec.problems.end(),
                                  [&, &problem = problem](const FileProblem& q) { return Cell{q.family_label()} == problem; });

@@ -202,7 +202,7 @@ std::vector<Column> sweep_work_columns(const StudySpec& spec) {
                                  {"Jacobians", "", "{:.0f}", "tangent (Jacobian) evaluations"}};
   for (const auto& m : spec.measures)
     if (measure_converges(m))
-      columns.push_back({"rate of " + m.label, "", "{:.2f}",
+      columns.push_back({"rate of " + m.label, "", kOrderFormat,
                          "log(e / e') / log(x' / x) against the next run x' of the sweep (x: its step, tolerance or swept parameter)"});
   return columns;
 }

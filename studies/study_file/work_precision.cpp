@@ -168,8 +168,9 @@ Table orders_table(const StudySpec& spec) {
   orders.caption = "Least-squares slope of log(error) against log(dt) (log(tol) for a tolerance sweep) with its 95% "
                    "confidence interval (Student t, n - 2 degrees of freedom); errors below 1e-11 are round-off and left out.";
   orders.columns = {{"problem", "", "", ""}, {"integrator", "", "", ""}, {"measure", "", "", ""}, {"against", "", "", ""},
-                    {"order", "", "{:.2f}", ""}, {"CI low", "", "{:.2f}", "95% confidence interval"},
-                    {"CI high", "", "{:.2f}", ""}, {"points", "", "", ""}};
+                    {"order", "", kOrderFormat, ""}, {"CI low", "", kOrderFormat, "95% confidence interval"},
+                    {"CI high", "", kOrderFormat, ""}, {"points", "", "", ""}};
+  orders.columns[4].interval = {"CI low", "CI high"};
   return orders;
 }
 
@@ -209,7 +210,7 @@ void add_work_precision_figures(const StudySpec& spec, std::vector<FileMeasure>:
 std::vector<Column> declared_only_columns(const StudySpec& spec) {
   std::vector<Column> counters = {{"factorizations", "", "", ""}, {"LCP its", "", "", "LCP iterations"}};
   for (const auto& m : spec.measures)
-    if (measure_converges(m)) counters.push_back({"pairwise order of " + m.label, "", "{:.2f}", "against the previous run of the sweep"});
+    if (measure_converges(m)) counters.push_back({"pairwise order of " + m.label, "", kOrderFormat, "against the previous run of the sweep"});
   counters.insert(counters.end(), run_columns().begin(), run_columns().end());
   const std::vector<Column> own = study_run_columns(spec), work = sweep_work_columns(spec);
   counters.insert(counters.end(), own.begin(), own.end());

@@ -565,7 +565,7 @@ TEST_CASE("study file: an error against the semi-discrete solution, sampled once
   CHECK(time.columns[1].name == "u time err, alpha = 0.5");
   CHECK(time.columns[2].name == "u time err, alpha = 0.9");
   CHECK(time.columns[3].name == "time order");
-  CHECK(time.columns[3].format == "{:.2f}");
+  CHECK(time.columns[3].format == nsb::kOrderFormat);
   REQUIRE(time.rows.size() == 3);
   for (std::size_t r = 0; r < 2; ++r) {
     const std::vector<double> dt = {std::get<double>(runs.rows[2 * r][2]), std::get<double>(runs.rows[2 * r + 1][2])};

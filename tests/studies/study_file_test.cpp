@@ -1011,7 +1011,7 @@ rows = "ranking"
   // The order against the run before: none for the first, that of the two errors for the second.
   CHECK(std::holds_alternative<std::monostate>(runs.rows[0][6]));
   CHECK(std::get<double>(runs.rows[1][6]) == Approx(std::log(std::get<double>(runs.rows[0][3]) / std::get<double>(runs.rows[1][3])) / std::log(2.0)));
-  CHECK(runs.columns[6].format == "{:.2f}");
+  CHECK(runs.columns[6].format == nsb::kOrderFormat);
   // The engine's figures whose columns the table shows, under its headers: CPU is not shown.
   REQUIRE(runs.figures.size() == 1);
   CHECK(runs.figures[0].x == "step");
