@@ -232,7 +232,7 @@ Table bar_hausdorff_table(const std::vector<BarGraphFit>& bars) {
       "its 95% interval; converges: order >= {} with the interval's low end > 0.",
       kHausdorffMinOrder);
   t.columns = {{"problem", "", "", ""}, {"mass", "", "", ""}, {"observable", "", "", ""}, {"dt", "", "{:.3e}", "step"},
-               {"Hausdorff", "", "{:.3e}", "scaled distance"}, {"order", "", "{:.2f}", ""}, {"CI low", "", "{:.2f}", ""},
+               {"Hausdorff", "", "{:.3e}", "scaled distance"}, {"order", "", kOrderFormat, ""}, {"CI low", "", kOrderFormat, ""},
                {"converges", "", "", ""}, {"note", "", "", ""}};
   t.figures = {{"claims_hausdorff_bars", "Claim (2): Hausdorff distance on the bars against the step", "dt", "Hausdorff",
                 {"mass", "observable"}, {"problem"}, true, true, {1.0, 0.5}}};
@@ -430,14 +430,16 @@ std::vector<Table> claims_tables(const StudyOptions& options) {
   const auto measure = [&](long claim, const std::string& q, double v, const std::string& threshold) {
     m.add_row({claim, q, number_cell(v), threshold});
   };
-  measure(1, "steps (bar, disk, chain)", static_cast<double>(work.steps), "> 0");
-  measure(1, "F_int evaluations", static_cast<double>(work.forces), fmt::format("<= steps + {} (one start per run)", work.runs));
-  measure(1, "factorisations", static_cast<double>(work.factorizations), "0");
-  measure(1, "linear solves", static_cast<double>(work.solves), "0");
-  measure(1, "beyond: steps (singular bouncing bar, spinning block on the floor)", static_cast<double>(work_beyond.steps), "> 0");
-  measure(1, "beyond: F_int evaluations", static_cast<double>(work_beyond.forces), fmt::format("<= steps + {}", work_beyond.runs));
-  measure(1, "beyond: factorisations", static_cast<double>(work_beyond.factorizations), "0");
-  measure(1, "beyond: linear solves", static_cast<double>(work_beyond.solves), "0");
+  // A count is an integer cell: Markdown prints it whole, not in the value column's {:.3e}.
+  const auto count = [&](long claim, const std::string& q, long n, const std::string& threshold) { m.add_row({claim, q, n, threshold}); };
+  count(1, "steps (bar, disk, chain)", work.steps, "> 0");
+  count(1, "F_int evaluations", work.forces, fmt::format("<= steps + {} (one start per run)", work.runs));
+  count(1, "factorisations", work.factorizations, "0");
+  count(1, "linear solves", work.solves, "0");
+  count(1, "beyond: steps (singular bouncing bar, spinning block on the floor)", work_beyond.steps, "> 0");
+  count(1, "beyond: F_int evaluations", work_beyond.forces, fmt::format("<= steps + {}", work_beyond.runs));
+  count(1, "beyond: factorisations", work_beyond.factorizations, "0");
+  count(1, "beyond: linear solves", work_beyond.solves, "0");
   std::vector<std::pair<std::string, OrderFit>> claimed_fits, beyond_fits;
   for (const auto& o : orders) {
     // The bars' lumped contact-node velocity is the bars' own row below: counted once.
@@ -467,7 +469,7 @@ std::vector<Table> claims_tables(const StudyOptions& options) {
   measure(4, "fixed step: max |E - E_1|/E_1, second half", energy.second,
           fmt::format("<= {:g} and <= {:g} x first half + {:g}", kEnergyBounded, kEnergyDriftFactor, kEnergyRoundOff));
   measure(4, "adaptive: max |E - E_1|/E_1", energy.adaptive, fmt::format("<= {:g}", kEnergyExact));
-  measure(4, "adaptive: steps without a root of the energy equation", energy.no_root, "(reported)");
+  count(4, "adaptive: steps without a root of the energy equation", static_cast<long>(energy.no_root), "(reported)");
   measure(4, "at impact, singular mass: largest |energy jump| per contact phase", cond.singular.worst_jump, fmt::format("<= {:g}", kImpactEnergy));
   measure(4, "at impact, lumped mass, e = 0: largest |energy jump|", cond.lumped_inelastic.worst_jump, fmt::format("<= {:g}", kImpactEnergy));
   measure(4, "at impact, lumped mass, e = 1: largest |energy jump|", cond.lumped_elastic.worst_jump, fmt::format("<= {:g}", kImpactEnergy));
@@ -475,18 +477,18 @@ std::vector<Table> claims_tables(const StudyOptions& options) {
     const std::string on = (r.rule == "talk" ? "as claimed, the talk's update" : "beyond, the energy balance") + std::string(", bouncing bar: ");
     measure(5, on + "largest step / stable step", r.dt_max / r.stable_step, "<= 1");
     measure(5, on + "largest / smallest step", r.dt_max / r.dt_min, "> 1");
-    measure(5, on + "steps at tau_min", static_cast<double>(r.collapsed), "0");
-    measure(5, on + "reached t_end", r.completed ? 1.0 : 0.0, "1");
+    count(5, on + "steps at tau_min", r.collapsed, "0");
+    count(5, on + "reached t_end", r.completed ? 1L : 0L, "1");
   }
   measure(5, "beyond, the energy balance, long runs: largest step / stable step", energy.cfl, "<= 1");
   measure(5, "beyond, the energy balance, long runs: largest / smallest step", energy.dt_max / energy.dt_min, "> 1");
-  measure(5, "beyond, the energy balance, long runs: steps at tau_min", static_cast<double>(energy.collapsed), "0");
-  measure(6, "steps with an active contact", static_cast<double>(work.contact_steps), "> 0");
-  measure(6, "LCP iterations", static_cast<double>(work.lcp), "0");
-  measure(6, "beyond: two blocks, steps with an active contact", static_cast<double>(cond.bodies.contact_steps), "> 0");
-  measure(6, "beyond: two blocks, LCP iterations", static_cast<double>(cond.bodies.work.lcp_iterations), "0");
-  measure(7, "impacts", static_cast<double>(longrun.impacts), fmt::format(">= {}", longrun.target));
-  measure(7, "steps", static_cast<double>(longrun.steps), "(reported)");
+  count(5, "beyond, the energy balance, long runs: steps at tau_min", energy.collapsed, "0");
+  count(6, "steps with an active contact", work.contact_steps, "> 0");
+  count(6, "LCP iterations", work.lcp, "0");
+  count(6, "beyond: two blocks, steps with an active contact", cond.bodies.contact_steps, "> 0");
+  count(6, "beyond: two blocks, LCP iterations", cond.bodies.work.lcp_iterations, "0");
+  count(7, "impacts", longrun.impacts, fmt::format(">= {}", longrun.target));
+  count(7, "steps", longrun.steps, "(reported)");
   measure(7, "final (E - E_1)/E_1", longrun.energy, fmt::format("|.| <= {:g}", kRobustEnergy));
   measure(7, "largest penetration / (v_impact dt)", longrun.penetration, "<= 1");
 
