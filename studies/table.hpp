@@ -35,11 +35,12 @@ using Cell = std::variant<std::monostate, double, long, std::string>;
 
 // Markdown and LaTeX keep every cell short and every reason said once: a text cell goes to a
 // footnote, numbered once per table (the same text, the same number), listed under the table as
-// "[k] text", when
+// "[k] text", by the first of these rules that applies:
 // - it is a run's reason, "verdict: reason" with the verdict a run status (n/a, diverged,
 //   over budget, interrupted, energy blow-up, penetration), alone or after labels ("u time err
 //   n/a: ..."): the row says "n/a [k]", the footnote the reason. The declined status has one
-//   name, n/a: "declined" and "unsupported", older spellings of it, print as n/a, alone or so;
+//   name, n/a: "declined" and "unsupported", older spellings of it, print as n/a, with a
+//   reason or without;
 // - it is over kMaxCellChars characters: the row shows its first words, "... [k]";
 // - it is over kRepeatedCellChars characters and more than one row shows it (a declined run's
 //   bare reason in each of its rows): the row says "[k]".
