@@ -91,7 +91,7 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
       "(\"cheapest run\": that run already reaches the target, its cost is an upper bound); diverged, over-budget "
       "and n/a runs left out. References are ranked as peers, marked. The cheapest wins only when the runner-up costs "
       "more than (1 + spread) times it, spread the larger relative spread of the two costs' timings; otherwise the "
-      "winner cell reads \"tie\" (and always for costs timed once, whose spread is unknown). Errors: {}; below the "
+      "winner cell reads \"tie\" (\"tie (timed once)\" for costs timed once, whose spread is unknown). Errors: {}; below the "
       "source's own error they count as it, and no target below it is ranked.",
       cost, fmt::join(sources, "; "));
   t.columns = {{"problem", "", "", ""},
@@ -130,9 +130,10 @@ Table ranking_table(const std::string& id, const std::string& title, const Colum
       auto first = placed(0);
       const auto second = placed(1);
       const bool two = standings.size() > 1 && standings[1].cost.reached;
-      if (two && !told_apart(standings[0].cost, standings[1].cost))
-        first[0] = fmt::format("tie: {}, {}", std::get<std::string>(first[0]), std::get<std::string>(second[0]));
       const double spread = two ? larger_spread(standings[0].cost.spread, standings[1].cost.spread) : kNaN;
+      if (two && !told_apart(standings[0].cost, standings[1].cost))
+        first[0] = fmt::format("tie{}: {}, {}", std::isnan(spread) ? " (timed once)" : "", std::get<std::string>(first[0]),
+                               std::get<std::string>(second[0]));
       t.add_row({p.label, target, first[0], first[1], first[2], second[0], second[1], second[2],
                  two ? Cell{standings[1].cost.cost / standings[0].cost.cost} : Cell{},
                  std::isnan(spread) ? Cell{} : Cell{spread},

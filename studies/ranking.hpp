@@ -17,9 +17,9 @@
 // distance between its repeated timings (study.hpp's CpuCost; unknown, NaN, for a run timed
 // once); a cost read off two runs carries the larger of their spreads (the log-linear
 // interpolation moves by at most that). The cheapest is the winner only when the runner-up
-// costs more than (1 + s) times it, s the larger spread of the two costs; otherwise, or when
-// a spread is unknown, the winner cell reads "tie: A, B": a regenerated ranking keeps its
-// winners or says tie, where a cost ratio inside the timing noise would flip between runs.
+// costs more than (1 + s) times it, s the larger spread of the two costs; otherwise the winner
+// cell reads "tie: A, B", and "tie (timed once): A, B" when a spread is unknown: a regenerated
+// ranking keeps its winners or says tie, where a cost ratio inside the timing noise would flip.
 #include <limits>
 #include <string>
 #include <vector>

@@ -137,8 +137,8 @@ TEST_CASE("ranking: a winner only beyond the timings' spread, otherwise a tie", 
   CHECK(winner(1.16, 0.10, 0.05) == "a");       // 16 % apart, timings 10 % apart
   CHECK(winner(1.16, 0.05, 0.20) == "tie: a, b");  // the runner-up's spread is the larger
   CHECK(winner(1.10, 0.10, 0.10) == "tie: a, b");  // exactly at the spread: not told apart
-  CHECK(winner(3.00, kNaN, 0.05) == "tie: a, b");  // timed once: no spread, cannot tell
-  CHECK(winner(3.00, 0.05, kNaN) == "tie: a, b");
+  CHECK(winner(3.00, kNaN, 0.05) == "tie (timed once): a, b");  // no spread: cannot tell
+  CHECK(winner(3.00, 0.05, kNaN) == "tie (timed once): a, b");
   // Interpolated: the cost between r0 (spread 0.3) and r1 (spread 0.01) carries 0.3.
   nsb::WorkCurve mixed = curve("m", {{1.0, 1e-1}, {10.0, 1e-3}});
   mixed.points[0].spread = 0.3;
