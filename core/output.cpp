@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <unistd.h>
 
@@ -12,6 +14,7 @@
 #include <cstdint>
 #include <fstream>
 #include <system_error>
+#include <tuple>
 
 #include "core/parameters.hpp"
 
@@ -192,6 +195,45 @@ std::vector<std::pair<std::filesystem::path, std::filesystem::perms>> link_tree(
 
 }  // namespace
 
+void TargetLock::acquire(const std::filesystem::path& file, const std::string& what) {
+  for (;;) {
+    const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) throw InputError(fmt::format("{}: cannot create its lock '{}': {}", what, file.string(), std::strerror(errno)));
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      char holder[24] = {};
+      const ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
+      fmt::print(stderr, "nsbench: {}: being written by process {}; waiting for it to finish\n", what,
+                 n > 0 ? std::string(holder, static_cast<std::size_t>(n)) : std::string("?"));
+      int locked;
+      while ((locked = ::flock(fd, LOCK_EX)) != 0 && errno == EINTR) {
+      }
+      if (locked != 0) {
+        const int err = errno;
+        ::close(fd);
+        throw InputError(fmt::format("{}: cannot lock '{}': {}", what, file.string(), std::strerror(err)));
+      }
+    }
+    // The holder removes the file at its end: a lock on a file no longer at `file` guards nothing.
+    struct stat held {}, named {};
+    if (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+        held.st_dev == named.st_dev) {
+      const std::string pid = std::to_string(static_cast<long>(::getpid()));
+      // The pid only names the holder in a waiting line: a failed write costs nothing else.
+      std::ignore = ::ftruncate(fd, 0) == 0 && ::pwrite(fd, pid.data(), pid.size(), 0) > 0;
+      file_ = file;
+      fd_ = fd;
+      return;
+    }
+    ::close(fd);
+  }
+}
+
+TargetLock::~TargetLock() {
+  if (fd_ < 0) return;
+  ::unlink(file_.c_str());  // before the unlock: a waiter then finds its file gone and takes the new one
+  ::close(fd_);
+}
+
 ReportDirectory::ReportDirectory(const std::filesystem::path& target, const std::string& option) : option_(option) {
   namespace fs = std::filesystem;
   ensure_directory(target, option);
@@ -201,6 +243,7 @@ ReportDirectory::ReportDirectory(const std::filesystem::path& target, const std:
   const fs::path parent = target_.parent_path();
   const std::string name = target_.filename().string();
   if (name.empty()) throw InputError(fmt::format("{} '{}': the root directory cannot be a report", option, target.string()));
+  lock_.acquire(parent / fmt::format(".{}.lock", name), fmt::format("{} '{}'", option, target_.string()));
   for (const auto& e : fs::directory_iterator(parent, ec)) {  // earlier runs' leftovers
     const std::string entry = e.path().filename().string();
     const long pid = entry.rfind("." + name + ".staging.", 0) == 0 ? temporary_owner(entry, ".staging.") : 0;

@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "core/parameters.hpp"
 #include "tests/support/files.hpp"
@@ -180,6 +181,28 @@ TEST_CASE("report directory: new, empty and own directories are written, their m
   nsb::claim_output_directory(shards, "--out");
   CHECK(fs::exists(shards / nsb::kOutputMarker));
   nsb::claim_output_directory(shards, "--out");
+}
+
+TEST_CASE("report directory: two writers of one target take turns, neither report is lost (issue 56)", "[core][output]") {
+  const nsb::test::TempDir tmp("output_test", true);
+  const fs::path out = tmp.path / "report";
+  std::thread second;
+  {
+    nsb::ReportDirectory first(out);
+    nsb::write_file_atomic(first.path() / "first.md", "1");
+    // Started while the first holds the target: it waits, then stages from the first's
+    // committed report (before the lock both staged from the old one, the last commit won).
+    second = std::thread([&] {
+      nsb::ReportDirectory report(out);
+      nsb::write_file_atomic(report.path() / "second.md", "2");
+      report.commit();
+    });
+    first.commit();
+  }
+  second.join();
+  CHECK(nsb::test::read_text(out / "first.md") == "1");
+  CHECK(nsb::test::read_text(out / "second.md") == "2");
+  CHECK(names(tmp.path) == std::vector<std::string>{"report"});  // the lock's file removed with it
 }
 
 TEST_CASE("stale temporaries of dead processes are removed, live ones kept", "[core][output]") {
