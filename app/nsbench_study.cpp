@@ -187,7 +187,9 @@ int main(int argc, char** argv) {
     if (!verify && !shard.count) report.emplace(out);
     const nsb::StudyOptions options{full};
     std::optional<nsb::ReportIndex> index;
-    if (report) index.emplace(full, report->path());
+    std::vector<std::string> rewritten;
+    for (const auto* s : selected) rewritten.push_back(s->name);
+    if (report) index.emplace(full, report->path(), rewritten);
     // The cases of every selected study (this shard's), run in one pool: a study's longest
     // case no longer leaves the other cores idle at its end (each case is independent, so the
     // results do not depend on the order).
