@@ -184,7 +184,10 @@ int main(int argc, char** argv) {
     if (!verify) nsb::claim_output_directory(out, "--out");  // a directory the suite did not write is refused
     // The report (tables, figures, index, a study file's copy) is staged and swapped in whole.
     std::optional<nsb::ReportDirectory> report;
-    if (!verify && !shard.count) report.emplace(out);
+    if (!verify && !shard.count) {
+      report.emplace(out);
+      report->remove_on_signals();  // before the pool's threads
+    }
     const nsb::StudyOptions options{full};
     std::optional<nsb::ReportIndex> index;
     std::vector<std::string> rewritten;

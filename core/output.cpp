@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -9,11 +10,13 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 
 #include <cstdint>
 #include <fstream>
 #include <system_error>
+#include <thread>
 #include <tuple>
 
 #include "core/parameters.hpp"
@@ -268,6 +271,24 @@ ReportDirectory::ReportDirectory(const std::filesystem::path& target, const std:
 ReportDirectory::~ReportDirectory() {
   std::error_code ec;
   std::filesystem::remove_all(staging_, ec);  // after commit(): the old report
+}
+
+void ReportDirectory::remove_on_signals() const {
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  if (pthread_sigmask(SIG_BLOCK, &signals, nullptr) != 0) return;  // the signals then act as before
+  std::thread([signals, staging = staging_, lock = lock_.file()] {
+    int taken = 0;
+    if (sigwait(&signals, &taken) != 0) return;
+    std::error_code ignored;
+    std::filesystem::remove_all(staging, ignored);
+    std::filesystem::remove(lock, ignored);
+    std::signal(taken, SIG_DFL);  // the process ends by the signal, as it would have
+    pthread_sigmask(SIG_UNBLOCK, &signals, nullptr);
+    std::raise(taken);
+  }).detach();
 }
 
 void ReportDirectory::commit() {

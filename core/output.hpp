@@ -61,6 +61,7 @@ class TargetLock {
   TargetLock& operator=(const TargetLock&) = delete;
   // `what` names the target in the waiting line ("--out 'DIR'").
   void acquire(const std::filesystem::path& file, const std::string& what);
+  const std::filesystem::path& file() const { return file_; }
 
  private:
   std::filesystem::path file_;
@@ -76,6 +77,11 @@ class ReportDirectory {
   ReportDirectory& operator=(const ReportDirectory&) = delete;
   const std::filesystem::path& path() const { return staging_; }  // write here
   void commit();
+  // From now on SIGINT and SIGTERM end the process after removing the staging and the lock's
+  // file, which were left beside the target until the next run. Call it before the process
+  // starts other threads: the signals are blocked in every thread and taken by one that waits
+  // for them.
+  void remove_on_signals() const;
 
  private:
   std::filesystem::path target_, staging_;

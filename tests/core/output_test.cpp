@@ -5,9 +5,11 @@
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <sstream>
@@ -203,6 +205,26 @@ TEST_CASE("report directory: two writers of one target take turns, neither repor
   CHECK(nsb::test::read_text(out / "first.md") == "1");
   CHECK(nsb::test::read_text(out / "second.md") == "2");
   CHECK(names(tmp.path) == std::vector<std::string>{"report"});  // the lock's file removed with it
+}
+
+TEST_CASE("report directory: SIGTERM removes the staging and the lock before the process ends by it (issue 56)", "[core][output]") {
+  const nsb::test::TempDir tmp("output_test", true);
+  const fs::path out = tmp.path / "report", ready = tmp.path / "ready";
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {  // a study's process: its report staged, then stopped by a signal
+    nsb::ReportDirectory report(out);
+    report.remove_on_signals();
+    std::ofstream(ready) << "ready";
+    for (;;) ::pause();
+  }
+  while (!fs::exists(ready)) ::usleep(1000);  // waits for the child, whatever it takes
+  REQUIRE(::kill(child, SIGTERM) == 0);
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  CHECK(WIFSIGNALED(status));
+  CHECK(WTERMSIG(status) == SIGTERM);
+  CHECK(names(tmp.path) == std::vector<std::string>{"ready", "report"});  // no .report.staging.PID, no .report.lock
 }
 
 TEST_CASE("stale temporaries of dead processes are removed, live ones kept", "[core][output]") {
