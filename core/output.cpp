@@ -27,13 +27,15 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& con
   const auto tmp = path.parent_path() /
                    fmt::format(".{}.tmp.{}", path.filename().string(), static_cast<long>(::getpid()));
   {
+    errno = 0;  // the failing call's reason, not an earlier one's (a full disk: ENOSPC)
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.flush();
     if (!out) {
+      const int reason = errno;
       std::error_code ignored;
       std::filesystem::remove(tmp, ignored);
-      throw InputError(fmt::format("cannot write '{}'", path.string()));
+      throw InputError(fmt::format("cannot write '{}': {}", path.string(), reason ? std::strerror(reason) : "the write failed"));
     }
   }
   std::error_code ec, ignored;

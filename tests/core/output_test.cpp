@@ -5,11 +5,14 @@
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <csignal>
+#include <cstring>
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <sstream>
@@ -225,6 +228,29 @@ TEST_CASE("report directory: SIGTERM removes the staging and the lock before the
   CHECK(WIFSIGNALED(status));
   CHECK(WTERMSIG(status) == SIGTERM);
   CHECK(names(tmp.path) == std::vector<std::string>{"ready", "report"});  // no .report.staging.PID, no .report.lock
+}
+
+TEST_CASE("a file that cannot be written whole says why (issue 56: a full disk said only 'cannot write')", "[core][output]") {
+  const nsb::test::TempDir tmp("output_test", true);
+  const fs::path file = tmp.path / "table.csv";
+  const pid_t child = ::fork();  // a file-size limit stands in for a full disk, in a process of its own
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{1000, 1000};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    try {
+      nsb::write_file_atomic(file, std::string(100000, 'x'));
+    } catch (const nsb::InputError& e) {
+      ::_exit(std::string(e.what()) == "cannot write '" + file.string() + "': " + std::strerror(EFBIG) ? 0 : 1);
+    }
+    ::_exit(2);
+  }
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(names(tmp.path).empty());  // written whole or not at all
 }
 
 TEST_CASE("stale temporaries of dead processes are removed, live ones kept", "[core][output]") {
