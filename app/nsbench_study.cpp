@@ -184,10 +184,15 @@ int main(int argc, char** argv) {
     if (!verify) nsb::claim_output_directory(out, "--out");  // a directory the suite did not write is refused
     // The report (tables, figures, index, a study file's copy) is staged and swapped in whole.
     std::optional<nsb::ReportDirectory> report;
-    if (!verify && !shard.count) report.emplace(out);
+    if (!verify && !shard.count) {
+      report.emplace(out);
+      report->remove_on_signals();  // before the pool's threads
+    }
     const nsb::StudyOptions options{full};
     std::optional<nsb::ReportIndex> index;
-    if (report) index.emplace(full, report->path());
+    std::vector<std::string> rewritten;
+    for (const auto* s : selected) rewritten.push_back(s->name);
+    if (report) index.emplace(full, report->path(), rewritten);
     // The cases of every selected study (this shard's), run in one pool: a study's longest
     // case no longer leaves the other cores idle at its end (each case is independent, so the
     // results do not depend on the order).

@@ -2,16 +2,22 @@
 
 #include <fmt/format.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 
 #include <cstdint>
 #include <fstream>
 #include <system_error>
+#include <thread>
+#include <tuple>
 
 #include "core/parameters.hpp"
 
@@ -21,13 +27,15 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& con
   const auto tmp = path.parent_path() /
                    fmt::format(".{}.tmp.{}", path.filename().string(), static_cast<long>(::getpid()));
   {
+    errno = 0;  // the failing call's reason, not an earlier one's (a full disk: ENOSPC)
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.flush();
     if (!out) {
+      const int reason = errno;
       std::error_code ignored;
       std::filesystem::remove(tmp, ignored);
-      throw InputError(fmt::format("cannot write '{}'", path.string()));
+      throw InputError(fmt::format("cannot write '{}': {}", path.string(), reason ? std::strerror(reason) : "the write failed"));
     }
   }
   std::error_code ec, ignored;
@@ -192,6 +200,45 @@ std::vector<std::pair<std::filesystem::path, std::filesystem::perms>> link_tree(
 
 }  // namespace
 
+void TargetLock::acquire(const std::filesystem::path& file, const std::string& what) {
+  for (;;) {
+    const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) throw InputError(fmt::format("{}: cannot create its lock '{}': {}", what, file.string(), std::strerror(errno)));
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      char holder[24] = {};
+      const ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
+      fmt::print(stderr, "nsbench: {}: being written by process {}; waiting for it to finish\n", what,
+                 n > 0 ? std::string(holder, static_cast<std::size_t>(n)) : std::string("?"));
+      int locked;
+      while ((locked = ::flock(fd, LOCK_EX)) != 0 && errno == EINTR) {
+      }
+      if (locked != 0) {
+        const int err = errno;
+        ::close(fd);
+        throw InputError(fmt::format("{}: cannot lock '{}': {}", what, file.string(), std::strerror(err)));
+      }
+    }
+    // The holder removes the file at its end: a lock on a file no longer at `file` guards nothing.
+    struct stat held {}, named {};
+    if (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+        held.st_dev == named.st_dev) {
+      const std::string pid = std::to_string(static_cast<long>(::getpid()));
+      // The pid only names the holder in a waiting line: a failed write costs nothing else.
+      std::ignore = ::ftruncate(fd, 0) == 0 && ::pwrite(fd, pid.data(), pid.size(), 0) > 0;
+      file_ = file;
+      fd_ = fd;
+      return;
+    }
+    ::close(fd);
+  }
+}
+
+TargetLock::~TargetLock() {
+  if (fd_ < 0) return;
+  ::unlink(file_.c_str());  // before the unlock: a waiter then finds its file gone and takes the new one
+  ::close(fd_);
+}
+
 ReportDirectory::ReportDirectory(const std::filesystem::path& target, const std::string& option) : option_(option) {
   namespace fs = std::filesystem;
   ensure_directory(target, option);
@@ -201,6 +248,7 @@ ReportDirectory::ReportDirectory(const std::filesystem::path& target, const std:
   const fs::path parent = target_.parent_path();
   const std::string name = target_.filename().string();
   if (name.empty()) throw InputError(fmt::format("{} '{}': the root directory cannot be a report", option, target.string()));
+  lock_.acquire(parent / fmt::format(".{}.lock", name), fmt::format("{} '{}'", option, target_.string()));
   for (const auto& e : fs::directory_iterator(parent, ec)) {  // earlier runs' leftovers
     const std::string entry = e.path().filename().string();
     const long pid = entry.rfind("." + name + ".staging.", 0) == 0 ? temporary_owner(entry, ".staging.") : 0;
@@ -225,6 +273,24 @@ ReportDirectory::ReportDirectory(const std::filesystem::path& target, const std:
 ReportDirectory::~ReportDirectory() {
   std::error_code ec;
   std::filesystem::remove_all(staging_, ec);  // after commit(): the old report
+}
+
+void ReportDirectory::remove_on_signals() const {
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  if (pthread_sigmask(SIG_BLOCK, &signals, nullptr) != 0) return;  // the signals then act as before
+  std::thread([signals, staging = staging_, lock = lock_.file()] {
+    int taken = 0;
+    if (sigwait(&signals, &taken) != 0) return;
+    std::error_code ignored;
+    std::filesystem::remove_all(staging, ignored);
+    std::filesystem::remove(lock, ignored);
+    std::signal(taken, SIG_DFL);  // the process ends by the signal, as it would have
+    pthread_sigmask(SIG_UNBLOCK, &signals, nullptr);
+    std::raise(taken);
+  }).detach();
 }
 
 void ReportDirectory::commit() {

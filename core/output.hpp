@@ -47,6 +47,27 @@ void remove_stale_temporaries(const std::filesystem::path& dir);
 // report as it was (and a staging directory, removed by the next ReportDirectory of that
 // target once its process is gone). Destroyed without commit(): the staging is removed.
 // The directories keep their modes (a 1777 --out stays 1777); the staging holds the marker.
+// Two writers of one target take turns: each holds a lock on ".NAME.lock" beside it from
+// before staging to its end, so the second stages from the first's committed report (both
+// studies stay listed) instead of both staging from the old one and the last commit dropping
+// the other's files; the second says on stderr which process it waits for.
+// The lock a ReportDirectory holds on its target: taken by acquire() (waiting for its holder),
+// released and its file removed when destroyed.
+class TargetLock {
+ public:
+  TargetLock() = default;
+  ~TargetLock();
+  TargetLock(const TargetLock&) = delete;
+  TargetLock& operator=(const TargetLock&) = delete;
+  // `what` names the target in the waiting line ("--out 'DIR'").
+  void acquire(const std::filesystem::path& file, const std::string& what);
+  const std::filesystem::path& file() const { return file_; }
+
+ private:
+  std::filesystem::path file_;
+  int fd_ = -1;
+};
+
 class ReportDirectory {
  public:
   // Errors name `option`, the command-line option that gave `target`.
@@ -56,10 +77,16 @@ class ReportDirectory {
   ReportDirectory& operator=(const ReportDirectory&) = delete;
   const std::filesystem::path& path() const { return staging_; }  // write here
   void commit();
+  // From now on SIGINT and SIGTERM end the process after removing the staging and the lock's
+  // file, which were left beside the target until the next run. Call it before the process
+  // starts other threads: the signals are blocked in every thread and taken by one that waits
+  // for them.
+  void remove_on_signals() const;
 
  private:
   std::filesystem::path target_, staging_;
   std::string option_;
+  TargetLock lock_;
   std::vector<std::pair<std::filesystem::path, std::filesystem::perms>> modes_;  // of target_'s directories
   bool committed_ = false;
 };

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <map>
 
 #include "core/output.hpp"
 #include "core/parameters.hpp"
@@ -21,8 +23,16 @@ namespace fs = std::filesystem;
 struct Loader {
   const std::string* loading = nullptr;  // set while a plugin's static registrations run
   std::vector<std::string> errors;       // of the plugin being loaded
+  std::vector<std::function<void()>> undo;  // its entries registered so far (detail::registered)
+  std::map<std::string, std::string> refused;  // canonical path -> why: dlopen runs no registration twice
   std::vector<PluginInfo> loaded;
 };
+
+// Takes back the entries of the plugin being loaded, newest first.
+void undo_registrations(Loader& l) {
+  for (auto it = l.undo.rbegin(); it != l.undo.rend(); ++it) (*it)();
+  l.undo.clear();
+}
 
 Loader& loader() {
   static Loader l;
@@ -70,6 +80,7 @@ constexpr std::size_t kMaxPluginBytes = std::size_t{1} << 30;
 namespace detail {
 const std::string* loading_plugin() { return loader().loading; }
 void registration_error(std::string message) { loader().errors.push_back(std::move(message)); }
+void registered(std::function<void()> undo) { loader().undo.push_back(std::move(undo)); }
 }  // namespace detail
 
 void load_plugin(const std::string& path) {
@@ -82,6 +93,13 @@ void load_plugin(const std::string& path) {
   Loader& l = loader();
   for (const auto& p : l.loaded)
     if (p.path == canonical.string()) return;  // named twice (flag and environment)
+  if (const auto it = l.refused.find(canonical.string()); it != l.refused.end()) fail(it->second);
+  // Refused once its registrations ran: none of its entries stays, and a second call says so again.
+  const auto refuse = [&](const std::string& why) {
+    undo_registrations(l);
+    l.refused[canonical.string()] = why;
+    fail(why);
+  };
   const std::string bytes = read_file_bounded(canonical, kMaxPluginBytes, "plugin");
   const std::string hash = "fnv1a64:" + fnv1a64(bytes);  // identifies the file a table came from
   const std::string damage = elf_damage(bytes);
@@ -90,6 +108,7 @@ void load_plugin(const std::string& path) {
   // The plugin's registrations run inside dlopen (static initialisation).
   l.loading = &path;
   l.errors.clear();
+  l.undo.clear();
   void* handle = dlopen(canonical.c_str(), RTLD_NOW | RTLD_LOCAL);
   l.loading = nullptr;
   if (!handle) {
@@ -99,12 +118,13 @@ void load_plugin(const std::string& path) {
   // Never dlclose'd: the registry keeps pointers to its functions.
   const auto* abi = static_cast<const int*>(dlsym(handle, "nsbench_plugin_abi_version"));
   if (!abi)
-    fail("not an nsbench plugin (no nsbench_plugin_abi_version symbol: it registers nothing with "
+    refuse("not an nsbench plugin (no nsbench_plugin_abi_version symbol: it registers nothing with "
          "NSBENCH_INTEGRATOR or NSBENCH_PROBLEM)");
   if (*abi != NSBENCH_PLUGIN_ABI)
-    fail(fmt::format("built for plugin ABI {}, this nsbench has ABI {}: rebuild it against this nsbench", *abi,
+    refuse(fmt::format("built for plugin ABI {}, this nsbench has ABI {}: rebuild it against this nsbench", *abi,
                      NSBENCH_PLUGIN_ABI));
-  if (!l.errors.empty()) fail(l.errors.front());
+  if (!l.errors.empty()) refuse(l.errors.front());
+  l.undo.clear();
   PluginInfo info;
   info.path = canonical.string();
   info.file = canonical.filename().string();
@@ -146,14 +166,20 @@ void register_as_plugin(const std::string& source, const std::function<void()>& 
   Loader& l = loader();
   l.loading = &source;
   l.errors.clear();
+  l.undo.clear();
   try {
     registrations();
   } catch (...) {
     l.loading = nullptr;
+    undo_registrations(l);
     throw;
   }
   l.loading = nullptr;
-  if (!l.errors.empty()) throw InputError(fmt::format("{}: {}", source, l.errors.front()));
+  if (!l.errors.empty()) {
+    undo_registrations(l);
+    throw InputError(fmt::format("{}: {}", source, l.errors.front()));
+  }
+  l.undo.clear();
 }
 
 std::string plugins_stamp() {

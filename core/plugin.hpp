@@ -85,6 +85,9 @@ namespace detail {
 const std::string* loading_plugin();
 // A registration refused while a plugin loads; the loader reports the first.
 void registration_error(std::string message);
+// How to take back an entry a plugin registered: run, newest first, when the plugin is refused
+// after it (a clash on its second entry), so that a plugin registers all its entries or none.
+void registered(std::function<void()> undo);
 }  // namespace detail
 
 }  // namespace nsb

@@ -70,6 +70,7 @@ class Registry {
     const auto pos = std::upper_bound(entries_.begin(), entries_.end(), e, Before{});
     origins_.insert(origins_.begin() + (pos - entries_.begin()), plugin ? *plugin : std::string());
     entries_.insert(pos, e);
+    if (plugin) detail::registered([this, name = e.name] { remove(name); });
     return true;
   }
   const std::vector<Entry>& entries() const { return entries_; }
@@ -82,6 +83,14 @@ class Registry {
   }
 
  private:
+  void remove(const std::string& name) {
+    for (std::size_t i = 0; i < entries_.size(); ++i)
+      if (entries_[i].name == name) {
+        entries_.erase(entries_.begin() + static_cast<std::ptrdiff_t>(i));
+        origins_.erase(origins_.begin() + static_cast<std::ptrdiff_t>(i));
+        return;
+      }
+  }
   std::vector<Entry> entries_;
   std::vector<std::string> origins_;  // plugin file of each entry; empty: built-in
 };

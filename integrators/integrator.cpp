@@ -10,6 +10,7 @@ void Integrator::bind(const Problem& problem, const State& initial) {
   const Contacts& c = problem.contacts();
   check_contacts(c, problem.ndof(), problem.name());
   mass_ = problem.mass_matrix();
+  check_problem_contract(problem, mass_, initial);
   if (declared_) check_capabilities(*declared_, name_, params_, problem, mass_);
   problem_ = &problem;
   state_ = initial;

@@ -11,8 +11,9 @@
 //                 integrator it builds, so name() is the entry's name and no class repeats it.
 //   constructor(const Params&)  reads its parameters (declared by a static parameters_spec(),
 //                 range-checked before it runs: a value outside is refused with InputError).
-//   init(problem, initial)  calls bind(problem, initial) first: bind() checks the contacts and
-//                 the declared capabilities (check_capabilities: one refusal wording per kind),
+//   init(problem, initial)  calls bind(problem, initial) first: bind() checks the contacts, the
+//                 problem's contract where cheap (a symmetric mass, no negative diagonal, no
+//                 gap closed at `initial`) and the declared capabilities (check_capabilities: one refusal wording per kind),
 //                 stores problem_, state_ = initial, mass_ = problem.mass_matrix(), and sizes
 //                 impulses_ and tangential_impulses_ to the contacts (zero). Then it builds its
 //                 caches and throws InputError naming the problem for one it cannot run for a
@@ -163,8 +164,9 @@ class Integrator {
   explicit Integrator(Params params) : params_(std::move(params)) {}
   // The scheme's own step (see the contract above): everything but state_.t and work_.steps.
   virtual StepInfo advance(double dt_requested) = 0;
-  // Common part of init(): checks the problem's contacts (check_contacts) and the declared
-  // capabilities (check_capabilities), stores the problem and state, sizes the impulses.
+  // Common part of init(): checks the problem's contacts (check_contacts), the contract's
+  // mass and initial gaps (check_problem_contract) and the declared capabilities
+  // (check_capabilities), stores the problem and state, sizes the impulses.
   void bind(const Problem& problem, const State& initial);
 
   const Problem* problem_ = nullptr;

@@ -135,4 +135,25 @@ void check_contacts(const Contacts& c, Index ndof, const std::string& problem) {
     if (!std::isfinite(c.tangent2_velocity[i])) fail(fmt::format("w2 of contact {} is {}; valid: finite", i, c.tangent2_velocity[i]));
 }
 
+void check_problem_contract(const Problem& problem, const SpMat& mass, const State& initial) {
+  const auto fail = [&](const std::string& why, const std::string& valid) {
+    throw InputError(fmt::format("problem {}: {}; valid: {} (the problem contract, problems/problem.hpp)", problem.name(), why, valid));
+  };
+  const double largest = mass.nonZeros() ? Eigen::Map<const Vec>(mass.valuePtr(), mass.nonZeros()).cwiseAbs().maxCoeff() : 0.0;
+  for (Index i = 0; i < mass.rows() && i < mass.cols(); ++i)
+    if (const double d = mass.coeff(i, i); !(d >= 0.0) || !std::isfinite(d))
+      fail(fmt::format("mass_matrix() has {} on its diagonal at dof {}", d, i), "finite, >= 0 (0: a massless dof)");
+  const SpMat asymmetry = mass - SpMat(mass.transpose());
+  if (asymmetry.nonZeros() &&
+      Eigen::Map<const Vec>(asymmetry.valuePtr(), asymmetry.nonZeros()).cwiseAbs().maxCoeff() > 1e-12 * largest)
+    fail("mass_matrix() is not symmetric", "M = M^T");
+  ContactGeometry at = problem.contact_geometry();
+  if (at.gap.size() == 0 || initial.u.size() != problem.ndof()) return;
+  problem.evaluate_contacts(initial.u, at);
+  const Vec& g0 = problem.gap_offset();
+  for (Index i = 0; i < at.gap.size(); ++i)
+    if (!(at.gap[i] >= -1e-9 * (1.0 + std::abs(g0[i]))))
+      fail(fmt::format("contact {} is closed at the initial state (gap {:g})", i, at.gap[i]), "initial gaps >= 0");
+}
+
 }  // namespace nsb

@@ -108,6 +108,14 @@ struct ContactGeometry {
 // g0, mu and w against L's rows, columns against ndof) or a value is outside its range.
 void check_contacts(const Contacts& c, Index ndof, const std::string& problem);
 
+class Problem;
+
+// Throws InputError naming `problem` where the contract is broken in a way cheap to see once,
+// when a scheme binds (Integrator::bind): M (`mass`) not symmetric (to 1e-12 of its largest
+// entry), a diagonal entry negative or not finite, a contact closed at `initial` (a gap below
+// -1e-9 (1 + |g0|) m: penetrating before the first step).
+void check_problem_contract(const Problem& problem, const SpMat& mass, const State& initial);
+
 // The model. Its output (observables, summary figures, field mesh) is the ProblemOutput it
 // inherits (problems/problem_output.hpp); its exact solution is a separate interface that
 // exact() hands out (problems/exact_solution.hpp).

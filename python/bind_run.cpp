@@ -8,6 +8,9 @@
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
+#include <signal.h>
+
+#include <csignal>
 
 #include "check/conformance.hpp"
 #include "integrators/registry.hpp"
@@ -33,6 +36,38 @@ class StateRows final : public StateSink {
     v.insert(v.end(), s.v.data(), s.v.data() + s.v.size());
   }
   std::vector<double> t, u, v;
+};
+
+// Ctrl-C during a run: Python's own handler only sets a flag that the run, without the GIL,
+// never reads. While a run on the main thread lasts (Python's SIGINT handler being the default
+// one), this handler sets the run's interrupt flag instead: the run stops between two steps and
+// nsbench.run raises KeyboardInterrupt.
+volatile std::sig_atomic_t interrupted = 0;
+void on_sigint(int) { interrupted = 1; }
+
+class SigintScope {
+ public:
+  SigintScope() {
+    const py::module_ signal = py::module_::import("signal");
+    const bool main_thread = py::module_::import("threading").attr("current_thread")().is(
+        py::module_::import("threading").attr("main_thread")());
+    if (!main_thread || !signal.attr("getsignal")(signal.attr("SIGINT")).is(signal.attr("default_int_handler"))) return;
+    interrupted = 0;
+    struct sigaction mine {};
+    mine.sa_handler = on_sigint;
+    sigemptyset(&mine.sa_mask);
+    installed_ = ::sigaction(SIGINT, &mine, &previous_) == 0;
+  }
+  ~SigintScope() {
+    if (installed_) ::sigaction(SIGINT, &previous_, nullptr);
+  }
+  SigintScope(const SigintScope&) = delete;
+  SigintScope& operator=(const SigintScope&) = delete;
+  const volatile std::sig_atomic_t* flag() const { return installed_ ? &interrupted : nullptr; }
+
+ private:
+  struct sigaction previous_ {};
+  bool installed_ = false;
 };
 
 // A rows x cols array owning `values` (moved, not copied).
@@ -72,6 +107,9 @@ py::tuple run_case(const py::object& problem, const std::string& integrator, con
                                    routed.problem.begin()->first));
     c.integrator = make_integrator(integrator, routed.integrator);
   } else {
+    if (!py::isinstance<py::str>(problem))
+      throw InputError(fmt::format("problem: {} given; valid: a problem's name (str) or an nsbench.Problem",
+                                   py::str(py::type::of(problem).attr("__name__")).cast<std::string>()));
     c = make_run_case(problem.cast<std::string>(), integrator, sets);
     p = c.problem.get();
   }
@@ -79,6 +117,8 @@ py::tuple run_case(const py::object& problem, const std::string& integrator, con
                                    options.contains("sample_every") ? value_text("sample_every", options["sample_every"]) : "1",
                                    OptionStyle::Python);
   o.max_force_evaluations = integer_option(options, "max_force_evaluations", 0, 0);
+  if (options.contains("states") && !py::isinstance<py::bool_>(options["states"]))
+    throw InputError(fmt::format("states {}: valid: True or False", py::repr(options["states"]).cast<std::string>()));
   const bool states = options.contains("states") ? options["states"].cast<bool>() : true;
   if (c.integrator->conditionally_stable() && o.dt > p->stable_step())
     if (PyErr_WarnEx(PyExc_RuntimeWarning,
@@ -89,9 +129,19 @@ py::tuple run_case(const py::object& problem, const std::string& integrator, con
   if (states) o.state_sink = &rows;
   RunResult result;
   {
-    py::gil_scoped_release free;  // a Python integrator takes it back for its own calls
-    c.integrator->init(*p, p->initial_state());
-    result = run(*p, *c.integrator, o);
+    const SigintScope sigint;
+    o.interrupt = sigint.flag();
+    try {
+      py::gil_scoped_release free;  // a Python integrator takes it back for its own calls
+      c.integrator->init(*p, p->initial_state());
+      result = run(*p, *c.integrator, o);
+    } catch (const RunCancelled&) {
+      throw py::error_already_set();  // the step's KeyboardInterrupt or SystemExit, restored by it
+    }
+  }
+  if (result.status == RunStatus::Interrupted && o.interrupt) {
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
   }
   const std::string summary = summary_to_json(*p, *c.integrator, o, result);
   const std::size_t ncol = result.series.columns.size(), n = static_cast<std::size_t>(p->ndof());

@@ -36,6 +36,12 @@ std::string value_text(const std::string& key, const py::handle& value);
 // "key=value" items from keyword arguments, in their order.
 std::vector<std::string> assignments(const py::dict& kwargs);
 
+// The message of a use of what a run handed to Python once the run has ended
+// (python_integrator.hpp), or of None where an nsbench object is expected.
+inline constexpr const char* kExpiredUse =
+    "an nsbench object used after the run it belonged to ended (the Problem handed to init, self._core), or None where "
+    "one is expected: keep copies instead (problem.name and problem.parameters, state.u.copy())";
+
 // A NumPy view of v (no copy), kept alive by `owner`, the Python object that holds v.
 py::array_t<double> vector_view(Vec& v, const py::handle& owner);
 

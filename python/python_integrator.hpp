@@ -12,14 +12,22 @@
 // treats_moving_contacts are read once, at registration, into the registry entry's
 // capabilities. This C++
 // object holds the state, impulses and counters the run driver reads; the Python object reaches
-// them through its `_core` attribute (this object, bound as nsbench._IntegratorCore), so there is
+// them through its `_core` attribute (an IntegratorCore pointing here), so there is
 // no copy between the two. (Not a pybind11 trampoline: the registry's factories return a
 // std::unique_ptr the C++ side owns, which a Python-owned trampoline object cannot be.)
 //
+// Lifetimes: what a run hands to Python outlives it safely: the Problem given to init (one C++
+// owns) and self._core raise on use once the run has ended (RuntimeError), a State or
+// WorkCounters kept from it reads as an empty one, and a NumPy view (self.state.u,
+// self.impulses) holds the run's last values, its buffer kept alive with it; bind() is
+// refused outside init (it reallocates what the views point into).
+//
 // Every call into Python takes the GIL (the run releases it). A Python exception in step() ends
 // the run as diverged with the exception's type and message (nsb::run records a step's
-// exception so); in init(), a ValueError is the scheme declining the problem (InputError), any
-// other exception an error. A step that returns a non-finite dt is diverged too.
+// exception so), but a KeyboardInterrupt or SystemExit, which reaches nsbench.run's caller
+// (RunCancelled, run/run.hpp); in init(), a ValueError is the scheme declining the problem (InputError), any
+// other exception an error. A step that returns a non-finite dt, or one below kMinStepFraction
+// of the requested step, is diverged too (a step past t_end: nsb::run, RunOptions).
 #include <pybind11/pybind11.h>
 
 #include "integrators/integrator.hpp"
@@ -27,6 +35,19 @@
 namespace nsb::python {
 
 namespace py = pybind11;
+
+class PythonIntegrator;
+
+// What the Python object reaches this one through (its `_core`, nsbench._IntegratorCore): owned
+// by Python, so that it may outlive the run; `target` is cleared when the run ends, and live()
+// raises then (kExpiredUse).
+struct IntegratorCore {
+  PythonIntegrator* target = nullptr;
+  PythonIntegrator& live() const;
+};
+
+// The least step a Python step() may return, as a fraction of the one requested.
+inline constexpr double kMinStepFraction = 1e-9;
 
 class PythonIntegrator final : public Integrator {
  public:
@@ -39,7 +60,8 @@ class PythonIntegrator final : public Integrator {
   ImpactAccuracy impact_accuracy() const override { return accuracy_; }
 
   // For the Python side (nsbench._IntegratorCore).
-  void bind_problem(const Problem& problem, const State& initial) { bind(problem, initial); }
+  // Throws InputError outside init() or for another problem than init's.
+  void bind_problem(const Problem& problem, const State& initial);
   State& live_state() { return state_; }
   Vec& live_impulses() { return impulses_; }
   Vec& live_tangential_impulses() { return tangential_impulses_; }
@@ -51,6 +73,8 @@ class PythonIntegrator final : public Integrator {
  private:
   StepInfo advance(double dt_requested) override;
   py::object instance_;
+  py::object core_;  // the IntegratorCore of instance_._core, which the views keep alive
+  const Problem* binding_ = nullptr;  // init's problem, during init (bind_problem)
   bool has_energy_ = false;
   ImpactAccuracy accuracy_;
 };

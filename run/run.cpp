@@ -32,6 +32,45 @@ double cpu_seconds() { return clock_seconds(run_threads() > 1 ? CLOCK_PROCESS_CP
 const std::vector<std::string> kGenericColumns = {
     "t", "dt", "kinetic", "potential", "total_energy", "min_gap", "impulse", "active_contacts", "tangential_impulse"};
 
+const char* nonfinite_or_negative(const Vec& values, double lower) {
+  if (!values.allFinite()) return "non-finite";
+  return values.size() && values.minCoeff() < lower ? "negative" : nullptr;
+}
+
+// What the problem and the integrator report after a step that no valid run reports, "" when
+// nothing: a step longer than both the requested dt and t_end (it ends past twice t_end),
+// non-finite gaps or contact rows (a plugin problem's geometry), non-finite or negative
+// normal impulses (below -1e-6 of the run's largest, `largest_impulse`: the references'
+// impulses are differences of integrals), non-finite tangential impulses, negative work
+// counters. O(contacts) a step. A non-finite state is left to the run's own check on the
+// sampled steps, so that a blow-up ends where it always did.
+std::string output_fault(double dt_taken, const RunOptions& options, const Vec& gap, const ContactGeometry* moving,
+                         const Integrator& integrator, double& largest_impulse) {
+  std::string fault;
+  if (dt_taken > std::max(options.dt, options.t_end) * (1.0 + 1e-12))
+    return fmt::format("a step of {:g} taken, longer than the requested dt = {:g} and t_end = {:g} (the integrator's)", dt_taken,
+                       options.dt, options.t_end);
+  const auto rows_finite = [](const RowSpMat& rows) {
+    return Eigen::Map<const Vec>(rows.valuePtr(), rows.nonZeros()).allFinite();
+  };
+  const Vec& lambda = integrator.impulses();
+  if (lambda.size()) largest_impulse = std::max(largest_impulse, lambda.cwiseAbs().maxCoeff());
+  const WorkCounters& w = integrator.work();
+  if (!gap.allFinite())
+    fault = "non-finite contact gap (the problem's contact geometry)";
+  else if (moving && !(rows_finite(moving->normal) && rows_finite(moving->tangent) && rows_finite(moving->tangent2)))
+    fault = "non-finite contact rows (the problem's contact geometry)";
+  else if (const char* bad = nonfinite_or_negative(lambda, -1e-6 * largest_impulse))
+    fault = fmt::format("{} normal impulse (the integrator's; valid: finite, >= 0)", bad);
+  else if (!integrator.tangential_impulses().allFinite() || !integrator.tangential_impulses2().allFinite())
+    fault = "non-finite tangential impulse (the integrator's)";
+  else if (std::min({w.steps, w.force_evaluations, w.tangent_evaluations, w.factorizations, w.linear_solves,
+                     w.lcp_iterations, w.lcp_unconverged}) < 0)
+    fault = "negative work counter (the integrator's; valid: >= 0)";
+  if (fault.empty() || !integrator.state().u.allFinite() || !integrator.state().v.allFinite()) return "";
+  return fault;
+}
+
 }  // namespace
 
 std::size_t Series::column(const std::string& name) const {
@@ -154,6 +193,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   double observe_seconds = 0.0;  // wall time in the observer and sampling
   const auto wall_now = [] { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); };
   StepInfo info;
+  double largest_impulse = 0.0;  // of the run so far (output_fault)
   TeamSize team(run_threads());  // one thread or all, whichever steps faster now (core/team_size.hpp)
   const auto wall_start = std::chrono::steady_clock::now();
   double next_progress = options.progress_every;  // wall seconds
@@ -191,6 +231,12 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
       team.step_done(timed ? wall_now() - step_start : 0.0);
       ++result.steps;
       result.max_penetration = std::max(result.max_penetration, -min_gap());
+      if (const std::string fault = output_fault(info.dt, options, gap, problem.contacts_move() ? &moving : nullptr, integrator, largest_impulse);
+          !fault.empty()) {
+        result.status = RunStatus::Diverged;
+        result.message = fmt::format("{} at t = {}", fault, integrator.state().t);
+        break;
+      }
       const bool last = integrator.state().t >= options.t_end * (1.0 - 1e-12);
       const bool sampled = result.steps % options.sample_every == 0 || last;
       const bool stored = options.state_sink && (result.steps % options.state_every == 0 || last);
@@ -224,6 +270,8 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
       }
     }
   } catch (const InputError&) {
+    throw;
+  } catch (const RunCancelled&) {
     throw;
   } catch (const std::exception& ex) {
     result.status = RunStatus::Diverged;

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <span>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,13 @@ class StateSink {
   virtual ~StateSink() = default;
   virtual void state(const State& s, const Vec& normal_impulses, const Vec& tangential_impulses,
                      const Vec& tangential_impulses2) = 0;
+};
+
+// Thrown by an integrator's step to end the run and reach run()'s caller unchanged, not as a
+// diverged run: a KeyboardInterrupt or SystemExit in a Python step (python/python_integrator.hpp).
+class RunCancelled : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 struct RunOptions {

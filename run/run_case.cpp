@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 
@@ -23,8 +25,10 @@ RunOptions parse_run_options(const std::string& dt, const std::string& t_end, co
   options.dt = parse_real(dt, dt_name);
   options.t_end = parse_real(t_end, t_end_name);
   const double every = parse_real(sample_every, every_name);
-  if (every < 1 || every != static_cast<long>(every))
-    throw InputError(fmt::format("{} {}: must be an integer >= 1", every_name, sample_every));
+  // Bounded before the cast (1e20 overflowed it); beyond any run's step limit (RunOptions::max_steps).
+  constexpr double kMaxEvery = 1e15;
+  if (!(every >= 1 && every <= kMaxEvery) || every != std::floor(every))
+    throw InputError(fmt::format("{} {}: must be an integer >= 1 (at most {:g})", every_name, sample_every, kMaxEvery));
   options.sample_every = static_cast<long>(every);
   options.state_every = options.sample_every;
   if (!(options.dt > 0.0)) throw InputError(fmt::format("{} {}: must be > 0", dt_name, dt));

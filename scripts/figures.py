@@ -19,6 +19,7 @@ import json
 import math
 import multiprocessing
 import os
+import re
 import sys
 
 import matplotlib
@@ -659,9 +660,53 @@ def share_mathtext_layouts():
     mathtext.MathTextParser._parse_cached = shared
 
 
+class Damaged(Exception):
+    """A figure that cannot be drawn from what the report holds: one line, naming it."""
+
+
 def draw_one(task):
     spec, reports, paper = task
-    DRAWERS.get(spec.get("kind"), draw)(spec, reports, paper)
+    try:
+        DRAWERS.get(spec.get("kind"), draw)(spec, reports, paper)
+    except OSError as e:
+        raise Damaged(f"figure '{spec['id']}': cannot read '{e.filename}': {e.strerror}") from None
+    except KeyError as e:
+        raise Damaged(f"figure '{spec['id']}': its entry or its table {spec['csv']} has no key or column {e}") from None
+    except (TypeError, ValueError, IndexError, AttributeError) as e:
+        raise Damaged(f"figure '{spec['id']}': its entry or its table {spec['csv']} is damaged ({type(e).__name__}: {e})") from None
+
+
+def checked_specs(reports):
+    """The entries of REPORTS/figures.json, each an object with a string id, csv and title; an id
+    is a file name (letters, digits, _ . -, not starting with '.') and csv a table of the report
+    itself: a figure id './../../x' wrote outside it, an absolute csv read any file. Exits with one
+    line naming the file and the key otherwise."""
+    path = os.path.join(reports, "figures.json")
+    try:
+        with open(path) as f:
+            specs = json.load(f)
+    except OSError as e:
+        sys.exit(f"figures.py: {path}: cannot be read: {e.strerror}")
+    except json.JSONDecodeError as e:
+        sys.exit(f"figures.py: {path}: not JSON ({e.msg} at line {e.lineno}): damaged or cut short")
+    if not isinstance(specs, list):
+        sys.exit(f"figures.py: {path}: expected a list of figures, got {type(specs).__name__}")
+    root = os.path.realpath(reports)
+    for k, spec in enumerate(specs):
+        where = f"figures.py: {path}: figure {k}"
+        if not isinstance(spec, dict):
+            sys.exit(f"{where}: not an object")
+        for key in ("id", "csv", "title"):
+            if not isinstance(spec.get(key), str):
+                sys.exit(f"{where}: key '{key}' missing or not a string")
+        if not re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.-]*", spec["id"]):
+            sys.exit(f"{where}: id '{spec['id']}' is not a file name; valid: letters, digits, _ . - (not first)")
+        for key in ("csv", "arrows_csv"):
+            given = spec.get(key, "")
+            table = os.path.realpath(os.path.join(reports, str(given)))
+            if os.path.isabs(str(given)) or os.path.commonpath([root, table]) != root:
+                sys.exit(f"{where} ('{spec['id']}'): {key} '{given}' is outside the report; valid: a table of {reports}")
+    return specs
 
 
 def study_jobs():
@@ -690,8 +735,7 @@ def main():
         matplotlib.rcParams.update({"font.size": 8, "axes.labelsize": 8, "xtick.labelsize": 7, "ytick.labelsize": 7,
                                     "axes.titlesize": 7})
     share_mathtext_layouts()  # before the pool: its processes inherit it
-    with open(os.path.join(args.reports, "figures.json")) as f:
-        specs = json.load(f)
+    specs = checked_specs(args.reports)
     if args.only:
         unknown = set(args.only) - {s["id"] for s in specs}
         if unknown:
@@ -701,12 +745,15 @@ def main():
     # figure by one, so a figure's bytes do not depend on the number of processes.
     jobs = max(1, min(len(specs), study_jobs()))
     tasks = [(spec, args.reports, paper) for spec in specs]
-    if jobs == 1:
-        for task in tasks:
-            draw_one(task)
-    else:
-        with multiprocessing.get_context("fork").Pool(jobs) as pool:
-            pool.map(draw_one, tasks, chunksize=1)
+    try:
+        if jobs == 1:
+            for task in tasks:
+                draw_one(task)
+        else:
+            with multiprocessing.get_context("fork").Pool(jobs) as pool:
+                pool.map(draw_one, tasks, chunksize=1)
+    except Damaged as e:
+        sys.exit(f"figures.py: {args.reports}: {e}")
     out = os.path.join(args.reports, "figures", "paper") if paper else os.path.join(args.reports, "figures")
     print(f"figures: {len(specs)} written to {out}", file=sys.stderr)
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <regex>
 #include <system_error>
 
 #include "core/build_info.hpp"
@@ -77,9 +78,44 @@ std::vector<IndexPart> index_parts(const fs::path& report) {
   return parts;
 }
 
+// Refuses a table id the report reserves or a table or figure id that another study's entries
+// (.index/OTHER.json: the tables its section links, its figures) hold.
+void check_owned_ids(const fs::path& report, const StudyEntry& s, const std::vector<Table>& tables) {
+  std::map<std::string, std::string> owner;  // "table ID" / "figure ID" -> the study holding it
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(report / ".index", ec)) {
+    if (e.path().extension() != ".json" || e.path().stem() == s.name) continue;
+    const Json j = Json::parse(read_file_bounded(e.path(), std::size_t{1} << 28, "index part"), nullptr, false);
+    if (!j.is_object()) continue;  // damaged: index_parts says so
+    if (j.contains("section") && j["section"].is_string()) {
+      static const std::regex csv_link(R"(\[csv\]\(([^()\s]+)\.csv\))");
+      const std::string& section = j["section"].get_ref<const std::string&>();
+      for (std::sregex_iterator m(section.begin(), section.end(), csv_link), end; m != end; ++m)
+        owner.emplace("table " + (*m)[1].str(), e.path().stem().string());
+    }
+    for (const auto& f : j.value("figures", Json::array()))
+      if (f.is_object() && f.contains("id") && f["id"].is_string()) owner.emplace("figure " + f["id"].get<std::string>(), e.path().stem().string());
+  }
+  const auto refuse_taken = [&](const std::string& what) {
+    if (const auto it = owner.find(what); it != owner.end())
+      throw InputError(fmt::format("study {}: {} is study {}'s in this report (its files would be overwritten); valid: an id "
+                                   "no other study of the report uses, or another --out",
+                                   s.name, what, it->second));
+  };
+  for (const auto& t : tables) {
+    if (t.id == "index")
+      throw InputError(fmt::format("study {}: table id 'index' is the report's own (index.md); valid: another id", s.name));
+    refuse_taken("table " + t.id);
+    for (const auto& f : t.figures) refuse_taken("figure " + f.id);
+  }
+}
+
 }  // namespace
 
-ReportIndex::ReportIndex(bool full, std::filesystem::path report) : report_(std::move(report)) {
+ReportIndex::ReportIndex(bool full, std::filesystem::path report, const std::vector<std::string>& rewritten)
+    : report_(std::move(report)) {
+  std::error_code ec;
+  for (const auto& name : rewritten) fs::remove(report_ / ".index" / (name + ".json"), ec);
   const auto& b = build_info();
   const std::string plugged = plugins_stamp();
   header_ = fmt::format("# nsbench reports\n\nnsbench {}, revision `{}`, {} build, {}{}{}.\n\n", b.version, b.git_revision,
@@ -87,6 +123,7 @@ ReportIndex::ReportIndex(bool full, std::filesystem::path report) : report_(std:
 }
 
 std::string ReportIndex::add_study(const StudyEntry& s, const std::vector<Table>& tables) const {
+  check_owned_ids(report_, s, tables);
   for (const auto& t : tables) write_table(t, report_);
   const IndexPart part = index_part(s, tables);
   ensure_directory(report_ / ".index");

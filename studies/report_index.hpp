@@ -17,10 +17,14 @@ namespace nsb {
 
 class ReportIndex {
  public:
-  // `report`: the directory being written (a ReportDirectory's staging path).
-  ReportIndex(bool full, std::filesystem::path report);
+  // `report`: the directory being written (a ReportDirectory's staging path); `rewritten`: the
+  // studies this run writes, whose earlier entries are dropped first (a table that moved from
+  // one of them to another is no clash).
+  ReportIndex(bool full, std::filesystem::path report, const std::vector<std::string>& rewritten = {});
   // Writes the study's tables into the report and keeps its entries (.index/STUDY.json);
-  // returns its section of index.md.
+  // returns its section of index.md. Throws InputError, before writing, when a table's id is
+  // reserved ("index": index.md) or a table's or figure's id is another study's of the report
+  // (its files would overwrite that study's).
   std::string add_study(const StudyEntry& study, const std::vector<Table>& tables) const;
   // Writes index.md and figures.json from the entries the report holds, read once: every
   // study's (the registered studies in their order, then the others by name), and index.md's

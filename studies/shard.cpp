@@ -9,8 +9,10 @@
 #include <optional>
 #include <regex>
 
+#include "core/build_info.hpp"
 #include "core/json.hpp"
 #include "core/output.hpp"
+#include "core/plugin.hpp"
 #include "studies/study.hpp"
 
 namespace nsb {
@@ -87,6 +89,17 @@ Json restored(const Json& j) {
   });
 }
 
+// What computed a shard's results: nsbench's version and revision, its build, and each loaded
+// plugin's file, hash and build. A merge takes only shards of its own code (an -O0 plugin's
+// shard beside an optimised one's was merged into a report stamped as the latter).
+Json code_identity() {
+  const BuildInfo& b = build_info();
+  Json plugins = Json::array();
+  for (const auto& p : loaded_plugins()) plugins.push_back({{"file", p.file}, {"hash", p.hash}, {"build", p.build_text()}});
+  return {{"nsbench", b.version}, {"git_revision", b.git_revision}, {"build_type", b.build_type}, {"compiler", b.compiler},
+          {"plugins", plugins}};
+}
+
 std::string content_hash(Json file) {
   file.erase("content_fnv1a64");
   return fnv1a64(file.dump());
@@ -110,7 +123,7 @@ fs::path shard_path(const fs::path& out, const std::string& study, long i, long 
 
 std::string shard_text(const std::string& study, bool full, const Shard& shard, const std::vector<Json>& cases,
                        const std::vector<std::size_t>& mine, const std::vector<Json>& results) {
-  Json file = {{"study", study}, {"full", full}, {"shard", shard.index}, {"of", shard.count},
+  Json file = {{"study", study}, {"full", full}, {"shard", shard.index}, {"of", shard.count}, {"code", code_identity()},
                {"cases", cases}, {"results", Json::object()}};
   for (std::size_t j = 0; j < mine.size(); ++j) file["results"][std::to_string(mine[j])] = portable(results[j]);
   file["content_fnv1a64"] = content_hash(file);
@@ -141,12 +154,14 @@ std::vector<Json> merge_shards(const std::string& study, const std::vector<Json>
     const Json shard = parse_json_bounded(read_file_bounded(path, kMaxShardBytes, "--merge: shard"));
     if (shard.is_discarded() || !shard.is_object())
       throw refuse(fmt::format("not a JSON object (damaged, cut short or nested deeper than {})", kMaxJsonDepth));
-    for (const char* key : {"study", "full", "shard", "of", "cases", "results", "content_fnv1a64"})
+    for (const char* key : {"study", "full", "shard", "of", "code", "cases", "results", "content_fnv1a64"})
       if (!shard.contains(key)) throw refuse(fmt::format("no key '{}'", key));
     if (!shard["content_fnv1a64"].is_string() || shard["content_fnv1a64"] != content_hash(shard))
       throw refuse("its content does not match its content_fnv1a64 hash (edited or damaged)");
     if (shard["study"] != study || shard["shard"] != i || shard["of"] != count)
       throw refuse(fmt::format("it names study {} shard {} of {}", shard["study"].dump(), shard["shard"].dump(), shard["of"].dump()));
+    if (const Json own = code_identity(); shard["code"] != own)
+      throw refuse(fmt::format("computed by other code ({}), not this merge's ({})", shard["code"].dump(), own.dump()));
     if (shard["cases"] != Json(cases) || shard["full"] != full)
       throw refuse("made by other study definitions (stale)");
     if (!shard["results"].is_object()) throw refuse("'results' is not an object");

@@ -3,10 +3,14 @@
 // written to <out>/shards/<study>-I-of-N.json and merged back into the study's results.
 //
 // A shard file is checked against its schema before any of it is used: the keys study, full,
-// shard, of, cases, results and content_fnv1a64 (FNV-1a 64 of the file's JSON without that
-// key, as nlohmann::json dumps it); `results` maps the decimal index of each case of this
-// shard (and only those) to an object. A file edited by hand, cut
-// short or from another study definition is refused with an InputError naming it.
+// shard, of, code, cases, results and content_fnv1a64 (FNV-1a 64 of the file's JSON without
+// that key, as nlohmann::json dumps it); `code` names what computed it (nsbench's version and
+// git revision, build type, compiler, every loaded plugin's file, hash and build) and must be
+// the merging process's own; `results` maps the decimal index of each case of this shard (and
+// only those) to an object. A file cut short, damaged, from another study definition or
+// another build is refused with an InputError naming it. The hash detects accidents, not
+// intent: a hand edit that recomputes it passes the hash, and is refused only where a result
+// breaks its schema (the checks below).
 #include <filesystem>
 #include <functional>
 #include <string>

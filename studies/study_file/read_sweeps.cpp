@@ -84,6 +84,9 @@ void check_steps(const Checker& c, const FileSweep& s, const std::string& path, 
   const std::string whose = p.t_end > 0.0 ? fmt::format("the t_end of problem '{}'", p.label) : "study.t_end";
   for (std::size_t i = 0; i < s.steps.size(); ++i) check_step(c, s.steps[i], element(child(path, "steps"), i), t_end, whose);
   for (std::size_t i = 0; i < s.full_steps.size(); ++i) check_step(c, s.full_steps[i], element(child(path, "full_steps"), i), t_end, whose);
+  if (!s.stable_fractions.empty() && !(stable > 0.0))  // NaN or <= 0: a plugin's problem breaking its contract (inf: no stiffness)
+    c.fail(child(path, "stable_steps"), fmt::format("problem '{}' ({}) reports the stable step {}", p.label, p.name, stable),
+           "a problem whose stable_step() is > 0 (inf without stiffness)");
   for (std::size_t i = 0; i < s.stable_fractions.size(); ++i)
     check_step(c, s.stable_fractions[i] * stable, element(child(path, "stable_steps"), i), t_end,
                fmt::format("{} (problem '{}', stable step {:g})", whose, p.label, stable));

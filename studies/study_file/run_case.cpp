@@ -527,18 +527,43 @@ Json run_file_case(const StudySpec& spec, const Json& c) {
 
 namespace nsb {
 
+namespace {
+
+// The parts every run's result holds (CaseRun::result, not_run): the work counters as whole
+// numbers >= 0, `run` a table with t_reached and max_penetration, and but for a declined run
+// the study's counters, one number (or null) each; an error or a Hausdorff distance >= 0.
+std::string run_damage(const StudySpec& spec, const Json& r) {
+  for (const char* key : {"status", "message", "steps", "force_evaluations", "factorizations", "lcp_iterations", "run"})
+    if (!r.contains(key)) return fmt::format("no key '{}'", key);
+  for (const char* key : {"factorizations", "lcp_iterations"})
+    if (!(r[key].is_number_integer() && r[key].get<long>() >= 0)) return fmt::format("{} {} is not a whole number >= 0", key, r[key].dump());
+  const Json& run = r["run"];
+  if (!run.is_object() || !run.contains("t_reached") || !run["t_reached"].is_number() || !run.contains("max_penetration"))
+    return "run is not a table with t_reached and max_penetration";
+  if (r["status"] != kDeclinedStatus &&
+      !(run.contains("counters") && run["counters"].is_array() && run["counters"].size() == spec.counters.size()))
+    return fmt::format("run.counters is not an array of the study's {} counters", spec.counters.size());
+  if (!r.contains("values") || !r["values"].is_array() || r["values"].size() != spec.measures.size()) return {};
+  for (std::size_t m = 0; m < spec.measures.size(); ++m) {
+    const Json& v = r["values"][m];
+    const MeasureKind kind = spec.measures[m].kind;
+    if ((kind == MeasureKind::Error || kind == MeasureKind::Hausdorff) && v.is_number() && !(v.get<double>() >= 0.0))
+      return fmt::format("values[{}] ({}) is {}, not >= 0", m, spec.measures[m].label, v.dump());
+  }
+  return {};
+}
+
+}  // namespace
+
 std::string file_result_damage(const StudySpec& spec, const Json& r) {
   const auto reals_or_null = [](const Json& a) {
     return a.is_array() && std::all_of(a.begin(), a.end(), [](const Json& x) { return x.is_number() || x.is_null(); });
   };
-  for (const char* key : {"status", "message", "steps", "force_evaluations"})
-    if (!r.contains(key)) return fmt::format("no key '{}'", key);
+  if (const std::string damage = run_damage(spec, r); !damage.empty()) return damage;
   if (r.contains("values") && !(reals_or_null(r["values"]) && r["values"].size() == spec.measures.size()))
     return fmt::format("values is not an array of {} numbers (or null)", spec.measures.size());
   for (const char* key : {"cpu", "cpu_spread"})
     if (r.contains(key) && !(r[key].is_number() || r[key].is_null())) return fmt::format("{} is not a number", key);
-  for (const char* key : {"factorizations", "lcp_iterations"})
-    if (r.contains(key) && !r[key].is_number_integer()) return fmt::format("{} is not an integer", key);
   if (r.contains("samples")) {  // an estimate's samples: an array of numbers per estimate measure, by its index
     const Json& samples = r["samples"];
     if (!samples.is_object()) return "samples is not a table";

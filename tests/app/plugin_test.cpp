@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/plugin.hpp"
+#include "integrators/registry.hpp"
 #include "run_cli.hpp"
 
 namespace {
@@ -183,4 +184,15 @@ TEST_CASE("plugin: a truncated plugin file is refused before dlopen, exit 2", "[
     CHECK_THAT(r.output, Catch::StartsWith("nsbench: error: plugin " + cut + ": not a loadable shared library ("));
   }
   fs::remove(cut);
+}
+
+TEST_CASE("plugin: a plugin refused on its second entry leaves none registered, and is refused again", "[app][plugin][bad-input]") {
+  // In this process (the tests load the example plugin first): before, the companion stayed
+  // usable, studies with it carried no "# plugins:" stamp, and a second call returned quietly.
+  const std::string clash = test_plugin("clash_builtin");
+  const std::string why = "integrator 'cd-lagrange' is already registered by nsbench (built-in)";
+  CHECK_THROWS_WITH(nsb::load_plugin(clash), Catch::Contains(why));
+  CHECK_THROWS_AS(nsb::find_integrator("cd-lagrange-companion"), nsb::InputError);
+  CHECK_THROWS_WITH(nsb::load_plugin(clash), Catch::Contains(why));
+  for (const auto& p : nsb::loaded_plugins()) CHECK(p.file != "clash_builtin.so");
 }

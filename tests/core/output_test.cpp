@@ -5,12 +5,18 @@
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "core/parameters.hpp"
 #include "tests/support/files.hpp"
@@ -180,6 +186,71 @@ TEST_CASE("report directory: new, empty and own directories are written, their m
   nsb::claim_output_directory(shards, "--out");
   CHECK(fs::exists(shards / nsb::kOutputMarker));
   nsb::claim_output_directory(shards, "--out");
+}
+
+TEST_CASE("report directory: two writers of one target take turns, neither report is lost (issue 56)", "[core][output]") {
+  const nsb::test::TempDir tmp("output_test", true);
+  const fs::path out = tmp.path / "report";
+  std::thread second;
+  {
+    nsb::ReportDirectory first(out);
+    nsb::write_file_atomic(first.path() / "first.md", "1");
+    // Started while the first holds the target: it waits, then stages from the first's
+    // committed report (before the lock both staged from the old one, the last commit won).
+    second = std::thread([&] {
+      nsb::ReportDirectory report(out);
+      nsb::write_file_atomic(report.path() / "second.md", "2");
+      report.commit();
+    });
+    first.commit();
+  }
+  second.join();
+  CHECK(nsb::test::read_text(out / "first.md") == "1");
+  CHECK(nsb::test::read_text(out / "second.md") == "2");
+  CHECK(names(tmp.path) == std::vector<std::string>{"report"});  // the lock's file removed with it
+}
+
+TEST_CASE("report directory: SIGTERM removes the staging and the lock before the process ends by it (issue 56)", "[core][output]") {
+  const nsb::test::TempDir tmp("output_test", true);
+  const fs::path out = tmp.path / "report", ready = tmp.path / "ready";
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {  // a study's process: its report staged, then stopped by a signal
+    nsb::ReportDirectory report(out);
+    report.remove_on_signals();
+    std::ofstream(ready) << "ready";
+    for (;;) ::pause();
+  }
+  while (!fs::exists(ready)) ::usleep(1000);  // waits for the child, whatever it takes
+  REQUIRE(::kill(child, SIGTERM) == 0);
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  CHECK(WIFSIGNALED(status));
+  CHECK(WTERMSIG(status) == SIGTERM);
+  CHECK(names(tmp.path) == std::vector<std::string>{"ready", "report"});  // no .report.staging.PID, no .report.lock
+}
+
+TEST_CASE("a file that cannot be written whole says why (issue 56: a full disk said only 'cannot write')", "[core][output]") {
+  const nsb::test::TempDir tmp("output_test", true);
+  const fs::path file = tmp.path / "table.csv";
+  const pid_t child = ::fork();  // a file-size limit stands in for a full disk, in a process of its own
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{1000, 1000};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    try {
+      nsb::write_file_atomic(file, std::string(100000, 'x'));
+    } catch (const nsb::InputError& e) {
+      ::_exit(std::string(e.what()) == "cannot write '" + file.string() + "': " + std::strerror(EFBIG) ? 0 : 1);
+    }
+    ::_exit(2);
+  }
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(names(tmp.path).empty());  // written whole or not at all
 }
 
 TEST_CASE("stale temporaries of dead processes are removed, live ones kept", "[core][output]") {

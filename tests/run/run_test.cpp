@@ -1,16 +1,20 @@
-// The run driver's series streamed to a file (issue 20: memory bounded whatever the length)
-// and its energy-error scale when E0 = 0.
+// The run driver's series streamed to a file (issue 20: memory bounded whatever the length),
+// its energy-error scale when E0 = 0, and its checks of what the problem and the integrator
+// report at every step (issue 56).
 #include "run/run.hpp"
 
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
+#include "tests/problems/forwarding_problem.hpp"
 
 namespace fs = std::filesystem;
 
@@ -91,4 +95,76 @@ TEST_CASE("run: min_gap and max_penetration of moving contacts are those of g(u)
   CHECK(r.max_penetration < 1e-4);  // g(u): 1.6e-5 over 3 s; g0 + L u reported 1.7e-2 there
   const std::size_t gap = r.series.column("min_gap");
   CHECK(r.series.at(0, gap) == at.gap.minCoeff());
+}
+
+namespace {
+
+// The bouncing mass whose contact geometry turns NaN below y = 0.3 (issue 56: a plugin problem's
+// NaN gaps passed as ok, 623 rows of min_gap NaN, the mass at y = -3.9).
+class NanGeometry final : public ForwardingProblem {
+ public:
+  NanGeometry() : ForwardingProblem(nsb::make_problem("bouncing-mass")) {}
+  bool contacts_move() const override { return true; }
+  void evaluate_contacts(nsb::ConstVecRef u, nsb::ContactGeometry& out) const override {
+    held().evaluate_contacts(u, out);
+    if (u[0] < 0.3) out.gap.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+};
+
+// Free flight whose reported impulse or work counter is the one given: what the run driver must
+// not take for a result.
+class Reporting final : public nsb::Integrator {
+ public:
+  Reporting(double impulse, long force_evaluations) : Integrator(nsb::Params{}), impulse_(impulse), evaluations_(force_evaluations) {}
+  void init(const nsb::Problem& p, const nsb::State& s) override { bind(p, s); }
+
+ private:
+  nsb::StepInfo advance(double dt) override {
+    state_.u += dt * state_.v;
+    impulses_.setConstant(impulse_);
+    work_.force_evaluations = evaluations_;
+    return {dt};
+  }
+  double impulse_;
+  long evaluations_;
+};
+
+}  // namespace
+
+TEST_CASE("run: non-finite contact geometry ends the run as diverged with the reason", "[integrators][run][bad-input]") {
+  const NanGeometry problem;
+  nsb::RunOptions options;
+  options.dt = 1e-3;
+  options.t_end = 3.0;
+  for (const char* name : {"cd-lagrange", "moreau-jean", "nsga"}) {
+    auto it = nsb::make_integrator(name);
+    it->init(problem, problem.initial_state());
+    const nsb::RunResult r = nsb::run(problem, *it, options);
+    INFO(name);
+    CHECK(r.status == nsb::RunStatus::Diverged);
+    CHECK_THAT(r.message, Catch::StartsWith("non-finite contact gap (the problem's contact geometry) at t = "));
+    CHECK(r.t_final < 1.0);
+    const std::size_t gap = r.series.column("min_gap");
+    for (std::size_t k = 0; k < r.series.rows(); ++k) CHECK(std::isfinite(r.series.at(k, gap)));
+  }
+}
+
+TEST_CASE("run: an integrator's NaN or negative impulse, or a negative work counter, ends the run as diverged",
+          "[integrators][run][bad-input]") {
+  const auto problem = nsb::make_problem("bouncing-mass");
+  nsb::RunOptions options;
+  options.dt = 1e-2;
+  options.t_end = 0.5;
+  const auto run_reporting = [&](double impulse, long evaluations) {
+    Reporting it(impulse, evaluations);
+    it.init(*problem, problem->initial_state());
+    return nsb::run(*problem, it, options);
+  };
+  CHECK(run_reporting(0.0, 1).status == nsb::RunStatus::Ok);
+  const nsb::RunResult nan = run_reporting(std::numeric_limits<double>::quiet_NaN(), 1);
+  CHECK(nan.status == nsb::RunStatus::Diverged);
+  CHECK(nan.steps == 1);
+  CHECK_THAT(nan.message, Catch::StartsWith("non-finite normal impulse (the integrator's; valid: finite, >= 0) at t = 0.01"));
+  CHECK_THAT(run_reporting(-1.0, 1).message, Catch::StartsWith("negative normal impulse"));
+  CHECK_THAT(run_reporting(0.0, -1).message, Catch::StartsWith("negative work counter (the integrator's; valid: >= 0)"));
 }

@@ -265,11 +265,42 @@ def test_shared_mathtext():
         check(len(own) == 4 and own == shared, "shared mathtext layouts draw other bytes")
 
 
+def test_damaged_inputs():
+    """Issue 56: a figure id './../../x' wrote outside the report, an absolute csv read any file,
+    and every damaged input ended in a traceback: now one line naming the file and the key."""
+    with tempfile.TemporaryDirectory() as top:
+        root = os.path.join(top, "a", "report")
+        os.makedirs(root)
+        write_report(root)
+        script = os.path.join(os.path.dirname(figures.__file__), "figures.py")
+        with open(os.path.join(root, "figures.json")) as f:
+            good = json.load(f)
+        conv = next(s for s in good if s["id"] == "conv")
+        damages = [
+            ([dict(conv, id="./../../escaped_fig")], "id './../../escaped_fig' is not a file name"),
+            ([dict(conv, csv="/etc/passwd")], "csv '/etc/passwd' is outside the report"),
+            ([dict(conv, csv="../../x.csv")], "csv '../../x.csv' is outside the report"),
+            ([dict(conv, csv="missing.csv")], "figure 'conv': cannot read"),
+            ([dict(conv, y="no such column")], "figure 'conv': its entry or its table conv.csv has no key or column"),
+            ([dict(conv, id=5)], "figure 0: key 'id' missing or not a string"),
+            ({"id": "conv"}, "expected a list of figures"),
+            ("[{", "not JSON"),
+        ]
+        for figures_json, expected in damages:
+            with open(os.path.join(root, "figures.json"), "w") as f:
+                f.write(figures_json if isinstance(figures_json, str) else json.dumps(figures_json))
+            r = subprocess.run(["/usr/bin/python3", script, root], capture_output=True, text=True)
+            check(r.returncode != 0 and expected in r.stderr and r.stderr.count("\n") == 1 and "Traceback" not in r.stderr,
+                  f"{expected}: exit {r.returncode}, stderr {r.stderr!r}")
+        check(not any(name.startswith("escaped") for name in os.listdir(top)), "a figure was written outside the report")
+
+
 if __name__ == "__main__":
     test_style_map(sys.argv[1])
     test_distinct_series(sys.argv[1])
     test_figures()
     test_shared_mathtext()
+    test_damaged_inputs()
     for f in failures:
         print("FAILED:", f)
     print(f"figures_test: {len(failures)} failures")

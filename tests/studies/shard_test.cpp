@@ -171,6 +171,12 @@ TEST_CASE("shards: a damaged shard is refused naming the file", "[studies][shard
     std::ofstream(first, std::ios::trunc) << text;
     expected = "not a JSON object (damaged, cut short or nested deeper than 64)";
   }
+  SECTION("another revision's or build's shard, rehashed (issue 56: shards carried no code identity)") {
+    REQUIRE(j["code"]["git_revision"].is_string());
+    j["code"]["git_revision"] = "0000000";
+    write_rehashed(first, j);
+    expected = "computed by other code ({\"build_type\"";
+  }
   SECTION("another study definition, rehashed") {
     j["cases"][0]["dt"] = 0.2;
     write_rehashed(first, j);
@@ -228,6 +234,11 @@ TEST_CASE("nsbench-study --merge: a result against its study's schema, one line 
       {[](Json& r) { r.erase("message"); }, "no key 'message'"},
       {[](Json& r) { r["history"] = {{"t", {0.1, 0.2}}, {"e", {0.1}}}; }, "history is not two arrays"},
       {[](Json& r) { r["cpu"] = "fast"; }, "cpu is not a number"},
+      // Issue 56: accepted before, a hand edit with its hash recomputed.
+      {[](Json& r) { r["values"][0] = -5; }, "values[0] (err u max) is -5, not >= 0"},
+      {[](Json& r) { r["run"] = Json::object(); }, "run is not a table with t_reached and max_penetration"},
+      {[](Json& r) { r["run"].erase("counters"); }, "run.counters is not an array of the study's 0 counters"},
+      {[](Json& r) { r["lcp_iterations"] = -1; }, "lcp_iterations -1 is not a whole number >= 0"},
   };
   for (const auto& [damage, expected] : damages) {
     Json j = whole;

@@ -914,6 +914,12 @@ TEST_CASE("study file: a grid of problem parameters and a measure's time window"
              StartsWith("f.toml:8: problem[0].grid.e: also given in parameters"));
   CHECK_THAT(study_error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "grid = { e = [] }")),
              StartsWith("f.toml:7: problem[0].grid.e: expected an array of one or more values"));
+  // The product's size from the lists' lengths, before any point is built (issue 56: a 1,000 x
+  // 4,000 grid ended in std::bad_alloc at 1.5 GB).
+  std::string forty = "0.5";
+  for (int i = 1; i < 40; ++i) forty += ", 0.5";
+  CHECK_THAT(study_error_of(replaced(kMinimal, "parameters = { e = 0.5 }", "grid = { e = [" + forty + "], h0 = [" + forty + "] }")),
+             StartsWith("f.toml:7: problem[0].grid: 1600 problems in the grid (the product of its lists' lengths); valid: at most 1000 points"));
 
   // Before the first impact (0.4515 s) Moreau-Jean and the exact solution are both free flight.
   const std::string window = quick_study("0.6") + R"(
