@@ -208,7 +208,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     while (integrator.state().t < options.t_end * (1.0 - 1e-12)) {
       if (options.interrupt && *options.interrupt) {
         result.status = RunStatus::Interrupted;
-        result.message = fmt::format("interrupted at t = {}", integrator.state().t);
+        result.message = fmt::format("interrupted at t = {:.6g}", integrator.state().t);
         // The series ends where the summary does, at the last step taken.
         if (result.steps % options.sample_every != 0 && finite()) sample(info.dt);
         break;
@@ -234,7 +234,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
       if (const std::string fault = output_fault(info.dt, options, gap, problem.contacts_move() ? &moving : nullptr, integrator, largest_impulse);
           !fault.empty()) {
         result.status = RunStatus::Diverged;
-        result.message = fmt::format("{} at t = {}", fault, integrator.state().t);
+        result.message = fmt::format("{} at t = {:.6g}", fault, integrator.state().t);
         break;
       }
       const bool last = integrator.state().t >= options.t_end * (1.0 - 1e-12);
@@ -251,19 +251,19 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
         observe_seconds += wall_now() - observe_start;
         if (diverged) {
           result.status = RunStatus::Diverged;
-          result.message = fmt::format("non-finite state at t = {}", integrator.state().t);
+          result.message = fmt::format("non-finite state at t = {:.6g}", integrator.state().t);
           break;
         }
       }
       if (result.steps >= options.max_steps) {
         result.status = RunStatus::Diverged;
-        result.message = fmt::format("step limit {} reached at t = {}", options.max_steps, integrator.state().t);
+        result.message = fmt::format("step limit {} reached at t = {:.6g}", options.max_steps, integrator.state().t);
         break;
       }
       const long spent = integrator.work().force_evaluations + (equivalents ? static_cast<long>(*equivalents) : 0);
       if (options.max_force_evaluations > 0 && spent > options.max_force_evaluations) {
         result.status = RunStatus::OverBudget;
-        result.message = fmt::format("budget of {} F_int evaluations{} exceeded at t = {} after {} steps",
+        result.message = fmt::format("budget of {} F_int evaluations{} exceeded at t = {:.6g} after {} steps",
                                      options.max_force_evaluations, equivalents ? " (or their equivalents)" : "",
                                      integrator.state().t, result.steps);
         break;
@@ -293,7 +293,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
   result.work = integrator.work();
   if (result.status != RunStatus::Diverged && result.status != RunStatus::Interrupted && !finite()) {  // over budget and non-finite: diverged
     result.status = RunStatus::Diverged;
-    result.message = fmt::format("non-finite state at t = {}", result.t_final);
+    result.message = fmt::format("non-finite state at t = {:.6g}", result.t_final);
   }
   return result;
 }
