@@ -37,6 +37,7 @@
 #include "core/output.hpp"
 #include "core/parameters.hpp"
 #include "core/plugin.hpp"
+#include "studies/driver.hpp"
 #include "studies/parallel.hpp"
 #include "studies/performance.hpp"
 #include "studies/report_index.hpp"
@@ -71,14 +72,6 @@ void write_performance(const std::vector<std::string>& files, const fs::path& ou
   const auto footer = text.rfind("---\n");  // the environment footer stays last
   text.insert(footer == std::string::npos ? text.size() : footer, section);
   nsb::write_file_atomic(index, text);
-}
-
-// A study's own schema of its results, for --merge: the file study's; the registered ones are
-// checked for the keys every study shares (studies/shard.hpp).
-std::function<std::string(const Json&, const Json&)> result_check(const nsb::StudyEntry* s,
-                                                                  const std::optional<nsb::StudySpec>& spec) {
-  if (!spec || s->name != spec->name) return {};
-  return [&spec](const Json&, const Json& result) { return nsb::file_result_damage(*spec, result); };
 }
 
 // `nsbench-study show NAME`: the text of a built-in study file, to copy and edit.
@@ -151,13 +144,9 @@ int main(int argc, char** argv) {
       write_performance({names.begin() + 1, names.end()}, out);
       return 0;
     }
-    const nsb::Shard shard = shard_text.empty() ? nsb::Shard{} : nsb::parse_shard(shard_text);
-    nsb::study_jobs();  // a bad NSBENCH_JOBS is reported before any work
-    if (shard.count && merge) throw InputError("--shard and --merge: give one of them");
-    const bool verify = !verify_dir.empty();
-    if (verify && (shard.count || merge)) throw InputError("--verify: recomputes whole studies, without --shard or --merge");
-    if (verify && !fs::is_directory(verify_dir)) throw InputError(fmt::format("--verify '{}': no such directory", verify_dir));
-    nsb::VerifyResult verified;
+    nsb::DriverOptions options{out, full, shard_text.empty() ? nsb::Shard{} : nsb::parse_shard(shard_text), merge, verify_dir,
+                               tolerance};
+    nsb::check_driver_options(options);
     std::vector<const nsb::StudyEntry*> selected;
     std::optional<nsb::StudyEntry> file_study;  // nsbench-study run FILE
     std::optional<nsb::StudySpec> spec;
@@ -166,6 +155,10 @@ int main(int argc, char** argv) {
       spec = nsb::read_study_file(names[1]);
       file_study = nsb::file_study(*spec);
       selected.push_back(&*file_study);
+      options.result_check = [&spec](const nsb::StudyEntry& s, const Json&, const Json& result) {
+        return s.name == spec->name ? nsb::file_result_damage(*spec, result) : std::string{};
+      };
+      options.before_commit = [&spec](const fs::path& report) { nsb::write_study_copy(*spec, report); };
     }
     for (const auto& n : file_study ? std::vector<std::string>{} : names) {
       bool found = false;
@@ -181,87 +174,7 @@ int main(int argc, char** argv) {
                                      fmt::join(valid, ", ")));
       }
     }
-    if (!verify) nsb::claim_output_directory(out, "--out");  // a directory the suite did not write is refused
-    // The report (tables, figures, index, a study file's copy) is staged and swapped in whole.
-    std::optional<nsb::ReportDirectory> report;
-    if (!verify && !shard.count) {
-      report.emplace(out);
-      report->remove_on_signals();  // before the pool's threads
-    }
-    const nsb::StudyOptions options{full};
-    std::optional<nsb::ReportIndex> index;
-    std::vector<std::string> rewritten;
-    for (const auto* s : selected) rewritten.push_back(s->name);
-    if (report) index.emplace(full, report->path(), rewritten);
-    // The cases of every selected study (this shard's), run in one pool: a study's longest
-    // case no longer leaves the other cores idle at its end (each case is independent, so the
-    // results do not depend on the order).
-    std::vector<std::vector<Json>> all_cases(selected.size()), all_results(selected.size());
-    std::vector<std::vector<std::size_t>> mine(selected.size());
-    std::vector<std::pair<std::size_t, std::size_t>> pending;  // (study, case)
-    std::vector<std::string> pending_locks;  // the process-wide lock each takes (parallel.hpp)
-    std::vector<std::string> pooled;
-    for (std::size_t i = 0; i < selected.size(); ++i) {
-      all_cases[i] = nsb::study_cases(*selected[i], options);
-      if (merge) continue;
-      all_results[i].resize(all_cases[i].size());
-      for (std::size_t k = 0; k < all_cases[i].size(); ++k)
-        if (!shard.count || static_cast<long>(k % static_cast<std::size_t>(shard.count)) == shard.index - 1) {
-          mine[i].push_back(k);
-          pending.emplace_back(i, k);
-          pending_locks.push_back(nsb::case_lock(*selected[i], all_cases[i][k]));
-        }
-      pooled.push_back(selected[i]->name);
-    }
-    const auto pool_start = std::chrono::steady_clock::now();
-    const auto computed = nsb::parallel_map<Json>(pending.size(), [&](std::size_t j) {
-      const auto [i, k] = pending[j];
-      return nsb::run_study_case(*selected[i], all_cases[i][k], options);
-    }, fmt::format("{}", fmt::join(pooled, "+")), pending_locks);
-    for (std::size_t j = 0; j < pending.size(); ++j)
-      all_results[pending[j].first][pending[j].second] = computed[j];
-    if (!pending.empty())
-      fmt::print(stderr, "{} cases of {} in {:.1f} s\n", pending.size(), fmt::join(pooled, ", "),
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - pool_start).count());
-    for (std::size_t i = 0; i < selected.size(); ++i) {
-      const auto* s = selected[i];
-      const std::vector<Json>& cases = all_cases[i];
-      if (shard.count) {
-        std::vector<Json> shard_results;
-        for (std::size_t k : mine[i]) shard_results.push_back(all_results[i][k]);
-        nsb::ensure_directory(fs::path(out) / "shards");
-        nsb::write_file_atomic(nsb::shard_path(out, s->name, shard.index, shard.count),
-                               nsb::shard_text(s->name, full, shard, cases, mine[i], shard_results));
-        fmt::print(stderr, "study {}: shard {}/{} ({} of {} cases) written\n", s->name, shard.index, shard.count,
-                   mine[i].size(), cases.size());
-        continue;
-      }
-      const std::vector<Json> results =
-          merge ? nsb::merge_shards(s->name, cases, out, full, result_check(s, spec)) : std::move(all_results[i]);
-      const auto tables = nsb::study_tables(*s, cases, results, options);
-      if (verify) {
-        for (const auto& t : tables) {
-          auto r = nsb::verify_table(t, fs::path(verify_dir), tolerance);
-          verified.cells_compared += r.cells_compared;
-          for (auto& d : r.differences) verified.differences.push_back(std::move(d));
-        }
-        continue;
-      }
-      index->add_study(*s, tables);
-      fmt::print(stderr, "study {}: {} cases, {} tables\n", s->name, cases.size(), tables.size());
-    }
-    if (verify) {
-      for (const auto& d : verified.differences) fmt::print("{}\n", d);
-      fmt::print("verify against {}: {} cells compared (reals to rtol {:g}, atol {:g}; integers, statuses and text "
-                 "exactly; CPU-time columns skipped), {} differences\n",
-                 verify_dir, verified.cells_compared, tolerance.rtol, tolerance.atol, verified.differences.size());
-      return verified.differences.empty() ? 0 : 1;
-    }
-    if (!shard.count) {
-      if (spec) nsb::write_study_copy(*spec, report->path());
-      index->write();
-      report->commit();
-    }
+    return nsb::drive_studies(selected, options);
   } catch (const InputError& e) {
     fmt::print(stderr, "nsbench-study: error: {}\n", e.what());
     return 2;

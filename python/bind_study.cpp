@@ -1,13 +1,22 @@
 // nsbench.run_study: a study file (studies/study_file.hpp; docs/study_files.md) run as
 // `nsbench-study run FILE --out DIR` runs it, its cases in parallel without the GIL (an
 // integrator written in Python takes it for its own steps, so those cases run one at a time).
+// The C++ side of nsbench.study (python/nsbench/study.py): described cases run in the case pool
+// (_run_cases) and a study written in Python driven as nsbench-study drives a built-in one
+// (_drive_study, studies/driver.hpp). Cases and results cross as JSON text (studies/case_run.hpp).
+#include <fmt/format.h>
+#include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <optional>
 #include <string>
 
 #include "core/environment.hpp"
 #include "python/bindings.hpp"
+#include "studies/case_run.hpp"
+#include "studies/driver.hpp"
+#include "studies/parallel.hpp"
 #include "studies/study_file.hpp"
 
 namespace nsb::python {
@@ -52,9 +61,97 @@ std::vector<std::string> run_study(const py::object& study, const std::string& o
   return run_study_file(spec, out);
 }
 
+// A study whose cases are described runs (studies/case_run.hpp).
+StudyEntry described_study(const std::string& name) {
+  StudyEntry study;
+  study.name = name;
+  study.run_case = run_described_case;
+  study.case_integrators = integrators_named;
+  return study;
+}
+
+std::vector<Json> parsed(const std::vector<std::string>& texts, const char* what) {
+  std::vector<Json> items;
+  for (const auto& text : texts) {
+    try {
+      items.push_back(Json::parse(text));
+    } catch (const Json::exception& e) {
+      throw InputError(fmt::format("{}: not JSON: {}", what, e.what()));
+    }
+  }
+  return items;
+}
+
+std::vector<std::string> dumped(const std::vector<Json>& items) {
+  std::vector<std::string> texts;
+  for (const auto& j : items) texts.push_back(j.dump());
+  return texts;
+}
+
+// The described cases run in the pool, each result as JSON text, in the cases' order.
+std::vector<std::string> run_cases(const std::vector<std::string>& case_texts, const std::string& label) {
+  const std::vector<Json> cases = parsed(case_texts, "case");
+  const StudyEntry study = described_study(label);
+  std::vector<std::string> locks;
+  for (const Json& c : cases) locks.push_back(case_lock(study, c));
+  py::gil_scoped_release free;
+  const auto results = parallel_map<Json>(cases.size(), [&](std::size_t k) { return run_study_case(study, cases[k], {}); },
+                                          label, locks);
+  return dumped(results);
+}
+
+using CasesFunction = std::function<std::vector<std::string>(bool full)>;
+using TablesFunction = std::function<std::vector<Table>(const std::vector<std::string>& cases,
+                                                        const std::vector<std::string>& results, bool full)>;
+
+// A Python study driven as nsbench-study drives a registered one: its cases and tables from
+// Python (the GIL taken for those calls only), its runs in the pool without it.
+int drive_study(const std::string& name, const std::string& description, const std::string& source, const CasesFunction& cases,
+                const TablesFunction& tables, const DriverOptions& options) {
+  StudyEntry study = described_study(name);
+  study.description = description;
+  study.source = source;
+  study.cases = [&cases](const StudyOptions& o) {
+    py::gil_scoped_acquire gil;
+    return parsed(cases(o.full), "case");
+  };
+  study.tables = [&tables](const std::vector<Json>& c, const std::vector<Json>& r, const StudyOptions& o) {
+    py::gil_scoped_acquire gil;
+    return tables(dumped(c), dumped(r), o.full);
+  };
+  DriverOptions o = options;
+  o.result_check = [](const StudyEntry&, const Json&, const Json& result) { return described_result_damage(result); };
+  py::gil_scoped_release free;
+  return drive_studies({&study}, o);
+}
+
+DriverOptions driver_options(const std::string& out, bool full, const std::string& shard, bool merge, const std::string& verify,
+                             double rtol, double atol) {
+  for (const auto& [option, value] : {std::pair{"rtol", rtol}, {"atol", atol}})
+    if (!(value >= 0.0 && std::isfinite(value))) throw InputError(fmt::format("--{} {}: must be a finite number >= 0", option, value));
+  return {out, full, shard.empty() ? Shard{} : parse_shard(shard), merge, verify, {rtol, atol}};
+}
+
 }  // namespace
 
 void bind_study(py::module_& m) {
+  m.def("_assignments", [](const py::dict& parameters) { return assignments(parameters); }, "parameters"_a,
+        "The \"key=value\" items of keyword arguments, as nsbench.run reads them (bindings.hpp, value_text).");
+  m.def("_run_cases", &run_cases, "cases"_a, "label"_a,
+        "nsbench.study.run's C++ side: the cases (JSON texts, studies/case_run.hpp) run in the case pool\n"
+        "without the GIL; their results as JSON texts, in order.");
+  m.def("_drive_study", [](const std::string& name, const std::string& description, const std::string& source,
+                           const CasesFunction& cases, const TablesFunction& tables, const std::vector<std::string>& argv,
+                           const std::string& out, bool full, const std::string& shard, bool merge, const std::string& verify,
+                           double rtol, double atol) {
+          std::vector<const char*> args;
+          for (const auto& a : argv) args.push_back(a.c_str());
+          set_command_line(static_cast<int>(args.size()), args.data());  // the report's footer names it
+          return drive_study(name, description, source, cases, tables, driver_options(out, full, shard, merge, verify, rtol, atol));
+        },
+        "name"_a, "description"_a, "source"_a, "cases"_a, "tables"_a, "argv"_a, "out"_a, "full"_a, "shard"_a, "merge"_a, "verify"_a,
+        "rtol"_a, "atol"_a,
+        "nsbench.study.Study.main's C++ side (studies/driver.hpp): the exit status.");
   m.def("run_study", &run_study, "study"_a = py::none(), "out"_a, py::kw_only(), "text"_a = py::none(),
         "Runs a study file (TOML, or JSON with the same schema) as\n"
         "`nsbench-study run FILE --out OUT` and writes its report into `out` (tables as .csv/.md/.tex,\n"

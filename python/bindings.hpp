@@ -22,7 +22,8 @@ void bind_registry(py::module_& m);    // problems(), integrators(), load_plugin
 void bind_problem(py::module_& m);     // Problem, State, Contacts
 void bind_run(py::module_& m);         // _run(), check()
 void bind_integrator(py::module_& m);  // _IntegratorCore, StepInfo, register_integrator()
-void bind_study(py::module_& m);       // run_study()
+void bind_study(py::module_& m);       // run_study(), _run_cases(), _drive_study()
+void bind_tables(py::module_& m);      // Table, Column, Figure, the writers, the measures of a run's numbers
 
 // A parameter's value as Python sees it: float (real), int (integer), str (choice), None (an
 // unset optional real).

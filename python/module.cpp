@@ -21,4 +21,5 @@ PYBIND11_MODULE(_nsbench, m) {
   nsb::python::bind_run(m);
   nsb::python::bind_integrator(m);
   nsb::python::bind_study(m);
+  nsb::python::bind_tables(m);
 }

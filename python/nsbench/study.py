@@ -1,0 +1,163 @@
+"""Studies written in Python on the C++ engine: cases declared as data, run in the C++ case pool
+without the GIL, measured in NumPy or with the measures library, written as the suite's tables.
+
+    from nsbench import study
+    cases = [study.case("bouncing-bar", "cd-lagrange", cfl=0.9, t_end=2.0, N=n) for n in (50, 100, 200)]
+    results = study.run(cases)                      # in parallel (NSBENCH_JOBS), no GIL
+    r = results[0]; r.status, r.t, r.series["total_energy"], r.summary["steps"]
+
+A study that writes a report is a Study: its cases (a function of `full`) and its tables (a
+function of the results and `full`, returning study.Table objects); Study.main() gives it the
+command line of nsbench-study (--out, --full, --jobs, --shard I/N, --merge, --verify DIR, --rtol,
+--atol, --plugin), through the same driver (studies/driver.hpp): the same report directory,
+index, shards and verification as a built-in study.
+
+A case (studies/case_run.hpp) runs as `nsbench run` does, its numbers the command line's bit for
+bit: an integrator that declines the problem gives status "n/a" with its reason, a diverged run
+status "diverged" with its message; neither stops the others.
+"""
+import argparse
+import json
+import os
+import sys
+
+import numpy as np
+
+from . import _nsbench
+from ._nsbench import (Column, Figure, Table, above_round_off, compared_impacts, contact_phases, fit_line, fit_order,
+                       hausdorff, observed_order, to_csv, to_latex, to_markdown, verify_table)
+
+__all__ = ["Column", "Figure", "Result", "Study", "Table", "above_round_off", "case", "compared_impacts",
+           "contact_phases", "fit_line", "fit_order", "hausdorff", "observed_order", "run", "to_csv", "to_latex",
+           "to_markdown", "verify_table"]
+
+_RUN_KEYS = ("dt", "cfl", "sample_every", "states", "cpu_repeats", "max_force_evaluations")
+
+
+def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, states=False, cpu_repeats=0,
+         max_force_evaluations=0, labels=None, **parameters):
+    """A case: `integrator` on `problem` (names) to t_end, at step dt or at cfl times the problem's
+    stable step. Keyword arguments other than the run options are the problem's and the
+    integrator's parameters, as in nsbench.run ("problem.key" or "integrator.key" where both
+    declare key). labels: a dict of the study's own (JSON) values, kept with the case.
+    Returns the case as a dict (JSON), checked when it runs."""
+    c = {"problem": problem, "integrator": integrator, "t_end": t_end, "set": _nsbench._assignments(parameters)}
+    for key, value in (("dt", dt), ("cfl", cfl)):
+        if value is not None:
+            c[key] = value
+    if sample_every != 1:
+        c["sample_every"] = sample_every
+    if states:
+        c["states"] = True
+    if cpu_repeats:
+        c["cpu_repeats"] = cpu_repeats
+    if max_force_evaluations:
+        c["max_force_evaluations"] = max_force_evaluations
+    if labels:
+        c["labels"] = dict(labels)
+    return c
+
+
+def _array(values):
+    return np.array([np.nan if x is None else x for x in values], dtype=float)
+
+
+class Result:
+    """A case's result: case (the dict), status ('ok', 'diverged', 'over budget', 'n/a'), message,
+    dt (the step taken), steps, summary (the run's summary.json as a dict; empty for n/a), series
+    (column name -> 1-D array, as series.csv: t, dt, kinetic, potential, total_energy, min_gap,
+    impulse, ... then the problem's observables; every column also an attribute), and with
+    states=True state_t, u, v (samples x ndof); cpu and cpu_spread with cpu_repeats. A value
+    that was not finite (NaN, an overflow) reads NaN."""
+
+    def __init__(self, the_case, data):
+        self.case = the_case
+        self.status = data["status"]
+        self.message = data.get("message", "")
+        self.dt = data.get("dt", np.nan)
+        self.steps = data.get("steps", 0)
+        self.summary = data.get("summary", {})
+        self.columns = data.get("columns", [])
+        self.series = {name: _array(values) for name, values in zip(self.columns, data.get("series", []))}
+        if "u" in data:
+            self.state_t = _array(data["state_t"])
+            self.u = np.array(data["u"], dtype=float).reshape(len(self.state_t), -1)
+            self.v = np.array(data["v"], dtype=float).reshape(len(self.state_t), -1)
+        self.cpu = np.nan if data.get("cpu") is None else data["cpu"]
+        self.cpu_spread = np.nan if data.get("cpu_spread") is None else data["cpu_spread"]
+
+    @property
+    def ok(self):
+        return self.status == "ok"
+
+    def __getattr__(self, name):
+        series = self.__dict__.get("series", {})
+        if name in series:
+            return series[name]
+        raise AttributeError(f"Result has no attribute or column '{name}' (columns: {', '.join(series)})")
+
+    def __repr__(self):
+        c = self.case
+        return f"Result({c['integrator']} on {c['problem']}: {self.status}, {self.steps} steps)"
+
+
+def run(cases, label="nsbench.study.run"):
+    """Runs the cases (study.case dicts) in the C++ case pool, NSBENCH_JOBS at a time (default: the
+    cores), without the GIL (an integrator written in Python takes it for its own steps, so such
+    cases run one at a time); returns their Results in the cases' order. ValueError naming the
+    key for a bad case."""
+    cases = list(cases)
+    texts = _nsbench._run_cases([json.dumps(c) for c in cases], label)
+    return [Result(c, json.loads(t)) for c, t in zip(cases, texts)]
+
+
+class Study:
+    """A study that writes a report: name, description, cases(full) -> list of case dicts,
+    tables(results, full) -> list of Table; source: the file that defines it (for the index)."""
+
+    def __init__(self, name, description, cases, tables, source=None):
+        self.name, self.description = name, description
+        self._cases, self._tables = cases, tables
+        if source is None:
+            source = os.path.relpath(sys.argv[0]) if sys.argv and sys.argv[0] else name
+        self.source = source
+
+    def cases(self, full=False):
+        return list(self._cases(full))
+
+    def tables(self, results, full=False):
+        return list(self._tables(results, full))
+
+    def main(self, argv=None):
+        """nsbench-study's options for this study; returns the exit status (0; 1 when --verify
+        found differences; 2 for bad input, its one-line message on stderr)."""
+        argv = sys.argv[1:] if argv is None else list(argv)
+        args = _parser(self).parse_args(argv)
+        try:
+            if args.jobs is not None:
+                os.environ["NSBENCH_JOBS"] = str(args.jobs)
+            for plugin in args.plugin:
+                _nsbench.load_plugin(plugin)
+            return _nsbench._drive_study(
+                self.name, self.description, self.source, lambda full: [json.dumps(c) for c in self.cases(full)],
+                lambda cases, results, full: self.tables(
+                    [Result(json.loads(c), json.loads(r)) for c, r in zip(cases, results)], full),
+                [sys.argv[0] if sys.argv else self.name] + argv, args.out, args.full, args.shard or "", args.merge,
+                args.verify or "", args.rtol, args.atol)
+        except ValueError as e:
+            print(f"{self.name}: error: {e}", file=sys.stderr)
+            return 2
+
+
+def _parser(s):
+    ap = argparse.ArgumentParser(prog=s.name, description=s.description)
+    ap.add_argument("--out", default="reports", help="output directory (default reports)")
+    ap.add_argument("--full", action="store_true", help="run the long sweeps")
+    ap.add_argument("--jobs", type=int, help="cases run at once (NSBENCH_JOBS; default: the cores)")
+    ap.add_argument("--shard", help="run only shard I of N of the cases (job arrays), e.g. 3/8")
+    ap.add_argument("--merge", action="store_true", help="merge the shards' results in OUT/shards and write the report")
+    ap.add_argument("--verify", help="recompute and compare with the report in this directory; writes nothing")
+    ap.add_argument("--rtol", type=float, default=1e-9, help="--verify: relative tolerance on reals (default 1e-9)")
+    ap.add_argument("--atol", type=float, default=0.0, help="--verify: absolute tolerance on reals (default 0)")
+    ap.add_argument("--plugin", action="append", default=[], help="load integrators/problems from a plugin (repeatable)")
+    return ap

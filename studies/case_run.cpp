@@ -1,0 +1,146 @@
+#include "studies/case_run.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <optional>
+
+#include "integrators/registry.hpp"
+#include "problems/registry.hpp"
+#include "run/run_case.hpp"
+
+namespace nsb {
+
+namespace {
+
+const Json& required(const Json& c, const char* key) {
+  if (!c.is_object() || !c.contains(key)) throw InputError(fmt::format("case: key '{}' is missing", key));
+  return c[key];
+}
+
+std::string text_key(const Json& c, const char* key) {
+  const Json& j = required(c, key);
+  if (!j.is_string()) throw InputError(fmt::format("case {} {}: must be a string", key, j.dump()));
+  return j.get<std::string>();
+}
+
+// A number as the text a run option is parsed from: the shortest text that reads back as it.
+std::string number_text(const Json& c, const char* key, const std::string& fallback) {
+  if (!c.contains(key)) return fallback;
+  const Json& j = c[key];
+  if (!j.is_number() || j.is_boolean()) throw InputError(fmt::format("case {} {}: must be a number", key, j.dump()));
+  return j.dump();
+}
+
+std::vector<std::string> assignments_of(const Json& c) {
+  if (!c.contains("set")) return {};
+  const Json& s = c["set"];
+  std::vector<std::string> items;
+  if (s.is_array())
+    for (const auto& item : s)
+      if (item.is_string()) items.push_back(item.get<std::string>());
+  if (!s.is_array() || items.size() != s.size()) throw InputError(fmt::format("case set {}: must be a list of \"key=value\" strings", s.dump()));
+  return items;
+}
+
+long count_key(const Json& c, const char* key, long fallback) {
+  if (!c.contains(key)) return fallback;
+  const Json& j = c[key];
+  if (!j.is_number_integer() || j.get<long>() < 0) throw InputError(fmt::format("case {} {}: must be an integer >= 0", key, j.dump()));
+  return j.get<long>();
+}
+
+bool flag_key(const Json& c, const char* key) {
+  if (!c.contains(key)) return false;
+  if (!c[key].is_boolean()) throw InputError(fmt::format("case {} {}: must be true or false", key, c[key].dump()));
+  return c[key].get<bool>();
+}
+
+// The step: dt as given, or cfl times the stable step; nullopt (with the reason) when cfl meets
+// a problem without a finite one.
+std::string step_text(const Json& c, const Problem& p, std::string& declined) {
+  if (c.contains("dt") == c.contains("cfl")) throw InputError("case: give one of 'dt' and 'cfl'");
+  if (c.contains("dt")) return number_text(c, "dt", "");
+  const double cfl = parse_real(number_text(c, "cfl", ""), "cfl");
+  if (!(cfl > 0.0 && std::isfinite(cfl))) throw InputError(fmt::format("case cfl {}: must be a finite number > 0", cfl));
+  const double stable = p.stable_step();
+  if (!(stable > 0.0 && std::isfinite(stable))) {
+    declined = fmt::format("cfl {}: the problem's stable step is {}, not a finite step to take a fraction of", cfl, stable);
+    return "1";
+  }
+  return Json(cfl * stable).dump();
+}
+
+// u and v at every sample, row after row.
+class StateRows final : public StateSink {
+ public:
+  void state(const State& s, const Vec&, const Vec&, const Vec&) override {
+    t.push_back(s.t);
+    u.push_back(reals({s.u.data(), s.u.data() + s.u.size()}));
+    v.push_back(reals({s.v.data(), s.v.data() + s.v.size()}));
+  }
+  std::vector<double> t;
+  Json u = Json::array(), v = Json::array();
+};
+
+Json series_json(const Series& s) {
+  Json columns = Json::array();
+  for (std::size_t j = 0; j < s.columns.size(); ++j) {
+    std::vector<double> column(s.rows());
+    for (std::size_t i = 0; i < s.rows(); ++i) column[i] = s.at(i, j);
+    columns.push_back(reals(column));
+  }
+  return columns;
+}
+
+Json declined_result(const std::string& reason) { return {{"status", kDeclinedStatus}, {"message", reason}}; }
+
+}  // namespace
+
+Json run_described_case(const Json& c) {
+  const std::string problem = text_key(c, "problem"), integrator = text_key(c, "integrator");
+  const std::vector<std::string> sets = assignments_of(c);
+  RunCase rc = make_run_case(problem, integrator, sets);
+  std::string declined;
+  RunOptions o = parse_run_options(step_text(c, *rc.problem, declined), number_text(c, "t_end", ""),
+                                   number_text(c, "sample_every", "1"), OptionStyle::Python);
+  o.max_force_evaluations = count_key(c, "max_force_evaluations", 0);
+  const long repeats = count_key(c, "cpu_repeats", 0);
+  const bool states = flag_key(c, "states");
+  if (!declined.empty()) return declined_result(declined);
+  if (const auto reason = init_or_decline(*rc.integrator, *rc.problem)) return declined_result(*reason);
+  StateRows rows;
+  if (states) o.state_sink = &rows;
+  const RunResult r = run(*rc.problem, *rc.integrator, o);
+  Json result = {{"status", status_name(r.status)}, {"message", r.message}, {"dt", o.dt}, {"steps", r.steps},
+                 {"force_evaluations", r.work.force_evaluations},
+                 {"summary", Json::parse(summary_to_json(*rc.problem, *rc.integrator, o, r))},
+                 {"columns", r.series.columns}, {"series", series_json(r.series)}};
+  if (states) {
+    result["state_t"] = reals(rows.t);
+    result["u"] = std::move(rows.u);
+    result["v"] = std::move(rows.v);
+  }
+  if (repeats > 0) {
+    const auto routed = route_overrides(sets, find_problem(problem).parameters(), find_integrator(integrator).parameters());
+    o.state_sink = nullptr;
+    const CpuCost cost = cpu_cost(*rc.problem, integrator, routed.integrator, o, static_cast<int>(repeats));
+    result["cpu"] = real(cost.median);
+    result["cpu_spread"] = real(cost.spread);
+  }
+  return result;
+}
+
+std::string described_result_damage(const Json& r) {
+  if (!r.is_object() || !r.contains("status") || !r["status"].is_string()) return "no status";
+  if (r["status"] == kDeclinedStatus) return r.contains("message") && r["message"].is_string() ? "" : "a declined run without its reason";
+  for (const char* key : {"summary", "columns", "series"})
+    if (!r.contains(key)) return fmt::format("no '{}'", key);
+  if (!r["columns"].is_array() || !r["series"].is_array() || r["columns"].size() != r["series"].size())
+    return "'columns' and 'series' are not lists of the same length";
+  for (const auto& column : r["series"])
+    if (!column.is_array()) return "a series column is not a list";
+  return "";
+}
+
+}  // namespace nsb

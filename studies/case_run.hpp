@@ -1,0 +1,40 @@
+#pragma once
+// A run described as data: the case of a study written in Python (nsbench.study, python/
+// nsbench/study.py) and its result, both JSON, so that the study driver (studies/driver.hpp)
+// pools, shards and merges them like any study's cases. The run is `nsbench run`'s (run/
+// run_case.hpp: the same names, parameter routing, checks and messages), so its numbers are
+// the command line's bit for bit.
+//
+// The case (keys other than these are the study's own labels, kept and ignored):
+//   problem, integrator      names (find_problem, find_integrator)
+//   set                      ["key=value", ...], routed as `--set` (core/parameters.hpp)
+//   dt | cfl                 the step, or its fraction of the problem's stable step (stable_step(),
+//                            the central-difference limit): dt = cfl * stable_step
+//   t_end                    > 0
+//   sample_every             record every k-th step and the first and last (default 1)
+//   states                   record u and v at the samples (default false)
+//   max_force_evaluations    the work budget (run/run.hpp; default 0: none)
+//   cpu_repeats              > 0: also time the run, cpu_cost's median of that many unobserved
+//                            runs after a warm-up, and its spread (studies/study.hpp; default 0)
+// The result:
+//   status, message          the run's (ok, diverged, over budget), or n/a with the reason when
+//                            the integrator declines the problem (its init) or cfl meets a
+//                            problem without a finite stable step;
+//   dt, steps, force_evaluations, summary (summary.json of `nsbench run`, as an object);
+//   columns, series          the series' column names and, per column, its values (series[j]);
+//   state_t, u, v            with states: the sample times and the states, a row per sample;
+//   cpu, cpu_spread          with cpu_repeats.
+// JSON has no NaN or infinity: a non-finite value is null (reals(), studies/study.hpp).
+#include "studies/study.hpp"
+
+namespace nsb {
+
+// Throws InputError naming the key on a bad case (unknown names, parameters, a missing or
+// mistyped key, a step or length out of range).
+Json run_described_case(const Json& the_case);
+
+// Why `result` is not one run_described_case returns ("" when it is): the check of a shard's
+// results (studies/shard.hpp).
+std::string described_result_damage(const Json& result);
+
+}  // namespace nsb
