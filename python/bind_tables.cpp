@@ -122,11 +122,47 @@ void bind_measures(py::module_& m) {
         "The Hausdorff distance between the graphs (t, x) of two histories in scaled coordinates (studies/hausdorff.hpp).");
 }
 
+double number_or_nan(const py::dict& d, const char* key) {
+  return d.contains(key) && !d[key].is_none() ? d[key].cast<double>() : kNaN;
+}
+
+// A ranking's problems from dicts: label, error_source, floor, targets and curves, each curve
+// integrator, reference, peer and points (run, cost, error, removed, spread).
+RankingProblem ranking_problem(const py::dict& d) {
+  RankingProblem p{d["label"].cast<std::string>(), d["error_source"].cast<std::string>(),
+                   d.contains("floor") ? d["floor"].cast<double>() : 0.0, d["targets"].cast<std::vector<double>>(), {}};
+  for (const auto& c : d["curves"].cast<py::list>()) {
+    const auto curve = c.cast<py::dict>();
+    WorkCurve w{curve["integrator"].cast<std::string>(), curve.contains("reference") && curve["reference"].cast<bool>(), {},
+                curve.contains("peer") && curve["peer"].cast<bool>()};
+    for (const auto& q : curve["points"].cast<py::list>()) {
+      const auto point = q.cast<py::dict>();
+      w.points.push_back({point["run"].cast<std::string>(), number_or_nan(point, "cost"), number_or_nan(point, "error"),
+                          point.contains("removed") ? point["removed"].cast<std::string>() : "", number_or_nan(point, "spread")});
+    }
+    p.curves.push_back(std::move(w));
+  }
+  return p;
+}
+
+void bind_ranking(py::module_& m) {
+  m.def("ranking_table", [](const std::string& id, const std::string& title, const Column& error, const std::string& cost,
+                            const py::list& problems) {
+          std::vector<RankingProblem> ranked;
+          for (const auto& p : problems) ranked.push_back(ranking_problem(p.cast<py::dict>()));
+          return ranking_table(id, title, error, cost, ranked);
+        }, "id"_a, "title"_a, "error"_a, "cost"_a, "problems"_a,
+        "The headline ranking (studies/ranking.hpp): the cheapest integrator reaching each target error, ties said.\n"
+        "problems: dicts of label, error_source, floor (0: exact), targets and curves; a curve: integrator,\n"
+        "reference, peer (bools) and points, each run (its label), cost (CPU s), error, spread, removed (a rule's name).");
+}
+
 }  // namespace
 
 void bind_tables(py::module_& m) {
   bind_table_classes(m);
   bind_measures(m);
+  bind_ranking(m);
 }
 
 }  // namespace nsb::python

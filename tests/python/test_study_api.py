@@ -180,3 +180,19 @@ def test_the_measures_bindings_on_known_answers():
     assert study.hausdorff([0, 1], [0, 0], [0, 1], [0.5, 0.5]) == pytest.approx(0.5, rel=1e-9)
     assert study.hausdorff([0, 1], [0, 0], [0, 1], [0.5, 0.5], value_scale=2.0) == pytest.approx(0.25, rel=1e-9)
     assert study.contact_phases([0.1, 0.2, 0.3, 0.4, 0.5], [0, 1, 1, 0, 2]) == [0.2, 0.5]
+
+
+def test_the_ranking_says_the_winner_or_a_tie():
+    def curve(name, costs, errors, spread):
+        return {"integrator": name, "points": [{"run": f"dt = {c}", "cost": c, "error": e, "spread": spread}
+                                               for c, e in zip(costs, errors)]}
+
+    problem = {"label": "p", "error_source": "exact", "targets": [1e-3],
+               "curves": [curve("fast", [1.0, 2.0], [1e-2, 1e-4], 0.01), curve("slow", [3.0, 6.0], [1e-2, 1e-4], 0.01),
+                          curve("twin", [1.005, 2.01], [1e-2, 1e-4], 0.01)]}
+    t = study.ranking_table("r", "R", study.Column("error", format="{:.1e}"), "CPU", [problem])
+    winner = [c.name for c in t.columns].index("winner")
+    assert t.rows[0][winner] == "tie: fast, twin"
+    problem["curves"].pop()
+    t = study.ranking_table("r", "R", study.Column("error", format="{:.1e}"), "CPU", [problem])
+    assert t.rows[0][winner] == "fast"
