@@ -23,6 +23,12 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -89,6 +95,67 @@ void show_study_file(const std::vector<nsb::StudyEntry>& registry, const std::ve
   const nsb::EmbeddedStudyFile* file = nsb::builtin_study_file(it->source);
   if (!file) throw InputError(fmt::format("show {}: written in C++ ({}), not a study file; valid: {}", names[1], it->source, valid));
   fmt::print("{}", file->text);
+}
+
+// The directory that holds the Python package nsbench for this executable: build/python beside
+// build/studies/nsbench-study, or the installed one (NSBENCH_PYTHON_DIR).
+[[maybe_unused]] fs::path python_module_dir(const nsb::StudyEntry& s) {
+  std::error_code ec;
+  const fs::path bin = fs::read_symlink("/proc/self/exe", ec).parent_path();
+#ifdef NSBENCH_PYTHON_FROM_BIN
+  for (const fs::path& dir : {bin / ".." / "python", bin / NSBENCH_PYTHON_FROM_BIN})
+    if (fs::exists(dir / "nsbench" / "__init__.py", ec)) return fs::weakly_canonical(dir, ec);
+#endif
+  throw InputError(fmt::format("study {} is written in Python ({}): no Python module nsbench beside {} (build it: "
+                               "cmake --build BUILD --target nsbench_python, with NSBENCH_PYTHON=ON)", s.name, s.source,
+                               bin.string()));
+}
+
+// A Python study (StudyEntry::script) run as `python3 -c SCRIPT OPTIONS...`: the options of this
+// run, the module beside this executable first on PYTHONPATH, signals unblocked (the report
+// directory of the C++ studies blocks them in this process: core/output.hpp). Its exit status.
+int run_python_study(const nsb::StudyEntry& s, const std::vector<std::string>& options) {
+#ifndef NSBENCH_PYTHON_EXECUTABLE
+  (void)options;
+  throw InputError(fmt::format("study {} is written in Python ({}): this build has no Python module (NSBENCH_PYTHON=OFF)",
+                               s.name, s.source));
+#else
+  const fs::path module = python_module_dir(s);
+  const char* old = std::getenv("PYTHONPATH");
+  ::setenv("PYTHONPATH", (module.string() + (old && *old ? std::string(":") + old : "")).c_str(), 1);
+  ::setenv("NSBENCH_STUDY_COMMAND", nsb::command_line().c_str(), 1);  // the report's footer names this command
+  std::vector<std::string> args = {NSBENCH_PYTHON_EXECUTABLE, "-c", std::string(s.script)};
+  args.insert(args.end(), options.begin(), options.end());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
+  pid_t pid = 0;
+  const int failed = posix_spawn(&pid, argv[0], nullptr, &attr, argv.data(), environ);
+  posix_spawnattr_destroy(&attr);
+  if (failed) throw InputError(fmt::format("study {}: cannot run {}: {}", s.name, argv[0], std::strerror(failed)));
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+#endif
+}
+
+// The options a Python study is given: this run's.
+std::vector<std::string> forwarded_options(const nsb::DriverOptions& o, const std::string& shard, const std::vector<std::string>& plugins) {
+  std::vector<std::string> args;
+  if (o.verify_dir.empty()) args.insert(args.end(), {"--out", o.out});
+  else args.insert(args.end(), {"--verify", o.verify_dir, "--rtol", fmt::format("{}", o.tolerance.rtol), "--atol",
+                                fmt::format("{}", o.tolerance.atol)});
+  if (o.full) args.push_back("--full");
+  if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
+  if (o.merge) args.push_back("--merge");
+  for (const auto& p : plugins) args.insert(args.end(), {"--plugin", p});
+  return args;
 }
 
 }  // namespace
@@ -174,7 +241,11 @@ int main(int argc, char** argv) {
                                      fmt::join(valid, ", ")));
       }
     }
-    return nsb::drive_studies(selected, options);
+    std::vector<const nsb::StudyEntry*> in_cpp, in_python;
+    for (const auto* s : selected) (s->script.empty() ? in_cpp : in_python).push_back(s);
+    int status = in_cpp.empty() ? 0 : nsb::drive_studies(in_cpp, options);
+    for (const auto* s : in_python) status = std::max(status, run_python_study(*s, forwarded_options(options, shard_text, plugins)));
+    return status;
   } catch (const InputError& e) {
     fmt::print(stderr, "nsbench-study: error: {}\n", e.what());
     return 2;

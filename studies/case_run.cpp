@@ -71,16 +71,20 @@ std::string step_text(const Json& c, const Problem& p, std::string& declined) {
   return Json(cfl * stable).dump();
 }
 
-// u and v at every sample, row after row.
+Json reals_of(const Vec& x) { return reals({x.data(), x.data() + x.size()}); }
+
+// u, v and the step's impulses at every sample, row after row.
 class StateRows final : public StateSink {
  public:
-  void state(const State& s, const Vec&, const Vec&, const Vec&) override {
+  void state(const State& s, const Vec& normal, const Vec& tangential, const Vec& tangential2) override {
     t.push_back(s.t);
-    u.push_back(reals({s.u.data(), s.u.data() + s.u.size()}));
-    v.push_back(reals({s.v.data(), s.v.data() + s.v.size()}));
+    for (auto& [rows, x] : {std::pair{&u, &s.u}, {&v, &s.v}, {&impulses, &normal}, {&tangential_impulses, &tangential},
+                            {&tangential_impulses2, &tangential2}})
+      rows->push_back(reals_of(*x));
   }
   std::vector<double> t;
-  Json u = Json::array(), v = Json::array();
+  Json u = Json::array(), v = Json::array(), impulses = Json::array(), tangential_impulses = Json::array(),
+       tangential_impulses2 = Json::array();
 };
 
 Json series_json(const Series& s) {
@@ -120,6 +124,9 @@ Json run_described_case(const Json& c) {
     result["state_t"] = reals(rows.t);
     result["u"] = std::move(rows.u);
     result["v"] = std::move(rows.v);
+    result["impulses"] = std::move(rows.impulses);
+    result["tangential_impulses"] = std::move(rows.tangential_impulses);
+    result["tangential_impulses2"] = std::move(rows.tangential_impulses2);
   }
   if (repeats > 0) {
     const auto routed = route_overrides(sets, find_problem(problem).parameters(), find_integrator(integrator).parameters());

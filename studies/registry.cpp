@@ -8,7 +8,6 @@
 namespace nsb {
 
 extern const StudyEntry block_study;
-extern const StudyEntry peers_study;
 extern const StudyEntry friction_study;
 extern const StudyEntry bodies_study;
 extern const StudyEntry claims_study;
@@ -39,6 +38,17 @@ StudyEntry builtin_file_study(const std::string& name, const std::string& descri
   return entry;
 }
 
+StudyEntry builtin_python_study(const std::string& name, const std::string& description, const std::string& path) {
+  const EmbeddedStudyFile* file = builtin_study_file(path);
+  if (!file) throw std::logic_error(path + " is not embedded (studies/embed_study_files.cmake)");
+  StudyEntry entry;
+  entry.name = name;
+  entry.description = description;
+  entry.source = path;
+  entry.script = file->text;
+  return entry;
+}
+
 const std::vector<StudyEntry>& study_registry() {
   static const std::vector<StudyEntry> entries = {
       builtin_file_study("bouncing", "bouncing mass: impact times, flight energies, Zeno time, orders, against the exact solution",
@@ -59,7 +69,10 @@ const std::vector<StudyEntry>& study_registry() {
                          "solution)",
                          "studies/builtin/bar.toml"),
       cpp_study(block_study, "studies/block.cpp"),
-      cpp_study(peers_study, "studies/peers.cpp"),
+      builtin_python_study("peers",
+                           "our schemes against a peer code's (Siconos) on the bouncing mass, the lumped bar, the spring "
+                           "chain, the sliding mass, the rolling disk, the sphere and bar-3d",
+                           "studies/builtin/peers.py"),
       builtin_file_study("bouncing-bar",
                          "Doyen-Ern-Piperno bouncing bar over many periods: energy per period per mass model, contact-end "
                          "error, force oscillation",

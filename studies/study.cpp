@@ -12,6 +12,9 @@
 namespace nsb {
 
 std::vector<Json> study_cases(const StudyEntry& study, const StudyOptions& options) {
+  if (!study.script.empty())
+    throw InputError(fmt::format("study {} is written in Python ({}): nsbench-study runs it with the Python module", study.name,
+                                 study.source));
   if (study.run) return {Json::object()};
   return study.cases(options);
 }

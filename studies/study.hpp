@@ -49,6 +49,9 @@ struct StudyEntry {
   // The file that defines it, relative to the repository: its study file (studies/builtin/, see
   // studies/registry.hpp) or its C++ source. Set by the registry.
   std::string source = "";
+  // A study written in Python (studies/builtin/NAME.py, nsbench.study): the script's text, which
+  // nsbench-study runs with the Python module and the same options; empty for the others.
+  std::string_view script = {};
 };
 
 const std::vector<StudyEntry>& study_registry();

@@ -62,12 +62,18 @@ def _array(values):
     return np.array([np.nan if x is None else x for x in values], dtype=float)
 
 
+def _rows(values, samples):
+    width = len(values[0]) if values else 0
+    return np.array(values, dtype=float).reshape(samples, width)
+
+
 class Result:
     """A case's result: case (the dict), status ('ok', 'diverged', 'over budget', 'n/a'), message,
     dt (the step taken), steps, summary (the run's summary.json as a dict; empty for n/a), series
     (column name -> 1-D array, as series.csv: t, dt, kinetic, potential, total_energy, min_gap,
     impulse, ... then the problem's observables; every column also an attribute), and with
-    states=True state_t, u, v (samples x ndof); cpu and cpu_spread with cpu_repeats. A value
+    states=True state_t, u, v (samples x ndof) and the impulses of the step ending at each sample,
+    impulses, tangential_impulses, tangential_impulses2 (samples x contacts); cpu and cpu_spread with cpu_repeats. A value
     that was not finite (NaN, an overflow) reads NaN."""
 
     def __init__(self, the_case, data):
@@ -81,8 +87,8 @@ class Result:
         self.series = {name: _array(values) for name, values in zip(self.columns, data.get("series", []))}
         if "u" in data:
             self.state_t = _array(data["state_t"])
-            self.u = np.array(data["u"], dtype=float).reshape(len(self.state_t), -1)
-            self.v = np.array(data["v"], dtype=float).reshape(len(self.state_t), -1)
+            for key in ("u", "v", "impulses", "tangential_impulses", "tangential_impulses2"):
+                setattr(self, key, _rows(data[key], len(self.state_t)))
         self.cpu = np.nan if data.get("cpu") is None else data["cpu"]
         self.cpu_spread = np.nan if data.get("cpu_spread") is None else data["cpu_spread"]
 
@@ -142,11 +148,20 @@ class Study:
                 self.name, self.description, self.source, lambda full: [json.dumps(c) for c in self.cases(full)],
                 lambda cases, results, full: self.tables(
                     [Result(json.loads(c), json.loads(r)) for c, r in zip(cases, results)], full),
-                [sys.argv[0] if sys.argv else self.name] + argv, args.out, args.full, args.shard or "", args.merge,
+                _command(argv), args.out, args.full, args.shard or "", args.merge,
                 args.verify or "", args.rtol, args.atol)
         except ValueError as e:
             print(f"{self.name}: error: {e}", file=sys.stderr)
             return 2
+
+
+def _command(argv):
+    """The command the report's footer names: nsbench-study's when it runs this study (it sets
+    NSBENCH_STUDY_COMMAND), else this script's."""
+    given = os.environ.get("NSBENCH_STUDY_COMMAND")
+    if given:
+        return given.split(" ")
+    return [sys.argv[0] if sys.argv and sys.argv[0] != "-c" else "python3"] + argv
 
 
 def _parser(s):

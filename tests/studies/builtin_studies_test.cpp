@@ -877,6 +877,7 @@ TEST_CASE("built-in study files: every Markdown table's cells within 300 charact
                               {"run", {{"t_reached", 0.0}, {"impacts", 0}, {"note", why}}}};
   std::size_t shown = 0;
   for (const auto& file : nsb::builtin_study_files()) {
+    if (!file.path.ends_with(".toml")) continue;  // a Python study's tables: its own (tests/python)
     INFO(file.path);
     const nsb::StudyEntry entry = nsb::file_study(nsb::parse_study_text(std::string(file.text), std::string(file.path), false));
     const auto cases = nsb::study_cases(entry, {});

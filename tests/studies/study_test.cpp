@@ -189,7 +189,7 @@ TEST_CASE("registry: every file of studies/builtin/ is embedded as it is and is 
   const std::filesystem::path dir = std::filesystem::path(NSBENCH_SOURCE_DIR) / "studies" / "builtin";
   std::size_t on_disk = 0;
   for (const auto& f : std::filesystem::directory_iterator(dir)) {
-    if (f.path().extension() != ".toml") continue;
+    if (f.path().extension() != ".toml" && f.path().extension() != ".py") continue;
     ++on_disk;
     const std::string path = "studies/builtin/" + f.path().filename().string();
     INFO(path);
@@ -202,5 +202,7 @@ TEST_CASE("registry: every file of studies/builtin/ is embedded as it is and is 
     CHECK(std::count_if(r.begin(), r.end(), [&](const nsb::StudyEntry& s) { return s.source == path; }) == 1);
   }
   CHECK(nsb::builtin_study_files().size() == on_disk);
+  for (const auto& s : nsb::study_registry())  // a Python study is its script, which the C++ side never runs
+    if (!s.script.empty()) CHECK_THROWS_WITH(nsb::study_cases(s, {}), Catch::Contains("written in Python (" + s.source + ")"));
   CHECK(nsb::builtin_study_file("studies/builtin/no-such-study.toml") == nullptr);
 }
