@@ -8,6 +8,7 @@
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "run/run_case.hpp"
+#include "studies/study_file.hpp"
 
 namespace nsb {
 
@@ -99,6 +100,25 @@ Json series_json(const Series& s) {
 
 Json declined_result(const std::string& reason) { return {{"status", kDeclinedStatus}, {"message", reason}}; }
 
+// A case with measures: the run as the one case of a study file (studies/study_file.hpp) whose
+// [[measure]] tables are the case's `measures` and whose [reference] is its `reference`, so that
+// every measure kind of the language is measured by the same code as in a study file.
+Json measured_run(const Json& c, const std::string& problem, const std::string& integrator, const RoutedOverrides& routed,
+                  const RunOptions& o, long repeats) {
+  Json study = {{"title", "nsbench.study case"}, {"t_end", o.t_end}, {"sample_every", o.sample_every}, {"cpu_repeats", repeats}};
+  if (o.max_force_evaluations > 0) study["max_force_evaluations"] = o.max_force_evaluations;
+  Json file = {{"study", study},
+               {"problem", Json::array({{{"name", problem}, {"label", problem}, {"parameters", routed.problem}}})},
+               {"integrator", Json::array({{{"name", integrator}, {"label", integrator}, {"parameters", routed.integrator},
+                                            {"steps", Json::array({o.dt})}}})},
+               {"measure", c["measures"]}};
+  if (c.contains("reference")) file["reference"] = c["reference"];
+  const StudyEntry entry = file_study(parse_study_text(file.dump(), "case", true));
+  const std::vector<Json> cases = study_cases(entry, {});
+  if (cases.size() != 1) throw std::logic_error("a measured case is one case of its study file");
+  return run_study_case(entry, cases.front(), {});
+}
+
 }  // namespace
 
 Json run_described_case(const Json& c) {
@@ -112,6 +132,12 @@ Json run_described_case(const Json& c) {
   const long repeats = count_key(c, "cpu_repeats", 0);
   const bool states = flag_key(c, "states");
   if (!declined.empty()) return declined_result(declined);
+  if (c.contains("measures") || c.contains("reference")) {
+    if (states) throw InputError("case: states and measures: give one of them (a measured run records no series)");
+    return measured_run(c, problem, integrator,
+                        route_overrides(sets, find_problem(problem).parameters(), find_integrator(integrator).parameters()), o,
+                        repeats);
+  }
   if (const auto reason = init_or_decline(*rc.integrator, *rc.problem)) return declined_result(*reason);
   StateRows rows;
   if (states) o.state_sink = &rows;

@@ -16,7 +16,11 @@
 //   max_force_evaluations    the work budget (run/run.hpp; default 0: none)
 //   cpu_repeats              > 0: also time the run, cpu_cost's median of that many unobserved
 //                            runs after a warm-up, and its spread (studies/study.hpp; default 0)
-// The result:
+//   measures, reference      a list of [[measure]] tables and a [reference] table of the study-file
+//                            language (docs/study_files.md): the run is then that study file's one
+//                            case, its result the engine's (status, message, steps, work counters,
+//                            "values": each measure's value in order, "run": its figures), no series
+// The result of a case without measures:
 //   status, message          the run's (ok, diverged, over budget), or n/a with the reason when
 //                            the integrator declines the problem (its init) or cfl meets a
 //                            problem without a finite stable step;

@@ -35,12 +35,15 @@ _RUN_KEYS = ("dt", "cfl", "sample_every", "states", "cpu_repeats", "max_force_ev
 
 
 def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, states=False, cpu_repeats=0,
-         max_force_evaluations=0, labels=None, **parameters):
+         max_force_evaluations=0, measures=None, reference=None, labels=None, **parameters):
     """A case: `integrator` on `problem` (names) to t_end, at step dt or at cfl times the problem's
     stable step. Keyword arguments other than the run options are the problem's and the
     integrator's parameters, as in nsbench.run ("problem.key" or "integrator.key" where both
-    declare key). labels: a dict of the study's own (JSON) values, kept with the case.
-    Returns the case as a dict (JSON), checked when it runs."""
+    declare key). measures: a list of dicts, each a [[measure]] table of the study-file language
+    (docs/study_files.md: kind = "error", "impact-time", "energy", "momentum", "hausdorff", ...),
+    and reference: its [reference] table; the run's Result then holds each measure's value
+    (Result.values, in order; Result.measure(label)) and no series. labels: a dict of the study's
+    own (JSON) values, kept with the case. Returns the case as a dict (JSON), checked when it runs."""
     c = {"problem": problem, "integrator": integrator, "t_end": t_end, "set": _nsbench._assignments(parameters)}
     for key, value in (("dt", dt), ("cfl", cfl)):
         if value is not None:
@@ -53,6 +56,10 @@ def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, state
         c["cpu_repeats"] = cpu_repeats
     if max_force_evaluations:
         c["max_force_evaluations"] = max_force_evaluations
+    if measures is not None:
+        c["measures"] = [dict(m) for m in measures]
+    if reference is not None:
+        c["reference"] = dict(reference)
     if labels:
         c["labels"] = dict(labels)
     return c
@@ -73,7 +80,9 @@ class Result:
     (column name -> 1-D array, as series.csv: t, dt, kinetic, potential, total_energy, min_gap,
     impulse, ... then the problem's observables; every column also an attribute), and with
     states=True state_t, u, v (samples x ndof) and the impulses of the step ending at each sample,
-    impulses, tangential_impulses, tangential_impulses2 (samples x contacts); cpu and cpu_spread with cpu_repeats. A value
+    impulses, tangential_impulses, tangential_impulses2 (samples x contacts); with measures,
+    values (one per measure, in order; measure(label)) and run_figures (the engine's figures of the
+    run: contact phases, smallest and largest step, ...) instead of the series; cpu and cpu_spread with cpu_repeats. A value
     that was not finite (NaN, an overflow) reads NaN."""
 
     def __init__(self, the_case, data):
@@ -89,8 +98,18 @@ class Result:
             self.state_t = _array(data["state_t"])
             for key in ("u", "v", "impulses", "tangential_impulses", "tangential_impulses2"):
                 setattr(self, key, _rows(data[key], len(self.state_t)))
+        self.values = _array(data.get("values", []))
+        self.run_figures = data.get("run", {})
         self.cpu = np.nan if data.get("cpu") is None else data["cpu"]
         self.cpu_spread = np.nan if data.get("cpu_spread") is None else data["cpu_spread"]
+
+    def measure(self, label):
+        """The value of the case's measure of that label (its "label" key, else its "kind"); NaN
+        where it was not measured (a declined or diverged run)."""
+        labels = [m.get("label", m.get("kind")) for m in self.case.get("measures", [])]
+        if label not in labels:
+            raise KeyError(f"no measure '{label}' (measures: {', '.join(map(str, labels))})")
+        return self.values[labels.index(label)] if len(self.values) else np.nan
 
     @property
     def ok(self):

@@ -196,3 +196,27 @@ def test_the_ranking_says_the_winner_or_a_tie():
     problem["curves"].pop()
     t = study.ranking_table("r", "R", study.Column("error", format="{:.1e}"), "CPU", [problem])
     assert t.rows[0][winner] == "fast"
+
+
+def test_a_measured_case_takes_the_study_file_measures():
+    # The engine's impact-time (the largest |t_i - t_i exact| over the first impacts) and penetration
+    # against the same from the series of an unmeasured run and the exact impact times.
+    measures = [{"kind": "impact-time", "count": 2}, {"kind": "penetration", "label": "pen"}]
+    measured, plain = study.run([
+        study.case("bouncing-mass", "cd-lagrange", dt=1e-3, t_end=1.5, e=0.9, measures=measures,
+                   reference={"solution": "exact"}),
+        study.case("bouncing-mass", "cd-lagrange", dt=1e-3, t_end=1.5, e=0.9)])
+    exact = nsbench.Problem("bouncing-mass", e=0.9).impact_times(1.5)[:2]
+    seen = study.contact_phases(plain.t, plain.impulse)[:2]
+    assert len(exact) == 2 and measured.measure("impact-time") == max(abs(a - b) for a, b in zip(seen, exact))
+    assert measured.measure("pen") == plain.summary["max_penetration"] > 0
+    with pytest.raises(KeyError, match="no measure 'energy'"):
+        measured.measure("energy")
+
+
+def test_a_bad_measure_names_its_key():
+    c = study.case("bouncing-mass", "cd-lagrange", dt=1e-3, t_end=0.5, measures=[{"kind": "no-such"}])
+    with pytest.raises(ValueError, match=r"measure\[0\].kind"):
+        study.run([c])
+    with pytest.raises(ValueError, match="states and measures"):
+        study.run([study.case("bouncing-mass", "cd-lagrange", dt=1e-3, t_end=0.5, states=True, measures=[{"kind": "penetration"}])])
