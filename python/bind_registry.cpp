@@ -7,6 +7,7 @@
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "python/bindings.hpp"
+#include "studies/run_measure.hpp"
 
 namespace nsb::python {
 
@@ -96,9 +97,19 @@ py::list integrator_list() {
   return list;
 }
 
+py::list run_measure_list() {
+  py::list list;
+  for (const auto& e : run_measure_registry())
+    list.append(py::dict("name"_a = e.name, "description"_a = e.description, "parameters"_a = parameter_list(e.parameters())));
+  return list;
+}
+
 }  // namespace
 
 void bind_registry(py::module_& m) {
+  m.def("run_measures", &run_measure_list,
+        "The run measures a case can observe (studies/run_measure.hpp; nsbench.study.case(observe=...)): name,\n"
+        "description and parameters (as problems()).");
   m.def("problems", &problem_list,
         "The problems (as `nsbench list`): a list of dicts with name, description and parameters (each a dict:\n"
         "name, description, kind real|integer|choice, default, range as text, lower/upper/lower_open/upper_open\n"

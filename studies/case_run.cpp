@@ -8,6 +8,7 @@
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "run/run_case.hpp"
+#include "studies/run_measure.hpp"
 #include "studies/study_file.hpp"
 
 namespace nsb {
@@ -119,6 +120,48 @@ Json measured_run(const Json& c, const std::string& problem, const std::string& 
   return run_study_case(entry, cases.front(), {});
 }
 
+// The observers a case names (`observe`), their kinds and parameters checked before the run.
+struct Observer {
+  const RunMeasureEntry* kind;
+  Params params;
+};
+
+std::vector<Observer> observers_of(const Json& c) {
+  std::vector<Observer> observers;
+  if (!c.contains("observe")) return observers;
+  if (!c["observe"].is_array()) throw InputError(fmt::format("case observe {}: must be a list of tables", c["observe"].dump()));
+  for (std::size_t k = 0; k < c["observe"].size(); ++k) {
+    const Json& o = c["observe"][k];
+    if (!o.is_object() || !o.contains("kind") || !o["kind"].is_string())
+      throw InputError(fmt::format("case observe[{}] {}: a table with a kind (valid kinds: see nsbench.study.run_measures())", k, o.dump()));
+    const RunMeasureEntry& kind = find_run_measure(o["kind"].get<std::string>());
+    std::map<std::string, std::string> overrides;
+    for (const auto& [key, value] : o.items())
+      if (key != "kind") overrides[key] = value.is_string() ? value.get<std::string>() : value.dump();
+    observers.push_back({&kind, Params(kind.parameters(), overrides)});
+  }
+  return observers;
+}
+
+// The observed run: each observer fed after every step, its figures under "observed" in order.
+// An observer that does not apply to the problem or the scheme declines the case.
+Json observed_run(const std::vector<Observer>& observers, RunCase& rc, const RunOptions& o) {
+  std::vector<std::unique_ptr<RunMeasure>> running;
+  try {
+    for (const auto& ob : observers) running.push_back(ob.kind->make(ob.params, *rc.problem, *rc.integrator));
+  } catch (const InputError& e) {
+    return declined_result(e.what());
+  }
+  const RunResult r = run(*rc.problem, *rc.integrator, o, [&](const Integrator& it, const StepInfo& step) {
+    for (auto& m : running) m->add(it, step);
+  });
+  Json observed = Json::array();
+  for (const auto& m : running) observed.push_back(m->result());
+  return {{"status", status_name(r.status)}, {"message", r.message}, {"dt", o.dt}, {"steps", r.steps},
+          {"force_evaluations", r.work.force_evaluations},
+          {"summary", Json::parse(summary_to_json(*rc.problem, *rc.integrator, o, r))}, {"observed", std::move(observed)}};
+}
+
 }  // namespace
 
 Json run_described_case(const Json& c) {
@@ -138,7 +181,13 @@ Json run_described_case(const Json& c) {
                         route_overrides(sets, find_problem(problem).parameters(), find_integrator(integrator).parameters()), o,
                         repeats);
   }
+  const std::vector<Observer> observers = observers_of(c);
   if (const auto reason = init_or_decline(*rc.integrator, *rc.problem)) return declined_result(*reason);
+  if (!observers.empty()) {
+    if (states || repeats > 0) throw InputError("case: observe with states or cpu_repeats: give observe alone (its run is observed)");
+    o.record_series = false;
+    return observed_run(observers, rc, o);
+  }
   StateRows rows;
   if (states) o.state_sink = &rows;
   const RunResult r = run(*rc.problem, *rc.integrator, o);

@@ -16,6 +16,10 @@
 //   max_force_evaluations    the work budget (run/run.hpp; default 0: none)
 //   cpu_repeats              > 0: also time the run, cpu_cost's median of that many unobserved
 //                            runs after a warm-up, and its spread (studies/study.hpp; default 0)
+//   observe                  a list of run measures, each {"kind": K, its parameters...}
+//                            (studies/run_measure.hpp): the run is observed step by step, its
+//                            result's "observed" the figures of each in order (no series); a
+//                            kind that does not apply declines the case (n/a, the reason)
 //   measures, reference      a list of [[measure]] tables and a [reference] table of the study-file
 //                            language (docs/study_files.md): the run is then that study file's one
 //                            case, its result the engine's (status, message, steps, work counters,

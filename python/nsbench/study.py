@@ -25,21 +25,24 @@ import numpy as np
 
 from . import _nsbench
 from ._nsbench import (Column, Figure, Table, above_round_off, compared_impacts, contact_phases, fit_line, fit_order,
-                       hausdorff, observed_order, ranking_table, to_csv, to_latex, to_markdown, verify_table)
+                       hausdorff, observed_order, ranking_table, run_measures, to_csv, to_latex, to_markdown,
+                       verify_table)
 
 __all__ = ["Column", "Figure", "Result", "Study", "Table", "above_round_off", "case", "compared_impacts",
-           "contact_phases", "fit_line", "fit_order", "hausdorff", "observed_order", "ranking_table", "run", "to_csv", "to_latex",
+           "contact_phases", "fit_line", "fit_order", "hausdorff", "observed_order", "ranking_table", "run", "run_measures", "to_csv", "to_latex",
            "to_markdown", "verify_table"]
 
 _RUN_KEYS = ("dt", "cfl", "sample_every", "states", "cpu_repeats", "max_force_evaluations")
 
 
 def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, states=False, cpu_repeats=0,
-         max_force_evaluations=0, measures=None, reference=None, labels=None, **parameters):
+         max_force_evaluations=0, observe=None, measures=None, reference=None, labels=None, **parameters):
     """A case: `integrator` on `problem` (names) to t_end, at step dt or at cfl times the problem's
     stable step. Keyword arguments other than the run options are the problem's and the
     integrator's parameters, as in nsbench.run ("problem.key" or "integrator.key" where both
-    declare key). measures: a list of dicts, each a [[measure]] table of the study-file language
+    declare key). observe: a list of dicts {"kind": K, ...its parameters} of the run measures
+    (study.run_measures(): "mesh-momentum", "momentum-balance", ...), each fed after every step;
+    their figures are Result.observed, in order (no series). measures: a list of dicts, each a [[measure]] table of the study-file language
     (docs/study_files.md: kind = "error", "impact-time", "energy", "momentum", "hausdorff", ...),
     and reference: its [reference] table; the run's Result then holds each measure's value
     (Result.values, in order; Result.measure(label)) and no series. labels: a dict of the study's
@@ -56,6 +59,8 @@ def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, state
         c["cpu_repeats"] = cpu_repeats
     if max_force_evaluations:
         c["max_force_evaluations"] = max_force_evaluations
+    if observe is not None:
+        c["observe"] = [dict(o) for o in observe]
     if measures is not None:
         c["measures"] = [dict(m) for m in measures]
     if reference is not None:
@@ -99,6 +104,7 @@ class Result:
             for key in ("u", "v", "impulses", "tangential_impulses", "tangential_impulses2"):
                 setattr(self, key, _rows(data[key], len(self.state_t)))
         self.values = _array(data.get("values", []))
+        self.observed = data.get("observed", [])
         self.run_figures = data.get("run", {})
         self.cpu = np.nan if data.get("cpu") is None else data["cpu"]
         self.cpu_spread = np.nan if data.get("cpu_spread") is None else data["cpu_spread"]

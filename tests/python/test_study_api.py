@@ -220,3 +220,20 @@ def test_a_bad_measure_names_its_key():
         study.run([c])
     with pytest.raises(ValueError, match="states and measures"):
         study.run([study.case("bouncing-mass", "cd-lagrange", dt=1e-3, t_end=0.5, states=True, measures=[{"kind": "penetration"}])])
+
+
+def test_run_measures_observe_a_run():
+    # CD-Lagrange's discrete momentum identities hold exactly: the residuals are round-off.
+    assert {"mesh-momentum", "momentum-balance"} <= {m["name"] for m in study.run_measures()}
+    block, spatial, chain = study.run([
+        study.case("block-2d", "cd-lagrange", cfl=0.9, t_end=0.15, nx=4, ny=4,
+                   observe=[{"kind": "mesh-momentum", "component": "px"}, {"kind": "mesh-momentum", "component": "py"}]),
+        study.case("block-2d", "cd-lagrange", cfl=0.9, t_end=0.01, nx=4, ny=4, observe=[{"kind": "mesh-momentum", "component": "jz"}]),
+        study.case("spring-chain", "cd-lagrange", dt=1e-3, t_end=1.0, observe=[{"kind": "momentum-balance"}])])
+    assert block.ok and len(block.observed) == 2 and all(o["relative"] < 1e-12 and o["scale"] > 0 for o in block.observed)
+    assert spatial.status == "n/a" and "valid: px, py" in spatial.message
+    assert chain.ok and chain.observed[0]["relative"] < 1e-12 and chain.observed[0]["momentum"] > 0
+    with pytest.raises(ValueError, match="unknown run measure"):
+        study.run([study.case("spring-chain", "cd-lagrange", dt=1e-3, t_end=0.1, observe=[{"kind": "mesh-momentm"}])])
+    with pytest.raises(ValueError, match="component"):
+        study.run([study.case("block-2d", "cd-lagrange", dt=1e-4, t_end=0.01, observe=[{"kind": "mesh-momentum", "component": "qx"}])])
