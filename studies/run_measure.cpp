@@ -24,8 +24,6 @@ Registry<RunMeasureEntry, ByName>& run_measures() {
 
 }  // namespace
 
-bool register_run_measure(const RunMeasureEntry& entry, int abi) { return run_measures().add(entry, abi, "run measure"); }
-
 const std::vector<RunMeasureEntry>& run_measure_registry() { return run_measures().entries(); }
 
 const RunMeasureEntry& find_run_measure(const std::string& name) {

@@ -1,8 +1,8 @@
 #pragma once
 // Measures a run takes as it steps, one registered entry per kind: its name, its typed
 // parameters and its factory, in the registry of the problems and integrators (core/registry.hpp),
-// so that a kind is one file (studies/run_measures/, listed in run_measure.cpp) and a plugin may
-// add its own (NSBENCH_RUN_MEASURE). nsbench.study's cases name them (observe=[{"kind": "mesh-momentum",
+// so that a kind is one file (studies/run_measures/, listed in run_measure.cpp). Not yet open to
+// plugins: the registry lives in the studies library, which plugins do not link. nsbench.study's cases name them (observe=[{"kind": "mesh-momentum",
 // "component": "jx"}], studies/case_run.hpp); each observer is fed after every step of the run
 // and gives its figures as JSON at the end. The kinds are the measures library's observers
 // (studies/measures.hpp) with the keys that choose what they observe.
@@ -32,13 +32,9 @@ struct RunMeasureEntry {
   std::unique_ptr<RunMeasure> (*make)(const Params& params, const Problem& problem, const Integrator& integrator);
 };
 
-bool register_run_measure(const RunMeasureEntry& entry, int abi);
 const std::vector<RunMeasureEntry>& run_measure_registry();
 // InputError naming the nearest kind and the valid ones for an unknown name.
 const RunMeasureEntry& find_run_measure(const std::string& name);
 
-#define NSBENCH_RUN_MEASURE(...)                                   \
-  [[maybe_unused]] static const bool NSBENCH_UNIQUE(nsbench_run_measure_) = \
-      ::nsb::register_run_measure(::nsb::RunMeasureEntry __VA_ARGS__, NSBENCH_PLUGIN_ABI)
 
 }  // namespace nsb
