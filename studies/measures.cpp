@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "integrators/cd_lagrange_adaptive.hpp"
 #include "integrators/integrator.hpp"
 
 namespace nsb {
@@ -127,10 +128,15 @@ void MomentumBalance::add(const Integrator& integrator, double dt) {
     problem_.external_force(integrator.state().t - dt, f_ext_);
     force_sum = ones_.dot(f_ext_);
   }
-  impulse_sum_ += force_sum * dt + gap_row_.dot(integrator.impulses());
+  impulse_sum_ += force_sum * variable_step_weight(integrator, dt).value_or(dt) + gap_row_.dot(integrator.impulses());
 }
 
 double MomentumBalance::residual(const Vec& v) const { return std::abs(mass_row_.dot(v) - p0_ - impulse_sum_); }
+
+std::optional<double> variable_step_weight(const Integrator& integrator, double dt) {
+  if (const auto* adaptive = dynamic_cast<const CdLagrangeAdaptive*>(&integrator)) return 0.5 * (dt + adaptive->next_step());
+  return std::nullopt;
+}
 
 std::vector<std::string> MeshMomentum::components(const Problem& problem) {
   const auto mesh = problem.field_mesh();
@@ -185,7 +191,7 @@ double MeshMomentum::torque(const State& s, const Vec& f) const {
 void MeshMomentum::add(const Integrator& integrator, double dt) {
   const State& s = integrator.state();
   problem_.external_force(s.t - dt, f_ext_);
-  f_.noalias() = dt * f_ext_;
+  f_.noalias() = variable_step_weight(integrator, dt).value_or(dt) * f_ext_;
   if (moving_rows_) {
     problem_.evaluate_contacts(s.u, *moving_rows_);
     add_contact_impulses(*moving_rows_, integrator, f_);

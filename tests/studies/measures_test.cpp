@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "integrators/cd_lagrange_adaptive.hpp"
 #include "integrators/registry.hpp"
 #include "problems/registry.hpp"
 #include "run/run.hpp"
@@ -161,6 +162,29 @@ TEST_CASE("MomentumBalance and ContactPhases on the bouncing mass: Moreau-Jean b
   CHECK(impacts.starts()[1] == Approx(t2).margin(2e-3));
 }
 
+TEST_CASE("MomentumBalance on cd-lagrange-adaptive under gravity: the force weighted (tau_k + tau_{k+1})/2", "[studies][measures]") {
+  // The lumped bouncing bar: gravity, floor impulses, internal forces summing to zero, steps
+  // chosen by the energy balance. From the first report on (the start's half kick tau_1/2 F_0
+  // is before it) the residual stays where it is, to round-off.
+  const auto bar = nsb::make_problem("bouncing-bar", {{"mass", "lumped"}, {"e", "0"}, {"N", "20"}});
+  auto integrator = nsb::make_integrator("cd-lagrange-adaptive");
+  integrator->init(*bar, bar->initial_state());
+  nsb::MomentumBalance balance(*bar, integrator->state().v);
+  double first = nsb::kNaN, drift = 0.0, dt_min = 1e300, dt_max = 0.0, p_max = 0.0;
+  for (int k = 0; k < 3000; ++k) {
+    const nsb::StepInfo info = integrator->step(0.9 * bar->stable_step());
+    balance.add(*integrator, info.dt);
+    const double r = balance.residual(integrator->state().v);
+    if (k == 0) first = r;
+    drift = std::max(drift, std::abs(r - first));
+    dt_min = std::min(dt_min, info.dt), dt_max = std::max(dt_max, info.dt);
+    p_max = std::max(p_max, std::abs(balance.momentum(integrator->state().v)));
+  }
+  REQUIRE(integrator->state().t > 1.2);  // into the first contact (from t = 1; the steps shrink there)
+  CHECK(dt_max > 1.5 * dt_min);
+  CHECK(drift <= 1e-12 * p_max);
+}
+
 TEST_CASE("MomentumBalance::speed_scale: sum_i m_i |v0_i|, nonzero where the momentum P0 is zero", "[studies][measures]") {
   const auto falling = nsb::make_problem("bouncing-mass", {{"m", "3"}, {"v0", "-2"}});
   const nsb::MomentumBalance one(*falling, falling->initial_state().v);
@@ -210,6 +234,34 @@ TEST_CASE("ContactPhases::span: from the first step with an impulse to the last,
   }
   CHECK(phases.span(0.1) == 0.5 - 0.2 + 0.1);  // a lost step inside does not shorten it
   CHECK(std::isnan(none.span(0.1)));
+}
+
+TEST_CASE("MeshMomentum on cd-lagrange-adaptive's variable steps: the force weighted (tau_{k+1} + tau_{k+2})/2", "[studies][measures]") {
+  // The spinning block dropped on the floor: gravity and floor impulses; the adaptive step
+  // ranges over three decades there. P_y and J balance to round-off with the scheme's weight
+  // (variable_step_weight); weighted by the step taken, P_y was off by (tau_{k+2} - tau_{k+1})/2 m g.
+  const auto block = nsb::make_problem("block-2d", {{"vx", "0.3"}, {"spin", "3"}});
+  auto adaptive = nsb::make_integrator("cd-lagrange-adaptive");
+  auto fixed = nsb::make_integrator("cd-lagrange");
+  for (auto* it : {adaptive.get(), fixed.get()}) {
+    it->init(*block, block->initial_state());
+    nsb::MeshMomentum py(*block, block->initial_state(), "py");
+    double dt_min = 1e300, dt_max = 0.0;
+    bool weights_ok = true;
+    for (int k = 0; k < 1500; ++k) {
+      const nsb::StepInfo info = it->step(0.5 * block->stable_step());
+      py.add(*it, info.dt);
+      dt_min = std::min(dt_min, info.dt), dt_max = std::max(dt_max, info.dt);
+      const auto w = nsb::variable_step_weight(*it, info.dt);
+      if (it == adaptive.get()) weights_ok = weights_ok && w &&
+          *w == 0.5 * (info.dt + dynamic_cast<const nsb::CdLagrangeAdaptive&>(*it).next_step());
+      else weights_ok = weights_ok && !w;
+    }
+    CAPTURE(it->name());
+    CHECK(weights_ok);
+    if (it == adaptive.get()) CHECK(dt_max > 100.0 * dt_min);
+    CHECK(py.largest() <= 1e-13 * py.scale());
+  }
 }
 
 namespace {
