@@ -258,9 +258,13 @@ class EnergyBalance {
 // The envelope of a series per window of time: max |value| over the values at t in
 // [t0 + j w, t0 + (j + 1) w), one per completed window (a window is complete once a value
 // at or past its end arrives; a partial last window is left out), at its midpoint time.
+// `expected` windows are reserved up front, so that add() allocates nothing within them.
 class Envelope {
  public:
-  Envelope(double t0, double window) : t0_(t0), window_(window) {}
+  Envelope(double t0, double window, std::size_t expected = 0) : t0_(t0), window_(window) {
+    times_.reserve(expected);
+    maxima_.reserve(expected);
+  }
   void add(double t, double value);
   const std::vector<double>& times() const { return times_; }
   const std::vector<double>& maxima() const { return maxima_; }
@@ -277,7 +281,9 @@ class Envelope {
 // (fit_line), and over_run = drift x (last time - first time). No drift when the interval
 // contains 0 (no slope the scatter of the windows can tell from none) or |over_run| <=
 // round_off (a change rounding alone can make: EnergyBalance::round_off()); an exactly linear
-// drift above round-off fails (its interval is the slope alone). Fewer than kDriftMinWindows
+// drift above round-off fails (its interval is the slope alone), and so does an envelope that
+// falls steadily (a decaying transient: the interval lies below 0); the sign is the caller's to
+// read. Fewer than kDriftMinWindows
 // windows: not measured (NaN drift, no_drift false): with 8 windows the fit keeps 6 residual
 // degrees of freedom, t_{0.975,6} = 2.45, so the interval is not carried by the quantile of
 // too few points (t_{0.975,1} = 12.7).

@@ -423,6 +423,16 @@ TEST_CASE("Envelope: max |value| per completed window, at its midpoint", "[studi
     env.add(t, x);
   CHECK(env.times() == std::vector<double>{1.25, 1.75});  // [1, 1.5), [1.5, 2); [2, 2.5) not complete; t < t0 left out
   CHECK(env.maxima() == std::vector<double>{3.0, 2.0});
+  // Reserved windows: no allocation while they fill.
+  nsb::Envelope reserved(0.0, 1.0, 4);
+  long allocations = 0;
+  for (int k = 0; k < 40; ++k) {
+    nsb::test::CountAllocations count;
+    reserved.add(0.1 * k, k);
+    allocations += count.count();
+  }
+  CHECK(reserved.maxima().size() == 3);
+  CHECK(allocations == 0);
 }
 
 TEST_CASE("drift_rule: a linear drift fails, a bounded oscillation passes, a drift in noise fails once the windows resolve it",
@@ -459,6 +469,11 @@ TEST_CASE("drift_rule: a linear drift fails, a bounded oscillation passes, a dri
   CHECK_FALSE(resolved.no_drift);
   CHECK(resolved.low <= 1e-3);
   CHECK(resolved.high >= 1e-3);
+  // A steadily falling envelope fails as well (two-sided interval), its sign below 0.
+  const auto [tf, fall] = series(10, [](int w) { return 1.0 - 0.01 * w; });
+  const nsb::Drift falling = nsb::drift_rule(tf, fall, 1e-12);
+  CHECK(falling.high < 0.0);
+  CHECK_FALSE(falling.no_drift);
   // Fewer than kDriftMinWindows: not measured.
   const auto [t7, n7] = series(7, [](int w) { return 1.0 * w; });
   CHECK(std::isnan(nsb::drift_rule(t7, n7, 0.0).drift));
@@ -481,7 +496,7 @@ TEST_CASE("Measured: the bouncing bar's energy-balance drift per period, cd-lagr
       fmt::print("N {} {}: declined: {}\n", N, mass, e.what());
       continue;
     }
-    nsb::Envelope envelope(t1, period);
+    nsb::Envelope envelope(t1, period, 50);
     double e_end = 0.0;
     const nsb::EnergyBalance b = balance_run(*bar, *integrator, 0.9 * bar->stable_step(), t1 + 50.0 * period + 1e-9,
                                              [&](const nsb::Integrator& it, const nsb::EnergyBalance& bal) {
