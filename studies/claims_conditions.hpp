@@ -64,8 +64,10 @@ ImpactEnergy bar_impact_energy(const std::string& integrator, const std::string&
 //   free flight  g 0, 10 m above the floor, `free_steps` steps: max |P - P_0| and |J - J_0|
 //                over the steps, J = sum_a m_a x_a x v_a of the reported (u, v)
 //   on the floor g 9.81, dropped from 0.1 m at 1 m/s, `floor_steps` steps: max over the steps
-//                of |J_k - J_{k-1} - tau sum_a x_a x F_ext,a - sum_i x_i Lambda_i| (the impulses'
-//                moments at the step's new positions), from the state after the first step
+//                of |J_k - J_{k-1} - w sum_a x_a x F_ext,a - sum_i x_i Lambda_i| (the impulses'
+//                moments at the step's new positions), from the state after the first step;
+//                w = tau, or (tau_{k+1} + tau_{k+2})/2 for cd-lagrange-adaptive (its variational
+//                kick; studies/measures.hpp variable_step_weight)
 // All relative to sum_a m_a |x_a| |v_a| at the start (P: sum_a m_a |v_a|).
 struct SpinningBlock {
   long free_steps = 0, floor_steps = 0, contact_steps = 0;

@@ -23,6 +23,21 @@ TEST_CASE("claims conditions: the spinning block's momenta under cd-lagrange: ke
   CHECK(momentum_verdict(b.free_linear, std::max(b.free_angular, b.floor_angular)) == Verdict::Holds);
 }
 
+TEST_CASE("claims conditions: the spinning block's angular momentum under cd-lagrange-adaptive, variable steps, balanced "
+          "to round-off on the floor once gravity is weighted as its kick weights it",
+          "[claims][block-2d]") {
+  // Issue 52 item 8: the balance charged gravity with the requested tau while the variational
+  // kick applies (tau_{k+1} + tau_{k+2})/2 F_ext; J_k - J_{k-1} = sum_a x_a,k+1 x ((tau_{k+1} +
+  // tau_{k+2})/2 F_ext,a + (L^T Lambda)_a) exactly (lumped mass: x_{k+1} - x_k parallel to
+  // p_{k+1/2} node by node; F_int frame-invariant: no net moment). Measured with tau: 2.9e-4.
+  const SpinningBlock b = spinning_block("cd-lagrange-adaptive", 100, 2000);
+  REQUIRE(b.note.empty());
+  REQUIRE(b.contact_steps > 0);
+  REQUIRE(b.work.extra.at("no_root_steps") >= 1.0);  // the step collapsed on the floor: steps far from tau
+  CHECK(b.free_angular <= kMomentumTolerance);
+  CHECK(b.floor_angular <= kMomentumTolerance);
+}
+
 TEST_CASE("claims conditions: cd-lagrange on the singular-mass bars: the contact node's displacement converges in the "
           "Hausdorff sense, its velocity does not",
           "[claims][hausdorff]") {
