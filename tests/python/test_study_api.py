@@ -237,3 +237,18 @@ def test_run_measures_observe_a_run():
         study.run([study.case("spring-chain", "cd-lagrange", dt=1e-3, t_end=0.1, observe=[{"kind": "mesh-momentm"}])])
     with pytest.raises(ValueError, match="component"):
         study.run([study.case("block-2d", "cd-lagrange", dt=1e-4, t_end=0.01, observe=[{"kind": "mesh-momentum", "component": "qx"}])])
+
+
+def test_the_energy_balance_observed_to_round_off_and_as_a_drift():
+    # CD-Lagrange's discrete balance is exact on a rigid body, impacts included (studies/measures.hpp);
+    # Moreau-Jean at theta = 1 dissipates h^2 m g^2 / 2 a step in flight: a drift the rule must not pass.
+    observe = [{"kind": "energy-balance", "window": 0.5}]
+    exact, dissipating, other = study.run([
+        study.case("bouncing-mass", "cd-lagrange", dt=1e-3, t_end=10.0, e=0.8, observe=observe),
+        study.case("bouncing-mass", "moreau-jean", dt=1e-3, t_end=10.0, e=0.8, theta=1, observe=observe),
+        study.case("bouncing-mass", "nsga", dt=1e-3, t_end=1.0, observe=observe)])
+    balance = exact.observed[0]
+    assert abs(balance["cumulative"]) <= balance["round_off"] and balance["drift"]["no_drift"]
+    assert balance["drift"]["windows"] >= 8 and len(balance["envelope"]["maxima"]) == balance["drift"]["windows"]
+    assert not dissipating.observed[0]["drift"]["no_drift"] and dissipating.observed[0]["drift"]["high"] < 0
+    assert other.status == "n/a" and "not derived" in other.message
