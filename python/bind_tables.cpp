@@ -19,25 +19,23 @@ using namespace pybind11::literals;
 
 namespace {
 
-// Sets the attributes of `self` named by the keyword arguments (each an attribute the class
-// binds: a misspelt one is a ValueError naming it).
-void set_attributes(const py::object& self, const py::kwargs& kwargs, const char* what) {
-  for (const auto& [key, value] : kwargs) {
+// `value` with the fields named by the keyword arguments set (each a field the class binds: a
+// misspelt one is a ValueError naming it): the constructors' keyword arguments.
+template <class T>
+T with_fields(const T& value, const py::kwargs& kwargs, const char* what) {
+  py::object self = py::cast(value);
+  for (const auto& [key, field] : kwargs) {
     if (!py::hasattr(self, key)) throw InputError(fmt::format("{}: no field '{}'", what, py::str(key).cast<std::string>()));
-    self.attr(key) = value;
+    self.attr(key) = field;
   }
+  return self.cast<T>();
 }
 
 void bind_table_classes(py::module_& m) {
   py::class_<Column>(m, "Column", "A table's column (studies/table.hpp): name, unit, format (fmt spec), description, "
                                   "timing (skipped by --verify), interval (names of the low and high columns)")
       .def(py::init([](const std::string& name, const py::kwargs& kwargs) {
-             Column c;
-             c.name = name;
-             c.format = "{:.3e}";
-             auto column = py::cast(c);
-             set_attributes(column, kwargs, "Column");
-             return column.cast<Column>();
+             return with_fields(Column{.name = name, .unit = "", .format = "{:.3e}", .description = ""}, kwargs, "Column");
            }), "name"_a)
       .def_readwrite("name", &Column::name)
       .def_readwrite("unit", &Column::unit)
@@ -49,9 +47,7 @@ void bind_table_classes(py::module_& m) {
       .def(py::init([](const std::string& id, const py::kwargs& kwargs) {
              Figure f;
              f.id = id;
-             auto figure = py::cast(f);
-             set_attributes(figure, kwargs, "Figure");
-             return figure.cast<Figure>();
+             return with_fields(f, kwargs, "Figure");
            }), "id"_a)
       .def_readwrite("id", &Figure::id).def_readwrite("title", &Figure::title).def_readwrite("x", &Figure::x)
       .def_readwrite("y", &Figure::y).def_readwrite("series", &Figure::series).def_readwrite("panels", &Figure::panels)
@@ -62,9 +58,7 @@ void bind_table_classes(py::module_& m) {
       .def(py::init([](const std::string& id, const py::kwargs& kwargs) {
              Table t;
              t.id = id;
-             auto table = py::cast(t);
-             set_attributes(table, kwargs, "Table");
-             return table.cast<Table>();
+             return with_fields(t, kwargs, "Table");
            }), "id"_a)
       .def_readwrite("id", &Table::id).def_readwrite("title", &Table::title).def_readwrite("caption", &Table::caption)
       .def_readwrite("columns", &Table::columns).def_readwrite("metadata", &Table::metadata)

@@ -14,14 +14,6 @@ import nsbench
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
-@pytest.fixture
-def study_exe():
-    exe = os.environ.get("NSBENCH_STUDY_EXE")
-    if not exe:
-        pytest.skip("NSBENCH_STUDY_EXE (nsbench-study) is not set")
-    return exe
-
-
 def run(exe, *args):
     return subprocess.run([exe, *args], capture_output=True, text=True, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
 
