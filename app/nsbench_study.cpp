@@ -198,7 +198,9 @@ int main(int argc, char** argv) {
     nsb::load_plugins(plugins);
     const auto& registry = nsb::study_registry();  // after the plugins: a study of integrators = "all" runs theirs
     if (names == std::vector<std::string>{"list"}) {
-      for (const auto& s : registry) fmt::print("{:<12} {} [{}]\n", s.name, s.description, s.source);
+      for (const auto& s : registry)  // what each is written in: a study file, Python, or C++
+        fmt::print("{:<12} {} [{}: {}]\n", s.name, s.description,
+                   !s.script.empty() ? "Python" : nsb::builtin_study_file(s.source) ? "study file" : "C++", s.source);
       return 0;
     }
     if (names[0] == "show") {

@@ -470,11 +470,12 @@ TEST_CASE("cli: repeated --set keys, empty values, non-finite tolerances and ove
   std::filesystem::remove_all(out);
 }
 
-TEST_CASE("cli: nsbench-study list names each study's file; show prints a study file, refuses a C++ study and an unknown name", "[app]") {
+TEST_CASE("cli: nsbench-study list names each study's file and what it is written in; show prints a study file, refuses a C++ study and an unknown name", "[app]") {
   const auto list = study("list");
   CHECK(list.code == 0);
-  CHECK_THAT(list.output, Catch::Contains("[studies/builtin/bar.toml]"));
-  for (const auto& s : nsb::study_registry()) CHECK_THAT(list.output, Catch::Contains(s.name) && Catch::Contains("[" + s.source + "]"));
+  CHECK_THAT(list.output, Catch::Contains("[study file: studies/builtin/bar.toml]") && Catch::Contains("[C++: studies/block.cpp]") &&
+                              Catch::Contains("[Python: studies/builtin/peers.py]"));
+  for (const auto& s : nsb::study_registry()) CHECK_THAT(list.output, Catch::Contains(s.name) && Catch::Contains(s.source + "]"));
   const auto cpp = study("show block");
   CHECK(cpp.code == 2);
   CHECK_THAT(cpp.output, Catch::Contains("show block: written in C++ (studies/block.cpp), not a study file; valid: "));
