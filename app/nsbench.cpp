@@ -21,11 +21,15 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cmath>
 #include <algorithm>
+#include <condition_variable>
 #include <csignal>
 #include <iostream>
+#include <mutex>
 #include <optional>
+#include <thread>
 
 #include "app/cli_options.hpp"
 #include "core/build_info.hpp"
@@ -47,6 +51,44 @@ extern "C" void on_interrupt(int signal) {
   interrupt_signal = signal;
   std::signal(signal, SIG_DFL);  // a second one ends the process
 }
+
+// A line on stderr every 3 s while a run is prepared, until its steps start (and with them the
+// run's own progress lines): a 1e8-element bar takes about a minute to assemble and bind,
+// which printed nothing before.
+class SetupProgress {
+ public:
+  SetupProgress() : thread_([this] { beat(); }) {}
+  ~SetupProgress() { stop(); }
+  SetupProgress(const SetupProgress&) = delete;
+  SetupProgress& operator=(const SetupProgress&) = delete;
+  void stage(const char* what) {
+    const std::lock_guard lock(mutex_);
+    stage_ = what;
+  }
+  void stop() {
+    {
+      const std::lock_guard lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  void beat() {
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_lock lock(mutex_);
+    while (!wake_.wait_for(lock, std::chrono::seconds(3), [&] { return done_; }))
+      fmt::print(stderr, "nsbench: preparing the run: {}, elapsed {:.0f} s\n", stage_,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  const char* stage_ = "building the problem";
+  std::thread thread_;  // last: started once the rest is set
+};
 
 void print_params(const nsb::ParamSpecs& specs) {
   for (const auto& s : specs)
@@ -117,7 +159,9 @@ struct RunArgs {
 };
 
 int run_case(const RunArgs& a) {
+  SetupProgress setup;
   auto [problem, integrator] = nsb::make_run_case(a.problem, a.integrator, a.sets);
+  setup.stage("checking the options and the stable step");
   nsb::RunOptions options = nsb::parse_run_options(a.dt, a.t_end, a.sample_every, nsb::OptionStyle::CommandLine);
   if (!a.fields_every.empty() && a.fields.empty())
     throw nsb::InputError(fmt::format("--fields-every {}: given without --fields DIR", a.fields_every));
@@ -142,6 +186,7 @@ int run_case(const RunArgs& a) {
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
 
+  setup.stage("initialising the integrator");
   integrator->init(*problem, problem->initial_state());
   if (const std::string overflow = non_finite(*integrator); !overflow.empty())  // before any step: the parameters
     throw nsb::InputError(fmt::format("problem {}: its initial state is not finite ({}): a parameter overflows; "
@@ -159,6 +204,7 @@ int run_case(const RunArgs& a) {
   nsb::StepObserver follow_rotations;
   if (fields && fields->follows_rotations())
     follow_rotations = [&](const nsb::Integrator& i, const nsb::StepInfo&) { fields->follow(i.state()); };
+  setup.stop();
   const nsb::RunResult result = nsb::run(*problem, *integrator, options, follow_rotations);
   series.commit();
   nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));
