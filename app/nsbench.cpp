@@ -4,7 +4,7 @@
 //   nsbench [--plugin FILE]... run --problem P --integrator I --dt DT --t-end T [--set key=value]... --out DIR
 //                                  [--fields DIR [--fields-every K]]   ParaView field output
 //                                  (run/field_output.hpp) of the problem's bodies
-//   nsbench [--plugin FILE]... check --integrator I | --problem P   the generic properties
+//   nsbench [--plugin FILE]... check --integrator I | --problem P [--set key=value]...   the generic properties
 //                                  every integrator (problem) is held to
 //                                  (check/conformance.hpp), one line each; exit 1 when
 //                                  one fails
@@ -245,8 +245,11 @@ int print_verdicts(const std::string& what, const std::vector<nsb::CheckVerdict>
   return failed;
 }
 
-int check(const std::string& integrator, const std::string& problem) {
+int check(const std::string& integrator, const std::string& problem, const std::vector<std::string>& sets) {
   if (integrator.empty() && problem.empty()) throw nsb::InputError("check: give --integrator NAME or --problem NAME (or both)");
+  // The integrator's properties are measured on the suite's own problems at fixed parameters.
+  if (problem.empty() && !sets.empty())
+    throw nsb::InputError(fmt::format("check --set {}: sets a parameter of the problem checked; valid: with --problem NAME", sets.front()));
   int failed = 0;
   if (!integrator.empty()) {
     const auto& entry = nsb::find_integrator(integrator);
@@ -254,7 +257,8 @@ int check(const std::string& integrator, const std::string& problem) {
   }
   if (!problem.empty()) {
     const auto& entry = nsb::find_problem(problem);
-    failed += print_verdicts("problem " + entry.name, nsb::check_problem(entry));
+    const auto routed = nsb::route_overrides(sets, entry.parameters(), {});
+    failed += print_verdicts("problem " + entry.name, nsb::check_problem(entry, routed.problem));
   }
   return failed ? 1 : 0;
 }
@@ -284,6 +288,8 @@ int main(int argc, char** argv) {
   std::string checked_integrator, checked_problem;
   check_cmd->add_option("--integrator", checked_integrator, "integrator to check (see nsbench list)");
   check_cmd->add_option("--problem", checked_problem, "problem to check (see nsbench list)");
+  std::vector<std::string> checked_sets;
+  check_cmd->add_option("--set", checked_sets, "a parameter of the problem checked as key=value (repeatable)");
   nsb::cli::one_value_each(app);
   try {
     nsb::cli::check_option_names(app, argc, argv);
@@ -304,7 +310,7 @@ int main(int argc, char** argv) {
       list();
       return 0;
     }
-    if (check_cmd->parsed()) return check(checked_integrator, checked_problem);
+    if (check_cmd->parsed()) return check(checked_integrator, checked_problem, checked_sets);
     return run_case(a);
   } catch (const nsb::InputError& e) {
     fmt::print(stderr, "nsbench: error: {}\n", e.what());
