@@ -176,12 +176,36 @@ std::unique_ptr<BouncingMass> bouncing_mass(double e) {
   return std::make_unique<BouncingMass>(Params(BouncingMass::parameters_spec(), {{"e", fmt::format("{}", e)}}));
 }
 
+// A compliant contact's restitution (ImpactAccuracy::restitution_exact false) depends on the
+// impact's phase within its few steps: held to kCompliantRestitution of e per impact, its flight
+// energies so to 2 i kCompliantRestitution (E_i ~ e^2i). A dashpot tuned for e^2 misses by 10 %.
+constexpr double kCompliantRestitution = 0.02;
+
+// The flight energies observed on the bouncing mass `problem` (e = 0.9 for every scheme with a
+// velocity-level impact law, whatever it declares; the declaration sets the bound).
+CheckVerdict flight_energies(const BounceObservation& obs, const BouncingMass& problem, double dt, int impacts) {
+  const double e = problem.restitution();
+  if (obs.accuracy.restitution_exact) {
+    const double ratio = bounce_ratios(obs, problem, dt, impacts).flight_energy;
+    return verdict("flight energies", ratio <= 1.0, fmt::format("worst |E_i / (E0 e^2i) - 1| / bound = {:.3g} (<= 1)", ratio));
+  }
+  double worst = obs.flight_energy.size() < static_cast<std::size_t>(impacts) ? std::numeric_limits<double>::infinity() : 0.0;
+  for (std::size_t k = 0; k < obs.flight_energy.size(); ++k)
+    worst = std::max(worst, std::abs(obs.flight_energy[k] / problem.energy_after_impact(static_cast<int>(k) + 1) - 1.0) /
+                                (2.0 * static_cast<double>(k + 1) * kCompliantRestitution));
+  return verdict("flight energies", worst <= 1.0,
+                 fmt::format("e = {}: worst |E_i / (E0 e^2i) - 1| / (2 i {:g}) = {:.3g} (<= 1): a compliant contact "
+                             "(restitution_exact false) held to its restitution within {:g} %", e, kCompliantRestitution, worst,
+                             100.0 * kCompliantRestitution));
+}
+
 void contact_law(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
   const double dt = 1e-4;
   int impacts = 5;
   double e = 0.9;
   auto problem = bouncing_mass(e);
   std::string declined;
+  bool compliant = false;
   if (auto integ = init_or_decline(entry, *problem); !integ) {
     // No velocity-level impact law (newmark-lm): the plastic impact, its first impact only.
     try {
@@ -193,11 +217,12 @@ void contact_law(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
     impacts = 1;
     problem = bouncing_mass(e);
   } else if (!integ->impact_accuracy().restitution_exact) {
-    // A compliant contact's restitution is its own: held to the timing at e = 1 only.
-    e = 1.0;
-    problem = bouncing_mass(e);
+    // A compliant contact's impact times drift with its restitution's error: timed at e = 1
+    // (its flight energies at e = 0.9 all the same, below).
+    compliant = true;
+    problem = bouncing_mass(1.0);
   }
-  const std::string where = fmt::format("bouncing-mass e = {}, dt = {:g}", e, dt);
+  const std::string where = fmt::format("bouncing-mass e = {}, dt = {:g}", compliant ? 1.0 : e, dt);
   if (!init_or_decline(entry, *problem)) {
     for (const char* p : {"impulse sign", "open contacts", "impact times", "flight energies"})
       out.push_back({p, Outcome::NotMeasured, fmt::format("declines the bouncing mass: {}", declined)});
@@ -214,11 +239,14 @@ void contact_law(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
                         fmt::format("{} of {} impacts seen; worst |t_i - t_i,exact| / (lag_steps i dt) = {:.3g} (<= 1, "
                                     "lag_steps {:g})", std::min<std::size_t>(obs.impact_times.size(), impacts), impacts,
                                     r.impact_time, obs.accuracy.lag_steps)));
-  if (e == 0.0)
+  if (e == 0.0) {
     out.push_back({"flight energies", Outcome::NotMeasured, fmt::format("no flight after a plastic impact ({})", declined)});
-  else
-    out.push_back(verdict("flight energies", r.flight_energy <= 1.0,
-                          fmt::format("worst |E_i / (E0 e^2i) - 1| / bound = {:.3g} (<= 1)", r.flight_energy)));
+  } else if (!compliant) {
+    out.push_back(flight_energies(obs, *problem, dt, impacts));
+  } else {
+    const auto lossy = bouncing_mass(e);  // its restitution measured at e = 0.9 all the same
+    out.push_back(flight_energies(observe_bounces(entry, *lossy, dt, impacts), *lossy, dt, impacts));
+  }
 }
 
 void step_counters(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
