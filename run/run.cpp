@@ -448,6 +448,7 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
       {"work", work},
       {"build", {{"version", b.version}, {"git_revision", b.git_revision}, {"build_type", b.build_type}, {"compiler", b.compiler}}},
   };
+  if (!b.dirty_files.empty()) j["build"]["dirty_files"] = b.dirty_files;  // what the -dirty revision ran
   if (const auto figures = problem.summary_values(); !figures.empty()) {
     json summary = json::object();
     for (const auto& [name, value] : figures) summary[name] = std::isfinite(value) ? json(value) : json(nullptr);
