@@ -4,7 +4,7 @@
 //   nsbench [--plugin FILE]... run --problem P --integrator I --dt DT --t-end T [--set key=value]... --out DIR
 //                                  [--fields DIR [--fields-every K]]   ParaView field output
 //                                  (run/field_output.hpp) of the problem's bodies
-//   nsbench [--plugin FILE]... check --integrator I | --problem P   the generic properties
+//   nsbench [--plugin FILE]... check --integrator I | --problem P [--set key=value]...   the generic properties
 //                                  every integrator (problem) is held to
 //                                  (check/conformance.hpp), one line each; exit 1 when
 //                                  one fails
@@ -21,11 +21,15 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cmath>
 #include <algorithm>
+#include <condition_variable>
 #include <csignal>
 #include <iostream>
+#include <mutex>
 #include <optional>
+#include <thread>
 
 #include "app/cli_options.hpp"
 #include "core/build_info.hpp"
@@ -47,6 +51,44 @@ extern "C" void on_interrupt(int signal) {
   interrupt_signal = signal;
   std::signal(signal, SIG_DFL);  // a second one ends the process
 }
+
+// A line on stderr every 3 s while a run is prepared, until its steps start (and with them the
+// run's own progress lines): a 1e8-element bar takes about a minute to assemble and bind,
+// which printed nothing before.
+class SetupProgress {
+ public:
+  SetupProgress() : thread_([this] { beat(); }) {}
+  ~SetupProgress() { stop(); }
+  SetupProgress(const SetupProgress&) = delete;
+  SetupProgress& operator=(const SetupProgress&) = delete;
+  void stage(const char* what) {
+    const std::lock_guard lock(mutex_);
+    stage_ = what;
+  }
+  void stop() {
+    {
+      const std::lock_guard lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  void beat() {
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_lock lock(mutex_);
+    while (!wake_.wait_for(lock, std::chrono::seconds(3), [&] { return done_; }))
+      fmt::print(stderr, "nsbench: preparing the run: {}, elapsed {:.0f} s\n", stage_,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  const char* stage_ = "building the problem";
+  std::thread thread_;  // last: started once the rest is set
+};
 
 void print_params(const nsb::ParamSpecs& specs) {
   for (const auto& s : specs)
@@ -117,7 +159,9 @@ struct RunArgs {
 };
 
 int run_case(const RunArgs& a) {
+  SetupProgress setup;
   auto [problem, integrator] = nsb::make_run_case(a.problem, a.integrator, a.sets);
+  setup.stage("checking the options and the stable step");
   nsb::RunOptions options = nsb::parse_run_options(a.dt, a.t_end, a.sample_every, nsb::OptionStyle::CommandLine);
   if (!a.fields_every.empty() && a.fields.empty())
     throw nsb::InputError(fmt::format("--fields-every {}: given without --fields DIR", a.fields_every));
@@ -142,6 +186,7 @@ int run_case(const RunArgs& a) {
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
 
+  setup.stage("initialising the integrator");
   integrator->init(*problem, problem->initial_state());
   if (const std::string overflow = non_finite(*integrator); !overflow.empty())  // before any step: the parameters
     throw nsb::InputError(fmt::format("problem {}: its initial state is not finite ({}): a parameter overflows; "
@@ -159,6 +204,11 @@ int run_case(const RunArgs& a) {
   nsb::StepObserver follow_rotations;
   if (fields && fields->follows_rotations())
     follow_rotations = [&](const nsb::Integrator& i, const nsb::StepInfo&) { fields->follow(i.state()); };
+  setup.stop();
+  // Once the input is checked, before the first step: a binary built from changed sources
+  // says so and which (the same list is in summary.json's build), its numbers not the commit's.
+  if (const std::string& dirty = nsb::build_info().dirty_files; !dirty.empty())
+    fmt::print(stderr, "nsbench: note: built from revision {} with changes to {}\n", nsb::build_info().git_revision, dirty);
   const nsb::RunResult result = nsb::run(*problem, *integrator, options, follow_rotations);
   series.commit();
   nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));
@@ -199,8 +249,11 @@ int print_verdicts(const std::string& what, const std::vector<nsb::CheckVerdict>
   return failed;
 }
 
-int check(const std::string& integrator, const std::string& problem) {
+int check(const std::string& integrator, const std::string& problem, const std::vector<std::string>& sets) {
   if (integrator.empty() && problem.empty()) throw nsb::InputError("check: give --integrator NAME or --problem NAME (or both)");
+  // The integrator's properties are measured on the suite's own problems at fixed parameters.
+  if (problem.empty() && !sets.empty())
+    throw nsb::InputError(fmt::format("check --set {}: sets a parameter of the problem checked; valid: with --problem NAME", sets.front()));
   int failed = 0;
   if (!integrator.empty()) {
     const auto& entry = nsb::find_integrator(integrator);
@@ -208,7 +261,8 @@ int check(const std::string& integrator, const std::string& problem) {
   }
   if (!problem.empty()) {
     const auto& entry = nsb::find_problem(problem);
-    failed += print_verdicts("problem " + entry.name, nsb::check_problem(entry));
+    const auto routed = nsb::route_overrides(sets, entry.parameters(), {});
+    failed += print_verdicts("problem " + entry.name, nsb::check_problem(entry, routed.problem));
   }
   return failed ? 1 : 0;
 }
@@ -238,6 +292,8 @@ int main(int argc, char** argv) {
   std::string checked_integrator, checked_problem;
   check_cmd->add_option("--integrator", checked_integrator, "integrator to check (see nsbench list)");
   check_cmd->add_option("--problem", checked_problem, "problem to check (see nsbench list)");
+  std::vector<std::string> checked_sets;
+  check_cmd->add_option("--set", checked_sets, "a parameter of the problem checked as key=value (repeatable)");
   nsb::cli::one_value_each(app);
   try {
     nsb::cli::check_option_names(app, argc, argv);
@@ -258,7 +314,7 @@ int main(int argc, char** argv) {
       list();
       return 0;
     }
-    if (check_cmd->parsed()) return check(checked_integrator, checked_problem);
+    if (check_cmd->parsed()) return check(checked_integrator, checked_problem, checked_sets);
     return run_case(a);
   } catch (const nsb::InputError& e) {
     fmt::print(stderr, "nsbench: error: {}\n", e.what());

@@ -10,7 +10,11 @@
 //                       scheme whose restitution is not exact; e = 0 and the first impact for
 //                       one without a velocity-level impact law, which declines e > 0):
 //                       |t_i - t_i,exact| <= lag_steps i dt (the scheme's impact_accuracy())
-//   flight energies     E in flight i within 2 lag_steps g dt i / (e^i w1) of E0 e^(2i)
+//   flight energies     E in flight i within 2 lag_steps g dt i / (e^i w1) of E0 e^(2i); for
+//                       a compliant contact (restitution_exact false, whose impact times
+//                       are taken at e = 1) measured at e = 0.9 all the same, within
+//                       2 i 0.02 (its restitution within 2 %): the declaration sets the
+//                       bound, not whether the restitution is tested
 //   step counters       step() advances state().t by the StepInfo's dt and adds 1 to
 //                       work().steps and >= 1 to work().force_evaluations (not for a
 //                       reference, which counts its ODE solver's steps)
@@ -28,6 +32,7 @@
 //
 // Exact solutions: problems/bouncing_mass.hpp (impact times, flight energies),
 // reference/modal_exact.hpp (the chain).
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -91,21 +96,30 @@ const char* outcome_name(CheckVerdict::Outcome o);
 // problem, which some properties expect) is a failed property, not an abort.
 std::vector<CheckVerdict> check_integrator(const IntegratorEntry& entry);
 
-// A problem's contract (problems/problem.hpp): built with its defaults; contacts whose shapes
-// agree, initially open or touching; a symmetric mass with a non-negative diagonal;
+// A problem's contract (problems/problem.hpp): built with its defaults and `overrides`
+// (`nsbench check --problem P --set key=value`; a bad one throws InputError); contacts whose
+// shapes agree, initially open or touching; a symmetric mass with a non-negative diagonal;
 // F_int = dV_int/du (central difference of strain_energy along a fixed direction);
-// a positive stable_step() (inf without stiffness); the contact rows L(U) and T(U) against
-// central differences of g(U) and of the slide s(U) at random admissible configurations (for
-// constant kinematics too, where they hold to round-off); a field mesh `nsbench run --fields` can
-// write (check_field_mesh), with finite stresses and body arrays at the initial state (not
-// measured without one); bad parameters refused.
-std::vector<CheckVerdict> check_problem(const ProblemEntry& entry);
+// a positive stable_step() (inf without stiffness); the contact rows (check_contact_rows) at
+// random admissible configurations (for constant kinematics too, where they hold to
+// round-off); a field mesh `nsbench run --fields` can write (check_field_mesh), with finite
+// stresses and body arrays at the initial state (not measured without one); bad parameters
+// refused.
+std::vector<CheckVerdict> check_problem(const ProblemEntry& entry, const std::map<std::string, std::string>& overrides = {});
 
-// The contact rows' part of check_problem for one problem around configuration u0: L(U) and
-// T(U) against central differences of g(U) and of the slide s(U) (T = ds/dU) along three
-// random directions d each, at u0 and at up to five random admissible configurations (every
-// gap >= 0) within 0.05 (1 + max|u0|) of it. Error of a row: |FD - row . d| / (|row| |d|),
-// <= 1e-5 to pass. The figure says how many configurations were admissible.
+// The contact rows' part of check_problem for one problem around configuration u0, at u0 and
+// at up to five random admissible configurations (every gap >= 0) within 0.05 (1 + max|u0|)
+// of it, along random directions d (three, six with contact points):
+//   - L(U) against central differences of g(U): L = dg/dU;
+//   - with friction and Problem::contact_points given, what the laws read: the vectors a_L,
+//     a_T, a_T2 that best map the contact point's velocity x'(d) (central differences of
+//     contact_points) to L d, T d, T2 d must reproduce every row . d (a row sees nothing but
+//     the point's motion), a_T and a_T2 unit, orthogonal to a_L and to each other (isotropic
+//     Coulomb friction; no integrability T = ds/dU, which curved 3D obstacles cannot meet);
+//   - with friction and no contact points: T(U) against central differences of contact_slide
+//     (T = ds/dU), T2 of contact_slide2.
+// Error of a row: |FD - row . d| / (|row| |d|); every error <= 1e-5 to pass. The figure says how
+// many configurations were admissible and, on a failure, what to change.
 CheckVerdict check_contact_rows(const Problem& p, const Vec& u0);
 
 }  // namespace nsb

@@ -9,6 +9,9 @@ struct BuildInfo {
   std::string git_revision;  // short hash, "-dirty" when the work tree had changes
   std::string build_type;
   std::string compiler;
+  // The files that differed from the revision when the binary was built ("a.cpp, b.hpp and 3
+  // more"; "" when clean): what a run built from a dirty tree says it ran.
+  std::string dirty_files;
 };
 
 const BuildInfo& build_info();

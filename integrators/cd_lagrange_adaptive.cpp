@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include "integrators/cd_lagrange.hpp"
@@ -62,7 +63,13 @@ void CdLagrangeAdaptive::init(const Problem& problem, const State& initial) {
   gdot_prev_ = Vec::Zero(problem.ncontacts());
   problem.external_force(state_.t, f_ext_);
   e_ = problem.restitution();
-  cfl_ = cfl_fraction_ * problem.stable_step();
+  // Its steps are capped by the stable step: a NaN one (a plugin breaking the contract) or one
+  // <= 0 would lift or collapse the cap without a word (std::min drops a NaN), so it declines.
+  const double stable = problem.stable_step();
+  if (!(stable > 0.0))
+    throw InputError(fmt::format("integrator cd-lagrange-adaptive: problem {} reports the stable step {}, which caps its steps; "
+                                 "valid: stable_step() > 0 (inf without stiffness)", problem.name(), stable));
+  cfl_ = cfl_fraction_ * stable;
   contact_ = ImpulseContact(problem, minv_, lcp_);
   friction_ = problem.contacts().has_friction();
   if (friction_) {
@@ -161,8 +168,15 @@ double CdLagrangeAdaptive::residual(double tau, StepInfo& info) {
 }
 
 // tau_up: the user cap or the CFL bound at U_{k+1}, whichever is smaller.
+// A NaN or non-positive stable_step_at(u) ends the run (diverged, with the reason) instead of
+// lifting the cap.
 double CdLagrangeAdaptive::step_bound() const {
-  return std::min(tau_max_, problem_->is_linear() ? cfl_ : cfl_fraction_ * problem_->stable_step_at(state_.u));
+  if (problem_->is_linear()) return std::min(tau_max_, cfl_);
+  const double stable = problem_->stable_step_at(state_.u);
+  if (!(stable > 0.0))
+    throw std::runtime_error(fmt::format("problem {} reports the stable step {} at t = {:.6g}; valid: stable_step_at(u) > 0",
+                                         problem_->name(), stable, state_.t));
+  return std::min(tau_max_, cfl_fraction_ * stable);
 }
 
 // The talk's update of tau_{k+2} (header) from the trial of the last residual() call.

@@ -19,8 +19,8 @@ Scene scene_of(const Problem& problem, const State& initial, double size, const 
                                    who, problem.name(), i, c.tangent_velocity[i]));
   const std::string& name = problem.name();
   if (name != "bouncing-mass" && name != "sliding-mass" && name != "rolling-disk" && name != "rocking-block" && name != "sphere")
-    throw InputError(fmt::format("{}: problem '{}' is not one of the rigid problems the engine peers run (valid: bouncing-mass, sliding-mass, "
-                                 "rolling-disk, rocking-block, sphere); the engines see rigid bodies, not a semi-discrete continuum", who, name));
+    throw InputError(fmt::format("{}: problem '{}' is not one of the rigid problems the engine peers run (valid: {}); the engines see "
+                                 "rigid bodies, not a semi-discrete continuum", who, name, kSceneProblems));
   const Params& p = problem.parameters();
   Scene s;
   s.problem = problem.name();

@@ -52,6 +52,12 @@
 
 namespace nsb::engines {
 
+// The problems the engines run, each as its scene above; every other problem is declined.
+inline constexpr const char* kSceneProblems = "bouncing-mass, sliding-mass, rolling-disk, rocking-block, sphere";
+// What `nsbench list` adds to an engine peer's description: its capability marks hold on
+// these scenes only.
+inline std::string scenes_only() { return std::string(" (runs only its scenes ") + kSceneProblems + "; declines every other problem)"; }
+
 enum class Shape { Sphere, Box, Cylinder };
 
 // The body's pose and velocity in the x-z plane; angle and spin about +y; then, for a

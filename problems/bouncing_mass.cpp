@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 
 namespace nsb {
@@ -60,9 +61,25 @@ double BouncingMass::impact_time(int i) const {
   return t1_ + 2.0 * w1_ / g_ * flights;
 }
 
+// Every impact up to t_end: for e < 1 the tabulated flights (all that floating point tells
+// apart, unless the table is full); for e = 1 the first kMaxFlights (none at rest, w1 = 0).
+// A finite t_end past the last of those, with impacts still to come, is refused: a shorter
+// list would pass for all of them.
 std::vector<double> BouncingMass::impact_times(double t_end) const {
+  if (w1_ == 0.0) return {};
+  const bool endless = e_ == 1.0 || impacts_.size() == static_cast<std::size_t>(kMaxFlights);
+  const double last = e_ == 1.0 ? impact_time(kMaxFlights) : impacts_.back();
+  if (endless && std::isfinite(t_end) && t_end > last && t_end < zeno_time())
+    throw InputError(fmt::format("bouncing-mass exact solution: impact_times(t_end = {:.6g}) asks past its {}th impact (e = {:.6g}); "
+                                 "valid: t_end <= {:.9g}, or inf for the first {}",
+                                 t_end, kMaxFlights, e_, last, kMaxFlights));
   std::vector<double> times;
-  for (int i = 1; i <= 1000 && impact_time(i) <= t_end && impact_time(i) < zeno_time(); ++i) times.push_back(impact_time(i));
+  if (e_ == 1.0) {
+    for (int i = 1; i <= kMaxFlights && impact_time(i) <= t_end; ++i) times.push_back(impact_time(i));
+    return times;
+  }
+  for (const double t : impacts_)
+    if (t <= t_end && t < zeno_time()) times.push_back(t);
   return times;
 }
 

@@ -34,7 +34,8 @@ class BouncingMass final : public RigidProblem, public ExactSolution {
   void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   const ExactSolution* exact() const override { return this; }
   std::optional<State> state(double t) const override;
-  std::vector<double> impact_times(double t_end) const override;  // up to 1000, before the Zeno time
+  // Before the Zeno time; at most kMaxFlights (a finite t_end past the last is refused).
+  std::vector<double> impact_times(double t_end) const override;
   std::vector<double> energies_after_impacts(double t_end) const override;  // E0 e^{2i}, of those impacts
   std::optional<FieldMesh> field_mesh() const override;
   // t_zeno_exact: the accumulation time of the impacts (zeno_time(), +inf for e = 1).

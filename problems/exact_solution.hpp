@@ -44,7 +44,9 @@ class ExactSolution {
   // the closed form excludes) or, for some parameters, is not known.
   virtual std::optional<State> state(double t) const = 0;
   // Exact times of the impacts in [0, t_end], in order (impact-time errors of study files);
-  // empty where not known.
+  // empty where not known. A solution that lists a bounded number of an endless sequence
+  // gives them all for t_end = +inf and refuses (InputError naming t_end and its valid range)
+  // a finite t_end past the last: never a shorter list that passes for the whole.
   virtual std::vector<double> impact_times(double /*t_end*/) const { return {}; }
   // The exact energy after each of those impacts (the flight that follows it); empty where
   // not known.

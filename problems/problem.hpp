@@ -175,13 +175,22 @@ class Problem : public ProblemOutput {
   virtual void evaluate_contacts(ConstVecRef u, ContactGeometry& out) const;
   // Storage for evaluate_contacts: the rows of contacts() (row-major) and a gap of size p.
   ContactGeometry contact_geometry() const;
-  // The contact points' tangential coordinates s(u) (size p) with T(u) = ds/du, written into s:
-  // what `nsbench check --problem` differentiates to test T(U) (no scheme needs it). The
-  // default, for constant kinematics: T u. A problem with moving contacts and friction
-  // overrides it.
+  // Where the contact points are, for `nsbench check --problem` (no scheme needs it): row i of
+  // `x` (p x 3: x, y, z; z = 0 in 2D) the position at u of the material point of the body that
+  // touches at u_at on contact i. Its velocity dx_i/du U' is what the laws see: T_i U' and
+  // T2_i U' must be its components along two orthonormal tangents orthogonal to the normal
+  // direction of L_i (docs/contacts.md), which the check tests by differences of x_i, with no
+  // need for T = ds/du (on a curved 3D obstacle no orthonormal pair of tangents is a pair of
+  // gradients). False (the default): not given; the check then tests T = ds/du (contact_slide).
+  virtual bool contact_points(ConstVecRef /*u_at*/, ConstVecRef /*u*/, Eigen::Ref<Eigen::MatrixXd> /*x*/) const {
+    return false;
+  }
+  // Tangential coordinates s(u) (size p) with T(u) = ds/du, written into s: what the check
+  // differentiates to test T(U) when contact_points is not given (integrable tangents: a flat
+  // obstacle, 2D). The default, for constant kinematics: T u.
   virtual void contact_slide(ConstVecRef u, VecRef s) const;
   // The same along the second tangent of 3D contacts: s2(u) with T2(u) = ds2/du (the default,
-  // for constant kinematics: T2 u). A problem whose 3D contacts move overrides it.
+  // for constant kinematics: T2 u).
   virtual void contact_slide2(ConstVecRef u, VecRef s2) const;
 
   virtual State initial_state() const = 0;

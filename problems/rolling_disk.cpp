@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 
 namespace nsb {
@@ -129,7 +130,15 @@ double RollingDisk::impact_time(int i) const {
   return t1_ + 2.0 * V_ / g_ * flights;
 }
 
+// The marched impacts up to t_end. When the march stopped at max_impacts with impacts still
+// to come (e = 1, or e near 1), a finite t_end past the last marched one is refused: the
+// list would silently lack the impacts after it.
 std::vector<double> RollingDisk::impact_times(double t_end) const {
+  const bool truncated = impacts_.size() == static_cast<std::size_t>(max_impacts);
+  if (truncated && std::isfinite(t_end) && t_end > impacts_.back().t && t_end < t_rest_)
+    throw InputError(fmt::format("rolling-disk exact solution: impact_times(t_end = {:.6g}) asks past its {}th (last marched) impact "
+                                 "(e = {:.6g}); valid: t_end <= {:.9g}, or inf for the first {}",
+                                 t_end, max_impacts, e_, impacts_.back().t, max_impacts));
   std::vector<double> times;
   for (const auto& im : impacts_)
     if (im.t <= t_end) times.push_back(im.t);

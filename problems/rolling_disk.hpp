@@ -78,7 +78,8 @@ class RollingDisk final : public RigidProblem, public ExactSolution {
   void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const override;
   const ExactSolution* exact() const override { return this; }
   std::optional<State> state(double t) const override;
-  std::vector<double> impact_times(double t_end) const override;  // the marched impacts
+  // The marched impacts (a finite t_end past the last of a truncated march is refused).
+  std::vector<double> impact_times(double t_end) const override;
   // rest and roll_onset (rest_time(), rolling_onset_time()).
   std::optional<double> event_time(ExactEvent event) const override;
   // first_rebound_speed: impacts()[0].v.

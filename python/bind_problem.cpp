@@ -72,12 +72,12 @@ py::dict contact_geometry_dict(const Problem& p, const Eigen::Ref<const Vec>& u)
 void bind_problem(py::module_& m) {
   py::class_<State>(m, "State", "Displacement u and velocity v (NumPy views, writable) at time t.")
       .def(py::init<>())
-      .def_readwrite("t", &State::t)
-      .def_property("u", [](py::object self) { return vector_view(self.cast<State&>().u, self); },
-                    [](State& s, const Eigen::Ref<const Vec>& x) { assign(s.u, x, "u"); })
-      .def_property("v", [](py::object self) { return vector_view(self.cast<State&>().v, self); },
-                    [](State& s, const Eigen::Ref<const Vec>& x) { assign(s.v, x, "v"); })
-      .def("__repr__", [](const State& s) { return fmt::format("State(t={}, ndof={})", s.t, s.u.size()); });
+      .def_property("t", [](const State& s) { return usable(s).t; }, [](State& s, double t) { usable(s).t = t; })
+      .def_property("u", [](py::object self) { return vector_view(usable(self.cast<State&>()).u, self); },
+                    [](State& s, const Eigen::Ref<const Vec>& x) { assign(usable(s).u, x, "u"); })
+      .def_property("v", [](py::object self) { return vector_view(usable(self.cast<State&>()).v, self); },
+                    [](State& s, const Eigen::Ref<const Vec>& x) { assign(usable(s).v, x, "v"); })
+      .def("__repr__", [](const State& s) { return fmt::format("State(t={}, ndof={})", usable(s).t, s.u.size()); });
 
   py::class_<Problem>(m, "Problem",
                       "A problem by name, its parameters as keyword arguments (as `--set` on the command line):\n"

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/parameters.hpp"
+#include "integrators/integrator.hpp"
 #include "problems/problem.hpp"
 
 namespace nsb::python {
@@ -40,8 +41,15 @@ std::vector<std::string> assignments(const py::dict& kwargs);
 // The message of a use of what a run handed to Python once the run has ended
 // (python_integrator.hpp), or of None where an nsbench object is expected.
 inline constexpr const char* kExpiredUse =
-    "an nsbench object used after the run it belonged to ended (the Problem handed to init, self._core), or None where "
-    "one is expected: keep copies instead (problem.name and problem.parameters, state.u.copy())";
+    "an nsbench object used after the run it belonged to ended (the Problem handed to init, self._core, self.state, "
+    "self.work), or None where one is expected: keep copies instead (problem.name and problem.parameters, state.u.copy())";
+
+// `s` itself, or kExpiredUse raised when it is the State a kept self.state points at once its
+// run ended (python_integrator.cpp): read as an empty one, it passed for a valid result.
+State& usable(State& s);
+const State& usable(const State& s);
+// The same for the WorkCounters a kept self.work points at.
+WorkCounters& usable(WorkCounters& w);
 
 // A NumPy view of v (no copy), kept alive by `owner`, the Python object that holds v.
 py::array_t<double> vector_view(Vec& v, const py::handle& owner);

@@ -24,6 +24,18 @@ using namespace pybind11::literals;
 
 namespace {
 
+// The counters of WorkCounters as Python attributes, each through usable(): a kept self.work
+// raises once its run ended.
+const std::array<std::pair<const char*, long WorkCounters::*>, 7> kCounters{{
+    {"steps", &WorkCounters::steps},
+    {"force_evaluations", &WorkCounters::force_evaluations},
+    {"tangent_evaluations", &WorkCounters::tangent_evaluations},
+    {"factorizations", &WorkCounters::factorizations},
+    {"linear_solves", &WorkCounters::linear_solves},
+    {"lcp_iterations", &WorkCounters::lcp_iterations},
+    {"lcp_unconverged", &WorkCounters::lcp_unconverged},
+}};
+
 // "TypeName: message" of the Python exception being handled.
 std::string describe(const py::error_already_set& e) {
   return fmt::format("{}: {}", py::str(e.type().attr("__name__")).cast<std::string>(), py::str(e.value()).cast<std::string>());
@@ -72,6 +84,11 @@ void expire_wrappers(const T* object, T* replacement) {
   }
 }
 
+// What a kept self.state and self.work point at once their run ended: every use through the
+// bindings raises (usable()).
+State expired_state;
+WorkCounters expired_work;
+
 // The vectors the NumPy views of a run point into (self.state.u, self.impulses ...), moved out
 // of an integrator at its end (a move keeps the buffers) and kept while a view may reach them.
 struct ViewedBuffers {
@@ -79,6 +96,18 @@ struct ViewedBuffers {
 };
 
 }  // namespace
+
+State& usable(State& s) {
+  if (&s == &expired_state) throw std::runtime_error(kExpiredUse);
+  return s;
+}
+
+const State& usable(const State& s) { return usable(const_cast<State&>(s)); }
+
+WorkCounters& usable(WorkCounters& w) {
+  if (&w == &expired_work) throw std::runtime_error(kExpiredUse);
+  return w;
+}
 
 PythonIntegrator& IntegratorCore::live() const {
   if (!target) throw std::runtime_error(kExpiredUse);
@@ -106,12 +135,10 @@ PythonIntegrator::~PythonIntegrator() {
   py::gil_scoped_acquire gil;
   if (PyObject_SetAttrString(instance_.ptr(), "_core", Py_None) != 0) PyErr_Clear();  // a kept instance: no dangling view
   instance_ = py::object();
-  // What Python may still hold of this run: its core and a problem C++ owns raise on use, its
-  // state and counters read as empty ones; the views' buffers live on with the core, which
-  // every view keeps alive (its base, or its State's keep-alive).
+  // What Python may still hold of this run: its core, a problem C++ owns, its state and
+  // counters raise on use; the views' buffers live on with the core, which every view keeps
+  // alive (its base, or its State's keep-alive).
   static ExpiredProblem expired_problem;
-  static State expired_state;
-  static WorkCounters expired_work;
   core_.cast<IntegratorCore&>().target = nullptr;
   if (problem_) expire_wrappers(problem_, static_cast<Problem*>(&expired_problem));
   expire_wrappers(&state_, &expired_state);
@@ -274,17 +301,13 @@ void bind_integrator(py::module_& m) {
       .def_readwrite("dt", &StepInfo::dt)
       .def_readwrite("iterations", &StepInfo::iterations)
       .def_readwrite("converged", &StepInfo::converged);
-  py::class_<WorkCounters>(m, "WorkCounters", "Work done since init (integrators/integrator.hpp).")
-      .def_readwrite("steps", &WorkCounters::steps)
-      .def_readwrite("force_evaluations", &WorkCounters::force_evaluations)
-      .def_readwrite("tangent_evaluations", &WorkCounters::tangent_evaluations)
-      .def_readwrite("factorizations", &WorkCounters::factorizations)
-      .def_readwrite("linear_solves", &WorkCounters::linear_solves)
-      .def_readwrite("lcp_iterations", &WorkCounters::lcp_iterations)
-      .def_readwrite("lcp_unconverged", &WorkCounters::lcp_unconverged);
+  py::class_<WorkCounters> work(m, "WorkCounters", "Work done since init (integrators/integrator.hpp).");
+  for (const auto& [name, member] : kCounters)
+    work.def_property(name, [member](WorkCounters& w) { return usable(w).*member; },
+                      [member](WorkCounters& w, long value) { usable(w).*member = value; });
   const auto live = [](const py::handle& self) -> PythonIntegrator& { return self.cast<const IntegratorCore&>().live(); };
   py::class_<IntegratorCore>(m, "_IntegratorCore", "The C++ side of an nsbench.Integrator (its `_core`).")
-      .def("bind", [](const IntegratorCore& c, const Problem& p, const State& s) { c.live().bind_problem(p, s); }, "problem"_a,
+      .def("bind", [](const IntegratorCore& c, const Problem& p, const State& s) { c.live().bind_problem(p, usable(s)); }, "problem"_a,
            "initial"_a)
       .def_property_readonly("state", [](const IntegratorCore& c) -> State& { return c.live().live_state(); },
                              py::return_value_policy::reference_internal)

@@ -25,6 +25,7 @@ import sys
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.axis  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import ticker  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
@@ -227,16 +228,34 @@ def panel_lines(spec, rows):
 
 
 def log_tick_labels(axis):
-    """At least three labelled ticks on a log axis: 1-2-5 (or every integer) multiples of each
-    decade when the axis spans too few decades for the decades alone."""
+    """At least three labelled ticks on a log axis where they fit: 1-2-5 (or every integer)
+    multiples of each decade when the axis spans too few decades for the decades alone, fewer
+    (1-3, then the decades) where those labels would overlap (a narrow panel of a paper figure)."""
     lo, hi = axis.get_view_interval()
     decades = math.log10(hi) - math.log10(lo)
     if decades >= 3:
         return
-    subs = (1.0, 2.0, 5.0) if decades >= 1 else tuple(float(k) for k in range(1, 10))
-    axis.set_major_locator(ticker.LogLocator(base=10, subs=subs))
-    axis.set_major_formatter(ticker.LogFormatterSciNotation(labelOnlyBase=False, minor_thresholds=(10, 10)))
-    axis.set_minor_formatter(ticker.NullFormatter())
+    choices = ([tuple(float(k) for k in range(1, 10))] if decades < 1 else []) + [(1.0, 2.0, 5.0), (1.0, 3.0), (1.0,)]
+    for subs in choices:
+        axis.set_major_locator(ticker.LogLocator(base=10, subs=subs))
+        axis.set_major_formatter(ticker.LogFormatterSciNotation(labelOnlyBase=False, minor_thresholds=(10, 10)))
+        axis.set_minor_formatter(ticker.NullFormatter())
+        if not tick_labels_overlap(axis):
+            return
+
+
+def tick_labels_overlap(axis):
+    """Whether two of the axis' visible major tick labels overlap, as drawn."""
+    figure = axis.figure
+    figure.canvas.draw()
+    renderer = figure.canvas.get_renderer()
+    lo, hi = sorted(axis.get_view_interval())
+    horizontal = isinstance(axis, matplotlib.axis.XAxis)
+    boxes = sorted((label.get_window_extent(renderer) for tick, label in zip(axis.get_majorticklocs(), axis.get_majorticklabels())
+                    if label.get_visible() and label.get_text() and lo <= tick <= hi),
+                   key=lambda b: b.x0 if horizontal else b.y0)
+    gap = 2.0  # pixels between two labels, at least
+    return any((a.x1 + gap > b.x0) if horizontal else (a.y1 + gap > b.y0) for a, b in zip(boxes, boxes[1:]))
 
 
 def slope_triangles(ax, slopes, drawn, paper):

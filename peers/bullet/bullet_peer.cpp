@@ -123,7 +123,7 @@ engines::StepResult BulletPeer::engine_step(double dt) {
   return r;
 }
 
-NSBENCH_INTEGRATOR({"bullet", "peer: Bullet's btDiscreteDynamicsWorld (sequential impulses, split impulse, e and mu per body) (rigid problems)",
+NSBENCH_INTEGRATOR({"bullet", "peer: Bullet's btDiscreteDynamicsWorld (sequential impulses, split impulse, e and mu per body)" + engines::scenes_only(),
                     &BulletPeer::parameters_spec, &make_from_params<Integrator, BulletPeer>, false, true,
                     {.friction = true, .moving_contacts = true, .friction_cone = true, .node_to_rigid_only = true}});
 

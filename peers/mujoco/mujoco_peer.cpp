@@ -220,7 +220,7 @@ engines::StepResult MujocoPeer::engine_step(double dt) {
   return r;
 }
 
-NSBENCH_INTEGRATOR({"mujoco", "peer: MuJoCo's mj_step (implicit, elliptic cone, noslip), soft contact with the spring-damper of e (rigid problems)",
+NSBENCH_INTEGRATOR({"mujoco", "peer: MuJoCo's mj_step (implicit, elliptic cone, noslip), soft contact with the spring-damper of e" + engines::scenes_only(),
                     &MujocoPeer::parameters_spec, &make_from_params<Integrator, MujocoPeer>, false, true,
                     {.friction = true, .moving_contacts = true, .friction_cone = true, .node_to_rigid_only = true}});
 

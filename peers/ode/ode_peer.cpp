@@ -147,7 +147,7 @@ engines::StepResult OdePeer::engine_step(double dt) {
   return r;
 }
 
-NSBENCH_INTEGRATOR({"ode", "peer: ODE's dWorldStep (direct LCP), contact joints with bounce e, mu (Approx1), ERP/CFM (rigid problems)",
+NSBENCH_INTEGRATOR({"ode", "peer: ODE's dWorldStep (direct LCP), contact joints with bounce e, mu (Approx1), ERP/CFM" + engines::scenes_only(),
                     &OdePeer::parameters_spec, &make_from_params<Integrator, OdePeer>, false, true,
                     {.friction = true, .moving_contacts = true, .friction_cone = true, .node_to_rigid_only = true}});
 

@@ -98,3 +98,39 @@ TEST_CASE("check: an unknown integrator names the nearest, exit 2", "[app][check
   CHECK_THAT(r.output, Catch::Contains("--integrator 'cd-lagrang': unknown integrator (nearest: cd-lagrange;"));
   CHECK(run_command(nsbench_command("check")).code == 2);
 }
+
+// Issue 57, item 1: a point mass in a curved 3D bowl (tests/plugins/bowl.cpp). Its correct
+// rows, orthonormal tangents that are no gradients, failed "T against d s"; they pass against
+// the contact point's motion, at its defaults and at parameters given with --set, and a second
+// tangent neither unit nor orthogonal (the only rows the old check passed) fails, saying what
+// to change.
+TEST_CASE("check --problem: curved 3D obstacles pass with orthonormal tangents, fail with skewed ones; --set", "[app][check][plugin]") {
+  const std::string bowl = "--plugin " + test_plugin("bowl") + " check --problem ";
+  for (const std::string sets : {"", " --set x0=-0.6 --set y0=0.45 --set R=0.5 --set h0=0.02"}) {
+    const auto r = run_command(nsbench_command(bowl + "bowl" + sets));
+    INFO(r.output);
+    CHECK(r.code == 0);
+    CHECK_THAT(line_of(r.output, "contact rows"), Catch::Contains(" pass ") && Catch::Contains("1 contacts moving, 6 configurations") &&
+                                                       Catch::Contains("T, T2 against the contact points' velocity, worst"));
+  }
+  const auto skewed = run_command(nsbench_command(bowl + "bowl-skewed"));
+  INFO(skewed.output);
+  CHECK(skewed.code == 1);
+  const std::string rows = line_of(skewed.output, "contact rows");
+  CHECK_THAT(rows, Catch::Contains("FAIL") && Catch::Contains("fix: T, T2 along two orthonormal tangents orthogonal to the normal"));
+  CHECK_THAT(rows, !Catch::Contains("L(U) = dg/dU"));  // its L is right
+  CHECK_THAT(line_of(skewed.output, "mass"), Catch::Contains(" pass "));
+}
+
+TEST_CASE("check --set: a bad value or key is one line naming it, exit 2; without --problem refused", "[app][check][bad-input]") {
+  const std::string bowl = "--plugin " + test_plugin("bowl") + " check --problem bowl --set ";
+  const auto negative = run_command(nsbench_command(bowl + "R=-1"));
+  CHECK(negative.code == 2);
+  CHECK_THAT(negative.output, Catch::Contains("R") && Catch::Contains("-1"));
+  const auto unknown = run_command(nsbench_command(bowl + "radius=1"));
+  CHECK(unknown.code == 2);
+  CHECK_THAT(unknown.output, Catch::Contains("radius"));
+  const auto alone = run_command(nsbench_command("check --integrator cd-lagrange --set e=0.5"));
+  CHECK(alone.code == 2);
+  CHECK_THAT(alone.output, Catch::Contains("check --set e=0.5: sets a parameter of the problem checked; valid: with --problem NAME"));
+}

@@ -185,6 +185,21 @@ TEST_CASE("cli: an explicit scheme above its stable step gets one warning line a
   CHECK(implicit.output.find("warning") == std::string::npos);
 }
 
+// Issue 56, finding 14: a 1e8-element bar assembles and binds for about a minute before its
+// first step, in silence. A problem that takes 3.5 s to build (tests/plugins/slow_setup.cpp)
+// shows one line meanwhile; a quick run shows none.
+TEST_CASE("cli: a run whose preparation is long says so every 3 s until its steps start", "[app][guardrails]") {
+  const std::string dir = tmpdir("slow_setup");
+  const auto slow = nsbench(fmt::format("--plugin {} run --problem slow-setup --integrator cd-lagrange --dt 0.1 --t-end 0.2 --out {}",
+                                        nsb::test::test_plugin("slow_setup"), dir));
+  INFO(slow.output);
+  CHECK(slow.code == 0);
+  CHECK_THAT(slow.output, Catch::Contains("nsbench: preparing the run: building the problem, elapsed 3 s\n"));
+  const auto quick = nsbench(fmt::format("run --problem bouncing-mass --integrator cd-lagrange --dt 0.1 --t-end 0.2 --out {}", dir));
+  CHECK(quick.output.find("preparing the run") == std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("cli: SIGTERM stops a run: exit 143, its files whole (status interrupted), no temporaries", "[app][guardrails]") {
   const std::string dir = tmpdir("sigterm");
   std::filesystem::remove_all(dir);

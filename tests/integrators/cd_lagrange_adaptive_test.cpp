@@ -10,6 +10,7 @@
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
 #include "problems/spring_chain.hpp"
+#include "tests/problems/forwarding_problem.hpp"
 
 using Catch::Detail::Approx;
 
@@ -203,4 +204,38 @@ TEST_CASE("cd-lagrange-adaptive: the talk's update on the bouncing bar: at the C
   CHECK(at_floor >= 3);
   for (int k = 0; k < 20; ++k) CHECK(integ.step(up).dt == Approx(tau_min).epsilon(1e-12));
   CHECK(integ.impulses()[0] > 0.0);
+}
+
+namespace {
+
+// The bouncing mass with a stable step that is NaN: constant (stable_step) or at u (nonlinear).
+class NanStable final : public ForwardingProblem {
+ public:
+  explicit NanStable(bool nonlinear) : ForwardingProblem(nsb::make_problem("bouncing-mass")), nonlinear_(nonlinear) {}
+  bool is_linear() const override { return !nonlinear_; }
+  double stable_step() const override { return nonlinear_ ? 1.0 : std::numeric_limits<double>::quiet_NaN(); }
+  double stable_step_at(nsb::ConstVecRef) const override { return std::numeric_limits<double>::quiet_NaN(); }
+
+ private:
+  bool nonlinear_;
+};
+
+}  // namespace
+
+// Issue 56, finding 14: a NaN stable step lifted the CFL cap without a word (std::min drops it).
+TEST_CASE("cd-lagrange-adaptive: a NaN stable step declines the problem at init, or ends the run with the reason",
+          "[integrators][adaptive][contract]") {
+  auto integ = adaptive();
+  const NanStable constant(false);
+  CHECK_THROWS_WITH(integ.init(constant, constant.initial_state()),
+                    "integrator cd-lagrange-adaptive: problem bouncing-mass reports the stable step nan, which caps its steps; "
+                    "valid: stable_step() > 0 (inf without stiffness)");
+  const NanStable at_u(true);
+  integ.init(at_u, at_u.initial_state());
+  nsb::RunOptions options;
+  options.dt = 1e-2;
+  options.t_end = 0.1;
+  const nsb::RunResult r = nsb::run(at_u, integ, options);
+  CHECK(r.status == nsb::RunStatus::Diverged);
+  CHECK(r.message == "problem bouncing-mass reports the stable step nan at t = 0; valid: stable_step_at(u) > 0");
 }

@@ -166,6 +166,10 @@ TEST_CASE("engine peers: other problems and shapes are declined with the reason"
       CHECK_THROWS_WITH(integ->init(*ring, ring->initial_state()), Catch::Contains("kappa = 1"));
       CHECK(nsb::find_integrator(engine).peer);
       CHECK(integ->treats_friction());
+      // Its listing says so beside its capability marks (issue 57, item 7: they read as general).
+      CHECK_THAT(nsb::find_integrator(engine).description,
+                 Catch::EndsWith("(runs only its scenes bouncing-mass, sliding-mass, rolling-disk, rocking-block, sphere; "
+                                 "declines every other problem)"));
     }
   }
   std::string versions = nsb::peer_versions();

@@ -1,7 +1,11 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "problems/bouncing_mass.hpp"
+#include "tests/support/input_error.hpp"
 
 using Catch::Detail::Approx;
 using nsb::BouncingMass;
@@ -87,4 +91,26 @@ TEST_CASE("bouncing mass: field mesh, a vertex at the floor whose y is the heigh
   // The contact row L = [1] pushes the mass up: along the point's +y.
   CHECK(p.gap_operator().coeff(0, mesh->point_dofs(0, 1)) == 1.0);
   CHECK(p.initial_state().u[mesh->point_dofs(0, 1)] == 2.0);
+}
+
+TEST_CASE("bouncing mass exact: impact_times honours t_end or refuses it, never capped silently", "[problems][exact]") {
+  // e = 1: an endless sequence, listed to its 100000th impact; t_end = 1e12 used to give 1000.
+  const auto elastic = make(1.0);
+  const nsb::ExactSolution& exact = elastic;
+  const double period = 2.0 * elastic.first_impact_speed() / 9.81;
+  const auto times = exact.impact_times(elastic.impact_time(1) + 4999.5 * period);
+  CHECK(times.size() == 5000);
+  CHECK(times.back() == elastic.impact_time(5000));
+  CHECK(exact.impact_times(std::numeric_limits<double>::infinity()).size() == 100000);
+  const std::string refused = nsb::test::input_error_text_of([&] { (void)exact.impact_times(1e12); });
+  CHECK(refused.find("t_end = 1e+12") != std::string::npos);
+  CHECK(refused.find("valid: t_end <= ") != std::string::npos);
+  // e = 0.99: 3,098 impacts before floating point merges them with the Zeno time, all listed.
+  const auto lossy = make(0.99);
+  const auto zeno = lossy.impact_times(1e12);
+  CHECK(zeno.size() > 1000);
+  CHECK(zeno.back() < lossy.zeno_time());
+  CHECK(std::is_sorted(zeno.begin(), zeno.end()));
+  // At rest on the floor: no impact, whatever the restitution.
+  CHECK(make(1.0, 0.0).impact_times(1e12).empty());
 }

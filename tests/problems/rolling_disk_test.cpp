@@ -2,12 +2,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <string>
 #include <vector>
 
 #include "problems/rolling_disk.hpp"
+#include "tests/support/input_error.hpp"
 
 using Catch::Detail::Approx;
 using nsb::Params;
@@ -332,7 +334,11 @@ TEST_CASE("rolling disk exact: limits mu = 0, tiny kappa, e = 1", "[problems][ex
     const auto p = d.make();
     const double period = 2 * std::sqrt(2 * kG * 0.2) / kG;
     CHECK(p.impacts().size() == 1000);
-    CHECK(p.impact_times(1e9).size() == 1000);
+    CHECK(p.impact_times(std::numeric_limits<double>::infinity()).size() == 1000);
+    // Past the march, a finite t_end is refused rather than answered with the first 1000.
+    const std::string refused = nsb::test::input_error_text_of([&] { (void)p.impact_times(1e9); });
+    CHECK(refused.find("t_end = 1e+09") != std::string::npos);
+    CHECK(refused.find("valid: t_end <= ") != std::string::npos);
     const auto a = *p.state(0.3 + 5000 * period), b = *p.state(0.3 + 5001 * period);
     CHECK(a.u[1] == Approx(b.u[1]).margin(1e-9));
     CHECK(a.u[1] > 0.0);

@@ -60,11 +60,30 @@ def test_views_and_state_kept_past_the_run_touch_no_other_memory():
     impulses[:] = 42.0
     assert not other.any()
     assert u[0] == 42.0
-    assert state.u.size == 0 and work.steps == 0  # read as empty ones, not freed memory
+    # Every use of a kept self.state or self.work raises: read as empty ones, they passed for results.
+    for use in [lambda: state.u, lambda: state.v, lambda: state.t, lambda: repr(state), lambda: work.steps,
+                lambda: work.lcp_unconverged]:
+        with pytest.raises(RuntimeError, match=r"used after the run it belonged to ended \(.*self\.state, self\.work\)"):
+            use()
+    with pytest.raises(RuntimeError, match="used after the run"):
+        state.t = 1.0
+    with pytest.raises(RuntimeError, match="used after the run"):
+        work.steps = 3
+    # A State Python owns, and the counters of a live run, are left usable.
+    assert nsbench.Problem("bouncing-mass").initial_state().u[0] == 1.0
     with pytest.raises(RuntimeError, match="used after the run"):
         core.state
     with pytest.raises(RuntimeError, match="used after the run"):
         core.bind(nsbench.Problem("bouncing-mass"), nsbench.Problem("bouncing-mass").initial_state())
+
+
+def test_impact_times_past_the_known_ones_are_refused_not_capped():
+    # e = 1 bounces for ever: 1e12 s gave the first 1,000 impacts as if they were all.
+    elastic = nsbench.Problem("bouncing-mass", e=1)
+    with pytest.raises(ValueError, match=r"impact_times\(t_end = 1e\+12\) asks past its 100000th impact .*; valid: t_end <= "):
+        elastic.impact_times(1e12)
+    assert len(elastic.impact_times(5000.0)) == 5537
+    assert len(nsbench.Problem("bouncing-mass", e=0.99).impact_times(1e12)) > 1000
 
 
 def test_bind_outside_init_is_refused():

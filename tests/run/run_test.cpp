@@ -3,11 +3,14 @@
 // report at every step (issue 56).
 #include "run/run.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -167,4 +170,61 @@ TEST_CASE("run: an integrator's NaN or negative impulse, or a negative work coun
   CHECK_THAT(nan.message, Catch::StartsWith("non-finite normal impulse (the integrator's; valid: finite, >= 0) at t = 0.01"));
   CHECK_THAT(run_reporting(-1.0, 1).message, Catch::StartsWith("negative normal impulse"));
   CHECK_THAT(run_reporting(0.0, -1).message, Catch::StartsWith("negative work counter (the integrator's; valid: >= 0)"));
+}
+
+namespace {
+
+// Free flight at a fixed wall time per step: a long run's step (a 1e8-element bar's).
+class Slow final : public nsb::Integrator {
+ public:
+  explicit Slow(double seconds) : Integrator(nsb::Params{}), seconds_(seconds) {}
+  void init(const nsb::Problem& p, const nsb::State& s) override { bind(p, s); }
+
+ private:
+  nsb::StepInfo advance(double dt) override {
+    ::usleep(static_cast<useconds_t>(seconds_ * 1e6));
+    state_.u += dt * state_.v;
+    ++work_.force_evaluations;
+    return {dt};
+  }
+  double seconds_;
+};
+
+// What the run writes on stderr (fd 2, redirected to a file while it runs).
+std::string stderr_of(const std::function<void()>& body) {
+  const fs::path file = fs::temp_directory_path() / ("nsbench_run_test_stderr_" + std::to_string(::getpid()));
+  std::fflush(stderr);
+  const int saved = ::dup(2), fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  ::dup2(fd, 2);
+  body();
+  std::fflush(stderr);
+  ::dup2(saved, 2);
+  ::close(fd);
+  ::close(saved);
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  fs::remove(file);
+  return text.str();
+}
+
+}  // namespace
+
+// Issue 56, finding 14: the clock was read every 16 steps, so a run of slow steps (a 1e8-element
+// bar) printed nothing for 16 of them.
+TEST_CASE("run: a run of slow steps shows its progress once a period, from the first period on", "[integrators][run]") {
+  const auto problem = nsb::make_problem("bouncing-mass", {{"h0", "100"}});
+  Slow it(0.15);
+  it.init(*problem, problem->initial_state());
+  nsb::RunOptions options;
+  options.dt = 1e-2;
+  options.t_end = 0.1;  // 10 steps, 1.5 s
+  options.progress_every = 0.5;
+  const std::string lines = stderr_of([&] { CHECK(nsb::run(*problem, it, options).status == nsb::RunStatus::Ok); });
+  INFO(lines);
+  std::size_t count = 0;
+  for (std::size_t at = lines.find("of t_end, elapsed"); at != std::string::npos; at = lines.find("of t_end, elapsed", at + 1)) ++count;
+  CHECK(count >= 2);  // at about 0.6, 1.05 and 1.5 s
+  CHECK(count <= 3);  // no more than one a period
+  CHECK_THAT(lines, Catch::Contains("% of t_end, elapsed 0."));  // the first within a step of the first period
 }

@@ -17,6 +17,7 @@
 #include "run/run.hpp"
 #include "studies/study.hpp"
 #include "studies/study_file.hpp"
+#include "tests/app/run_cli.hpp"
 #include "tests/support/files.hpp"
 
 using Catch::Detail::Approx;
@@ -2438,4 +2439,42 @@ observable = "v_contact"
   CHECK_THAT(study_error_of(replaced(text, "contact_start = 1.0, wave_time = 16.0", "contact_start = 1.0, wave_tim = 16.0")),
              StartsWith("f.toml:10: problem[0].t_end_exact.wave_tim: problem 'bouncing-bar' has no exact time or value 'wave_tim'; "
                         "valid: contact_start, contact_duration, wave_time, plus"));
+}
+
+// Issue 56, finding 14: a plugin problem whose stable_step() is NaN in a study of fixed steps:
+// the scheme that caps its steps by it is recorded as declined with the reason, the others
+// run, and the study completes (exit 0).
+TEST_CASE("nsbench-study: a problem whose stable step is NaN declines the scheme that reads it, the study goes on",
+          "[studies][study_file][contract]") {
+  const nsb::test::TempDir dir("study_file_nan_stable", true);
+  const fs::path file = dir.path / "nan_stable.toml";
+  std::ofstream(file) << R"([study]
+title = "a plugin problem whose stable step is NaN"
+t_end = 0.6
+
+[[problem]]
+name = "nan-stable-mass"
+
+[[integrator]]
+name = "cd-lagrange"
+steps = [1e-2]
+
+[[integrator]]
+name = "cd-lagrange-adaptive"
+steps = [1e-2]
+
+[reference]
+integrator = "cd-lagrange"
+dt = 1e-3
+
+[[measure]]
+kind = "penetration"
+)";
+  const auto r = nsb::test::run_command(fmt::format("NSBENCH_JOBS=1 '{}' run '{}' --plugin '{}' --out '{}'", NSBENCH_STUDY_CLI, file.string(),
+                                                    nsb::test::test_plugin("nan_stable_step"), (dir.path / "out").string()));
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  const std::string table = nsb::test::read_text(dir.path / "out" / "nan_stable_work_precision.md");
+  CHECK_THAT(table, Catch::Contains("| nan-stable-mass | cd-lagrange | 1.00e-02 |"));
+  CHECK_THAT(table, Catch::Contains("problem nan-stable-mass reports the stable step nan, which caps its steps"));
 }
