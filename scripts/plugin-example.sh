@@ -63,5 +63,8 @@ for t in bouncing_plugin_orders bouncing_plugin_work_precision; do
       "$r/$t.csv" || { echo "$r/$t.csv: no plugin stamp with its optimised build" >&2; exit 1; }
   done
 done
+# The problem plugin: checked (every property holds, or `nsbench check` exited 1 above) and run.
+grep -q '"problem": "bowl"' "$work/example/bowl-run/summary.json" && grep -q '"status": "ok"' "$work/example/bowl-run/summary.json" ||
+  { echo "the example's problem plugin (bowl) did not run to its end" >&2; exit 1; }
 echo "docs: every command of README.md, ${docs[*]:1} and examples/plugin/README.md ran as written (${SECONDS} s): the plugin" \
-  "installed, built out of tree, checked (nsbench check exits 1 on a failed property), run and studied"
+  "installed, built out of tree, checked (nsbench check exits 1 on a failed property), run and studied; the problem plugin checked and run"

@@ -99,7 +99,8 @@ TEST_CASE("check: an unknown integrator names the nearest, exit 2", "[app][check
   CHECK(run_command(nsbench_command("check")).code == 2);
 }
 
-// Issue 57, item 1: a point mass in a curved 3D bowl (tests/plugins/bowl.cpp). Its correct
+// Issue 57, item 1: a point mass in a curved 3D bowl (examples/plugin/bowl.cpp, built with its
+// skewed variant as tests/plugins/bowl.cpp). Its correct
 // rows, orthonormal tangents that are no gradients, failed "T against d s"; they pass against
 // the contact point's motion, at its defaults and at parameters given with --set, and a second
 // tangent neither unit nor orthogonal (the only rows the old check passed) fails, saying what
