@@ -120,7 +120,7 @@ int drive_study(const std::string& name, const std::string& description, const s
     return tables(dumped(c), dumped(r), o.full);
   };
   DriverOptions o = options;
-  o.result_check = [](const StudyEntry&, const Json&, const Json& result) { return described_result_damage(result); };
+  o.result_check = [](const StudyEntry&, const Json& c, const Json& result) { return described_result_damage(c, result); };
   py::gil_scoped_release free;
   return drive_studies({&study}, o);
 }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -58,8 +59,8 @@ bool flag_key(const Json& c, const char* key) {
   return c[key].get<bool>();
 }
 
-// The step: dt as given, or cfl times the stable step; nullopt (with the reason) when cfl meets
-// a problem without a finite one.
+// The step: dt as given, or cfl times the stable step; when cfl meets a problem without a finite
+// one, `declined` gets the reason.
 std::string step_text(const Json& c, const Problem& p, std::string& declined) {
   if (c.contains("dt") == c.contains("cfl")) throw InputError("case: give one of 'dt' and 'cfl'");
   if (c.contains("dt")) return number_text(c, "dt", "");
@@ -213,9 +214,34 @@ Json run_described_case(const Json& c) {
   return result;
 }
 
-std::string described_result_damage(const Json& r) {
+namespace {
+
+bool reals_or_nulls(const Json& a) {
+  return a.is_array() && std::all_of(a.begin(), a.end(), [](const Json& x) { return x.is_number() || x.is_null(); });
+}
+
+// A measured run's result is a study-file case's (studies/study_file.hpp): one value per measure.
+std::string measured_result_damage(const Json& c, const Json& r) {
+  const std::size_t measures = c.contains("measures") && c["measures"].is_array() ? c["measures"].size() : 0;
+  if (!r.contains("values") || !reals_or_nulls(r["values"]) || r["values"].size() != measures)
+    return fmt::format("'values' is not a list of {} numbers (or null), one per measure", measures);
+  return "";
+}
+
+std::string observed_result_damage(const Json& c, const Json& r) {
+  if (!r.contains("summary")) return "no 'summary'";
+  if (!r.contains("observed") || !r["observed"].is_array() || r["observed"].size() != c["observe"].size())
+    return fmt::format("'observed' is not a list of {} results, one per observer", c["observe"].size());
+  return "";
+}
+
+}  // namespace
+
+std::string described_result_damage(const Json& c, const Json& r) {
   if (!r.is_object() || !r.contains("status") || !r["status"].is_string()) return "no status";
   if (r["status"] == kDeclinedStatus) return r.contains("message") && r["message"].is_string() ? "" : "a declined run without its reason";
+  if (c.contains("measures") || c.contains("reference")) return measured_result_damage(c, r);
+  if (c.contains("observe") && c["observe"].is_array()) return observed_result_damage(c, r);
   for (const char* key : {"summary", "columns", "series"})
     if (!r.contains(key)) return fmt::format("no '{}'", key);
   if (!r["columns"].is_array() || !r["series"].is_array() || r["columns"].size() != r["series"].size())

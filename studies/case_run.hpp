@@ -44,8 +44,8 @@ namespace nsb {
 // mistyped key, a step or length out of range).
 Json run_described_case(const Json& the_case);
 
-// Why `result` is not one run_described_case returns ("" when it is): the check of a shard's
-// results (studies/shard.hpp).
-std::string described_result_damage(const Json& result);
+// Why `result` is not one run_described_case returns for `the_case` ("" when it is): the check of
+// a shard's results (studies/shard.hpp). Its shape follows the case: plain, measured or observed.
+std::string described_result_damage(const Json& the_case, const Json& result);
 
 }  // namespace nsb

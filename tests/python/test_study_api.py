@@ -252,3 +252,28 @@ def test_the_energy_balance_observed_to_round_off_and_as_a_drift():
     assert balance["drift"]["windows"] >= 8 and len(balance["envelope"]["maxima"]) == balance["drift"]["windows"]
     assert not dissipating.observed[0]["drift"]["no_drift"] and dissipating.observed[0]["drift"]["high"] < 0
     assert other.status == "n/a" and "not derived" in other.message
+
+
+def test_measured_and_observed_cases_shard_and_merge_to_the_single_run(tmp_path):
+    # The merge checks each shard's result against its case's shape: plain, measured or observed.
+    def cases(full):
+        return [study.case("bouncing-mass", "cd-lagrange", dt=1e-3, t_end=1.0, measures=[{"kind": "penetration"}]),
+                study.case("bouncing-mass", "cd-lagrange", dt=1e-3, t_end=1.0, observe=[{"kind": "energy-balance", "window": 0.1}]),
+                study.case("bouncing-mass", "cd-lagrange", dt=1e-3, t_end=1.0)]
+
+    def tables(results, full):
+        t = study.Table("api_shapes", title="Three shapes", caption="penetration, balance, steps")
+        t.columns = [study.Column("penetration", unit="m", format="{:.3e}"), study.Column("balance", unit="J", format="{:.3e}"),
+                     study.Column("steps", format="{}")]
+        measured, observed, plain = results
+        t.add_row([measured.measure("penetration"), observed.observed[0]["cumulative"], plain.steps])
+        return [t]
+
+    s = study.Study("api-shapes", "a test study of three result shapes", cases, tables, source="tests/python/test_study_api.py")
+    whole, sharded = tmp_path / "whole", tmp_path / "sharded"
+    assert s.main(["--out", str(whole)]) == 0
+    for i in (1, 2, 3):
+        assert s.main(["--out", str(sharded), "--shard", f"{i}/3"]) == 0
+    assert s.main(["--out", str(sharded), "--merge"]) == 0
+    body = [line for line in (whole / "api_shapes.csv").read_text().splitlines() if not line.startswith("#")]
+    assert [line for line in (sharded / "api_shapes.csv").read_text().splitlines() if not line.startswith("#")] == body
