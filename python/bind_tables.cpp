@@ -98,6 +98,13 @@ void bind_measures(py::module_& m) {
           const OrderFit f = fit_order(h, e);
           return fit_dict(f.order, f.low, f.high, f.points, "order");
         }, "h"_a, "errors"_a, "The convergence order in log-log with its 95% interval (studies/measures.hpp, fit_order).");
+  m.def("drift_rule", [](const std::vector<double>& times, const std::vector<double>& envelope, double round_off) {
+          const Drift d = drift_rule(times, envelope, round_off);
+          return py::dict("drift"_a = d.drift, "low"_a = d.low, "high"_a = d.high, "over_run"_a = d.over_run,
+                          "windows"_a = d.windows, "no_drift"_a = d.no_drift);
+        }, "times"_a, "envelope"_a, "round_off"_a,
+        "The drift rule on an envelope (studies/measures.hpp, drift_rule): the slope with its 95% interval, the drift over "
+        "the run and the verdict; the energy-balance run measure's 'drift'.");
   m.def("observed_order", &observed_order, "h1"_a, "e1"_a, "h2"_a, "e2"_a);
   m.def("above_round_off", &above_round_off, "error"_a);
   m.def("compared_impacts", &compared_impacts, "exact"_a, "count"_a, "min_flight"_a);

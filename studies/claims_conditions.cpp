@@ -347,56 +347,6 @@ EnergyFigures energy_runs(const std::string& integrator) {
   return e;
 }
 
-AdaptiveSteps adaptive_steps(const std::string& rule) {
-  AdaptiveSteps out;
-  out.rule = rule;
-  const auto bar = make_bar("bouncing-bar", {{"mass", "lumped"}, {"e", "0"}});
-  const BouncingBarExact exact(bar->parameters(), 1e3);
-  const Overrides talk = {{"step_rule", "talk"}, {"momentum", "talk"}, {"energy_target", "no-work"}};
-  auto it = make_integrator("cd-lagrange-adaptive", rule == "talk" ? talk : Overrides{});
-  if (const auto why = init_or_decline(*it, *bar)) {
-    out.note = "declined: " + *why;
-    return out;
-  }
-  out.stable_step = bar->stable_step();
-  const double dt = kBarStepFraction * out.stable_step;
-  out.tau_min = it->parameters().real("tau_min_ratio") * dt;
-  out.impact_time = exact.impact_time();
-  out.t_end = out.impact_time + 16.0 * exact.wave_time();
-  RunOptions o;
-  o.dt = dt;
-  o.t_end = out.t_end;
-  o.max_steps = kAdaptiveMaxSteps;
-  o.record_series = false;
-  double e1 = kNaN;
-  out.dt_min = 1e300;
-  const RunResult r = run(*bar, *it, o, [&](const Integrator& in, const StepInfo& info) {
-    const double energy = in.energy().total();
-    if (std::isnan(e1)) e1 = energy;
-    out.energy_error = std::max(out.energy_error, std::abs(energy - e1) / exact.impact_energy());
-    const bool contact = in.impulses()[0] > 0.0;
-    out.t.push_back(in.state().t);
-    out.dt.push_back(info.dt);
-    out.contact.push_back(contact);
-    out.contact_steps += contact;
-    out.collapsed += info.dt <= out.tau_min * (1.0 + 1e-12);
-    if (in.state().t < out.t_end * (1.0 - 1e-12)) out.dt_min = std::min(out.dt_min, info.dt);  // the last step lands on t_end
-    out.dt_max = std::max(out.dt_max, info.dt);
-  });
-  const auto counter = [&](const char* key) {
-    const auto c = r.work.extra.find(key);
-    return c == r.work.extra.end() ? 0.0 : c->second;
-  };
-  out.steps = r.steps;
-  out.capped = static_cast<long>(counter("cfl_capped_steps"));
-  out.unconverged = static_cast<long>(counter("unconverged_steps"));
-  out.energy_residual = counter("max_rel_residual");
-  out.t_reached = it->state().t;
-  out.completed = r.status == RunStatus::Ok && out.t_reached >= out.t_end * (1.0 - 1e-12);
-  if (r.status != RunStatus::Ok) out.note = std::string(status_name(r.status)) + ": " + r.message;
-  return out;
-}
-
 LongRun long_run(const std::string& integrator, long target) {
   const auto problem = make_problem("bouncing-mass", {{"e", "1"}, {"h0", "1"}});
   const double g = 9.81, period = 2.0 * std::sqrt(2.0 * 1.0 / g), v_impact = std::sqrt(2.0 * g * 1.0), dt = 0.02;

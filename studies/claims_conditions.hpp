@@ -1,5 +1,5 @@
 #pragma once
-// The measurements behind the claims table's two verdict columns (studies/claims.cpp): each
+// The measurements behind the properties matrix (studies/properties.cpp): each
 // claim of A. Gravouil's talk "CD-Lagrange" (2022) under the talk's own conditions (deformable
 // body against a rigid obstacle, diagonal mass, the singular mass of its line of work: Di Stasio,
 // Dureisseix, Gravouil et al., "An explicit time-integrator with singular mass for non-smooth
@@ -93,32 +93,6 @@ struct EnergyFigures {
   std::string note;  // a declined or failed run
 };
 EnergyFigures energy_runs(const std::string& integrator);
-
-// (5) The adaptive step through impacts: cd-lagrange-adaptive on the bouncing bar (lumped mass,
-// N = 100, e = 0: the talk's LCP; cd-lagrange-adaptive declines the singular mass), first
-// requested step 0.9 h / c, to the first impact + one period 16 L / c, at most
-// kAdaptiveMaxSteps steps (about 50x the fixed step's count: a step collapsed to tau_min would
-// take 1e3x).
-//   talk            the talk's algorithm: step_rule talk, momentum talk, energy_target no-work
-//   energy-balance  the suite's variant: the defaults (energy-balance root, variational
-//                   momentum, impact-law work)
-// Per step: t, dt and whether the contact node took an impulse. Collapsed: steps at tau_min
-// (no_root_steps under the talk rule; dt <= tau_min under either rule).
-constexpr long kAdaptiveMaxSteps = 100'000;
-struct AdaptiveSteps {
-  std::string rule;
-  std::vector<double> t, dt;
-  std::vector<bool> contact;
-  long steps = 0, contact_steps = 0, collapsed = 0, capped = 0, unconverged = 0;
-  double dt_min = 0, dt_max = 0, stable_step = 0, tau_min = 0;
-  double energy_residual = 0;  // max |r| / S of the energy balance over the steps taken
-  double energy_error = 0;     // max |E - E_1| over the run / the kinetic energy at the first impact
-                               // (E the scheme's own; E_1 is about 0, the weight's datum at the start)
-  double t_reached = 0, t_end = 0, impact_time = 0;  // impact_time: the exact first impact
-  bool completed = false;      // reached t_end, finite, within kAdaptiveMaxSteps
-  std::string note;            // a declined or failed run
-};
-AdaptiveSteps adaptive_steps(const std::string& rule);
 
 // (7) Robustness: the bouncing mass, e = 1, h0 = 1 (period 0.903 s), dt = 0.02 s, stepped to
 // its `target`-th impact (the scheme's own impacts, whatever its phase error), at most 2x the

@@ -252,44 +252,4 @@ GraphErrors graph_errors(const Polyline& run, const Polyline& reference, const s
   return e;
 }
 
-std::vector<HausdorffOrders> hausdorff_orders(const std::string& integrator) {
-  const std::string path = "studies/builtin/hausdorff.toml";
-  const EmbeddedStudyFile* file = builtin_study_file(path);
-  if (!file) throw std::logic_error(path + " is not embedded (studies/embed_study_files.cmake)");
-  StudySpec spec = parse_study_text(std::string(file->text), path, false);
-  std::vector<std::string> schemes;
-  for (const auto& i : spec.integrators) schemes.push_back(i.name);
-  std::erase_if(spec.integrators, [&](const FileIntegrator& i) { return i.name != integrator; });
-  if (spec.integrators.empty())
-    throw InputError(fmt::format("hausdorff orders: '{}' is no scheme of {}; valid: {}", integrator, path, fmt::join(schemes, ", ")));
-  const StudyEntry study = file_study(spec);
-  const std::vector<Json> cases = study_cases(study, {});
-  std::vector<Json> results;
-  for (const Json& c : cases) results.push_back(run_study_case(study, c, {}));
-  const std::vector<Table> tables = study_tables(study, cases, results, {});
-  const auto orders = std::find_if(tables.begin(), tables.end(), [](const Table& t) { return t.id == "hausdorff_orders"; });
-  if (orders == tables.end()) throw std::logic_error(path + " has no table hausdorff_orders");
-  // Its columns by header (the file's): problem, integrator, max-err order, CI low, CI high,
-  // Hausdorff order, H CI low, H CI high, points, note.
-  const auto column = [&](const std::string& header) {
-    const auto c = std::find_if(orders->columns.begin(), orders->columns.end(), [&](const Column& x) { return x.name == header; });
-    if (c == orders->columns.end()) throw std::logic_error(path + ": table hausdorff_orders has no column " + header);
-    return static_cast<std::size_t>(c - orders->columns.begin());
-  };
-  const auto number = [](const Cell& c) { return std::holds_alternative<double>(c) ? std::get<double>(c) : kNaN; };
-  const auto text = [](const Cell& c) { return std::holds_alternative<std::string>(c) ? std::get<std::string>(c) : std::string(); };
-  const std::size_t problem = column("problem"), points = column("points"), note = column("note");
-  const std::size_t max_order = column("max-err order"), max_low = column("CI low"), max_high = column("CI high");
-  const std::size_t h_order = column("Hausdorff order"), h_low = column("H CI low"), h_high = column("H CI high");
-  std::vector<HausdorffOrders> out;
-  for (const auto& row : orders->rows) {
-    const long n = std::holds_alternative<long>(row[points]) ? std::get<long>(row[points]) : 0;
-    out.push_back({text(row[problem]),
-                   {number(row[max_order]), number(row[max_low]), number(row[max_high]), 0},
-                   {number(row[h_order]), number(row[h_low]), number(row[h_high]), static_cast<int>(n)},
-                   text(row[note])});
-  }
-  return out;
-}
-
 }  // namespace nsb

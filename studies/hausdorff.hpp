@@ -106,16 +106,4 @@ struct GraphErrors {
 GraphErrors graph_errors(const Polyline& run, const Polyline& reference, const std::function<double(double)>& reference_at,
                          double time_scale, double value_scale = 0.0);
 
-// The fits of the built-in study hausdorff (studies/builtin/hausdorff.toml) for one of its
-// schemes: its runs alone (the file's cases of that integrator), and per problem in the
-// file's order the problem and the orders in dt of the max-norm error and of the Hausdorff
-// distance, as its table hausdorff_orders shows them (claim (2) of the claims study).
-struct HausdorffOrders {
-  std::string problem;
-  OrderFit max_error, hausdorff;
-  std::string note;  // "declined", "diverged", ... or empty
-};
-// Throws InputError when `integrator` is none of the study's schemes.
-std::vector<HausdorffOrders> hausdorff_orders(const std::string& integrator);
-
 }  // namespace nsb

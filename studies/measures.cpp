@@ -131,7 +131,9 @@ void MomentumBalance::add(const Integrator& integrator, double dt) {
   impulse_sum_ += force_sum * variable_step_weight(integrator, dt).value_or(dt) + gap_row_.dot(integrator.impulses());
 }
 
-double MomentumBalance::residual(const Vec& v) const { return std::abs(mass_row_.dot(v) - p0_ - impulse_sum_); }
+double MomentumBalance::residual(const Vec& v) const { return std::abs(signed_residual(v)); }
+
+double MomentumBalance::signed_residual(const Vec& v) const { return mass_row_.dot(v) - p0_ - impulse_sum_; }
 
 std::optional<double> variable_step_weight(const Integrator& integrator, double dt) {
   if (const auto* adaptive = dynamic_cast<const CdLagrangeAdaptive*>(&integrator)) return 0.5 * (dt + adaptive->next_step());
@@ -144,6 +146,9 @@ std::vector<std::string> MeshMomentum::components(const Problem& problem) {
   std::vector<std::string> out;
   for (int d = 0; d < mesh->dimension && d < 3; ++d) out.push_back(std::string("p") + "xyz"[d]);
   if (mesh->dimension == 3) out.insert(out.end(), {"jx", "jy", "jz"});
+  // A plane deformable body's one angular momentum, about the normal: its elements' points carry
+  // every dof (no vertex body, whose rotation dof x x p would miss).
+  if (mesh->dimension == 2 && mesh->nelements() > 0 && mesh->nbodies() == 0) out.push_back("jz");
   return out;
 }
 
@@ -152,8 +157,12 @@ MeshMomentum::MeshMomentum(const Problem& problem, const State& initial, const s
       f_(problem.ndof()), f_ext_(problem.ndof()), p_(problem.ndof()) {
   if (problem.contacts_move()) moving_rows_ = problem.contact_geometry();
   const FieldMesh mesh = *problem.field_mesh();
-  points_ = mesh.points;
-  point_dofs_ = mesh.point_dofs;
+  // Three columns whatever the dimension: a plane body's points at z = 0 with no z dof, so that
+  // its jz is the same cross product as a solid's.
+  points_ = Eigen::MatrixXd::Zero(mesh.points.rows(), 3);
+  point_dofs_ = Eigen::MatrixXi::Constant(mesh.point_dofs.rows(), 3, -1);
+  points_.leftCols(mesh.points.cols()) = mesh.points;
+  point_dofs_.leftCols(mesh.point_dofs.cols()) = mesh.point_dofs;
   const Vec p0 = M_ * initial.v;
   if (angular_) {
     previous_ = angular_momentum(initial);

@@ -109,6 +109,7 @@ class MomentumBalance {
   double momentum(const Vec& v) const { return mass_row_.dot(v); }
   double initial() const { return p0_; }
   double residual(const Vec& v) const;  // |P - P0 - impulses|, absolute
+  double signed_residual(const Vec& v) const;  // P - P0 - impulses
   // sum_i M_ii |v0_i|: a scale of the residual that is not zero when P0 is (bodies moving apart).
   double speed_scale() const { return speed_scale_; }
 

@@ -305,15 +305,18 @@ std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::
   t.id = "properties";
   t.title = "Properties matrix: every scheme and peer against the talk's claims, measured";
   t.caption = fmt::format(
-      "One row per scheme or peer (references left out), each figure measured by the claims study's measurement for that "
-      "scheme and judged by its rule (studies/properties.cpp, studies/claims.hpp); n/a: the scheme declined the problem. "
+      "One row per scheme or peer (references left out), each figure measured for that scheme and judged by the rules of "
+      "studies/claims.hpp (studies/properties.cpp); n/a: the scheme declined the problem. These rules and conditions are "
+      "not the claims page's (claims.md: the talk's own conditions, the discrete energy balance, one-sided growth, 10^4 "
+      "contact phases of a deformable body); where they differ, the claims page's verdict is the one under the talk's "
+      "conditions. "
       "Explicit: factorisations and linear solves per step of the spinning 2D block on the frictionless floor ({} steps): "
       "holds when both are 0. Hausdorff: graphs converging (order >= {}, 95% interval above 0) of the {} per mass model on "
-      "the Signorini and bouncing bars (N = 25..200, dt = 0.9 h/c; observables as in "
-      "[claims_hausdorff_bars](claims_hausdorff_bars.md)), singular mass as claimed, lumped beyond: all, some "
+      "the Signorini and bouncing bars (N = 25..200, dt = 0.9 h/c; the contact node's displacement and velocity, the velocity "
+      "at L/2, the contact force), singular mass as claimed, lumped beyond: all, some "
       "(conditional) or none. Momentum: the spinning block's linear and angular momentum, free flight ({} steps) and the "
       "angular balance with the impulses' moments on the floor, relative: <= {:g}. Impact energy: the largest |jump| in "
-      "total energy across a contact phase of the bouncing bar ([claims_impact_energy](claims_impact_energy.md)), "
+      "total energy across a contact phase of the bouncing bar, "
       "singular mass and lumped mass with e = 1: <= {:g}. Long-time energy (the claims study's runs: bouncing mass, e = 1, "
       "100 impacts, dt 1e-3; spring chain between walls, dt 0.02 s, 40 s): max |E - E_1| / E_1 over each half (the scheme's "
       "reported energy at every step, contact steps included), bounded without drift when both are <= {:g} and the second "
@@ -365,7 +368,7 @@ std::vector<Table> properties_tables(const std::vector<Json>& cases, const std::
   map.caption = "Green: holds; amber: holds under conditions (some of the graphs); red: fails; grey: n/a (declined). "
                 "The figures behind each cell are in the properties table.";
   t.figures = {map};
-  t.lead = true;
+  t.lead_figures = true;  // the matrix at the top; its table, linked, holds the figures behind each cell
   const Rows rows = merged_rows(cases, results);
   for (const auto& [name, r] : rows) {
     const Json& b = r["block"];

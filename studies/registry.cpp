@@ -10,7 +10,6 @@ namespace nsb {
 extern const StudyEntry block_study;
 extern const StudyEntry friction_study;
 extern const StudyEntry bodies_study;
-extern const StudyEntry claims_study;
 extern const StudyEntry properties_study;
 
 namespace {
@@ -81,7 +80,9 @@ const std::vector<StudyEntry>& study_registry() {
       cpp_study(bodies_study, "studies/bodies.cpp"),
       builtin_file_study("hausdorff", "velocity graphs against the exact ones: max-norm error vs Hausdorff distance, orders per scheme",
                          "studies/builtin/hausdorff.toml"),
-      cpp_study(claims_study, "studies/claims.cpp"),
+      builtin_python_study("claims",
+                           "the talk's seven claims judged as claimed and beyond: a 7 x 2 verdict table and the runs behind it",
+                           "studies/builtin/claims.py"),
       cpp_study(properties_study, "studies/properties.cpp"),
       builtin_file_study("rigid",
                          "rigid bodies with moving contacts: the rocking block's impact ratios against Housner's and Moreau's "

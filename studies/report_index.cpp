@@ -19,32 +19,34 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A study's entries: its section (the tables and figures), and its lead (claims) and headline
-// (rankings) tables shown in full at the top.
+// A study's entries: its section (a line per table linking its files and figures), its lead
+// tables (the claims) shown in full at the top with their figures, and its headline tables (the
+// rankings) linked at the top. Tables are read in their own files: index.md stays a page a
+// reader takes in at once (at most 20,000 characters for the default studies).
 struct IndexPart {
   std::string section, lead, headline;
   Json figures = Json::array();  // its entries of figures.json (table.hpp, figures_to_json)
 };
 
+std::string table_line(const Table& t) {
+  std::string line = t.csv_only ? fmt::format("- {} ([csv]({}.csv))", one_line(t.title), t.id)
+                                : fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))", one_line(t.title), t.id, t.id, t.id);
+  for (const auto& f : t.figures) line += fmt::format(", [figure](figures/{}.png)", f.id);
+  return line + "\n";
+}
+
 IndexPart index_part(const StudyEntry& s, const std::vector<Table>& tables) {
   IndexPart part;  // one_line: a label's newline must not split the index's lines
   part.section = fmt::format("## {}\n\n{}\n\n", one_line(s.name), one_line(s.description));
   for (const auto& t : tables) {
-    if (t.csv_only)
-      part.section += fmt::format("- {} ([csv]({}.csv))\n", one_line(t.title), t.id);
-    else
-      part.section += fmt::format("- [{}]({}.md) ([csv]({}.csv), [tex]({}.tex))\n", one_line(t.title), t.id, t.id, t.id);
+    part.section += table_line(t);
     std::string pictures;  // a lead table's figures go with it to the top
-    for (const auto& f : t.figures) {
-      part.section += fmt::format("\n  ![{}](figures/{}.png) ([pdf](figures/{}.pdf)){}\n", one_line(f.title), f.id, f.id,
-                                  f.caption.empty() ? "" : "\n\n  " + one_line(f.caption));
-      pictures += fmt::format("\n![{}](figures/{}.png)\n\n{}\n", one_line(f.title), f.id, one_line(f.caption));
-    }
-    const std::string full = fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n{}", one_line(t.title), t.id, one_line(s.name),
-                                         one_line(t.caption), markdown_grid(t), t.lead ? pictures : std::string());
-    if (t.lead) part.lead += full;
+    for (const auto& f : t.figures) pictures += fmt::format("\n![{}](figures/{}.png)\n\n{}\n", one_line(f.title), f.id, one_line(f.caption));
+    if (t.lead)
+      part.lead += fmt::format("### [{}]({}.md) ({})\n\n{}\n\n{}\n{}", one_line(t.title), t.id, one_line(s.name), one_line(t.caption),
+                               markdown_grid(t), pictures);
     if (t.lead_figures && !t.lead) part.lead += pictures;
-    if (t.headline) part.headline += full;
+    if (t.headline) part.headline += fmt::format("- [{}]({}.md) ({})\n", one_line(t.title), t.id, one_line(s.name));
   }
   part.section += "\n";
   return part;
@@ -145,11 +147,11 @@ void ReportIndex::write() const {
   write_file_atomic(report_ / "figures.json", figures.dump(2) + "\n");
   std::string index = header_;
   if (!lead.empty()) index += "## Claims\n\nEach claim is tested under the conditions its source states (as claimed) and beyond them; every "
-                              "verdict is computed from measured figures by the rule in the caption, the conditions are written "
-                              "out in the table, and the properties matrix asks the same of every scheme.\n\n" + lead + "\n";
+                              "verdict is computed from measured figures by the rule in the caption, and the tables behind each "
+                              "verdict are linked below.\n\n" + lead + "\n";
   if (!headline.empty())
-    index += "## Headline ranking\n\nComputed from the studies' work-precision data (the rules are in each "
-             "caption).\n\n" + headline + "\n";
+    index += "## Headline ranking\n\nThe cheapest integrator at each target error, computed from the studies' "
+             "work-precision data (the rules are in each table's caption).\n\n" + headline + "\n";
   const auto& env = environment();
   const auto& b = build_info();
   write_file_atomic(report_ / "index.md",

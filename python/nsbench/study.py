@@ -24,12 +24,12 @@ import sys
 import numpy as np
 
 from . import _nsbench
-from ._nsbench import (Column, Figure, Table, above_round_off, compared_impacts, contact_phases, fit_line, fit_order,
+from ._nsbench import (Column, Figure, Table, above_round_off, compared_impacts, contact_phases, drift_rule, fit_line, fit_order,
                        hausdorff, observed_order, ranking_table, run_measures, to_csv, to_latex, to_markdown,
                        verify_table)
 
 __all__ = ["Column", "Figure", "Result", "Study", "Table", "above_round_off", "case", "compared_impacts",
-           "contact_phases", "fit_line", "fit_order", "hausdorff", "observed_order", "ranking_table", "run", "run_measures", "to_csv", "to_latex",
+           "contact_phases", "drift_rule", "fit_line", "fit_order", "hausdorff", "observed_order", "ranking_table", "run", "run_measures", "to_csv", "to_latex",
            "to_markdown", "verify_table"]
 
 _RUN_KEYS = ("dt", "cfl", "sample_every", "states", "cpu_repeats", "max_force_evaluations")

@@ -180,7 +180,7 @@ TEST_CASE("cd-lagrange-adaptive: the talk's update on the bouncing bar: at the C
           "[integrators][adaptive][talk-step]") {
   // U measured from the start: in flight D = T + 1/2 (T' + T) + Psi - F_ext^T U is T' up to a
   // small defect (T = F_ext^T U in a free fall from rest), the updates drift up to tau_up; the
-  // contact changes the defect's sign and the step falls to tau_min (reports/claims_adaptive_step.md).
+  // contact changes the defect's sign and the step falls to tau_min (reports/claims_adaptive.md).
   const auto bar = nsb::make_problem("bouncing-bar", {{"mass", "lumped"}, {"e", "0"}, {"N", "20"}});
   auto integ = adaptive({{"momentum", "talk"}, {"step_rule", "talk"}, {"energy_target", "no-work"}});
   integ.init(*bar, bar->initial_state());

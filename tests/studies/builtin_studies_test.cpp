@@ -560,35 +560,6 @@ TEST_CASE("built-in study hausdorff: hausdorff.toml's runs are the C++ study's, 
   CHECK(study->source == "studies/builtin/hausdorff.toml");
 }
 
-// hausdorff_orders (studies/hausdorff.hpp), claim (2)'s fits: the file's runs of one scheme
-// alone give that scheme's rows of the committed table hausdorff_orders, every number exactly
-// (shortest round-trip text); a name that is no scheme of the study is refused in one line.
-TEST_CASE("built-in study hausdorff: hausdorff_orders(cd-lagrange) are the committed report's cd-lagrange rows", "[studies]") {
-  const auto orders = nsb::hausdorff_orders("cd-lagrange");
-  std::vector<std::vector<std::string>> expected;
-  for (const auto& row : report_csv("hausdorff_orders"))
-    if (row[1] == "cd-lagrange") expected.push_back(row);
-  REQUIRE(orders.size() == 6);
-  REQUIRE(expected.size() == orders.size());
-  const auto same = [](double x, const std::string& text) { return text == "n/a" ? std::isnan(x) : x == std::stod(text); };
-  for (std::size_t k = 0; k < orders.size(); ++k) {
-    const auto& o = orders[k];
-    const auto& row = expected[k];
-    INFO(o.problem);
-    CHECK(o.problem == row[0]);
-    CHECK(same(o.max_error.order, row[2]));
-    CHECK(same(o.max_error.low, row[3]));
-    CHECK(same(o.max_error.high, row[4]));
-    CHECK(same(o.hausdorff.order, row[5]));
-    CHECK(same(o.hausdorff.low, row[6]));
-    CHECK(same(o.hausdorff.high, row[7]));
-    CHECK(o.hausdorff.points == std::stoi(row[8]));
-    CHECK(o.note == row[9]);
-  }
-  CHECK_THROWS_WITH(nsb::hausdorff_orders("modal-exact"),
-                    Catch::StartsWith("hausdorff orders: 'modal-exact' is no scheme of studies/builtin/hausdorff.toml; valid: cd-lagrange"));
-}
-
 namespace {
 
 // The runs of the C++ study bar (studies/bar.cpp, deleted once bar.toml's case list equalled
