@@ -20,13 +20,36 @@ namespace nsb::study_files {
 // The intervals of the energy-history table of the engine's own tables.
 inline constexpr int kHistoryIntervals = 200;
 
+// The problem's observables of one state, observed once however many measures of the case read
+// them after a step (Problem::observe fills them all; an exact column, e.g. the rocking block's
+// omega_exact, integrates the exact solution to t, the cost of one measure): kept while the
+// arguments are the same, compared by value (an exact graph's two sides of a jump share t).
+class ObservableBuffer {
+ public:
+  explicit ObservableBuffer(std::size_t size) : values_(size) {}
+  std::span<const double> of(const Problem& problem, const State& s, const Vec& impulses, double dt) {
+    const auto same = [](const Vec& a, const Vec& b) { return a.size() == b.size() && a == b; };
+    if (!(filled_ && t_ == s.t && dt_ == dt && same(u_, s.u) && same(v_, s.v) && same(impulses_, impulses))) {
+      problem.observe(s, impulses, dt, values_);
+      t_ = s.t, dt_ = dt, u_ = s.u, v_ = s.v, impulses_ = impulses, filled_ = true;
+    }
+    return values_;
+  }
+
+ private:
+  std::vector<double> values_;
+  Vec u_, v_, impulses_;
+  double t_ = 0.0, dt_ = 0.0;
+  bool filled_ = false;
+};
+
 // run_recorders.cpp
 double state_observable(const Problem& problem, const SpMat& M, const State& s, const Vec& impulses, double dt,
-                        const std::string& name, std::span<double> buffer, const Energy* energy);
+                        const std::string& name, ObservableBuffer& buffer, const Energy* energy);
 // The exact solution's observable `name` at t: ExactSolution::observable where offered (a few
 // points of the solution), else observed on state(t); nullopt where the solution does not hold.
 std::optional<double> exact_observable(const Problem& problem, const SpMat& M, double t, const std::string& name,
-                                       std::span<double> buffer);
+                                       ObservableBuffer& buffer);
 
 // cases.cpp
 std::string shown_label(const FileIntegrator& fi, const std::string& problem_label);

@@ -188,7 +188,7 @@ Table impulses_table(const StudySpec& spec, const FileTable& d, const std::vecto
     const FileProblem& p = spec.problems[cases[k]["problem"].get<std::size_t>()];
     const auto problem = make_problem(p.name, p.parameters);
     const SpMat M = problem->mass_matrix();
-    std::vector<double> buffer(problem->observable_names().size());
+    ObservableBuffer buffer(problem->observable_names().size());
     const Vec none = Vec::Zero(problem->ncontacts());
     for (const Json& t : bins["t"]) {
       const std::optional<State> exact = problem->exact()->state(t.get<double>());

@@ -138,7 +138,7 @@ class CaseRun {
   Reference reference_;
   std::string semi_note_;  // why its semi-discrete errors are n/a
   const std::unique_ptr<ModalExact> semi_;
-  std::vector<double> obs_, obs_ref_;
+  ObservableBuffer obs_, obs_ref_;
   std::vector<Accumulator> acc_;
   std::vector<std::pair<double, double>> windows_;  // each measure's window on this problem
   std::vector<bool> on_;                            // measured on this problem
@@ -175,7 +175,7 @@ CaseRun::CaseRun(const StudySpec& spec, const FileProblem& fp, const FileIntegra
                  double t_end, double dt)
     : spec_(spec), fp_(fp), problem_(problem), integrator_(integrator), t_end_(t_end), dt_(dt), M_(problem.mass_matrix()),
       reference_(spec, problem, M_, fp), semi_(semi_discrete_reference(spec, fp, fi.name, problem, semi_note_)),
-      obs_(problem.observable_names().size()), obs_ref_(obs_.size()), acc_(spec.measures.size()), own_v_(has_observable(problem, "v")),
+      obs_(problem.observable_names().size()), obs_ref_(problem.observable_names().size()), acc_(spec.measures.size()), own_v_(has_observable(problem, "v")),
       // P0 and the speed scale from the problem's initial velocity, not the scheme's state after
       // init (modal-exact's passes through its modal basis: round-off in P0).
       momentum_(problem, problem.initial_state().v), energy0_(integrator.energy()), e0_(energy0_.total()),

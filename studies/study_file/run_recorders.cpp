@@ -41,11 +41,10 @@ Json work_counter(const std::map<std::string, double>& extra, const std::string&
 // total_energy, min_gap (series columns of run/run.hpp). `energy`: the scheme's own
 // (Integrator::energy), else v^T M v / 2 + V(u).
 double state_observable(const Problem& problem, const SpMat& M, const State& s, const Vec& impulses, double dt,
-                        const std::string& name, std::span<double> buffer, const Energy* energy) {
+                        const std::string& name, ObservableBuffer& buffer, const Energy* energy) {
   const auto& names = problem.observable_names();
   if (const auto k = std::find(names.begin(), names.end(), name); k != names.end()) {
-    problem.observe(s, impulses, dt, buffer);
-    return buffer[k - names.begin()];
+    return buffer.of(problem, s, impulses, dt)[k - names.begin()];
   }
   if (name == "min_gap" && problem.contacts_move()) {  // the gaps themselves, not their linearisation at U0
     ContactGeometry moving = problem.contact_geometry();
@@ -58,7 +57,7 @@ double state_observable(const Problem& problem, const SpMat& M, const State& s, 
 }
 
 std::optional<double> exact_observable(const Problem& problem, const SpMat& M, double t, const std::string& name,
-                                       std::span<double> buffer) {
+                                       ObservableBuffer& buffer) {
   if (const auto value = problem.exact()->observable(name, t)) return value;
   const std::optional<State> exact = problem.exact()->state(t);
   if (!exact) return std::nullopt;
@@ -67,7 +66,7 @@ std::optional<double> exact_observable(const Problem& problem, const SpMat& M, d
 
 // The observable of an event measure after a step of length dt (impact-count has none: 0).
 double event_observable(const Problem& problem, const SpMat& M, const Integrator& it, double dt, const FileMeasure& m,
-                        std::span<double> buffer, const Energy& energy) {
+                        ObservableBuffer& buffer, const Energy& energy) {
   if (m.kind == MeasureKind::ImpactCount || m.kind == MeasureKind::Summary) return 0.0;
   return state_observable(problem, M, it.state(), it.impulses(), dt, m.observable, buffer, &energy);
 }
@@ -157,7 +156,7 @@ Reference::Reference(const StudySpec& spec, const Problem& problem, const SpMat&
   t_ = run_.series.column("t");
 }
 
-double Reference::observable(double t, const std::string& name, std::span<double> buffer) const {
+double Reference::observable(double t, const std::string& name, ObservableBuffer& buffer) const {
   if (lockstep_) {
     const Energy energy = lockstep_->energy();
     return state_observable(problem_, M_, lockstep_->state(), lockstep_->impulses(), 0.0, name, buffer, &energy);
@@ -175,7 +174,7 @@ double Reference::observable(double t, const std::string& name, std::span<double
   return (1 - w) * s.at(lo, col) + w * s.at(hi, col);
 }
 
-Polyline Reference::graph(const std::string& name, double t_end, std::span<double> buffer) const {
+Polyline Reference::graph(const std::string& name, double t_end, ObservableBuffer& buffer) const {
   if (exact_) {
     const Vec none = Vec::Zero(problem_.ncontacts());
     return exact_graph(problem_, [&](const State& s) { return state_observable(problem_, M_, s, none, 0.0, name, buffer, nullptr); }, t_end);
@@ -315,7 +314,7 @@ const Vec& EventFigures::gaps(const Vec& u) {
 }
 
 RunSeries::RunSeries(const StudySpec& spec, const FileProblem& fp, double t_end, const Problem& problem, const SpMat& M, const Integrator& it,
-          std::span<double> buffer, const Energy& energy0)
+          ObservableBuffer& buffer, const Energy& energy0)
     : spec_(spec) {
   for (const FileTable& d : spec.tables) {
     if (d.rows != "trajectory" || !d.applies_to(fp.label)) continue;
@@ -329,7 +328,7 @@ RunSeries::RunSeries(const StudySpec& spec, const FileProblem& fp, double t_end,
   }
 }
 
-void RunSeries::add(const Problem& problem, const SpMat& M, const Integrator& it, double dt, std::span<double> buffer, const Energy& energy) {
+void RunSeries::add(const Problem& problem, const SpMat& M, const Integrator& it, double dt, ObservableBuffer& buffer, const Energy& energy) {
   const State& s = it.state();
   for (Trajectory& tr : trajectories_) {
     const auto n = static_cast<double>(tr.t.size());

@@ -22,6 +22,7 @@
 #include "studies/measures.hpp"
 #include "studies/study.hpp"
 #include "studies/study_file.hpp"
+#include "studies/study_file/engine.hpp"
 
 namespace nsb::study_files {
 
@@ -38,11 +39,11 @@ class Reference {
   void advance(double dt) {
     if (lockstep_) lockstep_->step(dt);
   }
-  double observable(double t, const std::string& name, std::span<double> buffer) const;
+  double observable(double t, const std::string& name, ObservableBuffer& buffer) const;
   Vec u(double t) const { return lockstep_ ? lockstep_->state().u : problem_.exact()->state(t)->u; }
   Vec v(double t) const { return lockstep_ ? lockstep_->state().v : problem_.exact()->state(t)->v; }
   // The reference's graph of an observable on [0, t_end].
-  Polyline graph(const std::string& name, double t_end, std::span<double> buffer) const;
+  Polyline graph(const std::string& name, double t_end, ObservableBuffer& buffer) const;
 
  private:
   const Problem& problem_;
@@ -159,8 +160,8 @@ class RunSeries {
  public:
   // After the integrator's init: `energy0` its energy at the start (a relative trajectory's start values).
   RunSeries(const StudySpec& spec, const FileProblem& fp, double t_end, const Problem& problem, const SpMat& M, const Integrator& it,
-            std::span<double> buffer, const Energy& energy0);
-  void add(const Problem& problem, const SpMat& M, const Integrator& it, double dt, std::span<double> buffer, const Energy& energy);
+            ObservableBuffer& buffer, const Energy& energy0);
+  void add(const Problem& problem, const SpMat& M, const Integrator& it, double dt, ObservableBuffer& buffer, const Energy& energy);
   // Into the run's figures: "trajectories" by table id {t, value, exact} (spacing = "steps":
   // every s-th step kept), "periodic" by measure label (the samples of `periodic`, each
   // measure's, in the order of spec.measures).
@@ -209,7 +210,7 @@ class RunImpulsesAndFields {
 };
 
 double event_observable(const Problem& problem, const SpMat& M, const Integrator& it, double dt, const FileMeasure& m,
-                        std::span<double> buffer, const Energy& energy);
+                        ObservableBuffer& buffer, const Energy& energy);
 Json not_run(const std::string& why);
 double located_impact_error(const Integrator& integrator, const Problem& problem, double t_end, int count);
 void sample_periodic(const FileMeasure& m, Accumulator& a, double t, double dt, double t_end, double e);
