@@ -71,7 +71,7 @@ def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, state
 
 
 def _array(values):
-    return np.array([np.nan if x is None else x for x in values], dtype=float)
+    return np.array(values, dtype=float)  # None (a value that was not finite) reads NaN
 
 
 def _rows(values, samples):
