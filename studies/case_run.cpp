@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "integrators/registry.hpp"
@@ -52,12 +54,6 @@ long count_key(const Json& c, const char* key, long fallback) {
   return j.get<long>();
 }
 
-bool flag_key(const Json& c, const char* key) {
-  if (!c.contains(key)) return false;
-  if (!c[key].is_boolean()) throw InputError(fmt::format("case {} {}: must be true or false", key, c[key].dump()));
-  return c[key].get<bool>();
-}
-
 // The step: dt as given, or cfl times the stable step; nullopt (with the reason) when cfl meets
 // a problem without a finite one.
 std::string step_text(const Json& c, const Problem& p, std::string& declined) {
@@ -75,23 +71,43 @@ std::string step_text(const Json& c, const Problem& p, std::string& declined) {
 
 Json reals_of(const Vec& x) { return reals({x.data(), x.data() + x.size()}); }
 
-// u, v and the step's impulses at every sample, row after row.
+const std::vector<std::string> kStateArrays = {"u", "v", "impulses", "tangential_impulses", "tangential_impulses2"};
+
+// The names a case keeps of what a run records (`states`: its arrays, `series`: its columns):
+// every one when the key is absent or true, else those listed, each one of `valid`.
+std::vector<std::string> kept(const Json& c, const char* key, const std::vector<std::string>& valid) {
+  if (!c.contains(key) || c[key] == Json(true)) return valid;
+  const Json& j = c[key];
+  std::vector<std::string> names;
+  for (const auto& name : j.is_array() ? j : Json::array({j})) {
+    if (!name.is_string() || std::find(valid.begin(), valid.end(), name.get<std::string>()) == valid.end())
+      throw InputError(fmt::format("case {} {}: {} is not one of {}", key, j.dump(), name.dump(), fmt::join(valid, ", ")));
+    names.push_back(name.get<std::string>());
+  }
+  return names;
+}
+
+// u, v and the step's impulses at every sample, row after row: the arrays named in `keep`.
 class StateRows final : public StateSink {
  public:
+  explicit StateRows(const std::vector<std::string>& keep) {
+    for (const auto& name : keep) rows[name] = Json::array();
+  }
   void state(const State& s, const Vec& normal, const Vec& tangential, const Vec& tangential2) override {
     t.push_back(s.t);
-    for (auto& [rows, x] : {std::pair{&u, &s.u}, {&v, &s.v}, {&impulses, &normal}, {&tangential_impulses, &tangential},
-                            {&tangential_impulses2, &tangential2}})
-      rows->push_back(reals_of(*x));
+    const Vec* arrays[] = {&s.u, &s.v, &normal, &tangential, &tangential2};
+    for (std::size_t k = 0; k < kStateArrays.size(); ++k)
+      if (const auto it = rows.find(kStateArrays[k]); it != rows.end()) it->second.push_back(reals_of(*arrays[k]));
   }
   std::vector<double> t;
-  Json u = Json::array(), v = Json::array(), impulses = Json::array(), tangential_impulses = Json::array(),
-       tangential_impulses2 = Json::array();
+  std::map<std::string, Json> rows;
 };
 
-Json series_json(const Series& s) {
+// The columns named in `keep`, in that order (each one of the series').
+Json series_json(const Series& s, const std::vector<std::string>& keep) {
   Json columns = Json::array();
-  for (std::size_t j = 0; j < s.columns.size(); ++j) {
+  for (const auto& name : keep) {
+    const std::size_t j = s.column(name);
     std::vector<double> column(s.rows());
     for (std::size_t i = 0; i < s.rows(); ++i) column[i] = s.at(i, j);
     columns.push_back(reals(column));
@@ -173,7 +189,8 @@ Json run_described_case(const Json& c) {
                                    number_text(c, "sample_every", "1"), OptionStyle::Python);
   o.max_force_evaluations = count_key(c, "max_force_evaluations", 0);
   const long repeats = count_key(c, "cpu_repeats", 0);
-  const bool states = flag_key(c, "states");
+  const bool states = c.contains("states") && c["states"] != Json(false);
+  const std::vector<std::string> state_arrays = states ? kept(c, "states", kStateArrays) : std::vector<std::string>{};
   if (!declined.empty()) return declined_result(declined);
   if (c.contains("measures") || c.contains("reference")) {
     if (states) throw InputError("case: states and measures: give one of them (a measured run records no series)");
@@ -188,20 +205,17 @@ Json run_described_case(const Json& c) {
     o.record_series = false;
     return observed_run(observers, rc, o);
   }
-  StateRows rows;
+  StateRows rows(state_arrays);
   if (states) o.state_sink = &rows;
   const RunResult r = run(*rc.problem, *rc.integrator, o);
+  const std::vector<std::string> columns = kept(c, "series", r.series.columns);  // checked once the columns are known
   Json result = {{"status", status_name(r.status)}, {"message", r.message}, {"dt", o.dt}, {"steps", r.steps},
                  {"force_evaluations", r.work.force_evaluations},
                  {"summary", Json::parse(summary_to_json(*rc.problem, *rc.integrator, o, r))},
-                 {"columns", r.series.columns}, {"series", series_json(r.series)}};
+                 {"columns", columns}, {"series", series_json(r.series, columns)}};
   if (states) {
     result["state_t"] = reals(rows.t);
-    result["u"] = std::move(rows.u);
-    result["v"] = std::move(rows.v);
-    result["impulses"] = std::move(rows.impulses);
-    result["tangential_impulses"] = std::move(rows.tangential_impulses);
-    result["tangential_impulses2"] = std::move(rows.tangential_impulses2);
+    for (auto& [name, values] : rows.rows) result[name] = std::move(values);
   }
   if (repeats > 0) {
     const auto routed = route_overrides(sets, find_problem(problem).parameters(), find_integrator(integrator).parameters());
