@@ -3,7 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -69,7 +73,28 @@ std::string step_text(const Json& c, const Problem& p, std::string& declined) {
   return Json(cfl * stable).dump();
 }
 
-Json reals_of(const Vec& x) { return reals({x.data(), x.data() + x.size()}); }
+// An array of a run as JSON: {"shape": [...], "float64": the base64 of its little-endian doubles,
+// row after row}, a non-finite value NaN (as reals() makes it null). A long run's numbers then
+// cost 8 bytes each to hold and to hand to Python (NumPy reads them as they are), not a JSON
+// value and its decimal text each.
+Json packed(const std::vector<double>& values, const std::vector<std::size_t>& shape) {
+  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  static_assert(std::endian::native == std::endian::little, "packed: little-endian doubles");
+  std::string bytes(values.size() * sizeof(double), '\0');
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double x = std::isfinite(values[i]) ? values[i] : std::numeric_limits<double>::quiet_NaN();
+    std::memcpy(bytes.data() + i * sizeof(double), &x, sizeof(double));
+  }
+  std::string text;
+  text.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t word = 0;
+    for (std::size_t k = 0; k < 3; ++k) word = word << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 4; ++k) text += k <= n ? kDigits[(word >> (18 - 6 * k)) & 63u] : '=';
+  }
+  return {{"shape", shape}, {"float64", std::move(text)}};
+}
 
 const std::vector<std::string> kStateArrays = {"u", "v", "impulses", "tangential_impulses", "tangential_impulses2"};
 
@@ -91,16 +116,23 @@ std::vector<std::string> kept(const Json& c, const char* key, const std::vector<
 class StateRows final : public StateSink {
  public:
   explicit StateRows(const std::vector<std::string>& keep) {
-    for (const auto& name : keep) rows[name] = Json::array();
+    for (const auto& name : keep) rows[name] = {};
   }
   void state(const State& s, const Vec& normal, const Vec& tangential, const Vec& tangential2) override {
     t.push_back(s.t);
     const Vec* arrays[] = {&s.u, &s.v, &normal, &tangential, &tangential2};
     for (std::size_t k = 0; k < kStateArrays.size(); ++k)
-      if (const auto it = rows.find(kStateArrays[k]); it != rows.end()) it->second.push_back(reals_of(*arrays[k]));
+      if (const auto it = rows.find(kStateArrays[k]); it != rows.end()) {
+        it->second.width = static_cast<std::size_t>(arrays[k]->size());
+        it->second.values.insert(it->second.values.end(), arrays[k]->begin(), arrays[k]->end());
+      }
   }
+  struct Rows {
+    std::size_t width = 0;
+    std::vector<double> values;
+  };
   std::vector<double> t;
-  std::map<std::string, Json> rows;
+  std::map<std::string, Rows> rows;
 };
 
 // The columns named in `keep`, in that order (each one of the series').
@@ -110,7 +142,7 @@ Json series_json(const Series& s, const std::vector<std::string>& keep) {
     const std::size_t j = s.column(name);
     std::vector<double> column(s.rows());
     for (std::size_t i = 0; i < s.rows(); ++i) column[i] = s.at(i, j);
-    columns.push_back(reals(column));
+    columns.push_back(packed(column, {column.size()}));
   }
   return columns;
 }
@@ -214,8 +246,8 @@ Json run_described_case(const Json& c) {
                  {"summary", Json::parse(summary_to_json(*rc.problem, *rc.integrator, o, r))},
                  {"columns", columns}, {"series", series_json(r.series, columns)}};
   if (states) {
-    result["state_t"] = reals(rows.t);
-    for (auto& [name, values] : rows.rows) result[name] = std::move(values);
+    result["state_t"] = packed(rows.t, {rows.t.size()});
+    for (const auto& [name, r] : rows.rows) result[name] = packed(r.values, {rows.t.size(), r.width});
   }
   if (repeats > 0) {
     const auto routed = route_overrides(sets, find_problem(problem).parameters(), find_integrator(integrator).parameters());
@@ -235,7 +267,8 @@ std::string described_result_damage(const Json& r) {
   if (!r["columns"].is_array() || !r["series"].is_array() || r["columns"].size() != r["series"].size())
     return "'columns' and 'series' are not lists of the same length";
   for (const auto& column : r["series"])
-    if (!column.is_array()) return "a series column is not a list";
+    if (!column.is_object() || !column.contains("shape") || !column.contains("float64") || !column["float64"].is_string())
+      return "a series column is not a packed array";
   return "";
 }
 

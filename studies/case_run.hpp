@@ -39,7 +39,10 @@
 //                            step that ended there (Lambda_N, Lambda_T, Lambda_T2 per contact), a
 //                            row per sample: the arrays named (all with states = true);
 //   cpu, cpu_spread          with cpu_repeats.
-// JSON has no NaN or infinity: a non-finite value is null (reals(), studies/study.hpp).
+// The series' columns, state_t and the state arrays are packed: {"shape": [n] or [samples, width],
+// "float64": the base64 of the little-endian doubles, row after row}, a non-finite value NaN
+// (nsbench.study reads them with NumPy). Elsewhere JSON has no NaN or infinity: a non-finite
+// value is null (reals(), studies/study.hpp).
 #include "studies/study.hpp"
 
 namespace nsb {

@@ -17,6 +17,7 @@ bit: an integrator that declines the problem gives status "n/a" with its reason,
 status "diverged" with its message; neither stops the others.
 """
 import argparse
+import base64
 import json
 import os
 import sys
@@ -76,10 +77,16 @@ def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, state
 
 
 def _array(values):
-    return np.array(values, dtype=float)  # None (a value that was not finite) reads NaN
+    """A result's array: packed ({"shape", "float64": base64 of the doubles}, studies/case_run.cpp)
+    or a list (None, a value that was not finite, reads NaN)."""
+    if isinstance(values, dict):
+        return np.frombuffer(base64.b64decode(values["float64"]), dtype="<f8").reshape(values["shape"]).copy()
+    return np.array(values, dtype=float)
 
 
 def _rows(values, samples):
+    if isinstance(values, dict):
+        return _array(values)
     width = len(values[0]) if values else 0
     return np.array(values, dtype=float).reshape(samples, width)
 
@@ -178,13 +185,22 @@ class Study:
                 _nsbench.load_plugin(plugin)
             return _nsbench._drive_study(
                 self.name, self.description, self.source, lambda full: [json.dumps(c) for c in self.cases(full)],
-                lambda cases, results, full: self.tables(
-                    [Result(json.loads(c), json.loads(r)) for c, r in zip(cases, results)], full),
+                lambda cases, results, full: self.tables(_results(cases, results), full),
                 _command(argv), args.out, args.full, args.shard or "", args.merge,
                 args.verify or "", args.rtol, args.atol)
         except ValueError as e:
             print(f"{self.name}: error: {e}", file=sys.stderr)
             return 2
+
+
+def _results(cases, texts):
+    """The Results of the driver's JSON texts, each text dropped once read (a long study's texts
+    are the bulk of what it holds)."""
+    results = []
+    for k, (c, text) in enumerate(zip(cases, texts)):
+        results.append(Result(json.loads(c), json.loads(text)))
+        texts[k] = None
+    return results
 
 
 def _command(argv):
