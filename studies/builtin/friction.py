@@ -191,16 +191,16 @@ def momentum_identities(p, r, slip):
     p_scale = eigen_sum((m * np.abs(p.initial_state().v))[None, :])[0]
     px, normal, mu = r.series["px"], r.impulses, p.contacts["mu"]
     px_residual = np.max(np.abs(px[1:] - px[0] - np.cumsum(eigen_sum(r.tangential_impulses[1:]))) / p_scale)
-    slide_steps, slide_residual = 0, 0.0
-    for k in range(1, len(px)):
-        closed = np.flatnonzero(normal[k] > 0.0)
-        ways = set(np.where(np.abs(slip[k, closed]) <= SLIP_TOL, 2, np.where(slip[k, closed] > 0.0, 1, -1)))
-        if len(ways) == 1 and ways != {2}:
-            way = ways.pop()
-            slide_steps += 1
-            mu_normal = np.cumsum(mu[closed] * normal[k, closed])[-1]
-            slide_residual = max(slide_residual, abs(px[k] - px[k - 1] + way * mu_normal) / p_scale)
-    return px_residual, slide_steps, slide_residual if slide_steps else math.nan
+    # Per step (row) from 1 on: each closed contact's way, 2 where it does not slide; a step counts
+    # when its closed contacts share one way +-1. sum mu Lambda_N over them in the contacts' order.
+    closed = normal[1:] > 0.0
+    ways = np.where(np.abs(slip[1:]) <= SLIP_TOL, 2, np.where(slip[1:] > 0.0, 1, -1))
+    lowest, highest = np.where(closed, ways, 3).min(axis=1), np.where(closed, ways, -3).max(axis=1)
+    sliding = closed.any(axis=1) & (lowest == highest) & (lowest != 2)
+    mu_normal = np.cumsum(np.where(closed, mu * normal[1:], 0.0), axis=1)[:, -1]
+    residuals = np.abs(px[1:] - px[:-1] + lowest * mu_normal)[sliding] / p_scale
+    slide_steps = int(sliding.sum())
+    return px_residual, slide_steps, float(np.max(residuals, initial=0.0)) if slide_steps else math.nan
 
 
 def measure(fc, r):
