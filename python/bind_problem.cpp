@@ -67,6 +67,27 @@ py::dict contact_geometry_dict(const Problem& p, const Eigen::Ref<const Vec>& u)
                   "T2"_a = rows_or_zeros(SpMat(at.tangent2), m, n));
 }
 
+// The exact solution's events and values by name (problems/exact_solution.hpp, ExactEvent and
+// ExactValue): what a study compares a run's stop, onset or first rebound against.
+template <class E>
+E named(const std::vector<std::pair<const char*, E>>& names, const std::string& name, const char* what) {
+  std::vector<std::string> valid;
+  for (const auto& [n, e] : names) {
+    if (name == n) return e;
+    valid.push_back(n);
+  }
+  throw InputError(fmt::format("{} '{}': unknown; valid: {}", what, name, fmt::join(valid, ", ")));
+}
+
+const std::vector<std::pair<const char*, ExactEvent>> kExactEvents = {
+    {"contact_start", ExactEvent::contact_start}, {"slip_stop", ExactEvent::slip_stop}, {"rest", ExactEvent::rest},
+    {"roll_onset", ExactEvent::roll_onset}, {"jam", ExactEvent::jam}};
+const std::vector<std::pair<const char*, ExactValue>> kExactValues = {
+    {"contact_duration", ExactValue::contact_duration}, {"stop_distance", ExactValue::stop_distance},
+    {"stays_stopped", ExactValue::stays_stopped}, {"first_rebound_speed", ExactValue::first_rebound_speed},
+    {"impact_ratio", ExactValue::impact_ratio}, {"housner_ratio", ExactValue::housner_ratio},
+    {"wave_time", ExactValue::wave_time}};
+
 }  // namespace
 
 void bind_problem(py::module_& m) {
@@ -151,6 +172,18 @@ void bind_problem(py::module_& m) {
       .def("impact_times", [](const Problem& p, double t_end) {
         return p.exact() ? p.exact()->impact_times(t_end) : std::vector<double>{};
       }, "t_end"_a, "Exact impact times in [0, t_end] where known (the problem's exact solution).")
+      .def("exact_event", [](const Problem& p, const std::string& name) {
+        const ExactEvent e = named(kExactEvents, name, "exact_event");
+        return p.exact() ? p.exact()->event_time(e) : std::nullopt;
+      }, "name"_a,
+           "The exact time of an event (contact_start, slip_stop, rest, roll_onset, jam): inf when the solution\n"
+           "knows it never happens, None where it does not time it (or no exact solution is known).")
+      .def("exact_value", [](const Problem& p, const std::string& name) {
+        const ExactValue v = named(kExactValues, name, "exact_value");
+        return p.exact() ? p.exact()->value(v) : std::nullopt;
+      }, "name"_a,
+           "An exact scalar (contact_duration, stop_distance, stays_stopped, first_rebound_speed, impact_ratio,\n"
+           "housner_ratio, wave_time), None where the solution does not define it.")
       .def_property_readonly("observables", &Problem::observable_names, "The problem's own columns of a run's series.")
       .def("__repr__", [](const Problem& p) { return fmt::format("Problem('{}', ndof={})", p.name(), p.ndof()); });
 }

@@ -101,8 +101,15 @@ std::vector<std::string> run_cases(const std::vector<std::string>& case_texts, c
 }
 
 using CasesFunction = std::function<std::vector<std::string>(bool full)>;
-using TablesFunction = std::function<std::vector<Table>(const std::vector<std::string>& cases,
-                                                        const std::vector<std::string>& results, bool full)>;
+// The cases and results as lists of JSON texts (the callee may drop each text once read).
+using TablesFunction = std::function<std::vector<Table>(py::list cases, py::list results, bool full)>;
+
+// JSON texts as a Python list, each made and handed over in turn: one text at a time in C++.
+py::list texts_of(const std::vector<Json>& items) {
+  py::list texts;
+  for (const auto& j : items) texts.append(py::str(j.dump()));
+  return texts;
+}
 
 // A Python study driven as nsbench-study drives a registered one: its cases and tables from
 // Python (the GIL taken for those calls only), its runs in the pool without it.
@@ -117,7 +124,7 @@ int drive_study(const std::string& name, const std::string& description, const s
   };
   study.tables = [&tables](const std::vector<Json>& c, const std::vector<Json>& r, const StudyOptions& o) {
     py::gil_scoped_acquire gil;
-    return tables(dumped(c), dumped(r), o.full);
+    return tables(texts_of(c), texts_of(r), o.full);
   };
   DriverOptions o = options;
   o.result_check = [](const StudyEntry&, const Json& c, const Json& result) { return described_result_damage(c, result); };

@@ -3,7 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
 #include <optional>
 
 #include "integrators/registry.hpp"
@@ -53,12 +58,6 @@ long count_key(const Json& c, const char* key, long fallback) {
   return j.get<long>();
 }
 
-bool flag_key(const Json& c, const char* key) {
-  if (!c.contains(key)) return false;
-  if (!c[key].is_boolean()) throw InputError(fmt::format("case {} {}: must be true or false", key, c[key].dump()));
-  return c[key].get<bool>();
-}
-
 // The step: dt as given, or cfl times the stable step; when cfl meets a problem without a finite
 // one, `declined` gets the reason.
 std::string step_text(const Json& c, const Problem& p, std::string& declined) {
@@ -74,28 +73,76 @@ std::string step_text(const Json& c, const Problem& p, std::string& declined) {
   return Json(cfl * stable).dump();
 }
 
-Json reals_of(const Vec& x) { return reals({x.data(), x.data() + x.size()}); }
+// An array of a run as JSON: {"shape": [...], "float64": the base64 of its little-endian doubles,
+// row after row}, a non-finite value NaN (as reals() makes it null). A long run's numbers then
+// cost 8 bytes each to hold and to hand to Python (NumPy reads them as they are), not a JSON
+// value and its decimal text each.
+Json packed(const std::vector<double>& values, const std::vector<std::size_t>& shape) {
+  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  static_assert(std::endian::native == std::endian::little, "packed: little-endian doubles");
+  std::string bytes(values.size() * sizeof(double), '\0');
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double x = std::isfinite(values[i]) ? values[i] : std::numeric_limits<double>::quiet_NaN();
+    std::memcpy(bytes.data() + i * sizeof(double), &x, sizeof(double));
+  }
+  std::string text;
+  text.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t word = 0;
+    for (std::size_t k = 0; k < 3; ++k) word = word << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 4; ++k) text += k <= n ? kDigits[(word >> (18 - 6 * k)) & 63u] : '=';
+  }
+  return {{"shape", shape}, {"float64", std::move(text)}};
+}
 
-// u, v and the step's impulses at every sample, row after row.
+const std::vector<std::string> kStateArrays = {"u", "v", "impulses", "tangential_impulses", "tangential_impulses2"};
+
+// The names a case keeps of what a run records (`states`: its arrays, `series`: its columns):
+// every one when the key is absent or true, else those listed, each one of `valid`.
+std::vector<std::string> kept(const Json& c, const char* key, const std::vector<std::string>& valid) {
+  if (!c.contains(key) || c[key] == Json(true)) return valid;
+  const Json& j = c[key];
+  std::vector<std::string> names;
+  for (const auto& name : j.is_array() ? j : Json::array({j})) {
+    if (!name.is_string() || std::find(valid.begin(), valid.end(), name.get<std::string>()) == valid.end())
+      throw InputError(fmt::format("case {} {}: {} is not one of {}", key, j.dump(), name.dump(), fmt::join(valid, ", ")));
+    names.push_back(name.get<std::string>());
+  }
+  return names;
+}
+
+// u, v and the step's impulses at every sample, row after row: the arrays named in `keep`.
 class StateRows final : public StateSink {
  public:
+  explicit StateRows(const std::vector<std::string>& keep) {
+    for (const auto& name : keep) rows[name] = {};
+  }
   void state(const State& s, const Vec& normal, const Vec& tangential, const Vec& tangential2) override {
     t.push_back(s.t);
-    for (auto& [rows, x] : {std::pair{&u, &s.u}, {&v, &s.v}, {&impulses, &normal}, {&tangential_impulses, &tangential},
-                            {&tangential_impulses2, &tangential2}})
-      rows->push_back(reals_of(*x));
+    const Vec* arrays[] = {&s.u, &s.v, &normal, &tangential, &tangential2};
+    for (std::size_t k = 0; k < kStateArrays.size(); ++k)
+      if (const auto it = rows.find(kStateArrays[k]); it != rows.end()) {
+        it->second.width = static_cast<std::size_t>(arrays[k]->size());
+        it->second.values.insert(it->second.values.end(), arrays[k]->begin(), arrays[k]->end());
+      }
   }
+  struct Rows {
+    std::size_t width = 0;
+    std::vector<double> values;
+  };
   std::vector<double> t;
-  Json u = Json::array(), v = Json::array(), impulses = Json::array(), tangential_impulses = Json::array(),
-       tangential_impulses2 = Json::array();
+  std::map<std::string, Rows> rows;
 };
 
-Json series_json(const Series& s) {
+// The columns named in `keep`, in that order (each one of the series').
+Json series_json(const Series& s, const std::vector<std::string>& keep) {
   Json columns = Json::array();
-  for (std::size_t j = 0; j < s.columns.size(); ++j) {
+  for (const auto& name : keep) {
+    const std::size_t j = s.column(name);
     std::vector<double> column(s.rows());
     for (std::size_t i = 0; i < s.rows(); ++i) column[i] = s.at(i, j);
-    columns.push_back(reals(column));
+    columns.push_back(packed(column, {column.size()}));
   }
   return columns;
 }
@@ -174,7 +221,8 @@ Json run_described_case(const Json& c) {
                                    number_text(c, "sample_every", "1"), OptionStyle::Python);
   o.max_force_evaluations = count_key(c, "max_force_evaluations", 0);
   const long repeats = count_key(c, "cpu_repeats", 0);
-  const bool states = flag_key(c, "states");
+  const bool states = c.contains("states") && c["states"] != Json(false);
+  const std::vector<std::string> state_arrays = states ? kept(c, "states", kStateArrays) : std::vector<std::string>{};
   if (!declined.empty()) return declined_result(declined);
   if (c.contains("measures") || c.contains("reference")) {
     if (states) throw InputError("case: states and measures: give one of them (a measured run records no series)");
@@ -189,20 +237,17 @@ Json run_described_case(const Json& c) {
     o.record_series = false;
     return observed_run(observers, rc, o);
   }
-  StateRows rows;
+  StateRows rows(state_arrays);
   if (states) o.state_sink = &rows;
   const RunResult r = run(*rc.problem, *rc.integrator, o);
+  const std::vector<std::string> columns = kept(c, "series", r.series.columns);  // checked once the columns are known
   Json result = {{"status", status_name(r.status)}, {"message", r.message}, {"dt", o.dt}, {"steps", r.steps},
                  {"force_evaluations", r.work.force_evaluations},
                  {"summary", Json::parse(summary_to_json(*rc.problem, *rc.integrator, o, r))},
-                 {"columns", r.series.columns}, {"series", series_json(r.series)}};
+                 {"columns", columns}, {"series", series_json(r.series, columns)}};
   if (states) {
-    result["state_t"] = reals(rows.t);
-    result["u"] = std::move(rows.u);
-    result["v"] = std::move(rows.v);
-    result["impulses"] = std::move(rows.impulses);
-    result["tangential_impulses"] = std::move(rows.tangential_impulses);
-    result["tangential_impulses2"] = std::move(rows.tangential_impulses2);
+    result["state_t"] = packed(rows.t, {rows.t.size()});
+    for (const auto& [name, r] : rows.rows) result[name] = packed(r.values, {rows.t.size(), r.width});
   }
   if (repeats > 0) {
     const auto routed = route_overrides(sets, find_problem(problem).parameters(), find_integrator(integrator).parameters());
@@ -247,7 +292,8 @@ std::string described_result_damage(const Json& c, const Json& r) {
   if (!r["columns"].is_array() || !r["series"].is_array() || r["columns"].size() != r["series"].size())
     return "'columns' and 'series' are not lists of the same length";
   for (const auto& column : r["series"])
-    if (!column.is_array()) return "a series column is not a list";
+    if (!column.is_object() || !column.contains("shape") || !column.contains("float64") || !column["float64"].is_string())
+      return "a series column is not a packed array";
   return "";
 }
 

@@ -12,7 +12,10 @@
 //                            the central-difference limit): dt = cfl * stable_step
 //   t_end                    > 0
 //   sample_every             record every k-th step and the first and last (default 1)
-//   states                   record u, v and the impulses at the samples (default false)
+//   states                   record u, v and the impulses at the samples (default false); or a list
+//                            of the arrays to record: some of u, v, impulses, tangential_impulses,
+//                            tangential_impulses2
+//   series                   a list of the series' columns to keep, in that order (default: all)
 //   max_force_evaluations    the work budget (run/run.hpp; default 0: none)
 //   cpu_repeats              > 0: also time the run, cpu_cost's median of that many unobserved
 //                            runs after a warm-up, and its spread (studies/study.hpp; default 0)
@@ -29,13 +32,17 @@
 //                            the integrator declines the problem (its init) or cfl meets a
 //                            problem without a finite stable step;
 //   dt, steps, force_evaluations, summary (summary.json of `nsbench run`, as an object);
-//   columns, series          the series' column names and, per column, its values (series[j]);
+//   columns, series          the series' column names and, per column, its values (series[j]): the
+//                            columns kept;
 //   state_t, u, v, impulses, tangential_impulses, tangential_impulses2
 //                            with states: the sample times, the states and the impulses of the
 //                            step that ended there (Lambda_N, Lambda_T, Lambda_T2 per contact), a
-//                            row per sample;
+//                            row per sample: the arrays named (all with states = true);
 //   cpu, cpu_spread          with cpu_repeats.
-// JSON has no NaN or infinity: a non-finite value is null (reals(), studies/study.hpp).
+// The series' columns, state_t and the state arrays are packed: {"shape": [n] or [samples, width],
+// "float64": the base64 of the little-endian doubles, row after row}, a non-finite value NaN
+// (nsbench.study reads them with NumPy). Elsewhere JSON has no NaN or infinity: a non-finite
+// value is null (reals(), studies/study.hpp).
 #include "studies/study.hpp"
 
 namespace nsb {

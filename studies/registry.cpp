@@ -8,7 +8,6 @@
 namespace nsb {
 
 extern const StudyEntry block_study;
-extern const StudyEntry friction_study;
 extern const StudyEntry bodies_study;
 extern const StudyEntry properties_study;
 
@@ -76,7 +75,11 @@ const std::vector<StudyEntry>& study_registry() {
                          "Doyen-Ern-Piperno bouncing bar over many periods: energy per period per mass model, contact-end "
                          "error, force oscillation",
                          "studies/builtin/bouncing-bar.toml"),
-      cpp_study(friction_study, "studies/friction.cpp"),
+      builtin_python_study("friction",
+                           "Coulomb friction: sliding mass stop time and distance, rolling disk onset and final speed, "
+                           "orders; energy never increasing; block momentum identities; sticking, mu = tan alpha, "
+                           "reversal, mu = 10, a spinning drop; ranking",
+                           "studies/builtin/friction.py"),
       cpp_study(bodies_study, "studies/bodies.cpp"),
       builtin_file_study("hausdorff", "velocity graphs against the exact ones: max-norm error vs Hausdorff distance, orders per scheme",
                          "studies/builtin/hausdorff.toml"),

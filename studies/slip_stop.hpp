@@ -1,8 +1,9 @@
 #pragma once
 // When a frictional contact stops slipping: the stop time (a sliding mass coming to rest) and
 // the rolling onset (a disk whose contact point stops slipping), measured on a run and given by
-// the problem's exact solution. One definition for the friction study (studies/friction.cpp)
-// and the study files' stop-time and onset-time measures (studies/study_file/run_case.cpp).
+// the problem's exact solution: the study files' stop-time and onset-time measures
+// (studies/study_file/run_case.cpp). The friction study (studies/builtin/friction.py) applies the
+// same rule in NumPy (tests/studies/study_file_test.cpp: one value of its report, to the bit).
 //
 // Measured from the slip u_T = T v - w of the contacts (T the tangent rows, w the obstacle's
 // tangential velocity), after every step:

@@ -17,6 +17,7 @@ bit: an integrator that declines the problem gives status "n/a" with its reason,
 status "diverged" with its message; neither stops the others.
 """
 import argparse
+import base64
 import json
 import os
 import sys
@@ -32,15 +33,18 @@ __all__ = ["Column", "Figure", "Result", "Study", "Table", "above_round_off", "c
            "contact_phases", "drift_rule", "fit_line", "fit_order", "hausdorff", "observed_order", "ranking_table", "run", "run_measures", "to_csv", "to_latex",
            "to_markdown", "verify_table"]
 
-_RUN_KEYS = ("dt", "cfl", "sample_every", "states", "cpu_repeats", "max_force_evaluations")
+_RUN_KEYS = ("dt", "cfl", "sample_every", "states", "series", "cpu_repeats", "max_force_evaluations")
 
 
-def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, states=False, cpu_repeats=0,
+def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, states=False, series=None, cpu_repeats=0,
          max_force_evaluations=0, observe=None, measures=None, reference=None, labels=None, **parameters):
     """A case: `integrator` on `problem` (names) to t_end, at step dt or at cfl times the problem's
     stable step. Keyword arguments other than the run options are the problem's and the
     integrator's parameters, as in nsbench.run ("problem.key" or "integrator.key" where both
-    declare key). observe: a list of dicts {"kind": K, ...its parameters} of the run measures
+    declare key). states: True records u, v and the impulses at the samples, a list of some of
+    "u", "v", "impulses", "tangential_impulses", "tangential_impulses2" those only; series: a list
+    of the series' columns to keep (default: all), e.g. ["t", "total_energy"] (what a long run
+    hands to Python is then that much smaller). observe: a list of dicts {"kind": K, ...its parameters} of the run measures
     (study.run_measures(): "mesh-momentum", "momentum-balance", ...), each fed after every step;
     their figures are Result.observed, in order (no series). measures: a list of dicts, each a [[measure]] table of the study-file language
     (docs/study_files.md: kind = "error", "impact-time", "energy", "momentum", "hausdorff", ...),
@@ -54,7 +58,9 @@ def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, state
     if sample_every != 1:
         c["sample_every"] = sample_every
     if states:
-        c["states"] = True
+        c["states"] = True if states is True else list(states)
+    if series is not None:
+        c["series"] = list(series)
     if cpu_repeats:
         c["cpu_repeats"] = cpu_repeats
     if max_force_evaluations:
@@ -71,10 +77,16 @@ def case(problem, integrator, *, t_end, dt=None, cfl=None, sample_every=1, state
 
 
 def _array(values):
-    return np.array([np.nan if x is None else x for x in values], dtype=float)
+    """A result's array: packed ({"shape", "float64": base64 of the doubles}, studies/case_run.cpp)
+    or a list (None, a value that was not finite, reads NaN)."""
+    if isinstance(values, dict):
+        return np.frombuffer(base64.b64decode(values["float64"]), dtype="<f8").reshape(values["shape"]).copy()
+    return np.array(values, dtype=float)
 
 
 def _rows(values, samples):
+    if isinstance(values, dict):
+        return _array(values)
     width = len(values[0]) if values else 0
     return np.array(values, dtype=float).reshape(samples, width)
 
@@ -85,7 +97,8 @@ class Result:
     (column name -> 1-D array, as series.csv: t, dt, kinetic, potential, total_energy, min_gap,
     impulse, ... then the problem's observables; every column also an attribute), and with
     states=True state_t, u, v (samples x ndof) and the impulses of the step ending at each sample,
-    impulses, tangential_impulses, tangential_impulses2 (samples x contacts); with measures,
+    impulses, tangential_impulses, tangential_impulses2 (samples x contacts), those named where
+    states is a list; with measures,
     values (one per measure, in order; measure(label)) and run_figures (the engine's figures of the
     run: contact phases, smallest and largest step, ...) instead of the series; cpu and cpu_spread with cpu_repeats. A value
     that was not finite (NaN, an overflow) reads NaN."""
@@ -99,10 +112,11 @@ class Result:
         self.summary = data.get("summary", {})
         self.columns = data.get("columns", [])
         self.series = {name: _array(values) for name, values in zip(self.columns, data.get("series", []))}
-        if "u" in data:
+        if "state_t" in data:
             self.state_t = _array(data["state_t"])
             for key in ("u", "v", "impulses", "tangential_impulses", "tangential_impulses2"):
-                setattr(self, key, _rows(data[key], len(self.state_t)))
+                if key in data:
+                    setattr(self, key, _rows(data[key], len(self.state_t)))
         self.values = _array(data.get("values", []))
         self.observed = data.get("observed", [])
         self.run_figures = data.get("run", {})
@@ -171,13 +185,22 @@ class Study:
                 _nsbench.load_plugin(plugin)
             return _nsbench._drive_study(
                 self.name, self.description, self.source, lambda full: [json.dumps(c) for c in self.cases(full)],
-                lambda cases, results, full: self.tables(
-                    [Result(json.loads(c), json.loads(r)) for c, r in zip(cases, results)], full),
+                lambda cases, results, full: self.tables(_results(cases, results), full),
                 _command(argv), args.out, args.full, args.shard or "", args.merge,
                 args.verify or "", args.rtol, args.atol)
         except ValueError as e:
             print(f"{self.name}: error: {e}", file=sys.stderr)
             return 2
+
+
+def _results(cases, texts):
+    """The Results of the driver's JSON texts, each text dropped once read (a long study's texts
+    are the bulk of what it holds)."""
+    results = []
+    for k, (c, text) in enumerate(zip(cases, texts)):
+        results.append(Result(json.loads(c), json.loads(text)))
+        texts[k] = None
+    return results
 
 
 def _command(argv):

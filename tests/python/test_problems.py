@@ -3,6 +3,7 @@ defaults, its operators of consistent shapes, the listing as `nsbench list` prin
 import subprocess
 
 import numpy as np
+import pytest
 import scipy.sparse
 
 import nsbench
@@ -42,6 +43,23 @@ def test_parameters_set_by_keyword_and_exact_state():
     assert nsbench.Problem("bouncing-bar", N=20).ndof > nsbench.Problem("bouncing-bar", N=10).ndof
     assert nsbench.Problem("block-2d").exact_state(0.1) is None
 
+
+
+def test_exact_events_and_values_by_name():
+    """The exact solution's events and values (what a study's stop, onset and rebound errors are
+    against): the sliding mass's closed form, inf for a stop that never comes, None where untimed."""
+    stops = nsbench.Problem("sliding-mass", alpha=30, mu=0.8, v0=2)
+    a1 = 9.81 * (np.sin(np.pi / 6) - 0.8 * np.cos(np.pi / 6))
+    assert stops.exact_event("slip_stop") == pytest.approx(-2 / a1, rel=1e-12)
+    assert stops.exact_value("stop_distance") == pytest.approx(4 / (2 * abs(a1)), rel=1e-12)
+    assert stops.exact_value("stays_stopped") == 1.0
+    assert nsbench.Problem("sliding-mass", alpha=30, mu=0.3, v0=2).exact_event("slip_stop") == np.inf
+    disk = nsbench.Problem("rolling-disk", h0=0.1, omega0=20, v0=0, e=0.5)
+    assert disk.exact_event("roll_onset") > 0 and disk.exact_value("first_rebound_speed") is not None
+    assert stops.exact_event("jam") is None and stops.exact_value("wave_time") is None
+    assert nsbench.Problem("block-2d").exact_event("rest") is None  # no exact solution
+    with pytest.raises(ValueError, match=r"exact_event 'stop': unknown; valid: contact_start, slip_stop"):
+        stops.exact_event("stop")
 
 def test_listing_matches_nsbench_list(nsbench_exe):
     listing = subprocess.run([nsbench_exe, "list"], check=True, capture_output=True, text=True).stdout

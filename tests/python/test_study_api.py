@@ -29,6 +29,22 @@ def test_a_case_runs_as_nsbench_run_bit_for_bit():
     assert r.steps == direct.summary["steps"] == r.summary["steps"]
 
 
+
+def test_a_case_keeps_the_states_and_columns_it_names_bit_for_bit():
+    """states=[...] and series=[...]: those arrays and columns only, the same numbers as the whole run's."""
+    whole, few = study.run([study.case("bouncing-bar", "cd-lagrange", dt=2e-4, t_end=0.3, states=True, **BAR),
+                            study.case("bouncing-bar", "cd-lagrange", dt=2e-4, t_end=0.3, states=["v", "impulses"],
+                                       series=["total_energy", "t"], **BAR)])
+    assert few.columns == ["total_energy", "t"] and set(few.series) == {"total_energy", "t"}
+    for name in few.columns:
+        assert same(few.series[name], whole.series[name]), name
+    assert same(few.v, whole.v) and same(few.impulses, whole.impulses) and same(few.state_t, whole.state_t)
+    assert not hasattr(few, "u") and not hasattr(few, "tangential_impulses")
+    with pytest.raises(ValueError, match=r'case states \["v","w"\]: "w" is not one of u, v, impulses'):
+        study.run([study.case("bouncing-bar", "cd-lagrange", dt=2e-4, t_end=0.01, states=["v", "w"], **BAR)])
+    with pytest.raises(ValueError, match=r'case series \["E"\]: "E" is not one of t, dt, kinetic'):
+        study.run([study.case("bouncing-bar", "cd-lagrange", dt=2e-4, t_end=0.01, series=["E"], **BAR)])
+
 def test_cfl_takes_its_fraction_of_the_stable_step():
     [r] = study.run([study.case("bouncing-bar", "cd-lagrange", cfl=0.5, t_end=0.1, **BAR)])
     assert r.dt == 0.5 * nsbench.Problem("bouncing-bar", **BAR).stable_step()
