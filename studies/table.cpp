@@ -73,11 +73,22 @@ std::string csv_escape(const std::string& raw) {
   return out + "\"";
 }
 
+// French guillemets (the talk's quotations) need the T1 font encoding, which a paper's
+// preamble may not load: they become TeX's quote ligatures, which every encoding has.
+std::string latex_quotes(std::string s) {
+  for (const auto& [from, to] : {std::pair{"\u00ab\u00a0", "``"}, std::pair{"\u00ab ", "``"}, std::pair{"\u00ab", "``"},
+                                 std::pair{"\u00a0\u00bb", "''"}, std::pair{" \u00bb", "''"}, std::pair{"\u00bb", "''"}}) {
+    const std::string f = from;
+    for (std::size_t at = s.find(f); at != std::string::npos; at = s.find(f, at)) s.replace(at, f.size(), to);
+  }
+  return s;
+}
+
 // Every character TeX treats specially, the backslash included: a label such as
 // "x\input /etc/hostname \relax" is printed, not executed.
 std::string latex_escape(const std::string& raw) {
   std::string out;
-  for (char ch : one_line(raw)) {
+  for (char ch : latex_quotes(one_line(raw))) {
     switch (ch) {
       case '_': case '%': case '&': case '#': case '$': case '{': case '}':
         out += '\\';

@@ -35,6 +35,18 @@ TEST_CASE("LaTeX tables: every special character escaped, no command of a label 
   CHECK_THAT(tex, !Catch::Contains("text$"));
 }
 
+// CI, stop 61: the claims table quotes the talk in French; a guillemet needs the T1 encoding and
+// stopped a default (OT1) document.
+TEST_CASE("LaTeX tables: French guillemets become quote ligatures any font encoding has", "[studies][tables]") {
+  nsb::Table t;
+  t.id = "quotes";
+  t.columns = {{"claim", "", "", ""}};
+  t.add_row({std::string("un int\u00e9grateur de type \u00ab\u00a0time stepping\u00a0\u00bb, \u00abbis\u00bb, \u00ab ter \u00bb")});
+  const std::string tex = nsb::to_latex(t);
+  CHECK_THAT(tex, Catch::Contains("un int\u00e9grateur de type ``time stepping'', ``bis'', ``ter''"));
+  CHECK_THAT(tex, !Catch::Contains("\u00ab") && !Catch::Contains("\u00bb"));
+}
+
 TEST_CASE("LaTeX tables: symbols typeset, numbers in siunitx S columns, title apart from caption, longtable",
           "[studies][tables]") {
   const std::string tex = nsb::to_latex(hostile_table());
