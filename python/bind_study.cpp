@@ -134,9 +134,9 @@ int drive_study(const std::string& name, const std::string& description, const s
 
 DriverOptions driver_options(const std::string& out, bool full, const std::string& shard, bool merge, const std::string& verify,
                              double rtol, double atol) {
-  for (const auto& [option, value] : {std::pair{"rtol", rtol}, {"atol", atol}})
-    if (!(value >= 0.0 && std::isfinite(value))) throw InputError(fmt::format("--{} {}: must be a finite number >= 0", option, value));
-  return {out, full, shard.empty() ? Shard{} : parse_shard(shard), merge, verify, {rtol, atol}};
+  DriverOptions options{out, full, shard.empty() ? Shard{} : parse_shard(shard), merge, verify, {rtol, atol}};
+  check_driver_options(options);
+  return options;
 }
 
 }  // namespace

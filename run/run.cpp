@@ -16,6 +16,7 @@
 
 #include "core/team_size.hpp"
 #include "core/threads.hpp"
+#include "problems/contact_gaps.hpp"
 
 namespace nsb {
 
@@ -46,8 +47,8 @@ const char* nonfinite_or_negative(const Vec& values, double lower) {
 // impulses are differences of integrals), non-finite tangential impulses, negative work
 // counters. O(contacts) a step. A non-finite state is left to the run's own check on the
 // sampled steps, so that a blow-up ends where it always did.
-std::string output_fault(double dt_taken, const RunOptions& options, const Vec& gap, const ContactGeometry* moving,
-                         const Integrator& integrator, double& largest_impulse) {
+std::string output_fault(double dt_taken, const RunOptions& options, const ContactGaps& gaps, const Integrator& integrator,
+                         double& largest_impulse) {
   std::string fault;
   if (dt_taken > std::max(options.dt, options.t_end) * (1.0 + 1e-12))
     return fmt::format("a step of {:g} taken, longer than the requested dt = {:g} and t_end = {:g} (the integrator's)", dt_taken,
@@ -58,7 +59,8 @@ std::string output_fault(double dt_taken, const RunOptions& options, const Vec& 
   const Vec& lambda = integrator.impulses();
   if (lambda.size()) largest_impulse = std::max(largest_impulse, lambda.cwiseAbs().maxCoeff());
   const WorkCounters& w = integrator.work();
-  if (!gap.allFinite())
+  const ContactGeometry* moving = gaps.moving_rows();
+  if (!gaps.last().allFinite())
     fault = "non-finite contact gap (the problem's contact geometry)";
   else if (moving && !(rows_finite(moving->normal) && rows_finite(moving->tangent) && rows_finite(moving->tangent2)))
     fault = "non-finite contact rows (the problem's contact geometry)";
@@ -159,12 +161,8 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     result.series.columns.insert(result.series.columns.end(), extra.begin(), extra.end());
     if (options.series_sink) options.series_sink->columns(result.series.columns);
   }
-  const SpMat& L = problem.gap_operator();
-  const Vec& g0 = problem.gap_offset();
-  Vec gap(L.rows());
+  ContactGaps gaps(problem);
   std::vector<double> row(kGenericColumns.size() + extra.size());
-  // Moving contacts: the gaps g(u) themselves (g0 + L u is their linearisation at U0).
-  ContactGeometry moving = problem.contacts_move() ? problem.contact_geometry() : ContactGeometry{};
 
   // |Lambda_T| summed over the contacts: |(Lambda_T1, Lambda_T2)| on 3D contacts; the 2D sum
   // of |Lambda_T| itself otherwise (the same bits as before 3D contacts).
@@ -173,16 +171,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
     if (t2.size() == 0 || t2.isZero(0.0)) return t1.cwiseAbs().sum();
     return (t1.array().square() + t2.array().square()).sqrt().sum();
   };
-  const auto min_gap = [&]() {
-    if (problem.contacts_move()) {
-      problem.evaluate_contacts(integrator.state().u, moving);
-      gap = moving.gap;
-    } else {
-      gap.noalias() = L * integrator.state().u;
-      gap += g0;
-    }
-    return gap.size() ? gap.minCoeff() : std::numeric_limits<double>::infinity();
-  };
+  const auto min_gap = [&]() { return gaps.min_at(integrator.state().u); };
   const auto sample = [&](double dt) {
     const State& s = integrator.state();
     const Energy E = integrator.energy();
@@ -260,7 +249,7 @@ RunResult run(const Problem& problem, Integrator& integrator, const RunOptions& 
       team.step_done(timed ? wall_now() - step_start : 0.0);
       ++result.steps;
       result.max_penetration = std::max(result.max_penetration, -min_gap());
-      if (const std::string fault = output_fault(info.dt, options, gap, problem.contacts_move() ? &moving : nullptr, integrator, largest_impulse);
+      if (const std::string fault = output_fault(info.dt, options, gaps, integrator, largest_impulse);
           !fault.empty()) {
         result.status = RunStatus::Diverged;
         result.message = fmt::format("{} at t = {:.6g}", fault, integrator.state().t);

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include <chrono>
 #include <utility>
 
@@ -88,6 +90,8 @@ std::function<std::string(const Json&, const Json&)> check_of(const StudyEntry& 
 }  // namespace
 
 void check_driver_options(const DriverOptions& o) {
+  for (const auto& [option, value] : {std::pair{"--rtol", o.tolerance.rtol}, {"--atol", o.tolerance.atol}})
+    if (!(value >= 0.0 && std::isfinite(value))) throw InputError(fmt::format("{} {}: must be a finite number >= 0", option, value));
   if (o.shard.count && o.merge) throw InputError("--shard and --merge: give one of them");
   const bool verify = !o.verify_dir.empty();
   if (verify && (o.shard.count || o.merge)) throw InputError("--verify: recomputes whole studies, without --shard or --merge");

@@ -38,8 +38,8 @@ struct DriverOptions {
   std::function<void(const std::filesystem::path& report)> before_commit = {};
 };
 
-// Checks the options against each other (--shard with --merge, --verify with either, a missing
-// --verify directory): InputError naming them.
+// Checks the options (--rtol and --atol finite and >= 0) and against each other (--shard with
+// --merge, --verify with either, a missing --verify directory): InputError naming them.
 void check_driver_options(const DriverOptions& options);
 
 // Runs the studies as the options say; returns the exit status: 0, or 1 when --verify found

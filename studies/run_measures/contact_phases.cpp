@@ -9,7 +9,7 @@
 #include <array>
 #include <cmath>
 
-#include "problems/problem.hpp"
+#include "problems/contact_gaps.hpp"
 #include "studies/measures.hpp"
 #include "studies/run_measure.hpp"
 
@@ -20,14 +20,12 @@ namespace {
 class ContactPhasesMeasure final : public RunMeasure {
  public:
   ContactPhasesMeasure(const Params& params, const Problem& problem, const Integrator& integrator)
-      : problem_(problem), phases_(params.real("min_flight")), t0_(integrator.state().t), span_(params.real("t_end") - t0_),
-        L_(problem.contacts().normal), g0_(problem.contacts().gap_offset), gap_(g0_.size()) {
-    if (problem.contacts_move()) moving_ = problem.contact_geometry();
-  }
+      : gaps_(problem), phases_(params.real("min_flight")), t0_(integrator.state().t),
+        span_(params.real("t_end") - t0_) {}
   void add(const Integrator& integrator, const StepInfo&) override {
     const State& s = integrator.state();
     phases_.add(s.t, integrator.impulses().size() > 0 && integrator.impulses().sum() > 0.0);
-    const double penetration = std::max(0.0, -min_gap(s.u));
+    const double penetration = std::max(0.0, -gaps_.min_at(s.u));
     const auto tenth = static_cast<std::size_t>(std::clamp(10.0 * (s.t - t0_) / span_, 0.0, 9.0));
     by_tenth_[tenth] = std::max(by_tenth_[tenth], penetration);
   }
@@ -38,22 +36,9 @@ class ContactPhasesMeasure final : public RunMeasure {
   }
 
  private:
-  double min_gap(const Vec& u) {
-    if (problem_.contacts_move()) {
-      problem_.evaluate_contacts(u, moving_);
-      gap_ = moving_.gap;
-    } else {
-      gap_.noalias() = L_ * u;
-      gap_ += g0_;
-    }
-    return gap_.size() ? gap_.minCoeff() : 0.0;
-  }
-  const Problem& problem_;
+  ContactGaps gaps_;
   ContactPhases phases_;
   double t0_, span_;
-  SpMat L_;
-  Vec g0_, gap_;
-  ContactGeometry moving_;
   std::array<double, 10> by_tenth_{};
 };
 

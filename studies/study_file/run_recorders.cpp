@@ -14,6 +14,7 @@
 
 #include "core/parameters.hpp"
 #include "integrators/registry.hpp"
+#include "problems/contact_gaps.hpp"
 #include "problems/problem_output.hpp"
 #include "studies/study_file/engine.hpp"
 
@@ -46,12 +47,7 @@ double state_observable(const Problem& problem, const SpMat& M, const State& s, 
   if (const auto k = std::find(names.begin(), names.end(), name); k != names.end()) {
     return buffer.of(problem, s, impulses, dt)[k - names.begin()];
   }
-  if (name == "min_gap" && problem.contacts_move()) {  // the gaps themselves, not their linearisation at U0
-    ContactGeometry moving = problem.contact_geometry();
-    problem.evaluate_contacts(s.u, moving);
-    return moving.gap.minCoeff();
-  }
-  if (name == "min_gap") return (problem.gap_offset() + problem.gap_operator() * s.u).minCoeff();
+  if (name == "min_gap") return ContactGaps(problem).min_at(s.u);
   const Energy e = energy ? *energy : Energy{0.5 * s.v.dot(M * s.v), problem.potential(s.u)};
   return name == "kinetic" ? e.kinetic : name == "potential" ? e.potential : e.total();
 }
