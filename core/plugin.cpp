@@ -121,8 +121,9 @@ void load_plugin(const std::string& path) {
     refuse("not an nsbench plugin (no nsbench_plugin_abi_version symbol: it registers nothing with "
          "NSBENCH_INTEGRATOR or NSBENCH_PROBLEM)");
   if (*abi != NSBENCH_PLUGIN_ABI)
-    refuse(fmt::format("built for plugin ABI {}, this nsbench has ABI {}: rebuild it against this nsbench", *abi,
-                     NSBENCH_PLUGIN_ABI));
+    refuse(fmt::format("built for plugin ABI {}, this nsbench has ABI {}: rebuild it against this nsbench "
+                       "(CHANGELOG.md, 'Plugin API: what to change', says what its source must change)",
+                       *abi, NSBENCH_PLUGIN_ABI));
   if (!l.errors.empty()) refuse(l.errors.front());
   l.undo.clear();
   PluginInfo info;

@@ -19,10 +19,20 @@
 
 namespace nsb {
 
+// What a registry of `Base` checks of a class T when a source registers it, at compile time:
+// overrides of an older plugin API, warned about and adapted (integrators/plugin_compat.hpp,
+// problems/plugin_compat.hpp). The default checks nothing.
+template <class Base, class T>
+struct PluginCompat {
+  static void adapt(T& /*made*/) {}
+};
+
 // Factory of a registry entry: builds T from its validated parameters.
 template <class Base, class T>
 std::unique_ptr<Base> make_from_params(const Params& p) {
-  return std::make_unique<T>(p);
+  auto made = std::make_unique<T>(p);
+  PluginCompat<Base, T>::adapt(*made);
+  return made;
 }
 
 // Throws InputError naming the option, the nearest name and the valid names when `name` is

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace nsb {
 
@@ -18,6 +19,10 @@ void Integrator::bind(const Problem& problem, const State& initial) {
   tangential_impulses_ = Vec::Zero(problem.ncontacts());
   tangential_impulses2_ = Vec::Zero(problem.ncontacts());
   work_ = WorkCounters{};
+}
+
+StepInfo Integrator::advance(double /*dt_requested*/) {
+  throw std::logic_error("integrator " + name_ + " overrides neither advance(dt) nor step(dt)");
 }
 
 Capabilities Integrator::capabilities() const { return declared_ ? declared_->resolved(params_) : Capabilities{}; }

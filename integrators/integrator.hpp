@@ -117,15 +117,17 @@ class Integrator {
   virtual ~Integrator() = default;
 
   // The name of the registry entry that made this integrator ("" for one built directly,
-  // outside the registry: a test's).
-  const std::string& name() const { return name_; }
+  // outside the registry: a test's). Virtual only so that a 0.1.0 plugin's override still
+  // compiles (deprecated, integrators/plugin_compat.hpp); nsbench names it after its entry.
+  virtual std::string name() const { return name_; }
   // Binds the integrator to `problem` (which must outlive it) and sets the initial state.
   // Throws InputError when the problem is outside what the scheme handles.
   virtual void init(const Problem& problem, const State& initial) = 0;
-  // Advances from state().t by (about) dt_requested; returns the step taken. Non-virtual: the
-  // time and the step count (unless the scheme counts its own) are kept here, around the
-  // scheme's advance().
-  StepInfo step(double dt_requested) {
+  // Advances from state().t by (about) dt_requested; returns the step taken. The time and the
+  // step count (unless the scheme counts its own) are kept here, around the scheme's
+  // advance(). Virtual only for a 0.1.0 plugin that overrides it (deprecated: it then keeps
+  // state_.t and work_.steps itself, as 0.1.0 asked; integrators/plugin_compat.hpp).
+  virtual StepInfo step(double dt_requested) {
     const double t0 = state_.t;
     const StepInfo info = advance(dt_requested);
     state_.t = t0 + info.dt;
@@ -144,10 +146,11 @@ class Integrator {
   // (Capabilities::resolved); none for an integrator built outside the registry.
   Capabilities capabilities() const;
   // True for a scheme that is only conditionally stable at a fixed step dt: dt must stay
-  // below the problem's stable step (Problem::stable_step) or the run blows up.
-  bool conditionally_stable() const { return capabilities().explicit_step; }
+  // below the problem's stable step (Problem::stable_step) or the run blows up. Virtual, like
+  // treats_friction(), only for a 0.1.0 plugin's override (deprecated: declare the capability).
+  virtual bool conditionally_stable() const { return capabilities().explicit_step; }
   // True for a scheme that treats Coulomb friction (Contacts::mu, docs/method.md section 6).
-  bool treats_friction() const { return capabilities().friction; }
+  virtual bool treats_friction() const { return capabilities().friction; }
 
   const State& state() const { return state_; }
   // Contact impulses Lambda (size p) applied during the last step; >= 0.
@@ -163,7 +166,9 @@ class Integrator {
  protected:
   explicit Integrator(Params params) : params_(std::move(params)) {}
   // The scheme's own step (see the contract above): everything but state_.t and work_.steps.
-  virtual StepInfo advance(double dt_requested) = 0;
+  // Every scheme overrides it (PluginCompat checks so when the entry is built); the default,
+  // never called then, is there for a 0.1.0 plugin that overrides step() instead.
+  virtual StepInfo advance(double dt_requested);
   // Common part of init(): checks the problem's contacts (check_contacts), the contract's
   // mass and initial gaps (check_problem_contract) and the declared capabilities
   // (check_capabilities), stores the problem and state, sizes the impulses.
@@ -183,8 +188,16 @@ class Integrator {
 
  private:
   friend struct IntegratorEntry;
+  template <class Base, class T>
+  friend struct PluginCompat;
   std::string name_;
   std::optional<DeclaredCapabilities> declared_;  // the entry's; none outside the registry
+  // What a 0.1.0 plugin's conditionally_stable() and treats_friction() overrides say, folded
+  // into declared_ when the entry builds it (IntegratorEntry::make).
+  bool legacy_explicit_ = false;
+  bool legacy_friction_ = false;
 };
 
 }  // namespace nsb
+
+#include "integrators/plugin_compat.hpp"

@@ -47,6 +47,8 @@ struct IntegratorEntry {
     auto integrator = factory(params);
     integrator->name_ = name;
     integrator->declared_ = declared();
+    integrator->declared_->always.explicit_step |= integrator->legacy_explicit_;
+    integrator->declared_->always.friction |= integrator->legacy_friction_;
     return integrator;
   }
 };

@@ -76,6 +76,8 @@ inline constexpr double kBar3dBytesPerElementFree = 20480.0, kBar3dBytesPerEleme
 
 class Bar3d final : public Problem, public ExactSolution {
  public:
+  // The exact solution's impact times, not 0.1.0's Problem::impact_times (kept for plugins).
+  using ExactSolution::impact_times;
   explicit Bar3d(const Params& params);
   ~Bar3d() override;
   static ParamSpecs parameters_spec();

@@ -44,6 +44,8 @@ namespace nsb {
 
 class PainleveRod final : public RigidProblem, public ExactSolution {
  public:
+  // The exact solution's impact times, not 0.1.0's Problem::impact_times (kept for plugins).
+  using ExactSolution::impact_times;
   explicit PainleveRod(const Params& params);
   static ParamSpecs parameters_spec();
 

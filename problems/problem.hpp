@@ -121,6 +121,14 @@ void check_problem_contract(const Problem& problem, const SpMat& mass, const Sta
 // exact() hands out (problems/exact_solution.hpp).
 class Problem : public ProblemOutput {
  public:
+  Problem() = default;
+  // A copy's 0.1.0 exact-solution view is its own (it reads the copy).
+  Problem(const Problem& other) : ProblemOutput(other), legacy_exact_(this, other.legacy_exact_.enabled) {}
+  Problem& operator=(const Problem& other) {
+    ProblemOutput::operator=(other);
+    legacy_exact_.enabled = other.legacy_exact_.enabled;
+    return *this;
+  }
   virtual ~Problem() = default;
 
   virtual std::string name() const = 0;
@@ -202,11 +210,34 @@ class Problem : public ProblemOutput {
   virtual double stable_step_at(ConstVecRef /*u*/) const { return stable_step(); }
 
   // The exact solution where one is known (problems/exact_solution.hpp), nullptr otherwise;
-  // it lives as long as the problem.
-  virtual const ExactSolution* exact() const { return nullptr; }
+  // it lives as long as the problem. The default: none, or the view of a 0.1.0 plugin's
+  // exact_state() and impact_times() below.
+  virtual const ExactSolution* exact() const { return legacy_exact_.enabled ? &legacy_exact_ : nullptr; }
+
+  // 0.1.0's exact-solution functions, kept one minor version for plugins that override them
+  // (deprecated, problems/plugin_compat.hpp: hand out an ExactSolution from exact()). The
+  // built-ins never do. A class that is both a Problem and its own ExactSolution and does not
+  // override impact_times says `using ExactSolution::impact_times;` (two bases, one name).
+  virtual std::optional<State> exact_state(double /*t*/) const { return std::nullopt; }
+  virtual std::vector<double> impact_times(double /*t_end*/) const { return {}; }
+
+ private:
+  template <class Base, class T>
+  friend struct PluginCompat;
+  // exact() of a 0.1.0 plugin: its exact_state() and impact_times() as an ExactSolution.
+  struct LegacyExact final : ExactSolution {
+    LegacyExact(const Problem* owner, bool on) : problem(owner), enabled(on) {}
+    std::optional<State> state(double t) const override { return problem->exact_state(t); }
+    std::vector<double> impact_times(double t_end) const override { return problem->impact_times(t_end); }
+    const Problem* problem;
+    bool enabled;
+  };
+  LegacyExact legacy_exact_{this, false};
 };
 
 // The diagonal of M when M is diagonal; nullopt otherwise.
 std::optional<Vec> diagonal_mass(const SpMat& M);
 
 }  // namespace nsb
+
+#include "problems/plugin_compat.hpp"

@@ -93,7 +93,16 @@ class ProblemOutput {
   // `impulses` (size p), written into out (observable_names().size()): the one observation
   // function, for the initial sample too (dt = 0; impulses then carry no step, and a column
   // that needs one, e.g. a contact force impulse / dt, is 0 there).
-  virtual void observe(const State& /*s*/, const Vec& /*impulses*/, double /*dt*/, std::span<double> /*out*/) const {}
+  // The default forwards to the 0.1.0 pair below, for a plugin that overrides those.
+  virtual void observe(const State& s, const Vec& impulses, double dt, std::span<double> out) const {
+    observe_step(s, impulses, dt, out);
+  }
+  // 0.1.0's two observation functions, kept one minor version for plugins that override them
+  // (deprecated, problems/plugin_compat.hpp: override the observe above). The built-ins never do.
+  virtual void observe_step(const State& s, const Vec& /*impulses*/, double /*dt*/, std::span<double> out) const {
+    observe(s, out);
+  }
+  virtual void observe(const State& /*s*/, std::span<double> /*out*/) const {}
 
   // Problem-specific figures of a run's summary.json (its "problem_summary" object, written
   // only when this is not empty), e.g. an exact event time; a non-finite value is written null.

@@ -91,6 +91,8 @@ class BouncingBarExact;
 
 class SignoriniBar final : public LinearProblem, public ExactSolution {
  public:
+  // The exact solution's impact times, not 0.1.0's Problem::impact_times (kept for plugins).
+  using ExactSolution::impact_times;
   using MassModel = BarMassModel;
 
   explicit SignoriniBar(const Params& params, std::string name = "signorini-bar");

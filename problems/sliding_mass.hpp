@@ -38,6 +38,8 @@ namespace nsb {
 
 class SlidingMass final : public RigidProblem, public ExactSolution {
  public:
+  // The exact solution's impact times, not 0.1.0's Problem::impact_times (kept for plugins).
+  using ExactSolution::impact_times;
   explicit SlidingMass(const Params& params);
   static ParamSpecs parameters_spec();
 

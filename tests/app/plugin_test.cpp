@@ -112,7 +112,8 @@ TEST_CASE("plugin: a bad plugin gives one line naming the file and the reason, e
       {fs::temp_directory_path().string(), "not a regular file"},
       {not_elf, "plugin " + not_elf + ": not a loadable shared library"},
       {test_plugin("not_a_plugin"), "not_a_plugin.so: not an nsbench plugin"},
-      {test_plugin("wrong_abi"), "wrong_abi.so: built for plugin ABI 999, this nsbench has ABI " + std::to_string(NSBENCH_PLUGIN_ABI)},
+      {test_plugin("wrong_abi"), "wrong_abi.so: built for plugin ABI 999, this nsbench has ABI " + std::to_string(NSBENCH_PLUGIN_ABI) +
+                                     ": rebuild it against this nsbench (CHANGELOG.md, 'Plugin API: what to change',"},
       {test_plugin("clash_builtin"), "clash_builtin.so: integrator 'cd-lagrange' is already registered by nsbench (built-in)"},
       {kPlugin + " --plugin " + test_plugin("clash_example"),
        "clash_example.so: integrator 'symplectic-euler' is already registered by plugin "},
