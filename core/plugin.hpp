@@ -10,7 +10,7 @@
 
 // Bumped whenever an installed header changes what a plugin compiled against it sees
 // (the layout of Problem, Integrator, Params, the registry entries).
-#define NSBENCH_PLUGIN_ABI 11
+#define NSBENCH_PLUGIN_ABI 12
 
 #define NSBENCH_CONCAT_(a, b) a##b
 #define NSBENCH_CONCAT(a, b) NSBENCH_CONCAT_(a, b)
