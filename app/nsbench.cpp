@@ -207,8 +207,7 @@ int run_case(const RunArgs& a) {
   setup.stop();
   // Once the input is checked, before the first step: a binary built from changed sources
   // says so and which (the same list is in summary.json's build), its numbers not the commit's.
-  if (const std::string& dirty = nsb::build_info().dirty_files; !dirty.empty())
-    fmt::print(stderr, "nsbench: note: built from revision {} with changes to {}\n", nsb::build_info().git_revision, dirty);
+  fmt::print(stderr, "{}", nsb::dirty_build_note("nsbench"));
   const nsb::RunResult result = nsb::run(*problem, *integrator, options, follow_rotations);
   series.commit();
   nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));

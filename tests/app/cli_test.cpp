@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/build_info.hpp"
 #include "core/output.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
@@ -398,6 +399,26 @@ TEST_CASE("cli: an unusable reference cache is a warning, the study runs and lea
     CHECK_THAT(r.output, Catch::Contains("nsbench: warning: reference cache " + cache + ": cannot create the directory"));
     CHECK(fs::exists(out + "/quick_work_precision.csv"));
     for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().filename().string().find("staging") == std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
+// Issue 57, item 5: a study built from changed sources says which, once, as nsbench run does
+// (tests/core/build_info_test.cpp); a clean build says nothing.
+TEST_CASE("cli: a study from a dirty build names the changed files once; a clean build says nothing", "[app][build_info]") {
+  namespace fs = std::filesystem;
+  const std::string dir = tmpdir("dirty_note"), out = dir + "/out";
+  fs::remove_all(dir);
+  const auto r = study("run " + write_quick_study(dir, "quick") + " --out " + out);
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  const nsb::BuildInfo& b = nsb::build_info();
+  const std::string note = fmt::format("nsbench-study: note: built from revision {} with changes to {}\n", b.git_revision, b.dirty_files);
+  if (!b.dirty_files.empty()) {
+    CHECK(r.output.find(note) != std::string::npos);
+    CHECK(r.output.find(note) == r.output.rfind(note));
+  } else {
+    CHECK(r.output.find("note: built from") == std::string::npos);
   }
   fs::remove_all(dir);
 }
