@@ -150,8 +150,22 @@ std::string non_finite(const nsb::Integrator& integrator) {
   return fmt::format("{}", fmt::join(parts, ", "));
 }
 
-// An energy error as printed: n/a when there is no scale (E0 = 0 and the problem has none).
-std::string energy_error_text(double e) { return std::isnan(e) ? "n/a" : fmt::format("{:.3e}", e); }
+// An energy figure as printed (signed for a change): n/a when there is no scale (E0 = 0 and the
+// problem has none).
+std::string energy_text(double e, bool with_sign = false) {
+  return std::isnan(e) ? "n/a" : with_sign ? fmt::format("{:+.3e}", e) : fmt::format("{:.3e}", e);
+}
+
+// The run's one line. The energy change, not an "error": a dissipative run (e < 1, friction)
+// loses energy by its law.
+void print_result(const nsb::Problem& problem, const nsb::Integrator& integrator, const nsb::RunResult& result) {
+  const std::string scale = std::isnan(result.energy_scale) ? fmt::format("E0 = 0 and {} has no energy scale", problem.name())
+                                                            : "both relative to " + result.energy_scale_text;
+  fmt::print("{} on {}: {} steps, t = {:.6g}, cpu {:.3g} s (stepping {:.3g} s), energy change E_end - E0 {} (largest |E - E0| "
+             "{}; {}), max penetration {:.3e}\n",
+             integrator.name(), problem.name(), result.steps, result.t_final, result.cpu_seconds, result.step_cpu_seconds,
+             energy_text(result.final_energy_change(), true), energy_text(result.max_energy_error), scale, result.max_penetration);
+}
 
 struct RunArgs {
   std::string problem, integrator, dt, t_end, out, sample_every = "1", fields, fields_every;
@@ -207,8 +221,7 @@ int run_case(const RunArgs& a) {
   setup.stop();
   // Once the input is checked, before the first step: a binary built from changed sources
   // says so and which (the same list is in summary.json's build), its numbers not the commit's.
-  if (const std::string& dirty = nsb::build_info().dirty_files; !dirty.empty())
-    fmt::print(stderr, "nsbench: note: built from revision {} with changes to {}\n", nsb::build_info().git_revision, dirty);
+  fmt::print(stderr, "{}", nsb::dirty_build_note("nsbench"));
   const nsb::RunResult result = nsb::run(*problem, *integrator, options, follow_rotations);
   series.commit();
   nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));
@@ -229,12 +242,7 @@ int run_case(const RunArgs& a) {
                overflow.empty() ? "" : " (" + overflow + ")", a.out);
     return 3;
   }
-  fmt::print("{} on {}: {} steps, t = {:.6g}, cpu {:.3g} s (stepping {:.3g} s), energy error {} (max {}{}), "
-             "max penetration {:.3e}\n",
-             integrator->name(), problem->name(), result.steps, result.t_final, result.cpu_seconds, result.step_cpu_seconds,
-             energy_error_text(result.final_energy_error()), energy_error_text(result.max_energy_error),
-             std::isnan(result.energy_scale) ? fmt::format("; E0 = 0 and {} has no energy scale", problem->name()) : "",
-             result.max_penetration);
+  print_result(*problem, *integrator, result);
   return 0;
 }
 

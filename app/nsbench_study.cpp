@@ -240,6 +240,13 @@ int main(int argc, char** argv) {
                                      fmt::join(valid, ", ")));
       }
     }
+    // Once the input is checked (the output directory too, claimed here as the studies would),
+    // before the first case: the tables stamp "-dirty", this says which code files were, as
+    // nsbench run does. Not for --merge: it runs no case, its numbers are the shards'.
+    if (!merge) {
+      if (verify_dir.empty()) nsb::claim_output_directory(out, "--out");
+      fmt::print(stderr, "{}", nsb::dirty_build_note("nsbench-study"));
+    }
     std::vector<const nsb::StudyEntry*> in_cpp, in_python;
     for (const auto* s : selected) (s->script.empty() ? in_cpp : in_python).push_back(s);
     int status = in_cpp.empty() ? 0 : nsb::drive_studies(in_cpp, options);

@@ -22,4 +22,13 @@ inline std::string version_text(const std::string& program) {
   return program + " " + b.version + " (revision " + b.git_revision + ", " + b.build_type + " build, " + b.compiler + ")";
 }
 
+// What `program` prints once, before its first step, when it was built from changed sources:
+// "<program>: note: built from revision R with changes to FILES\n" (its numbers are not the
+// revision's); "" for a clean build. One wording for nsbench run and nsbench-study.
+inline std::string dirty_build_note(const std::string& program) {
+  const BuildInfo& b = build_info();
+  if (b.dirty_files.empty()) return {};
+  return program + ": note: built from revision " + b.git_revision + " with changes to " + b.dirty_files + "\n";
+}
+
 }  // namespace nsb

@@ -24,6 +24,7 @@ std::string needs_text(const Capabilities& c) {
   if (c.mass != MassNeed::Any) parts.push_back(mass_need_name(c.mass));
   if (c.linear_only) parts.push_back("linear F_int");
   if (c.constant_force_only) parts.push_back("constant F_ext");
+  if (c.inelastic_only) parts.push_back("e = 0 on contacts with mass");
   if (c.node_to_rigid_only) parts.push_back("node-to-rigid contacts");
   if (!c.max_dofs_parameter.empty()) parts.push_back(fmt::format("ndof <= {}", c.max_dofs_parameter));
   return parts.empty() ? "none" : fmt::format("{}", fmt::join(parts, "; "));
@@ -49,13 +50,19 @@ const char* mass_need_name(MassNeed need) {
 
 namespace {
 
-// The one wording of every refusal.
+// The one wording of every refusal: each requirement the problem misses, collected so that
+// the one line names them all.
 struct Refusal {
   std::string integrator;  // its name, and the parameter switch that applies (" with theta = 0")
   const Problem& problem;
+  std::vector<std::string> shortfalls = {};
 
-  [[noreturn]] void operator()(const std::string& need, const std::string& has, const std::string& valid) const {
-    throw InputError(fmt::format("integrator {} needs {}; problem {} has {} (valid: {})", integrator, need, problem.name(), has, valid));
+  void operator()(const std::string& need, const std::string& has, const std::string& valid) {
+    shortfalls.push_back(fmt::format("needs {}; problem {} has {} (valid: {})", need, problem.name(), has, valid));
+  }
+  void throw_if_any() const {
+    if (!shortfalls.empty())
+      throw InputError(fmt::format("integrator {} {}", integrator, fmt::join(shortfalls, "; it also ")));
   }
 };
 
@@ -104,12 +111,21 @@ std::string node_to_rigid_shortfall(const Problem& problem) {
   return {};
 }
 
+// True when some contact row acts on a dof that has mass: where an impact law would act.
+bool contact_on_massive_dof(const SpMat& M, const SpMat& L) {
+  for (Index j = 0; j < L.outerSize(); ++j)
+    for (SpMat::InnerIterator it(L, j); it; ++it)
+      for (SpMat::InnerIterator m(M, j); m; ++m)
+        if (m.value() != 0.0) return true;
+  return false;
+}
+
 }  // namespace
 
 void check_capabilities(const DeclaredCapabilities& declared, const std::string& integrator, const Params& params,
                         const Problem& problem, const SpMat& mass) {
   const Capabilities& can = declared.resolved(params);
-  const Refusal refuse{integrator + declared.condition(params), problem};
+  Refusal refuse{integrator + declared.condition(params), problem};
   const Contacts& c = problem.contacts();
   if (problem.contacts_move() && !can.moving_contacts)
     refuse("contacts with constant kinematics (g = g0 + L U, L and T fixed)",
@@ -126,6 +142,10 @@ void check_capabilities(const DeclaredCapabilities& declared, const std::string&
     refuse("a linear F_int (F_int = K u, K constant)", "a nonlinear F_int", "a linear problem");
   if (can.constant_force_only && !problem.external_force_is_constant())
     refuse("a constant F_ext", "a time-dependent F_ext", "a problem with a constant load");
+  if (can.inelastic_only && problem.restitution() > 0.0 && contact_on_massive_dof(mass, problem.gap_operator()))
+    refuse("e = 0 on contacts with mass (it has no velocity-level impact law)",
+           fmt::format("restitution e = {} on a contact with mass", problem.restitution()),
+           "e = 0, or a problem whose contact dofs are massless, e.g. mass=singular");
   if (!can.max_dofs_parameter.empty()) {
     const long max_dofs = params.integer(can.max_dofs_parameter);
     if (problem.ndof() > max_dofs)
@@ -138,6 +158,7 @@ void check_capabilities(const DeclaredCapabilities& declared, const std::string&
     if (const std::string has = node_to_rigid_shortfall(problem); !has.empty())
       refuse("node-to-rigid contacts (each contact on one dof, one contact per dof)", has,
              "a problem whose contacts each hold one dof against a fixed obstacle");
+  refuse.throw_if_any();
 }
 
 }  // namespace nsb

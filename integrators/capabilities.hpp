@@ -1,12 +1,14 @@
 #pragma once
 // What an integrator can run, declared in its registry entry (integrators/registry.hpp) and
 // checked once, by check_capabilities, when the integrator binds a problem
-// (Integrator::bind): a problem outside them is refused with one line per kind,
+// (Integrator::bind): a problem outside them is refused with one line naming every
+// requirement it misses, each as
 //
 //   integrator X needs <requirement>; problem Y has <what it has> (valid: <what would run>)
 //
-// so that no scheme writes its own refusal of a kind below, and `nsbench list` reads them
-// without building an integrator.
+// joined by "; it also needs ..." (all at once, so that a user does not meet them one try at a
+// time), so that no scheme writes its own refusal of a kind below, and `nsbench list` reads
+// them without building an integrator.
 #include <string>
 
 #include "core/parameters.hpp"
@@ -46,6 +48,9 @@ struct Capabilities {
   bool linear_only = false;
   // A constant external force F_ext only.
   bool constant_force_only = false;
+  // Restitution e = 0 only, unless every contact row acts on massless dofs: the scheme has no
+  // velocity-level impact law (newmark-lm), so an e > 0 on a dof with mass would be ignored.
+  bool inelastic_only = false;
   // Node-to-rigid contacts only: each row of the gap operator L acts on one dof, and no two
   // rows on the same dof (g_i = a_i (u_d - position_i): a node against a fixed obstacle).
   // Judged on constant rows only: moving rows (one rigid body's corners: translation and
@@ -84,7 +89,7 @@ struct DeclaredCapabilities {
 // "any mass", "diagonal mass >= 0", "diagonal mass > 0", "no massless dof".
 const char* mass_need_name(MassNeed need);
 
-// Throws InputError (the one line above) for the first requirement `problem` (of mass matrix
+// Throws InputError (the one line above) naming every requirement `problem` (of mass matrix
 // `mass`) does not meet, for the integrator named `integrator` with parameters `params`.
 void check_capabilities(const DeclaredCapabilities& declared, const std::string& integrator, const Params& params,
                         const Problem& problem, const SpMat& mass);

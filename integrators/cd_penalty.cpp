@@ -98,7 +98,9 @@ void CdPenalty::init(const Problem& problem, const State& initial) {
     gap_ = rows_.normal * state_.u + problem.gap_offset();
   }
   gap_prev_ = gap_;
-  tau_ = 0.0;
+  gap_prev2_ = gap_;
+  spring_force_ = Vec::Zero(p);
+  stored_ = Vec::Zero(p);
   if (std::isfinite(stable_step_with_contacts())) work_.extra["stable_step_with_contacts"] = stable_step_with_contacts();
 }
 
@@ -128,12 +130,12 @@ ImpactAccuracy CdPenalty::impact_accuracy() const {
 StepInfo CdPenalty::advance(double tau) {
   StepInfo info;
   info.dt = tau;
-  tau_ = tau;
   cd_.drift(*problem_, state_, tau, work_);
   cd_.kick(state_, tau);
 
   // Penalty forces, contact by contact (H diagonal: independent; otherwise one Gauss-Seidel
   // sweep, each contact seeing the velocity the previous ones left).
+  std::swap(gap_prev2_, gap_prev_);
   std::swap(gap_prev_, gap_);
   if (moving_) {
     problem_->evaluate_contacts(state_.u, rows_);
@@ -142,6 +144,7 @@ StepInfo CdPenalty::advance(double tau) {
     gap_.noalias() = rows_.normal * state_.u;
     gap_ += problem_->gap_offset();
   }
+  store_spring_work();
   impulses_.setZero();
   if (friction_) tangential_impulses_.setZero();
   if (cone_) tangential_impulses2_.setZero();
@@ -162,6 +165,7 @@ StepInfo CdPenalty::advance(double tau) {
     }
     const double f = std::max(0.0, (-kappa * gap_[i] - c * gdot) / (1.0 + c * tau * h_diag_[i]));
     if (f == 0.0) continue;
+    spring_force_[i] = -kappa * gap_[i];
     impulses_[i] = tau * f;
     for (RowSpMat::InnerIterator it(L, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * tau * f;
     if (!friction_ || mu_[i] == 0.0) continue;
@@ -193,6 +197,7 @@ void CdPenalty::apply_coupled_contact(Index i, double kappa, double c, double gd
     if (settled) break;
   }
   if (f == 0.0) return;
+  spring_force_[i] = -kappa * gap_[i];
   impulses_[i] = tau * f;
   tangential_impulses_[i] = lambda_t;
   for (RowSpMat::InnerIterator it(L, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * tau * f;
@@ -211,11 +216,18 @@ void CdPenalty::apply_cone_friction(Index i) {
   for (RowSpMat::InnerIterator it(rows_.tangent2, i); it; ++it) state_.v[it.col()] += cd_.minv[it.col()] * it.value() * lambda[1];
 }
 
+void CdPenalty::store_spring_work() {
+  for (Index i = 0; i < gap_.size(); ++i) {
+    stored_[i] -= 0.5 * spring_force_[i] * (gap_[i] - gap_prev2_[i]);
+    if (!(gap_[i] < 0.0)) stored_[i] = 0.0;  // open: its spring holds nothing
+    spring_force_[i] = 0.0;                  // set again where a force acts at U_{k+1}
+  }
+}
+
 Energy CdPenalty::energy() const {
   if (!cd_.started) return Integrator::energy();
   Energy E = cd_.energy(*problem_, state_);
-  for (Index i = 0; i < gap_.size(); ++i)
-    if (gap_[i] < 0.0 && gap_prev_[i] < 0.0) E.potential += 0.5 * factor_ / (h_diag_[i] * tau_ * tau_) * gap_prev_[i] * gap_[i];
+  E.potential += stored_.sum();
   return E;
 }
 

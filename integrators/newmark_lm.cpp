@@ -19,24 +19,7 @@ ParamSpecs NewmarkLm::parameters_spec() {
 NewmarkLm::NewmarkLm(const Params& params)
     : Integrator(params), beta_(params.real("beta")), gamma_(params.real("gamma")) {}
 
-namespace {
-
-// True when some contact row acts on a dof that has mass.
-bool contact_on_massive_dof(const SpMat& M, const SpMat& L) {
-  for (Index j = 0; j < L.outerSize(); ++j)
-    for (SpMat::InnerIterator it(L, j); it; ++it)
-      for (SpMat::InnerIterator m(M, j); m; ++m)
-        if (m.value() != 0.0) return true;
-  return false;
-}
-
-}  // namespace
-
 void NewmarkLm::init(const Problem& problem, const State& initial) {
-  if (problem.restitution() > 0.0 && contact_on_massive_dof(problem.mass_matrix(), problem.gap_operator()))
-    throw InputError(fmt::format("newmark-lm: problem '{}' asks for restitution e = {} on a contact with mass; the scheme has "
-                                 "no velocity-level impact law (e = 0 or massless contact dofs only)",
-                                 problem.name(), problem.restitution()));
   bind(problem, initial);
   a_ = initial_acceleration(problem, state_, mass_, "newmark-lm");
   ++work_.force_evaluations;
@@ -63,6 +46,6 @@ StepInfo NewmarkLm::advance(double h) {
   return info;
 }
 
-NSBENCH_INTEGRATOR({"newmark-lm", "Newmark (beta, gamma) with position-level Lagrange multipliers; mass redistribution with a singular mass", &NewmarkLm::parameters_spec, &make_from_params<Integrator, NewmarkLm>, false});
+NSBENCH_INTEGRATOR({"newmark-lm", "Newmark (beta, gamma) with position-level Lagrange multipliers; mass redistribution with a singular mass", &NewmarkLm::parameters_spec, &make_from_params<Integrator, NewmarkLm>, false, false, {.inelastic_only = true}});
 
 }  // namespace nsb

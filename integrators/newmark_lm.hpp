@@ -26,9 +26,11 @@
 // dofs and beta = 1/4, gamma = 1/2 nearly conserve the energy. With a lumped or consistent
 // mass the contact dof has inertia and no impact law: the classic failing control
 // (contact-force chatter, energy jumps at impacts and releases).
-// Declines (InputError): a restitution e > 0 on a contact acting on a massive dof (the
-// scheme has no velocity-level impact law: the rebound speed would depend on where in the
-// step the contact closes, anything in [-v, v]); a non-diagonal singular mass.
+// Declines (InputError): a restitution e > 0 on a contact acting on a massive dof, through the
+// capability "e = 0 on contacts with mass" (Capabilities::inelastic_only, refused in the same
+// line as any other capability the problem misses): the scheme has no velocity-level impact
+// law, so the rebound speed would depend on where in the step the contact closes, anything in
+// [-v, v]; a non-diagonal singular mass.
 // Moving contacts (Problem::contacts_move): declined through the capability "moving contacts"
 // (integrators/capabilities.hpp, one refusal wording): its multipliers hold the linear
 // constraint g0 + L U >= 0 at the step's end; not extended to g(U).

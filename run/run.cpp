@@ -430,6 +430,7 @@ std::string summary_to_json(const Problem& problem, const Integrator& integrator
       {"initial_energy", result.initial_energy},
       {"final_energy", result.final_energy},
       {"final_energy_error", result.final_energy_error()},
+      {"final_energy_change", result.final_energy_change()},
       {"max_energy_error", result.max_energy_error},
       {"energy_error_scale", result.energy_scale},
       {"energy_error_scale_is", result.energy_scale_text},

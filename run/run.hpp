@@ -111,6 +111,9 @@ struct RunResult {
   double max_penetration = 0.0;   // max over steps of max(0, -g)
   WorkCounters work;
   double final_energy_error() const { return std::abs(final_energy - initial_energy) / energy_scale; }
+  // (E_end - E0) / energy_scale, signed: the energy change, a loss (< 0) on a dissipative run
+  // and no error there; what `nsbench run` prints.
+  double final_energy_change() const { return (final_energy - initial_energy) / energy_scale; }
 };
 
 // Called after every step (impact detection and the like in studies).

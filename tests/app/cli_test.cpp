@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/build_info.hpp"
 #include "core/output.hpp"
 #include "problems/bouncing_mass.hpp"
 #include "problems/registry.hpp"
@@ -402,6 +403,26 @@ TEST_CASE("cli: an unusable reference cache is a warning, the study runs and lea
   fs::remove_all(dir);
 }
 
+// Issue 57, item 5: a study built from changed sources says which, once, as nsbench run does
+// (tests/core/build_info_test.cpp); a clean build says nothing.
+TEST_CASE("cli: a study from a dirty build names the changed files once; a clean build says nothing", "[app][build_info]") {
+  namespace fs = std::filesystem;
+  const std::string dir = tmpdir("dirty_note"), out = dir + "/out";
+  fs::remove_all(dir);
+  const auto r = study("run " + write_quick_study(dir, "quick") + " --out " + out);
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  const nsb::BuildInfo& b = nsb::build_info();
+  const std::string note = fmt::format("nsbench-study: note: built from revision {} with changes to {}\n", b.git_revision, b.dirty_files);
+  if (!b.dirty_files.empty()) {
+    CHECK(r.output.find(note) != std::string::npos);
+    CHECK(r.output.find(note) == r.output.rfind(note));
+  } else {
+    CHECK(r.output.find("note: built from") == std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
 // Issue 30, finding 10: a second study into the same --out rewrote index.md to list only itself;
 // figures.json kept only the last run's figures until the index parts carried them too.
 TEST_CASE("cli: index.md and figures.json list every study of the --out, not only the last run's", "[app][reliability]") {
@@ -480,7 +501,8 @@ TEST_CASE("cli: repeated --set keys, empty values, non-finite tolerances and ove
   }
   const auto rest = nsbench(kRun + "--dt 1e-3 --set h0=0 --out " + out);
   CHECK(rest.code == 0);
-  CHECK_THAT(rest.output, Catch::Contains("energy error n/a (max n/a; E0 = 0 and bouncing-mass has no energy scale)") &&
+  CHECK_THAT(rest.output, Catch::Contains("energy change E_end - E0 n/a (largest |E - E0| n/a; E0 = 0 and bouncing-mass has no energy "
+                                                          "scale)") &&
                               !Catch::Contains("nan"));
   std::filesystem::remove_all(out);
 }

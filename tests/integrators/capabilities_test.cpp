@@ -1,7 +1,7 @@
 // The capabilities an integrator declares in its registry entry (integrators/capabilities.hpp):
-// one refusal per kind, each the one line "integrator X needs ...; problem Y has ... (valid:
-// ...)", raised when the integrator binds the problem, and the non-virtual step() that keeps
-// the time and the step count for every scheme.
+// one refusal per kind, each "integrator X needs ...; problem Y has ... (valid: ...)", every
+// one the problem misses in one line, raised when the integrator binds the problem, and the
+// non-virtual step() that keeps the time and the step count for every scheme.
 #include <catch2/catch.hpp>
 
 #include "integrators/registry.hpp"
@@ -108,11 +108,31 @@ TEST_CASE("capabilities: node-to-rigid contacts only refused contacts between bo
         "ball-chain has contact 0 acting on 2 dofs (valid: a problem whose contacts each hold one dof against a fixed obstacle)");
 }
 
+TEST_CASE("capabilities: every requirement a problem misses is named at once, in one line", "[integrators][capabilities]") {
+  // rolling-disk (mu = 0.3, e = 0.5 on a disk with mass): newmark-lm misses two; both named, so
+  // that a user does not meet them one try at a time.
+  const std::string why = refusal("newmark-lm", {}, "rolling-disk", {});
+  CHECK(why.find('\n') == std::string::npos);
+  CHECK_THAT(why, Catch::StartsWith("integrator newmark-lm needs mu = 0 (it does not treat Coulomb friction); problem rolling-disk "
+                                    "has mu = 0.3 (valid: a problem with mu = 0, or an integrator `nsbench list` marks as treating "
+                                    "friction)"));
+  CHECK_THAT(why, Catch::EndsWith("; it also needs e = 0 on contacts with mass (it has no velocity-level impact law); problem "
+                                  "rolling-disk has restitution e = 0.5 on a contact with mass (valid: e = 0, or a problem whose "
+                                  "contact dofs are massless, e.g. mass=singular)"));
+  // One requirement missed: the line is the one wording alone, with no "it also".
+  CHECK(refusal("newmark-lm", {}, "bouncing-mass", {{"e", "1"}}) ==
+        "integrator newmark-lm needs e = 0 on contacts with mass (it has no velocity-level impact law); problem bouncing-mass "
+        "has restitution e = 1 on a contact with mass (valid: e = 0, or a problem whose contact dofs are massless, e.g. "
+        "mass=singular)");
+  CHECK(refusal("newmark-lm", {}, "bouncing-mass", {{"e", "0"}}).empty());
+}
+
 TEST_CASE("capabilities: nsbench list reads them from the entries", "[integrators][capabilities]") {
   CHECK(nsb::find_integrator("cd-lagrange").declared().text() == "explicit; diagonal mass >= 0");
   CHECK(nsb::find_integrator("schatzman-paoli").declared().text() ==
         "with theta != 0: linear F_int; with theta = 0: explicit; diagonal mass > 0");
   CHECK(nsb::find_integrator("moreau-jean").declared().text() == "none");
+  CHECK(nsb::find_integrator("newmark-lm").declared().text() == "e = 0 on contacts with mass");
 }
 
 TEST_CASE("step(): the time and the step count are kept around every scheme's advance()", "[integrators][capabilities]") {
