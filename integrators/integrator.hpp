@@ -166,8 +166,9 @@ class Integrator {
  protected:
   explicit Integrator(Params params) : params_(std::move(params)) {}
   // The scheme's own step (see the contract above): everything but state_.t and work_.steps.
-  // Every scheme overrides it (PluginCompat checks so when the entry is built); the default,
-  // never called then, is there for a 0.1.0 plugin that overrides step() instead.
+  // A scheme must override it, or (deprecated, 0.1.0) step(). Nothing checks that when the
+  // entry is built (advance is protected); the default throws std::logic_error naming the
+  // integrator, and is reached only by a scheme that overrides neither.
   virtual StepInfo advance(double dt_requested);
   // Common part of init(): checks the problem's contacts (check_contacts), the contract's
   // mass and initial gaps (check_problem_contract) and the declared capabilities
