@@ -37,6 +37,7 @@
 #include "core/plugin.hpp"
 #include "core/wait_policy.hpp"
 #include "check/conformance.hpp"
+#include "run/energy_balance.hpp"
 #include "run/field_output.hpp"
 #include "integrators/registry.hpp"
 #include "run/run.hpp"
@@ -167,6 +168,18 @@ void print_result(const nsb::Problem& problem, const nsb::Integrator& integrator
              energy_text(result.final_energy_change(), true), energy_text(result.max_energy_error), scale, result.max_penetration);
 }
 
+// The balance's line beside it (run/energy_balance.hpp): what of the energy change the loads and
+// the contact impulses did, and what neither did (the scheme's own error or dissipation).
+void print_energy_balance(const nsb::RunEnergyBalance& b) {
+  if (!b.not_derived.empty()) {
+    fmt::print("{}\n", b.not_derived);
+    return;
+  }
+  fmt::print("energy balance over {} steps (absolute): energy change {:+.3e} = work of the loads {:+.3e} + work of the "
+             "contact impulses {:+.3e} + residual {:+.3e} (round-off bound {:.1e})\n",
+             b.steps_closed, b.energy_change, b.load_work, b.contact_work, b.residual, b.round_off);
+}
+
 struct RunArgs {
   std::string problem, integrator, dt, t_end, out, sample_every = "1", fields, fields_every;
   std::vector<std::string> sets;
@@ -214,17 +227,23 @@ int run_case(const RunArgs& a) {
   const std::filesystem::path& dir = out.path();
   nsb::CsvSeriesFile series(dir / "series.csv");  // streamed: memory bounded whatever the length
   options.series_sink = &series;
-  // Bodies that turn in 3D: their orientation is followed after every step (it depends on the path).
-  nsb::StepObserver follow_rotations;
-  if (fields && fields->follows_rotations())
-    follow_rotations = [&](const nsb::Integrator& i, const nsb::StepInfo&) { fields->follow(i.state()); };
+  // After every step: the orientation of bodies that turn in 3D (it depends on the path), the balance.
+  nsb::RunBalance balance(*problem, *integrator);
+  const bool follow = fields && fields->follows_rotations();
+  nsb::StepObserver observer;
+  if (follow || balance.derived())
+    observer = [&](const nsb::Integrator& i, const nsb::StepInfo&) {
+      if (follow) fields->follow(i.state());
+      balance.add(i);
+    };
   setup.stop();
   // Once the input is checked, before the first step: a binary built from changed sources
   // says so and which (the same list is in summary.json's build), its numbers not the commit's.
   fmt::print(stderr, "{}", nsb::dirty_build_note("nsbench"));
-  const nsb::RunResult result = nsb::run(*problem, *integrator, options, follow_rotations);
+  const nsb::RunResult result = nsb::run(*problem, *integrator, options, observer);
   series.commit();
-  nsb::write_file_atomic(dir / "summary.json", nsb::summary_to_json(*problem, *integrator, options, result));
+  nsb::write_file_atomic(dir / "summary.json",
+                         nsb::with_energy_balance(nsb::summary_to_json(*problem, *integrator, options, result), balance.figures()));
   if (!integrator->events().empty())  // the references' located events
     nsb::write_file_atomic(dir / "events.csv", nsb::events_to_csv(integrator->events()));
   else
@@ -243,6 +262,7 @@ int run_case(const RunArgs& a) {
     return 3;
   }
   print_result(*problem, *integrator, result);
+  print_energy_balance(balance.figures());
   return 0;
 }
 

@@ -136,6 +136,40 @@ TEST_CASE("cli: a run writes series.csv and summary.json", "[app]") {
                           Catch::Contains("\"version\": \"" NSBENCH_VERSION "\"") && Catch::Contains("\"git_revision\""));
 }
 
+TEST_CASE("cli: a run prints the contact impulses' work and the balance residual beside the energy change, or why not",
+          "[app][energy_balance]") {
+  const std::string dir = tmpdir("balance");
+  std::filesystem::remove_all(dir);
+  const auto read_summary = [&] {
+    std::ifstream json(dir + "/summary.json");
+    return nlohmann::json::parse(json);
+  };
+  // Dissipative (e = 0 node impacts), moreau-jean theta = 1/2: the residual is round-off.
+  const auto r = nsbench("run --problem signorini-bar --set N=20 --integrator moreau-jean --dt 0.025 --t-end 4 --out " + dir);
+  REQUIRE(r.code == 0);
+  INFO(r.output);
+  CHECK_THAT(r.output, Catch::Contains("energy change E_end - E0") &&
+                           Catch::Contains("energy balance over 160 steps (absolute): energy change ") &&
+                           Catch::Contains(" = work of the loads ") && Catch::Contains(" + work of the contact impulses ") &&
+                           Catch::Contains(" + residual "));
+  const auto summary = read_summary();
+  const auto& b = summary["energy_balance"];
+  REQUIRE(b["derived"] == true);
+  const double change = b["energy_change"], loads = b["load_work"], contact = b["contact_work"], residual = b["residual"],
+               round_off = b["round_off"];
+  CHECK(std::abs(change - (summary["final_energy"].get<double>() - summary["initial_energy"].get<double>())) <= round_off);
+  CHECK(std::abs(change - (loads + contact + residual)) <= round_off);
+  CHECK(change < -1e-3 * summary["initial_energy"].get<double>());
+  CHECK(std::abs(residual) <= round_off);
+  CHECK(summary.contains("final_energy_change"));  // the existing keys stay
+  // No balance derived for nsga: said so, on the line and in summary.json.
+  const auto n = nsbench("run --problem signorini-bar --set N=20 --integrator nsga --dt 0.025 --t-end 4 --out " + dir);
+  REQUIRE(n.code == 0);
+  CHECK_THAT(n.output, Catch::Contains("energy balance: not derived for integrator 'nsga'"));
+  CHECK(read_summary()["energy_balance"]["derived"] == false);
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("cli: an integrator that locates events writes events.csv, at the exact impact times", "[app][events]") {
   const std::string dir = tmpdir("events");
   std::filesystem::remove_all(dir);
