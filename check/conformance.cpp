@@ -16,6 +16,7 @@
 #include "run/run.hpp"
 #include "problems/block_2d.hpp"
 #include "problems/bouncing_mass.hpp"
+#include "problems/signorini_bar.hpp"
 #include "problems/sliding_mass.hpp"
 #include "problems/spring_chain.hpp"
 #include "reference/modal_exact.hpp"
@@ -153,6 +154,28 @@ std::optional<SmoothOrder> smooth_order(const IntegratorEntry& entry) {
   s.error_quarter = final_error(entry, chain, initial, dt / 4.0, 4 * steps);
   s.order = std::log2(s.error_half / s.error_quarter);
   return s;
+}
+
+double deformable_rise_bound() {
+  const double p = kDeformableStepRatio;  // omega_max dt / 2
+  return p / (1.0 - p);
+}
+
+std::optional<DeformableEnergy> deformable_energy(const IntegratorEntry& entry) {
+  const SignoriniBar bar(Params(SignoriniBar::parameters_spec(), {{"N", "20"}}));
+  auto integ = init_or_decline(entry, bar);
+  if (!integ) return std::nullopt;
+  const double e0 = integ->energy().total();  // the rigid motion's rho A L v0^2 / 2 > 0
+  DeformableEnergy d;
+  RunOptions options{kDeformableStepRatio * bar.stable_step(), kDeformableEnd, 1, false};
+  const RunResult result = run(bar, *integ, options, [&](const Integrator& it, const StepInfo&) {
+    d.worst_rise = std::max(d.worst_rise, (it.energy().total() - e0) / e0);
+  });
+  d.final_change = (integ->energy().total() - e0) / e0;
+  d.t_final = integ->state().t;
+  d.finished = result.status == RunStatus::Ok;
+  d.message = result.message;
+  return d;
 }
 
 const char* outcome_name(CheckVerdict::Outcome o) {
@@ -298,6 +321,29 @@ void order(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
   out.push_back(verdict("order", s->order >= 1.0 - 0.1,
                         fmt::format("wall-free spring chain: {:.3f} (errors {:.3g}, {:.3g}; >= 0.9)", s->order,
                                     s->error_half, s->error_quarter)));
+}
+
+void deformable(const IntegratorEntry& entry, std::vector<CheckVerdict>& out) {
+  const char* where = "signorini-bar N = 20, e = 0, dt = stable_step / 2";
+  const auto d = deformable_energy(entry);
+  if (!d) {
+    std::string declined;
+    try {
+      const SignoriniBar bar(Params(SignoriniBar::parameters_spec(), {{"N", "20"}}));
+      entry.make(Params(entry.parameters()))->init(bar, bar.initial_state());
+    } catch (const InputError& err) {
+      declined = err.what();
+    }
+    out.push_back({"deformable", Outcome::NotMeasured, fmt::format("declines {}: {}", where, declined)});
+    return;
+  }
+  const double bound = deformable_rise_bound();
+  const bool finite = d->finished && std::isfinite(d->worst_rise) && std::isfinite(d->final_change);
+  out.push_back(verdict("deformable", finite && d->worst_rise <= bound,
+                        fmt::format("{}, to t = {:g}: worst (E - E0) / E0 = {:+.3g} (<= {:.3g}: no energy gain in the exact "
+                                    "solution, and a flight's oscillation at this step is at most that), final {:+.3g}{}",
+                                    where, d->t_final, d->worst_rise, bound, d->final_change,
+                                    d->finished ? "" : fmt::format("; the run stopped: {}", d->message))));
 }
 
 // A value outside the range of `s`, or "" when its range is the whole real line.
@@ -562,7 +608,7 @@ std::vector<CheckVerdict> check_integrator(const IntegratorEntry& entry) {
   using Property = void (*)(const IntegratorEntry&, std::vector<CheckVerdict>&);
   const std::vector<std::pair<const char*, Property>> properties = {
       {"contact law", contact_law}, {"step counters", step_counters}, {"momentum", momentum}, {"order", order},
-      {"bad parameters", bad_parameters}, {"determinism", determinism}, {"friction", friction}};
+      {"deformable", deformable}, {"bad parameters", bad_parameters}, {"determinism", determinism}, {"friction", friction}};
   for (const auto& [name, property] : properties) {
     try {
       property(entry, out);

@@ -23,6 +23,10 @@
 //   order               wall-free spring chain against its modal-exact solution: the measured
 //                       order log2(e(dt/2) / e(dt/4)) is at least 0.9 (a consistent scheme;
 //                       not for a reference, whose error is its tolerance)
+//   deformable          signorini-bar (N = 20, lumped, e = 0, no gravity) at half its stable
+//                       step to t = 4, through its contact (t = 0 to 2) and the flight after:
+//                       the run ends, its states finite, and the energy never rises above E0
+//                       by more than deformable_rise_bound() of E0 (below)
 //   bad parameters      every declared parameter refuses a value outside its range
 //   determinism         block-2d on its floor, 1 thread and 2 threads: bitwise equal states
 //   friction            treats_friction(): |tangential impulse| <= mu x normal impulse on
@@ -82,6 +86,29 @@ struct SmoothOrder {
 // scheme measures 1, not the 2 a start at rest in the springs hid it behind); nullopt when the
 // integrator declines the chain.
 std::optional<SmoothOrder> smooth_order(const IntegratorEntry& entry);
+
+// The deformable case. Its exact solution gains no energy: the continuum bar conserves it, the
+// lumped semi-discrete one loses some at each node impact (e = 0), and no load works (g = 0).
+// What a scheme reports, E_n = K(v_n) + V(u_n), still oscillates in flight with no gain: a
+// consistent scheme that conserves a modified energy H of each mode omega reports E_n within a
+// factor 1 -+ p of it, p = omega dt / 2 for the least accurate such, symplectic Euler (H =
+// E_n - omega^2 dt u_n v_n / 2, and |omega u v| <= E_n), (omega dt / 2)^2 for the central
+// difference, 0 for the trapezoidal rule. From the rigid start (E0 = H: all kinetic, omega =
+// 0), with a contact that loses H and omega <= omega_max = 2 / stable_step, E_n <= E0 / (1 -
+// p), p = dt / stable_step: a rise of at most p / (1 - p) of E0. A larger rise is energy the
+// scheme made; so is a non-finite state.
+inline constexpr double kDeformableStepRatio = 0.5;  // dt / stable_step
+inline constexpr double kDeformableEnd = 4.0;        // the contact lasts T = 2 L / c = 2 from t = 0
+double deformable_rise_bound();                      // p / (1 - p)
+struct DeformableEnergy {
+  double worst_rise = 0.0;    // max over the steps of (E - E0) / E0
+  double final_change = 0.0;  // (E_end - E0) / E0
+  double t_final = 0.0;
+  bool finished = false;      // the run reached t_end (not diverged, not over its step budget)
+  std::string message;        // why it stopped otherwise
+};
+// The integrator of `entry` (defaults) on the deformable case; nullopt when it declines the bar.
+std::optional<DeformableEnergy> deformable_energy(const IntegratorEntry& entry);
 
 // One line of `nsbench check`.
 struct CheckVerdict {
